@@ -1,0 +1,20 @@
+//! Hanging-chain equilibria between two anchors `p0`, `p1`.
+//!
+//! * [`Catenary`]: the continuous catenary `y = a cosh((x - x0)/a) + c` of
+//!   given arc length (parameter `a` found with argmin's `BrentRoot`).
+//! * [`discrete_equilibrium`]: the exact static equilibrium of `n` equal
+//!   rigid rods pinned at both ends, `tan(phi_i) = alpha + (i - 1/2) beta`.
+//!
+//! Conventions: `y` points up, gravity acts along `-y`; angles in radians
+//! from the horizontal, counter-clockwise; lengths in the caller's unit.
+
+mod continuous;
+mod discrete;
+mod error;
+
+pub use continuous::Catenary;
+pub use discrete::{discrete_equilibrium, joints, DiscreteCatenary};
+pub use error::CatenaryError;
+
+/// A point `[x, y]` in the plane (length units, `y` up).
+pub type Point = [f64; 2];

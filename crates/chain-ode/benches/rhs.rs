@@ -1,0 +1,42 @@
+//! One right-hand-side evaluation vs n: the O(n) recursion and the dense
+//! Cholesky reference side by side. `cargo bench -p chain-ode --bench rhs`.
+
+use chain_ode::dense;
+use chain_ode::ode::OdeSystem;
+use chain_ode::{Chain, ChainSystem, Start};
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
+
+fn state(n: usize) -> (Chain, Vec<f64>) {
+    let chain = Chain::report(n, 5e-4).unwrap();
+    let s = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    }
+    .state(&chain)
+    .unwrap();
+    // Give it some motion so that every term is exercised.
+    let rates: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+    (chain, ChainSystem::pack(&s.angles, &rates, 0.0))
+}
+
+fn rhs(c: &mut Criterion) {
+    let mut group = c.benchmark_group("rhs");
+    for n in [25usize, 50, 100, 200, 400, 1000, 2000, 5000, 10_000] {
+        let (chain, y) = state(n);
+        let mut sys = ChainSystem::new(&chain);
+        let mut dy = vec![0.0; y.len()];
+        group.bench_with_input(BenchmarkId::new("fast", n), &n, |b, _| {
+            b.iter(|| sys.rhs(0.0, black_box(&y), black_box(&mut dy)))
+        });
+        if n <= 1000 {
+            let (phi, w) = (&y[..n], &y[n..2 * n]);
+            group.bench_with_input(BenchmarkId::new("dense", n), &n, |b, _| {
+                b.iter(|| dense::accelerations(&chain, black_box(phi), black_box(w)))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, rhs);
+criterion_main!(benches);

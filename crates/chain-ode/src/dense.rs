@@ -1,0 +1,67 @@
+//! The dense O(n^3) reference: assemble `A(phi)` and `b(phi, w)` exactly as
+//! `physics.md` prints them and solve with faer's Cholesky factorisation.
+//! Tests compare the O(n) recursion against it; it is never on a hot path.
+
+use faer::linalg::solvers::Solve;
+use faer::{Mat, Side};
+
+use crate::chain::Chain;
+use crate::dynamics::damping_stencil;
+
+/// `mt_ij`: `n - i + 1/3` on the diagonal, `n - max(i,j) + 1/2` off it (1-based).
+pub fn mt(n: usize, i: usize, j: usize) -> f64 {
+    // 0-based i, j here: 1-based index k is k0 + 1.
+    let k = i.max(j) + 1;
+    if i == j {
+        (n - k) as f64 + 1.0 / 3.0
+    } else {
+        (n - k) as f64 + 0.5
+    }
+}
+
+/// The mass matrix `A_ij = mt_ij cos(phi_i - phi_j)` (rod units: `T = m l^2/2 w^T A w`).
+pub fn mass_matrix(phi: &[f64]) -> Mat<f64> {
+    let n = phi.len();
+    Mat::from_fn(n, n, |i, j| mt(n, i, j) * (phi[i] - phi[j]).cos())
+}
+
+/// The right-hand side `b_i = -sum_j mt_ij s_ij w_j^2 - (g/l) q_i cos phi_i + gamma D_i`.
+pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
+    let n = phi.len();
+    let g = chain.gravity_rate();
+    let gamma = chain.damping_rate();
+    (0..n)
+        .map(|i| {
+            let centripetal: f64 = (0..n)
+                .map(|j| mt(n, i, j) * (phi[i] - phi[j]).sin() * w[j] * w[j])
+                .sum();
+            let q = (n - i - 1) as f64 + 0.5;
+            -centripetal - g * q * phi[i].cos() + gamma * damping_stencil(w, i)
+        })
+        .collect()
+}
+
+/// `phi''` by a dense Cholesky solve of `A phi'' = b`.
+pub fn accelerations(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
+    let a = mass_matrix(phi);
+    let b = forcing(chain, phi, w);
+    let rhs = Mat::from_fn(b.len(), 1, |i, _| b[i]);
+    let llt = a
+        .llt(Side::Lower)
+        .expect("the mass matrix is symmetric positive definite");
+    let x = llt.solve(&rhs);
+    (0..b.len()).map(|i| x[(i, 0)]).collect()
+}
+
+/// Kinetic energy `T = (m l^2 / 2) w^T A w` from the dense matrix.
+pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
+    let a = mass_matrix(phi);
+    let n = phi.len();
+    let mut q = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            q += w[i] * a[(i, j)] * w[j];
+        }
+    }
+    0.5 * chain.mass * chain.rod_length().powi(2) * q
+}

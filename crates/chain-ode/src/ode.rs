@@ -1,0 +1,149 @@
+//! The narrow interface between a problem and the integrators.
+//!
+//! A problem is an [`OdeSystem`] `y' = f(t, y)`; an integrator advances it and
+//! hands every accepted step, with its continuous extension, to an
+//! [`Observer`]. Integrators never look inside the state; observers never step.
+
+/// `y' = f(t, y)` on `R^dim`.
+pub trait OdeSystem {
+    /// Length of the state vector.
+    fn dim(&self) -> usize;
+    /// `dy = f(t, y)`. Must not allocate: it is the hot path.
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
+    /// The exact Jacobian-vector product `jv = (df/dy)(t, y) v`.
+    fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]);
+}
+
+/// A continuous extension of one accepted step over `[t0, t1]`.
+pub trait Interpolant {
+    /// The interpolated state at `t` in `[t0, t1]`.
+    fn eval(&self, t: f64, out: &mut [f64]);
+}
+
+/// One accepted step as observers see it: end points, their derivatives, and
+/// the method's interpolant between them.
+pub struct StepView<'a> {
+    pub t0: f64,
+    pub t1: f64,
+    pub y0: &'a [f64],
+    pub y1: &'a [f64],
+    /// `f(t1, y1)`.
+    pub f1: &'a [f64],
+    pub interpolant: &'a dyn Interpolant,
+}
+
+/// Watches a run: sampling, maxima, invariants. Never changes it.
+pub trait Observer {
+    /// Called once with the initial state and its derivative.
+    fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]);
+    /// Called after every accepted step.
+    fn step(&mut self, step: &StepView<'_>);
+}
+
+/// Cubic Hermite interpolation between `(y0, f0)` and `(y1, f1)`: fourth-order
+/// accurate, the continuous extension used for RK4.
+pub struct Hermite<'a> {
+    pub t0: f64,
+    pub h: f64,
+    pub y0: &'a [f64],
+    pub f0: &'a [f64],
+    pub y1: &'a [f64],
+    pub f1: &'a [f64],
+}
+
+impl Interpolant for Hermite<'_> {
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        let s = (t - self.t0) / self.h;
+        let s2 = s * s;
+        let s3 = s2 * s;
+        let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
+        let h10 = (s3 - 2.0 * s2 + s) * self.h;
+        let h01 = -2.0 * s3 + 3.0 * s2;
+        let h11 = (s3 - s2) * self.h;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = h00 * self.y0[i] + h10 * self.f0[i] + h01 * self.y1[i] + h11 * self.f1[i];
+        }
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// Reached `t_end`.
+    Ok,
+    /// A non-finite value appeared; the run stopped at the last finite state.
+    Diverged,
+    /// The adaptive step fell below the minimum.
+    StepSizeTooSmall,
+    /// The step budget ran out.
+    MaxSteps,
+}
+
+impl Status {
+    /// The name used in `--json` and CSV output.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Ok => "ok",
+            Self::Diverged => "diverged",
+            Self::StepSizeTooSmall => "step_size_too_small",
+            Self::MaxSteps => "max_steps",
+        }
+    }
+
+    /// True for `Ok`.
+    pub fn is_ok(self) -> bool {
+        self == Self::Ok
+    }
+}
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Work counters of a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected step attempts (error test or nonlinear solver failure).
+    pub rejected_steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Jacobian evaluations (dense Jacobians built).
+    pub jacobian_evals: u64,
+    /// LU factorisations (implicit methods).
+    pub lu_factorizations: u64,
+    /// Times the stiffness detector fired (DOPRI5).
+    pub stiffness_detections: u64,
+}
+
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, o: Self) {
+        self.steps += o.steps;
+        self.rejected_steps += o.rejected_steps;
+        self.rhs_evals += o.rhs_evals;
+        self.jacobian_evals += o.jacobian_evals;
+        self.lu_factorizations += o.lu_factorizations;
+        self.stiffness_detections += o.stiffness_detections;
+    }
+}
+
+/// What an integrator returns: where it got, how, and at what cost.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    pub status: Status,
+    /// The last time with a finite state (== t_end when `status` is `Ok`).
+    pub t_reached: f64,
+    /// The time at which the run failed (the attempted step's end), if it did.
+    pub t_failed: Option<f64>,
+    pub stats: Stats,
+    /// The state at `t_reached`.
+    pub y_end: Vec<f64>,
+}
+
+/// True if every entry is finite.
+pub fn all_finite(y: &[f64]) -> bool {
+    y.iter().all(|v| v.is_finite())
+}

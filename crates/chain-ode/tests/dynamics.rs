@@ -1,0 +1,128 @@
+//! The O(n) dynamics against the dense reference and the conservation laws.
+
+use chain_ode::dense;
+use chain_ode::dynamics::{accelerations, Workspace};
+use chain_ode::kinematics::{dissipation_rate, energy, joints};
+use chain_ode::ode::OdeSystem;
+use chain_ode::{Chain, ChainSystem};
+use proptest::prelude::*;
+
+fn chain_and_state() -> impl Strategy<Value = (Chain, Vec<f64>, Vec<f64>)> {
+    (
+        1usize..=300,
+        0.1f64..20.0,
+        0.01f64..5.0,
+        0.0f64..10.0,
+        0.0f64..0.5,
+    )
+        .prop_flat_map(|(n, length, mass, gravity, damping)| {
+            let chain = Chain::new(length, n, mass, gravity, damping).unwrap();
+            (
+                Just(chain),
+                prop::collection::vec(-7.0f64..7.0, n),
+                prop::collection::vec(-3.0f64..3.0, n),
+            )
+        })
+}
+
+fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn joints_are_one_rod_length_apart((chain, phi, _w) in chain_and_state()) {
+        let r = joints(&chain, [0.3, -1.2], &phi);
+        let l = chain.rod_length();
+        for p in r.windows(2) {
+            let d = (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]);
+            prop_assert!((d - l).abs() <= 1e-12 * chain.length, "{} vs {}", d, l);
+        }
+    }
+
+    #[test]
+    fn fast_solve_equals_dense_cholesky((chain, phi, w) in chain_and_state()) {
+        let n = chain.links;
+        let mut acc = vec![0.0; n];
+        let mut ws = Workspace::new(n);
+        accelerations(&chain, &phi, &w, &mut acc, &mut ws);
+        let reference = dense::accelerations(&chain, &phi, &w);
+        let scale = max_abs(&reference).max(1e-300);
+        for i in 0..n {
+            prop_assert!((acc[i] - reference[i]).abs() <= 1e-10 * scale,
+                "rod {}: {} vs {} (scale {})", i, acc[i], reference[i], scale);
+        }
+    }
+
+    #[test]
+    fn kinetic_energy_equals_quadratic_form((chain, phi, w) in chain_and_state()) {
+        let fast = chain_ode::kinematics::kinetic_energy(&chain, &phi, &w);
+        let dense = dense::kinetic_energy(&chain, &phi, &w);
+        prop_assert!((fast - dense).abs() <= 1e-11 * dense.abs().max(1e-300));
+    }
+
+    #[test]
+    fn energy_rate_is_minus_twice_rayleigh((chain, phi, w) in chain_and_state()) {
+        // dE/dt along the exact flow, by a central difference in the flow direction.
+        let n = chain.links;
+        let mut sys = ChainSystem::new(&chain);
+        let y = ChainSystem::pack(&phi, &w, 0.0);
+        let mut f = vec![0.0; y.len()];
+        sys.rhs(0.0, &y, &mut f);
+        let eps = 1e-6 / (1.0 + max_abs(&f));
+        let at = |s: f64| {
+            let z: Vec<f64> = y.iter().zip(&f).map(|(a, b)| a + s * b).collect();
+            energy(&chain, &z[..n], &z[n..2 * n])
+        };
+        let de_dt = (at(eps) - at(-eps)) / (2.0 * eps);
+        let two_r = dissipation_rate(&chain, &w);
+        // Scale of the individual power terms.
+        let l = chain.rod_length();
+        let power: f64 = (0..n).map(|i| {
+            chain.mass * l * l * w[i].abs() * (f[n + i].abs() + w[i] * w[i]) * n as f64
+                + chain.weight() * l * w[i].abs()
+        }).sum::<f64>() + two_r;
+        prop_assert!((de_dt + two_r).abs() <= 1e-6 * power.max(1e-300),
+            "dE/dt {} vs -2R {} (power scale {})", de_dt, -two_r, power);
+    }
+
+    #[test]
+    fn jacobian_vector_product_matches_central_difference(
+        (chain, phi, w) in chain_and_state(),
+        seed in prop::collection::vec(-1.0f64..1.0, 601)
+    ) {
+        let n = chain.links;
+        let mut sys = ChainSystem::new(&chain);
+        let y = ChainSystem::pack(&phi, &w, 0.7);
+        let v: Vec<f64> = seed[..2 * n + 1].to_vec();
+        let mut jv = vec![0.0; y.len()];
+        sys.jvp(0.0, &y, &v, &mut jv);
+        let eps = 1e-6;
+        let shifted = |s: f64, sys: &mut ChainSystem| {
+            let z: Vec<f64> = y.iter().zip(&v).map(|(a, b)| a + s * b).collect();
+            let mut f = vec![0.0; z.len()];
+            sys.rhs(0.0, &z, &mut f);
+            f
+        };
+        let fp = shifted(eps, &mut sys);
+        let fm = shifted(-eps, &mut sys);
+        let scale = max_abs(&jv).max(max_abs(&fp)).max(1e-300);
+        for i in 0..y.len() {
+            let fd = (fp[i] - fm[i]) / (2.0 * eps);
+            prop_assert!((fd - jv[i]).abs() <= 1e-5 * scale, "entry {}: {} vs {}", i, jv[i], fd);
+        }
+    }
+}
+
+#[test]
+fn hanging_rest_state_stays_put_and_pivot_carries_the_weight() {
+    let chain = Chain::report(30, 1e-3).unwrap();
+    let mut sys = ChainSystem::new(&chain);
+    let y = ChainSystem::pack(&[-std::f64::consts::FRAC_PI_2; 30], &[0.0; 30], 0.0);
+    let mut f = vec![1.0; y.len()];
+    let r = sys.rhs_with_reactions(&y, &mut f);
+    assert!(max_abs(&f) < 1e-12);
+    assert!((r.pivot_force[1] - chain.weight()).abs() < 1e-12 * chain.weight());
+}

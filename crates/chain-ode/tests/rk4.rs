@@ -1,0 +1,145 @@
+//! RK4 against the conservation laws, its convergence order, and its statuses.
+
+use chain_ode::{solve, Chain, Method, SolveOptions, Start, Status};
+
+fn span3(n: usize, damping: f64) -> (Chain, chain_ode::State) {
+    let chain = Chain::report(n, damping).unwrap();
+    let start = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    };
+    let s = start.state(&chain).unwrap();
+    (chain, s)
+}
+
+fn rk4(chain: &Chain, s: &chain_ode::State, t_end: f64, dt: f64) -> chain_ode::Trajectory {
+    let opts = SolveOptions {
+        t_end,
+        dt,
+        ..Default::default()
+    };
+    solve(chain, s, Method::Rk4, &opts).unwrap()
+}
+
+#[test]
+fn undamped_energy_error_falls_like_dt_to_the_fourth() {
+    let (chain, s) = span3(20, 0.0);
+    let dts = [0.02, 0.01, 0.005];
+    let errs: Vec<f64> = dts
+        .iter()
+        .map(|&dt| {
+            let tr = rk4(&chain, &s, 2.0, dt);
+            assert_eq!(tr.status, Status::Ok);
+            tr.summary.energy_balance_error
+        })
+        .collect();
+    for w in errs.windows(2) {
+        let order = (w[0] / w[1]).log2();
+        assert!(
+            (3.5..=4.5).contains(&order),
+            "order {order}, errors {errs:?}"
+        );
+    }
+}
+
+#[test]
+fn damped_energy_balance_holds_and_energy_never_rises() {
+    let (chain, s) = span3(25, 1e-3);
+    let coarse = rk4(&chain, &s, 4.0, 0.005);
+    let fine = rk4(&chain, &s, 4.0, 0.0025);
+    let scale = chain.energy_scale();
+    for tr in [&coarse, &fine] {
+        assert_eq!(tr.status, Status::Ok);
+        assert!(tr.summary.dissipated > 0.0);
+        // E + W = E(0) to the method's error ...
+        assert!(
+            tr.summary.energy_balance_error < 1e-6 * scale,
+            "{:e}",
+            tr.summary.energy_balance_error
+        );
+        // ... and E never rises by more than that error.
+        assert!(tr.summary.max_energy_rise <= tr.summary.energy_balance_error);
+    }
+    // The balance error is the method's: it shrinks at fourth order.
+    let ratio = coarse.summary.energy_balance_error / fine.summary.energy_balance_error;
+    assert!(ratio > 8.0, "ratio {ratio}");
+}
+
+#[test]
+fn a_step_far_too_large_diverges_with_a_status_not_a_nan() {
+    // gamma = r/(m l^2) ~ 35 for n = 50, r = 0.1: dt = 0.01 is ~6x RK4's stability limit.
+    let (chain, s) = span3(50, 0.1);
+    let opts = SolveOptions {
+        t_end: 20.0,
+        dt: 0.01,
+        output_dt: Some(0.05),
+        ..Default::default()
+    };
+    let tr = solve(&chain, &s, Method::Rk4, &opts).unwrap();
+    assert_eq!(tr.status, Status::Diverged);
+    assert!(tr.t_reached < 20.0);
+    let tf = tr.t_failed.expect("failure time");
+    assert!(tf > tr.t_reached && tf <= tr.t_reached + 0.01 + 1e-12);
+    assert!(tr.final_state.iter().all(|v| v.is_finite()));
+    assert!(tr.samples().all(|s| s.angles.iter().all(|v| v.is_finite())));
+    assert!(tr.summary.energy_end.is_finite() && tr.summary.tip_speed_max.is_finite());
+}
+
+#[test]
+fn a_step_budget_ends_with_max_steps_where_it_ran_out() {
+    let (chain, s) = span3(10, 0.0);
+    let opts = SolveOptions {
+        t_end: 1.0,
+        dt: 0.01,
+        max_steps: 10,
+        ..Default::default()
+    };
+    let tr = solve(&chain, &s, Method::Rk4, &opts).unwrap();
+    assert_eq!(tr.status, Status::MaxSteps);
+    assert!((tr.t_reached - 0.1).abs() < 1e-12);
+    assert_eq!(tr.stats.steps, 10);
+}
+
+#[test]
+fn tip_speed_maximum_is_continuous_not_sampled() {
+    let (chain, s) = span3(25, 5e-4);
+    let opts = |dt: f64| SolveOptions {
+        t_end: 4.0,
+        dt,
+        output_dt: Some(0.25),
+        ..Default::default()
+    };
+    let coarse = solve(&chain, &s, Method::Rk4, &opts(0.005)).unwrap();
+    let fine = solve(&chain, &s, Method::Rk4, &opts(0.0005)).unwrap();
+    let (vc, vf) = (coarse.summary.tip_speed_max, fine.summary.tip_speed_max);
+    // Both within RK4's own error of each other (~1e-6 here), far below the
+    // step-to-step change of the speed near its peak.
+    assert!((vc - vf).abs() < 5e-6 * vf, "{vc} vs {vf}");
+    assert!((coarse.summary.t_tip_speed_max - fine.summary.t_tip_speed_max).abs() < 1e-4);
+    // The maximum over the output samples alone is lower.
+    let sampled = coarse
+        .samples()
+        .map(|s| {
+            let v = chain_ode::kinematics::tip_velocity(&chain, s.angles, s.rates);
+            v[0].hypot(v[1])
+        })
+        .fold(0.0, f64::max);
+    assert!(sampled <= vc * (1.0 + 1e-12));
+}
+
+#[test]
+fn samples_land_on_the_output_grid_and_the_end() {
+    let (chain, s) = span3(8, 0.0);
+    let opts = SolveOptions {
+        t_end: 1.03,
+        dt: 0.007,
+        output_dt: Some(0.25),
+        ..Default::default()
+    };
+    let tr = solve(&chain, &s, Method::Rk4, &opts).unwrap();
+    let expect = [0.0, 0.25, 0.5, 0.75, 1.0, 1.03];
+    assert_eq!(tr.times.len(), expect.len(), "{:?}", tr.times);
+    for (t, e) in tr.times.iter().zip(expect) {
+        assert!((t - e).abs() < 1e-12);
+    }
+}
