@@ -141,6 +141,23 @@ pub struct Outcome {
     pub stats: Stats,
     /// The state at `t_reached`.
     pub y_end: Vec<f64>,
+    /// Set when an explicit method stopped early because the problem turned
+    /// stiff (only with `stop_when_stiff`): the time it stopped.
+    pub stiff_at: Option<f64>,
+}
+
+impl Outcome {
+    /// A run that ended at `t` in state `y`.
+    pub fn ended(status: Status, t: f64, t_failed: Option<f64>, stats: Stats, y: Vec<f64>) -> Self {
+        Self {
+            status,
+            t_reached: t,
+            t_failed,
+            stats,
+            y_end: y,
+            stiff_at: None,
+        }
+    }
 }
 
 /// True if every entry is finite.

@@ -1,5 +1,8 @@
 //! One way to run any method on any chain: [`solve`].
 
+mod adaptive;
+mod bdf;
+mod dopri5;
 mod observer;
 mod rk4;
 
@@ -12,23 +15,34 @@ use crate::kinematics::{tip, tip_velocity, Vec2};
 use crate::ode::{Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
+use adaptive::AdaptiveOptions;
 use observer::ChainObserver;
+use crate::ode::{Observer, OdeSystem, Outcome};
 
 /// An integration method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
     /// Classical fixed-step Runge–Kutta 4 (`dt`).
     Rk4,
+    /// Adaptive Dormand–Prince 5(4) with dense output (`rtol`, `atol`).
+    Dopri5,
+    /// Implicit variable-order BDF from diffsol, exact Jacobian (`rtol`, `atol`).
+    Bdf,
+    /// DOPRI5, switching to BDF when the stiffness detector keeps firing.
+    Auto,
 }
 
 impl Method {
     /// Every method, in the order figures list them.
-    pub const ALL: [Method; 1] = [Method::Rk4];
+    pub const ALL: [Method; 4] = [Method::Rk4, Method::Dopri5, Method::Bdf, Method::Auto];
 
     /// The name used on the command line, in scenes and in output.
     pub fn as_str(self) -> &'static str {
         match self {
             Self::Rk4 => "rk4",
+            Self::Dopri5 => "dopri5",
+            Self::Bdf => "bdf",
+            Self::Auto => "auto",
         }
     }
 }
@@ -47,7 +61,7 @@ impl FromStr for Method {
             .find(|m| m.as_str() == s)
             .ok_or_else(|| InvalidParameter {
                 field: "run.method",
-                accepted: "one of rk4",
+                accepted: "one of rk4, dopri5, bdf, auto",
                 got: s.to_string(),
             })
     }
@@ -69,6 +83,8 @@ pub struct SolveOptions {
     pub output_dt: Option<f64>,
     /// Step budget; a run that needs more ends with `max_steps`.
     pub max_steps: u64,
+    /// Smallest adaptive step before `step_size_too_small` (0: the rounding limit).
+    pub h_min: f64,
 }
 
 impl Default for SolveOptions {
@@ -80,6 +96,7 @@ impl Default for SolveOptions {
             atol: 1e-10,
             output_dt: None,
             max_steps: 100_000_000,
+            h_min: 0.0,
         }
     }
 }
@@ -105,6 +122,12 @@ impl SolveOptions {
         if let Some(o) = self.output_dt {
             check(pos(o), "run.output_dt", "a finite number > 0", o)?;
         }
+        check(
+            self.h_min.is_finite() && self.h_min >= 0.0,
+            "run.h_min",
+            "a finite number >= 0",
+            self.h_min,
+        )?;
         check(
             self.max_steps > 0,
             "run.max_steps",
@@ -231,17 +254,15 @@ pub fn solve(
     let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
     let mut obs = ChainObserver::new(chain, options.output_dt);
     let clock = Instant::now();
-    let outcome = match method {
-        Method::Rk4 => rk4::integrate(
-            &mut sys,
-            0.0,
-            &y0,
-            options.t_end,
-            options.dt,
-            options.max_steps,
-            &mut obs,
-        ),
+    let adaptive = AdaptiveOptions {
+        rtol: options.rtol,
+        atol: options.atol,
+        h_min: options.h_min,
+        max_steps: options.max_steps,
+        h0: None,
+        stop_when_stiff: false,
     };
+    let (outcome, segments) = run(&mut sys, &y0, method, options, &adaptive, &mut obs);
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
@@ -265,14 +286,67 @@ pub fn solve(
         t_reached: outcome.t_reached,
         t_failed: outcome.t_failed,
         stats: outcome.stats,
-        segments: vec![Segment {
-            method,
-            t_start: 0.0,
-            t_end: outcome.t_reached,
-        }],
+        segments,
         summary,
         times: std::mem::take(&mut obs.times),
         states: std::mem::take(&mut obs.states),
         final_state: outcome.y_end,
     })
+}
+
+/// Dispatches to the method; `auto` runs DOPRI5 until its stiffness detector
+/// keeps firing, then continues with BDF from that state.
+fn run<S: OdeSystem, O: Observer>(
+    sys: &mut S,
+    y0: &[f64],
+    method: Method,
+    options: &SolveOptions,
+    adaptive: &AdaptiveOptions,
+    obs: &mut O,
+) -> (Outcome, Vec<Segment>) {
+    let t_end = options.t_end;
+    let segment = |method, t_start, out: &Outcome| Segment {
+        method,
+        t_start,
+        t_end: out.t_reached,
+    };
+    let single = |out: Outcome| {
+        let seg = vec![segment(method, 0.0, &out)];
+        (out, seg)
+    };
+    match method {
+        Method::Rk4 => single(rk4::integrate(
+            sys,
+            0.0,
+            y0,
+            t_end,
+            options.dt,
+            options.max_steps,
+            obs,
+        )),
+        Method::Dopri5 => single(dopri5::integrate(sys, 0.0, y0, t_end, adaptive, obs)),
+        Method::Bdf => single(bdf::integrate(sys, 0.0, y0, t_end, adaptive, obs)),
+        Method::Auto => {
+            let explicit = AdaptiveOptions {
+                stop_when_stiff: true,
+                ..*adaptive
+            };
+            let first = dopri5::integrate(sys, 0.0, y0, t_end, &explicit, obs);
+            let mut segments = vec![segment(Method::Dopri5, 0.0, &first)];
+            let Some(t_switch) = first.stiff_at.filter(|_| first.status.is_ok()) else {
+                return (first, segments);
+            };
+            let budget = AdaptiveOptions {
+                max_steps: adaptive
+                    .max_steps
+                    .saturating_sub(first.stats.steps + first.stats.rejected_steps)
+                    .max(1),
+                ..*adaptive
+            };
+            let mut second = bdf::integrate(sys, t_switch, &first.y_end, t_end, &budget, obs);
+            segments.push(segment(Method::Bdf, t_switch, &second));
+            second.stats += first.stats;
+            (second, segments)
+        }
+    }
 }

@@ -57,6 +57,7 @@ pub(crate) struct ChainObserver {
     pub t_tip_speed_max: f64,
     /// `d|v|^2/dt` at the last step's end.
     slope: f64,
+    started: bool,
     buf: Vec<f64>,
 }
 
@@ -78,6 +79,7 @@ impl ChainObserver {
             tip_speed_max: 0.0,
             t_tip_speed_max: 0.0,
             slope: 0.0,
+            started: false,
             buf: vec![0.0; dim],
         }
     }
@@ -134,6 +136,11 @@ impl ChainObserver {
 impl Observer for ChainObserver {
     fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]) {
         debug_assert_eq!(y0.len(), self.dim);
+        if self.started {
+            // A continuation (auto switching method): the record goes on.
+            return;
+        }
+        self.started = true;
         let m = metrics(&self.chain, y0, f0);
         self.t_origin = t0;
         self.energy_start = m.energy;

@@ -19,13 +19,7 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let (mut k2, mut k3, mut k4) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
     let (mut tmp, mut y1, mut f1) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
     let mut stats = Stats::default();
-    let fail = |status, t: f64, t_failed, stats, y: Vec<f64>| Outcome {
-        status,
-        t_reached: t,
-        t_failed,
-        stats,
-        y_end: y,
-    };
+    let fail = Outcome::ended;
 
     sys.rhs(t0, &y, &mut f);
     stats.rhs_evals += 1;
@@ -91,11 +85,5 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         t = t1;
         k += 1;
     }
-    Outcome {
-        status: Status::Ok,
-        t_reached: t,
-        t_failed: None,
-        stats,
-        y_end: y,
-    }
+    Outcome::ended(Status::Ok, t, None, stats, y)
 }

@@ -1,0 +1,321 @@
+//! Dormand–Prince 5(4) (Hairer & Wanner's DOPRI5): FSAL, the error norm over
+//! `rtol`/`atol`, a PI step-size controller, Hairer's initial step, the
+//! fourth-order dense output, and Hairer's stiffness detection.
+
+use super::adaptive::AdaptiveOptions;
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+// Error estimate: fifth minus fourth order weights.
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+// Dense output (Shampine's fourth-order continuous extension).
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+/// PI controller: exponents and limits (Hairer's defaults).
+const SAFETY: f64 = 0.9;
+const BETA: f64 = 0.04;
+const EXPO1: f64 = 0.2 - BETA * 0.75;
+const FAC_MIN: f64 = 0.2; // h_new >= 0.2 h
+const FAC_MAX: f64 = 10.0; // h_new <= 10 h
+/// Stiffness test: `h |lambda| > 3.25` on 15 accepted steps (without 6 clean ones between).
+const STIFF_HLAMBDA: f64 = 3.25;
+const STIFF_COUNT: u32 = 15;
+const NONSTIFF_RESET: u32 = 6;
+
+/// The continuous extension of one step: `y(t0 + theta h)`.
+struct Dense<'a> {
+    t0: f64,
+    h: f64,
+    /// `[y0 | y1 - y0 | h k1 - (y1 - y0) | (y1 - y0) - h k7 - r3 | h sum d_i k_i]`.
+    r: &'a [f64],
+}
+
+impl Interpolant for Dense<'_> {
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        let d = out.len();
+        let th = (t - self.t0) / self.h;
+        let th1 = 1.0 - th;
+        let r = self.r;
+        for i in 0..d {
+            out[i] = r[i]
+                + th * (r[d + i]
+                    + th1 * (r[2 * d + i] + th * (r[3 * d + i] + th1 * r[4 * d + i])));
+        }
+    }
+}
+
+fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &AdaptiveOptions) -> f64 {
+    let s: f64 = x
+        .iter()
+        .zip(y0.iter().zip(y1))
+        .map(|(e, (a, b))| {
+            let sk = o.atol + o.rtol * a.abs().max(b.abs());
+            (e / sk).powi(2)
+        })
+        .sum();
+    (s / x.len() as f64).sqrt()
+}
+
+/// Hairer's starting step: from `|y0|`, `|f0|` and a trial Euler step.
+fn initial_step<S: OdeSystem>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    f0: &[f64],
+    span: f64,
+    o: &AdaptiveOptions,
+    scratch: (&mut [f64], &mut [f64]),
+    stats: &mut Stats,
+) -> f64 {
+    let (y1, f1) = scratch;
+    let d0 = rms_norm(y0, y0, y0, o);
+    let d1 = rms_norm(f0, y0, y0, o);
+    let mut h0 = if d0 < 1e-10 || d1 < 1e-10 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    };
+    h0 = h0.min(span);
+    for i in 0..y0.len() {
+        y1[i] = y0[i] + h0 * f0[i];
+    }
+    sys.rhs(t0 + h0, y1, f1);
+    stats.rhs_evals += 1;
+    for i in 0..y0.len() {
+        y1[i] = f1[i] - f0[i];
+    }
+    let d2 = rms_norm(y1, y0, y0, o) / h0;
+    let dm = d1.max(d2);
+    let h1 = if dm <= 1e-15 || !dm.is_finite() {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / dm).powf(0.2)
+    };
+    (100.0 * h0).min(h1).min(span)
+}
+
+/// Integrates from `t0` to `t_end`.
+pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &AdaptiveOptions,
+    obs: &mut O,
+) -> Outcome {
+    let d = sys.dim();
+    let mut stats = Stats::default();
+    let mut y = y0.to_vec();
+    let mut k = vec![vec![0.0; d]; 7];
+    let (mut y1, mut ys, mut err) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
+    let mut rcont = vec![0.0; 5 * d];
+
+    sys.rhs(t0, &y, &mut k[0]);
+    stats.rhs_evals += 1;
+    if !all_finite(&k[0]) {
+        return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
+    }
+    obs.start(t0, &y, &k[0]);
+
+    let span = t_end - t0;
+    let mut h = match o.h0 {
+        Some(h) => h.min(span),
+        None => initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err), &mut stats),
+    };
+    let mut t = t0;
+    let mut fac_old: f64 = 1e-4;
+    let mut last_rejected = false;
+    let mut last_nonfinite = false;
+    let (mut stiff_steps, mut nonstiff_steps) = (0u32, 0u32);
+
+    while t < t_end {
+        if stats.steps + stats.rejected_steps >= o.max_steps {
+            return Outcome::ended(Status::MaxSteps, t, Some(t), stats, y);
+        }
+        let floor = o.floor(t);
+        if h < floor {
+            let status = if last_nonfinite {
+                Status::Diverged
+            } else {
+                Status::StepSizeTooSmall
+            };
+            return Outcome::ended(status, t, Some(t + h), stats, y);
+        }
+        // Land on t_end exactly; stretch a step that would leave a sliver.
+        let mut t1 = t + h;
+        if t1 > t_end - 1e-10 * h {
+            t1 = t_end;
+            h = t_end - t;
+        }
+
+        let stage = |ys: &mut [f64], y: &[f64], terms: &[(f64, &[f64])]| {
+            for i in 0..ys.len() {
+                let mut s = 0.0;
+                for (a, ki) in terms {
+                    s += a * ki[i];
+                }
+                ys[i] = y[i] + h * s;
+            }
+        };
+        {
+            let (k1, rest) = k.split_at_mut(1);
+            let k1 = &k1[0];
+            let (k2, rest) = rest.split_at_mut(1);
+            let (k3, rest) = rest.split_at_mut(1);
+            let (k4, rest) = rest.split_at_mut(1);
+            let (k5, rest) = rest.split_at_mut(1);
+            let (k6, k7) = rest.split_at_mut(1);
+            let (k2, k3, k4, k5, k6, k7) = (
+                &mut k2[0], &mut k3[0], &mut k4[0], &mut k5[0], &mut k6[0], &mut k7[0],
+            );
+            stage(&mut ys, &y, &[(A21, k1)]);
+            sys.rhs(t + C2 * h, &ys, k2);
+            stage(&mut ys, &y, &[(A31, k1), (A32, k2)]);
+            sys.rhs(t + C3 * h, &ys, k3);
+            stage(&mut ys, &y, &[(A41, k1), (A42, k2), (A43, k3)]);
+            sys.rhs(t + C4 * h, &ys, k4);
+            stage(&mut ys, &y, &[(A51, k1), (A52, k2), (A53, k3), (A54, k4)]);
+            sys.rhs(t + C5 * h, &ys, k5);
+            stage(
+                &mut ys,
+                &y,
+                &[(A61, k1), (A62, k2), (A63, k3), (A64, k4), (A65, k5)],
+            );
+            sys.rhs(t1, &ys, k6);
+            stage(
+                &mut y1,
+                &y,
+                &[(A71, k1), (A73, k3), (A74, k4), (A75, k5), (A76, k6)],
+            );
+            sys.rhs(t1, &y1, k7);
+            stats.rhs_evals += 6;
+            for i in 0..d {
+                err[i] = h
+                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
+                        + E7 * k7[i]);
+            }
+        }
+        let e = rms_norm(&err, &y, &y1, o);
+
+        if !e.is_finite() || !all_finite(&y1) || !all_finite(&k[6]) {
+            // A non-finite trial: retry much smaller; give up at the floor.
+            stats.rejected_steps += 1;
+            last_rejected = true;
+            last_nonfinite = true;
+            h *= FAC_MIN;
+            continue;
+        }
+        last_nonfinite = false;
+
+        let fac11 = e.powf(EXPO1);
+        if e <= 1.0 {
+            // Accepted.
+            let fac = (fac11 / fac_old.powf(BETA) / SAFETY).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            let mut h_new = h / fac;
+            fac_old = e.max(1e-4);
+            stats.steps += 1;
+
+            // Stiffness detection: h |lambda| ~ h |k7 - k6| / |y1 - y_stage6|.
+            let (mut num, mut den) = (0.0, 0.0);
+            for i in 0..d {
+                num += (k[6][i] - k[5][i]).powi(2);
+                den += (y1[i] - ys[i]).powi(2);
+            }
+            let mut stiff_now = false;
+            if den > 0.0 && h * (num / den).sqrt() > STIFF_HLAMBDA {
+                nonstiff_steps = 0;
+                stiff_steps += 1;
+                if stiff_steps == STIFF_COUNT {
+                    stats.stiffness_detections += 1;
+                    stiff_steps = 0;
+                    stiff_now = true;
+                }
+            } else {
+                nonstiff_steps += 1;
+                if nonstiff_steps == NONSTIFF_RESET {
+                    stiff_steps = 0;
+                }
+            }
+
+            // Dense output coefficients.
+            for i in 0..d {
+                let dy = y1[i] - y[i];
+                let bspl = h * k[0][i] - dy;
+                rcont[i] = y[i];
+                rcont[d + i] = dy;
+                rcont[2 * d + i] = bspl;
+                rcont[3 * d + i] = dy - h * k[6][i] - bspl;
+                rcont[4 * d + i] = h
+                    * (D1 * k[0][i]
+                        + D3 * k[2][i]
+                        + D4 * k[3][i]
+                        + D5 * k[4][i]
+                        + D6 * k[5][i]
+                        + D7 * k[6][i]);
+            }
+            obs.step(&StepView {
+                t0: t,
+                t1,
+                y0: &y,
+                y1: &y1,
+                f1: &k[6],
+                interpolant: &Dense {
+                    t0: t,
+                    h,
+                    r: &rcont,
+                },
+            });
+            std::mem::swap(&mut y, &mut y1);
+            k.swap(0, 6); // FSAL: k7 of this step is k1 of the next.
+            t = t1;
+            if last_rejected {
+                h_new = h_new.min(h);
+            }
+            last_rejected = false;
+            h = h_new;
+            if stiff_now && o.stop_when_stiff && t < t_end {
+                let mut out = Outcome::ended(Status::Ok, t, None, stats, y);
+                out.stiff_at = Some(t);
+                return out;
+            }
+        } else {
+            stats.rejected_steps += 1;
+            last_rejected = true;
+            h /= (fac11 / SAFETY).min(1.0 / FAC_MIN);
+        }
+    }
+    Outcome::ended(Status::Ok, t, None, stats, y)
+}
