@@ -141,7 +141,7 @@ impl Catenary {
 
 /// `sqrt(L^2 - h^2)`: the chord a chain of length `L` would span if level.
 fn chord_of_level_span(length: f64, h: f64) -> f64 {
-    ((length - h.abs()) * (length + h.abs())).sqrt()
+    (length - h.abs()).sqrt() * (length + h.abs()).sqrt()
 }
 
 /// `asinh(b + delta) - asinh(b)` without cancellation.
@@ -240,7 +240,7 @@ fn solve_u(ln_q: f64) -> Result<(f64, u64), CatenaryError> {
         state.get_termination_status(),
         TerminationStatus::Terminated(TerminationReason::SolverConverged)
     );
-    if !converged || !(u > 0.0 && u.is_finite()) {
+    if !(converged && u > 0.0 && u.is_finite()) {
         return Err(fail(iterations, state.get_best_cost()));
     }
     Ok((u, iterations))

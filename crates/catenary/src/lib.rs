@@ -11,6 +11,7 @@
 mod continuous;
 mod discrete;
 mod error;
+mod rods;
 
 pub use continuous::Catenary;
 pub use discrete::{discrete_equilibrium, joints, DiscreteCatenary};

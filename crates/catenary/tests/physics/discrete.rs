@@ -1,6 +1,6 @@
 //! The discrete equilibrium of n rods against statics and the continuum limit.
 
-use super::{dist, CASES};
+use super::{cross, dist, torque_check, CASES};
 use catenary::{discrete_equilibrium, joints, Catenary, Point};
 use std::f64::consts::PI;
 
@@ -32,42 +32,6 @@ fn all_rods_have_length_l() {
     }
 }
 
-/// 2D cross product.
-fn cross(u: Point, v: Point) -> f64 {
-    u[0] * v[1] - u[1] * v[0]
-}
-
-/// Statics from the joints alone: rod weight `W = 1`, force `T_k = (H, V_k)`
-/// exerted on rod `k` by rod `k + 1`, `V_k = V_{k-1} + W` (force balance,
-/// uniform vertical differences). `H` and `V_0` are fixed by the torque
-/// balance of rods 1 and 2; every other rod must then have zero net torque
-/// about its centre, `u_i x (T_{i-1} + T_i) = 0`. Returns `H` and the largest
-/// relative torque.
-fn torque_check(r: &[Point]) -> (f64, f64) {
-    let u: Vec<Point> = r
-        .windows(2)
-        .map(|w| [w[1][0] - w[0][0], w[1][1] - w[0][1]])
-        .collect();
-    // rod 1: u1x (2 V0 + 1) - u1y 2H = 0 ; rod 2: u2x (2 V0 + 3) - u2y 2H = 0
-    let (a, b) = (u[0], u[1]);
-    let det = 2.0 * a[0] * (-2.0 * b[1]) - (-2.0 * a[1]) * 2.0 * b[0];
-    let rhs = [-a[0], -3.0 * b[0]];
-    let v0 = (rhs[0] * (-2.0 * b[1]) - (-2.0 * a[1]) * rhs[1]) / det;
-    let h = (2.0 * a[0] * rhs[1] - 2.0 * b[0] * rhs[0]) / det;
-    let n = u.len() as f64;
-    let scale = h.abs() + n + v0.abs();
-    let worst = u
-        .iter()
-        .enumerate()
-        .map(|(k, ui)| {
-            let (vl, vr) = (v0 + k as f64, v0 + k as f64 + 1.0);
-            let len = ui[0].hypot(ui[1]);
-            cross(*ui, [2.0 * h, vl + vr]).abs() / (len * scale)
-        })
-        .fold(0.0, f64::max);
-    (h, worst)
-}
-
 #[test]
 fn is_a_static_equilibrium() {
     for (p0, p1, l) in CASES {
@@ -75,10 +39,13 @@ fn is_a_static_equilibrium() {
             let eq = discrete_equilibrium(p0, p1, l, n).unwrap();
             let (h, worst) = torque_check(&joints(p0, l, &eq.angles));
             assert!(worst < 1e-12, "{p0:?} {p1:?} {l} n={n}: torque {worst:e}");
-            // in tension (a hanging chain, not an arch): rod k+1 pulls rod k towards p1
-            assert!(h * (p1[0] - p0[0]).signum() > 0.0);
-            // beta = W / |H| with W = 1
-            assert!((eq.beta - 1.0 / h.abs()).abs() <= 1e-9 * eq.beta);
+            // beta = W / H with W = 1, H measured towards p1
+            let sign = (p1[0] - p0[0]).signum();
+            assert!((eq.beta - sign / h).abs() <= 1e-9 * eq.beta.abs());
+            // a span of at least one rod: every rod in tension (hanging, not an arch)
+            if (p1[0] - p0[0]).abs() >= l / n as f64 {
+                assert!(eq.beta > 0.0);
+            }
         }
     }
 }
@@ -110,7 +77,6 @@ fn hangs_below_the_chord() {
 fn tangents_follow_alpha_beta() {
     for (p0, p1, l) in CASES {
         let eq = discrete_equilibrium(p0, p1, l, 25).unwrap();
-        assert!(eq.beta > 0.0);
         let sign = (p1[0] - p0[0]).signum();
         for (i, phi) in eq.angles.iter().enumerate() {
             let t = eq.alpha + (i as f64 + 0.5) * eq.beta;
@@ -119,17 +85,25 @@ fn tangents_follow_alpha_beta() {
     }
 }
 
+/// Consecutive rods turn by less than pi (no 2 pi jumps); with every rod in
+/// tension each points towards p1's side, `cos(phi) * (x1 - x0) > 0`.
 #[test]
 fn angles_are_continuous_and_in_range() {
     for (p0, p1, l) in CASES {
-        let eq = discrete_equilibrium(p0, p1, l, 60).unwrap();
-        let (lo, hi) = if p1[0] > p0[0] {
-            (-PI / 2.0, PI / 2.0)
-        } else {
-            (PI / 2.0, 1.5 * PI)
-        };
-        assert!(eq.angles.iter().all(|&a| lo < a && a < hi));
-        assert!(eq.angles.windows(2).all(|w| (w[1] - w[0]).abs() < PI / 2.0));
+        for n in LINKS {
+            let eq = discrete_equilibrium(p0, p1, l, n).unwrap();
+            let (lo, hi) = if p1[0] > p0[0] {
+                (-PI / 2.0, PI / 2.0)
+            } else {
+                (PI / 2.0, 1.5 * PI)
+            };
+            if eq.beta > 0.0 {
+                assert!(eq.angles.iter().all(|&a| lo < a && a < hi));
+            } else {
+                assert!(lo - PI < eq.angles[0] && eq.angles[0] < hi + PI);
+            }
+            assert!(eq.angles.windows(2).all(|w| (w[1] - w[0]).abs() < PI));
+        }
     }
 }
 
@@ -150,14 +124,64 @@ fn taut_chain_is_straight() {
     for (p1, n) in [
         ([3.0, 4.0], 7),
         ([-3.0, 4.0], 1),
+        ([-3.0, -4.0], 3),
         ([0.0, -5.0], 4),
         ([5.0, 0.0], 50),
     ] {
         let eq = discrete_equilibrium([0.0, 0.0], p1, 5.0, n).unwrap();
-        let dir = p1[1].atan2(p1[0]);
-        assert!(eq.angles.len() == n && eq.angles.iter().all(|&a| a == dir));
+        assert_eq!(eq.angles.len(), n);
+        let first = eq.angles[0];
+        assert!(eq.angles.iter().all(|&a| a == first));
+        assert!((first.cos() * 5.0 - p1[0]).abs() < 1e-15 * 5.0);
+        assert!((first.sin() * 5.0 - p1[1]).abs() < 1e-15 * 5.0);
+        if p1[0] < 0.0 {
+            assert!(PI / 2.0 < first && first < 1.5 * PI);
+        }
         assert!(eq.end_error <= 1e-14 * 5.0, "{p1:?}: {:e}", eq.end_error);
         assert_eq!((eq.beta, eq.iterations), (0.0, 0));
+    }
+}
+
+#[test]
+fn two_rods_meet_at_the_lower_circle_intersection() {
+    for (p0, p1, l) in CASES.into_iter().chain([
+        ([0.0, 0.0], [0.05, 3.2247960820488197], 3.26),
+        ([0.0, 0.0], [-0.3, 1.0], 2.5),
+        ([0.0, 0.0], [1e-3, -1.0], 1.7),
+    ]) {
+        let eq = discrete_equilibrium(p0, p1, l, 2).unwrap();
+        let j = joints(p0, l, &eq.angles)[1];
+        let mid = [(p0[0] + p1[0]) / 2.0, (p0[1] + p1[1]) / 2.0];
+        let dd = dist(p0, p1);
+        let off = ((l / 2.0).powi(2) - (dd / 2.0).powi(2)).sqrt() / dd;
+        let perp = [-(p1[1] - p0[1]) * off, (p1[0] - p0[0]) * off];
+        let (a, b) = (
+            [mid[0] + perp[0], mid[1] + perp[1]],
+            [mid[0] - perp[0], mid[1] - perp[1]],
+        );
+        let lower = if a[1] < b[1] { a } else { b };
+        assert!(
+            dist(j, lower) <= 1e-12 * l,
+            "{p0:?} {p1:?} {l}: {j:?} vs {lower:?}"
+        );
+    }
+}
+
+/// Three rods on a level span `d`: the symmetric trapezoid with the middle rod
+/// level at depth `sqrt(l^2 - ((l - d)/2)^2)`. For `d < l` the legs lean
+/// inwards and the middle rod is in compression (`beta < 0`).
+#[test]
+fn three_rods_on_a_level_span_form_a_trapezoid() {
+    let l = 1.0;
+    for d in [0.06, 0.5, 1.0 - 1e-9, 1.0, 1.0 + 1e-9, 1.5, 2.7] {
+        let eq = discrete_equilibrium([0.0, 0.0], [d, 0.0], 3.0 * l, 3).unwrap();
+        let r = joints([0.0, 0.0], 3.0 * l, &eq.angles);
+        let depth = (l * l - ((l - d) / 2.0).powi(2)).sqrt();
+        assert!(dist(r[1], [(d - l) / 2.0, -depth]) <= 1e-12, "d={d}: {r:?}");
+        assert!(dist(r[2], [(d + l) / 2.0, -depth]) <= 1e-12, "d={d}: {r:?}");
+        if d != l {
+            assert_eq!(eq.beta > 0.0, d > l, "d={d}");
+        }
     }
 }
 
@@ -195,6 +219,7 @@ fn converges_to_the_continuous_catenary_like_one_over_n_squared() {
     let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
     let order = -sxy / sxx;
-    eprintln!("max joint error vs n {ns:?}: {errs:.3?}; order {order:.4}");
+    let shown: Vec<String> = errs.iter().map(|e| format!("{e:.3e}")).collect();
+    eprintln!("max joint error vs n {ns:?}: {shown:?}; order {order:.4}");
     assert!((1.8..=2.2).contains(&order), "order {order}");
 }
