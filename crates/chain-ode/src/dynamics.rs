@@ -20,12 +20,13 @@ use crate::scalar::Scalar;
 pub struct Workspace<T> {
     /// `(sin phi_k, cos phi_k)`.
     sc: Vec<(T, T)>,
-    /// `h_k = n_k / 2 + M_k n_k` (rod units).
-    h: Vec<[T; 2]>,
-    /// `1 / D_k`, `D_k = 1/3 + n_k . M_k n_k`.
-    dinv: Vec<T>,
-    /// The generalized-force numerator `e_k`.
-    e: Vec<T>,
+    /// `g_k = h_k / D_k`: `phi_k'' = q_k - g_k . a_{k-1}` (rod units).
+    g: Vec<[T; 2]>,
+    /// `q_k = e_k / D_k`.
+    q: Vec<T>,
+    /// The joint acceleration as an affine map of the previous one:
+    /// `a_k = T_k a_{k-1} + c_k`, stored `[T11, T12, T21, T22, c1, c2]`.
+    map: Vec<[T; 6]>,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -34,20 +35,20 @@ impl<T: Scalar> Workspace<T> {
         let z = T::cst(0.0);
         Self {
             sc: vec![(z, z); n],
-            h: vec![[z, z]; n],
-            dinv: vec![z; n],
-            e: vec![z; n],
+            g: vec![[z, z]; n],
+            q: vec![z; n],
+            map: vec![[z; 6]; n],
         }
     }
 
     /// The number of rods this workspace serves.
     pub fn len(&self) -> usize {
-        self.e.len()
+        self.q.len()
     }
 
     /// True for a workspace of zero rods.
     pub fn is_empty(&self) -> bool {
-        self.e.is_empty()
+        self.q.is_empty()
     }
 }
 
@@ -91,49 +92,62 @@ pub fn accelerations<T: Scalar>(
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
     let zero = T::cst(0.0);
+    let one = T::cst(1.0);
     let (mut mxx, mut mxy, mut myy) = (zero, zero, zero);
     let (mut bx, mut by) = (zero, zero);
 
+    // Independent per-rod work first, so that it overlaps freely.
+    T::sin_cos_all(phi, &mut ws.sc);
+
+    // Backward sweep. The loop-carried chain is the Riccati-like update of M
+    // (one division per rod); expressions are grouped so that everything not
+    // depending on M or beta is computed off that chain.
     for i in (0..n).rev() {
-        let (s, c) = phi[i].sin_cos();
+        let (s, c) = ws.sc[i];
         let wi = w[i];
         let w2 = wi * wi;
-        // Unit vectors along (u) and normal to (nv) the rod.
-        let (ux, uy) = (c, s);
+        // Unit vectors along (u) and normal to (nv) the rod: u = (c, s), nv = (-s, c).
         let (nx, ny) = (-s, c);
-        let mnx = mxx * nx + mxy * ny;
-        let mny = mxy * nx + myy * ny;
-        let mux = mxx * ux + mxy * uy;
-        let muy = mxy * ux + myy * uy;
-        let d = nx * mnx + ny * mny + T::cst(1.0 / 3.0);
-        let dinv = T::cst(1.0) / d;
-        let hx = nx * 0.5 + mnx;
-        let hy = ny * 0.5 + mny;
-        let tau = damping_stencil(w, i) * gamma;
-        let e = tau - c * (0.5 * g) + w2 * (nx * mux + ny * muy) - (nx * bx + ny * by);
-        ws.sc[i] = (s, c);
-        ws.h[i] = [hx, hy];
-        ws.dinv[i] = dinv;
-        ws.e[i] = e;
+        let (nxx, nxy2, nyy) = (nx * nx, (nx * ny) * 2.0, ny * ny);
+        let d = (mxx * nxx + T::cst(1.0 / 3.0)) + (mxy * nxy2 + myy * nyy);
+        let hx = mxx * nx + (mxy * ny + nx * 0.5);
+        let hy = mxy * nx + (myy * ny + ny * 0.5);
+        let mux = mxx * c + mxy * s;
+        let muy = mxy * c + myy * s;
+        let dinv = one / d;
+        let e_fixed = damping_stencil(w, i) * gamma - c * (0.5 * g) + w2 * (nx * mux + ny * muy);
+        let e = e_fixed - (nx * bx + ny * by);
+        let qi = e * dinv;
+        let (gx, gy) = (hx * dinv, hy * dinv);
         // The articulated body seen from joint i-1 (rod i and all beyond it).
-        let hxd = hx * dinv;
-        let hyd = hy * dinv;
-        mxx = mxx - hx * hxd + T::cst(1.0);
-        mxy = mxy - hx * hyd;
-        myy = myy - hy * hyd + T::cst(1.0);
-        bx = bx + hxd * e - w2 * (ux * 0.5 + mux);
-        by = by + hyd * e - w2 * (uy * 0.5 + muy) + T::cst(g);
+        let (hxx, hxy, hyy) = (hx * hx, hx * hy, hy * hy);
+        mxx = (mxx + one) - hxx * dinv;
+        mxy = mxy - hxy * dinv;
+        myy = (myy + one) - hyy * dinv;
+        bx = (bx - w2 * (c * 0.5 + mux)) + hx * qi;
+        by = (by + T::cst(g) - w2 * (s * 0.5 + muy)) + hy * qi;
+        ws.g[i] = [gx, gy];
+        ws.q[i] = qi;
+        // a_i = a_{i-1} + phi_i'' nv - w_i^2 u with phi_i'' = q_i - g_i . a_{i-1}.
+        ws.map[i] = [
+            one + s * gx,
+            s * gy,
+            -(c * gx),
+            one - c * gy,
+            -(s * qi) - w2 * c,
+            c * qi - w2 * s,
+        ];
     }
 
+    // Forward sweep: the loop-carried chain is one 2x2 affine map per rod.
     let (mut ax, mut ay) = (zero, zero);
     for i in 0..n {
-        let (s, c) = ws.sc[i];
-        let [hx, hy] = ws.h[i];
-        let wdot = (ws.e[i] - hx * ax - hy * ay) * ws.dinv[i];
-        acc[i] = wdot;
-        let w2 = w[i] * w[i];
-        ax = ax - wdot * s - w2 * c;
-        ay = ay + wdot * c - w2 * s;
+        let [gx, gy] = ws.g[i];
+        acc[i] = ws.q[i] - (gx * ax + gy * ay);
+        let [t11, t12, t21, t22, c1, c2] = ws.map[i];
+        let ax1 = (t11 * ax + c1) + t12 * ay;
+        ay = (t21 * ax + c2) + t22 * ay;
+        ax = ax1;
     }
 
     let l = chain.rod_length();
