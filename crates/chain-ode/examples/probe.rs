@@ -11,8 +11,14 @@ fn main() {
     let dt: f64 = a.get(6).map_or(0.01, |s| s.parse().unwrap());
     let chain = Chain::report(n, r).unwrap();
     let start = match a[2].as_str() {
-        "folded" => Start::Folded { p0: [0.0, 0.0], down: None },
-        _ => Start::Catenary { p0: [0.0, 0.0], p1: [d, 0.0] },
+        "folded" => Start::Folded {
+            p0: [0.0, 0.0],
+            down: None,
+        },
+        _ => Start::Catenary {
+            p0: [0.0, 0.0],
+            p1: [d, 0.0],
+        },
     };
     let s = start.state(&chain).unwrap();
     let methods: Vec<Method> = match a.get(7) {
@@ -20,7 +26,13 @@ fn main() {
         None => Method::ALL.to_vec(),
     };
     for m in methods {
-        let o = SolveOptions { t_end, dt, rtol, atol: rtol * 1e-2, ..Default::default() };
+        let o = SolveOptions {
+            t_end,
+            dt,
+            rtol,
+            atol: rtol * 1e-2,
+            ..Default::default()
+        };
         let mut walls = vec![];
         let mut tr = None;
         for _ in 0..5 {

@@ -106,7 +106,10 @@ fn agrees_with_rk4_on_two_report_scenes() {
         let d = dist(a.summary.tip_end, b.summary.tip_end);
         assert!(d < 1e-7, "tip differs by {d:e}");
         let dv = (a.summary.tip_speed_max - b.summary.tip_speed_max).abs();
-        assert!(dv < 1e-6 * b.summary.tip_speed_max, "max speed differs by {dv:e}");
+        assert!(
+            dv < 1e-6 * b.summary.tip_speed_max,
+            "max speed differs by {dv:e}"
+        );
     }
 }
 

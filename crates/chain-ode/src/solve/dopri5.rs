@@ -71,8 +71,7 @@ impl Interpolant for Dense<'_> {
         let r = self.r;
         for i in 0..d {
             out[i] = r[i]
-                + th * (r[d + i]
-                    + th1 * (r[2 * d + i] + th * (r[3 * d + i] + th1 * r[4 * d + i])));
+                + th * (r[d + i] + th1 * (r[2 * d + i] + th * (r[3 * d + i] + th1 * r[4 * d + i])));
         }
     }
 }
@@ -224,8 +223,7 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
             stats.rhs_evals += 6;
             for i in 0..d {
                 err[i] = h
-                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
-                        + E7 * k7[i]);
+                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
             }
         }
         let e = rms_norm(&err, &y, &y1, o);

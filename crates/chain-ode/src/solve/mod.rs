@@ -12,12 +12,12 @@ use std::time::Instant;
 
 use crate::chain::{check, Chain, InvalidParameter};
 use crate::kinematics::{tip, tip_velocity, Vec2};
+use crate::ode::{Observer, OdeSystem, Outcome};
 use crate::ode::{Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
 use adaptive::AdaptiveOptions;
 use observer::ChainObserver;
-use crate::ode::{Observer, OdeSystem, Outcome};
 
 /// An integration method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
