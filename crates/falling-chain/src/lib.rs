@@ -1,1 +1,21 @@
+//! Scenes, outputs and the `falling-chain` command line.
+//!
+//! This is the only crate of the workspace that knows TOML, CSV and JSON:
+//! [`Scene`] reads a scene file (and `--set` overrides) into the chain-ode
+//! types, [`RunSummary`] is what a run prints as JSON or as a CSV row,
+//! [`csv`] writes a trajectory's samples, and [`atomic`] makes every output
+//! file appear whole or not at all. Every error is an [`Error`], one line
+//! that starts with the field it is about.
 
+pub mod atomic;
+pub mod catenary_report;
+pub mod csv;
+pub mod error;
+pub mod overrides;
+pub mod scene;
+pub mod summary;
+
+pub use catenary_report::{CatenaryReport, DiscreteReport};
+pub use error::{CatenaryNames, Error};
+pub use scene::{Prepared, Scene, StartKind};
+pub use summary::{RunSummary, SegmentSummary, SUMMARY_CSV_COLUMNS};

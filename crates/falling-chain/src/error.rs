@@ -1,0 +1,195 @@
+//! The one error type of this crate: every failure is one line that starts
+//! with the field (or file role) it is about.
+
+use std::fmt;
+use std::io;
+use std::path::{Path, PathBuf};
+
+use catenary::CatenaryError;
+use chain_ode::{InvalidParameter, StartError};
+
+/// Why a scene, an override, a computation's input or an output failed.
+///
+/// `Display` is always a single line that starts with the field path as a
+/// scene would spell it (`chain.links: ...`, `start.p1: ...`), or with the
+/// role of a file (`scene: cannot read 'x.toml': ...`).
+#[derive(Debug)]
+pub enum Error {
+    /// A file could not be read. `what` is its role (`"scene"`).
+    Read {
+        what: &'static str,
+        path: PathBuf,
+        source: io::Error,
+    },
+    /// An output could not be written. `what` is its role (`"--out"`).
+    Write {
+        what: &'static str,
+        path: PathBuf,
+        source: io::Error,
+    },
+    /// A value is wrong: syntax, unknown key, wrong type, missing, or out of range.
+    Field { field: String, message: String },
+}
+
+impl Error {
+    /// An error about the value at `field` (a dotted scene path or a flag).
+    pub fn field(field: impl Into<String>, message: impl fmt::Display) -> Self {
+        Self::Field {
+            field: field.into(),
+            message: message.to_string(),
+        }
+    }
+
+    /// A read failure of the file at `path` in role `what`.
+    pub fn read(what: &'static str, path: &Path, source: io::Error) -> Self {
+        Self::Read {
+            what,
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    /// A write failure of the file at `path` in role `what`.
+    pub fn write(what: &'static str, path: &Path, source: io::Error) -> Self {
+        Self::Write {
+            what,
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    /// The field path or file role the error is about (what `Display` starts with).
+    pub fn subject(&self) -> &str {
+        match self {
+            Self::Read { what, .. } | Self::Write { what, .. } => what,
+            Self::Field { field, .. } => field,
+        }
+    }
+
+    /// Maps a catenary error onto the names the caller uses for the
+    /// catenary's inputs (`p0`, `p1`, `length`, `links`; anything else, such
+    /// as a solver failure, is reported under `other`).
+    pub fn from_catenary(e: &CatenaryError, names: &CatenaryNames) -> Self {
+        let text = e.to_string();
+        let (field, message) = text.split_once(": ").unwrap_or(("", text.as_str()));
+        let name = match field {
+            "p0" => names.p0,
+            "p1" => names.p1,
+            "length" => names.length,
+            "links" => names.links,
+            _ => names.other,
+        };
+        Self::field(name, message)
+    }
+}
+
+/// What the inputs of a catenary are called where they came from.
+#[derive(Clone, Copy, Debug)]
+pub struct CatenaryNames {
+    pub p0: &'static str,
+    pub p1: &'static str,
+    pub length: &'static str,
+    pub links: &'static str,
+    /// For errors not about one input (a solver that did not converge).
+    pub other: &'static str,
+}
+
+impl CatenaryNames {
+    /// The names in a scene file.
+    pub const SCENE: Self = Self {
+        p0: "start.p0",
+        p1: "start.p1",
+        length: "chain.length",
+        links: "chain.links",
+        other: "start",
+    };
+}
+
+/// `io::Error`'s text without the trailing ` (os error N)`.
+fn io_reason(e: &io::Error) -> String {
+    let text = e.to_string();
+    match text.rfind(" (os error ") {
+        Some(i) if text.ends_with(')') => text[..i].to_string(),
+        _ => text,
+    }
+}
+
+/// Collapses any line breaks so that the message stays on one line.
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Read { what, path, source } => write!(
+                f,
+                "{what}: cannot read '{}': {}",
+                path.display(),
+                one_line(&io_reason(source))
+            ),
+            Self::Write { what, path, source } => write!(
+                f,
+                "{what}: cannot write '{}': {}",
+                path.display(),
+                one_line(&io_reason(source))
+            ),
+            Self::Field { field, message } => write!(f, "{field}: {}", one_line(message)),
+        }
+    }
+}
+
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Read { source, .. } | Self::Write { source, .. } => Some(source),
+            Self::Field { .. } => None,
+        }
+    }
+}
+
+impl From<InvalidParameter> for Error {
+    fn from(e: InvalidParameter) -> Self {
+        Self::field(e.field, format!("must be {} (got {})", e.accepted, e.got))
+    }
+}
+
+impl From<StartError> for Error {
+    fn from(e: StartError) -> Self {
+        match e {
+            StartError::Parameter(p) => p.into(),
+            StartError::Catenary(c) => Self::from_catenary(&c, &CatenaryNames::SCENE),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_are_one_line_and_start_with_the_subject() {
+        let e = Error::read(
+            "scene",
+            Path::new("x.toml"),
+            io::Error::from(io::ErrorKind::NotFound),
+        );
+        assert!(e.to_string().starts_with("scene: cannot read 'x.toml': "));
+        let e = Error::field("chain.links", "bad\n  value");
+        assert_eq!(e.to_string(), "chain.links: bad value");
+        assert_eq!(e.subject(), "chain.links");
+    }
+
+    #[test]
+    fn os_error_suffix_is_dropped() {
+        let e = io::Error::from_raw_os_error(2);
+        assert!(!io_reason(&e).contains("os error"), "{}", io_reason(&e));
+    }
+
+    #[test]
+    fn catenary_fields_become_scene_paths() {
+        let c = catenary::Catenary::through([0.0, 0.0], [5.0, 1.0], 4.0).unwrap_err();
+        let e = Error::from_catenary(&c, &CatenaryNames::SCENE);
+        assert!(e.to_string().starts_with("chain.length: "), "{e}");
+    }
+}

@@ -1,0 +1,177 @@
+//! `--set KEY=VALUE`: changes to a scene's TOML tree by dotted path, applied
+//! before the tree is deserialised, so that every scene key can be changed
+//! the same way (and a sweep can vary any of them).
+//!
+//! A path names a table key (`chain.links`) or an array element by index
+//! (`start.p1.0`). The value is parsed as a TOML value (`100`, `2.5`,
+//! `[3.0, 0.0]`, `"rk4"`, `nan`); a bare word that is not valid TOML
+//! (`dopri5`) is taken as a string.
+
+use crate::error::Error;
+use crate::scene::{section_keys, TOP_KEYS};
+
+/// Splits `KEY=VALUE` and parses the value; the error names the key.
+pub fn parse_assignment(assignment: &str) -> Result<(String, toml::Value), Error> {
+    let Some((path, text)) = assignment.split_once('=') else {
+        return Err(Error::field(
+            "--set",
+            format!("expected KEY=VALUE, e.g. chain.links=100 (got '{assignment}')"),
+        ));
+    };
+    let path = path.trim();
+    let value = parse_value(text).map_err(|m| Error::field(path, m))?;
+    Ok((path.to_string(), value))
+}
+
+/// Parses the text of a value as TOML; a bare word that is not TOML becomes
+/// a string. Text that looks like an array, table or quoted string but does
+/// not parse is an error.
+pub fn parse_value(text: &str) -> Result<toml::Value, String> {
+    let text = text.trim();
+    if let Ok(mut table) = format!("v = {text}").parse::<toml::Table>() {
+        if table.len() == 1 {
+            if let Some(v) = table.remove("v") {
+                return Ok(v);
+            }
+        }
+    }
+    let structured = text.starts_with(['[', '{', '"', '\'']) || text.contains(['\n', '\r']);
+    if structured {
+        Err(format!("cannot parse '{text}' as a TOML value"))
+    } else {
+        Ok(toml::Value::String(text.to_string()))
+    }
+}
+
+/// Sets the value at the dotted `path` of `tree`, creating a missing section
+/// table or key. The path must name a scene key (or an element of an array
+/// that is set); the error names the path.
+pub fn set_path(tree: &mut toml::Table, path: &str, value: toml::Value) -> Result<(), Error> {
+    let segments: Vec<&str> = path.split('.').collect();
+    let unknown = |hint: String| Error::field(path, format!("unknown key: {hint}"));
+    let top = segments[0];
+    if !TOP_KEYS.contains(&top) {
+        return Err(unknown(format!(
+            "a scene has the keys {}",
+            TOP_KEYS.join(", ")
+        )));
+    }
+    if segments.len() == 1 {
+        tree.insert(top.to_string(), value);
+        return Ok(());
+    }
+    let Some(keys) = section_keys(top) else {
+        return Err(unknown(format!("'{top}' is not a table")));
+    };
+    let key = segments[1];
+    if !keys.contains(&key) {
+        return Err(unknown(format!("[{top}] has the keys {}", keys.join(", "))));
+    }
+    let section = tree
+        .entry(top.to_string())
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    let Some(section) = section.as_table_mut() else {
+        return Err(Error::field(path, format!("'{top}' is not a table")));
+    };
+    if segments.len() == 2 {
+        section.insert(key.to_string(), value);
+        return Ok(());
+    }
+    let mut node = section.get_mut(key).ok_or_else(|| {
+        Error::field(
+            path,
+            format!("'{top}.{key}' is not set in the scene: set it whole (e.g. {top}.{key}=[...])"),
+        )
+    })?;
+    let mut walked = format!("{top}.{key}");
+    for segment in &segments[2..] {
+        let toml::Value::Array(items) = node else {
+            return Err(Error::field(path, format!("'{walked}' is not an array")));
+        };
+        let len = items.len();
+        let index = segment
+            .parse::<usize>()
+            .ok()
+            .filter(|&i| i < len)
+            .ok_or_else(|| {
+                Error::field(
+                    path,
+                    format!("'{segment}' is not an index of '{walked}' (it has {len} elements)"),
+                )
+            })?;
+        node = &mut items[index];
+        walked = format!("{walked}.{index}");
+    }
+    *node = value;
+    Ok(())
+}
+
+/// Applies `KEY=VALUE` assignments to `tree` in order.
+pub fn apply<S: AsRef<str>>(tree: &mut toml::Table, assignments: &[S]) -> Result<(), Error> {
+    for a in assignments {
+        let (path, value) = parse_assignment(a.as_ref())?;
+        set_path(tree, &path, value)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tree() -> toml::Table {
+        "[chain]\nlinks = 5\n[start]\nkind = \"catenary\"\np1 = [3.0, 0.0]\n"
+            .parse()
+            .unwrap()
+    }
+
+    #[test]
+    fn values_parse_as_toml_with_bare_words_as_strings() {
+        assert_eq!(parse_value("100").unwrap(), toml::Value::Integer(100));
+        assert_eq!(parse_value(" 2.5 ").unwrap(), toml::Value::Float(2.5));
+        assert_eq!(
+            parse_value("dopri5").unwrap(),
+            toml::Value::String("dopri5".into())
+        );
+        assert_eq!(
+            parse_value("\"rk4\"").unwrap(),
+            toml::Value::String("rk4".into())
+        );
+        assert!(parse_value("[1.0,").is_err());
+        assert!(parse_value("1\nw = 2").is_err());
+        assert!(parse_value("nan").unwrap().as_float().unwrap().is_nan());
+    }
+
+    #[test]
+    fn sets_keys_sections_and_array_elements() {
+        let mut t = tree();
+        apply(
+            &mut t,
+            &["chain.links=100", "start.p1.0=2.5", "run.method=dopri5"],
+        )
+        .unwrap();
+        assert_eq!(t["chain"]["links"].as_integer(), Some(100));
+        assert_eq!(t["start"]["p1"][0].as_float(), Some(2.5));
+        assert_eq!(t["run"]["method"].as_str(), Some("dopri5"));
+    }
+
+    #[test]
+    fn bad_paths_name_themselves() {
+        for (bad, path) in [
+            ("chain.lenght=6", "chain.lenght"),
+            ("foo=1", "foo"),
+            ("name.x=1", "name.x"),
+            ("start.p1.2=1", "start.p1.2"),
+            ("start.p1.x=1", "start.p1.x"),
+            ("start.p0.0=1", "start.p0.0"),
+            ("chain.links.0=1", "chain.links.0"),
+            ("chain..links=1", "chain..links"),
+        ] {
+            let e = apply(&mut tree(), &[bad]).unwrap_err();
+            assert!(e.to_string().starts_with(&format!("{path}: ")), "{e}");
+            assert!(!e.to_string().contains('\n'));
+        }
+        let e = apply(&mut tree(), &["chain.links"]).unwrap_err();
+        assert!(e.to_string().starts_with("--set: "), "{e}");
+    }
+}

@@ -1,0 +1,274 @@
+//! The scalar results of one run, as printed by `simulate --json` and as one
+//! CSV row per run (for sweeps).
+
+use std::fmt;
+
+use chain_ode::Trajectory;
+use serde::{Deserialize, Serialize};
+
+use crate::csv::field as csv_field;
+
+/// The time span over which one method ran.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SegmentSummary {
+    pub method: String,
+    pub t_start: f64,
+    pub t_end: f64,
+}
+
+/// What a run did, in the units of its scene.
+///
+/// The JSON keys `status`, `method`, `links`, `t_reached`, `steps`,
+/// `rejected_steps`, `rhs_evals`, `jacobian_evals`, `wall_seconds`,
+/// `energy_start`, `energy_end`, `dissipated`, `energy_balance_error`,
+/// `tip_end`, `tip_speed_max`, `t_tip_speed_max` are a contract (scripts
+/// read them); the others are extras.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// The scene's name.
+    pub name: String,
+    /// `ok`, `diverged`, `step_size_too_small` or `max_steps`.
+    pub status: String,
+    /// The method asked for (`segments` says which ran when).
+    pub method: String,
+    /// Number of rods `n`.
+    pub links: usize,
+    /// The end time asked for (`None` if not known to the summary).
+    pub t_end: Option<f64>,
+    /// The last time with a finite state.
+    pub t_reached: f64,
+    /// When the run failed, if it did.
+    pub t_failed: Option<f64>,
+    pub steps: u64,
+    pub rejected_steps: u64,
+    pub rhs_evals: u64,
+    pub jacobian_evals: u64,
+    pub lu_factorizations: u64,
+    pub stiffness_detections: u64,
+    /// Wall time of the integration (s).
+    pub wall_seconds: f64,
+    /// `E(0)`.
+    pub energy_start: f64,
+    /// `E(t_reached)`.
+    pub energy_end: f64,
+    /// Work dissipated by joint friction up to `t_reached`.
+    pub dissipated: f64,
+    /// `max |E + W - E(0)|` over the steps.
+    pub energy_balance_error: f64,
+    /// Largest step-to-step rise of `E`.
+    pub max_energy_rise: f64,
+    /// `M g L`, the scale for energy errors.
+    pub energy_scale: f64,
+    /// `r / (m l^2)`, the stiffness parameter.
+    pub damping_rate: f64,
+    /// Tip position at `t_reached`.
+    pub tip_end: [f64; 2],
+    /// Tip velocity at `t_reached`.
+    pub tip_velocity_end: [f64; 2],
+    /// Continuous maximum of the tip speed over the run.
+    pub tip_speed_max: f64,
+    /// When it happened.
+    pub t_tip_speed_max: f64,
+    /// Which method ran over which span.
+    pub segments: Vec<SegmentSummary>,
+}
+
+/// Columns of [`RunSummary::csv_row`], in order.
+pub const SUMMARY_CSV_COLUMNS: [&str; 28] = [
+    "name",
+    "status",
+    "method",
+    "links",
+    "t_end",
+    "t_reached",
+    "t_failed",
+    "steps",
+    "rejected_steps",
+    "rhs_evals",
+    "jacobian_evals",
+    "lu_factorizations",
+    "stiffness_detections",
+    "wall_seconds",
+    "energy_start",
+    "energy_end",
+    "dissipated",
+    "energy_balance_error",
+    "max_energy_rise",
+    "energy_scale",
+    "damping_rate",
+    "tip_end_x",
+    "tip_end_y",
+    "tip_velocity_end_x",
+    "tip_velocity_end_y",
+    "tip_speed_max",
+    "t_tip_speed_max",
+    "segments",
+];
+
+impl RunSummary {
+    /// The summary of `traj`, under the scene name `name`. `t_end` is left
+    /// unknown; set it with [`RunSummary::with_t_end`].
+    pub fn from_trajectory(name: &str, traj: &Trajectory) -> Self {
+        let s = &traj.summary;
+        let st = &traj.stats;
+        Self {
+            name: name.to_string(),
+            status: traj.status.as_str().to_string(),
+            method: traj.method.as_str().to_string(),
+            links: traj.chain.links,
+            t_end: None,
+            t_reached: traj.t_reached,
+            t_failed: traj.t_failed,
+            steps: st.steps,
+            rejected_steps: st.rejected_steps,
+            rhs_evals: st.rhs_evals,
+            jacobian_evals: st.jacobian_evals,
+            lu_factorizations: st.lu_factorizations,
+            stiffness_detections: st.stiffness_detections,
+            wall_seconds: s.wall_seconds,
+            energy_start: s.energy_start,
+            energy_end: s.energy_end,
+            dissipated: s.dissipated,
+            energy_balance_error: s.energy_balance_error,
+            max_energy_rise: s.max_energy_rise,
+            energy_scale: traj.chain.energy_scale(),
+            damping_rate: traj.chain.damping_rate(),
+            tip_end: s.tip_end,
+            tip_velocity_end: s.tip_velocity_end,
+            tip_speed_max: s.tip_speed_max,
+            t_tip_speed_max: s.t_tip_speed_max,
+            segments: traj
+                .segments
+                .iter()
+                .map(|g| SegmentSummary {
+                    method: g.method.as_str().to_string(),
+                    t_start: g.t_start,
+                    t_end: g.t_end,
+                })
+                .collect(),
+        }
+    }
+
+    /// The same summary with the end time asked for.
+    pub fn with_t_end(mut self, t_end: f64) -> Self {
+        self.t_end = Some(t_end);
+        self
+    }
+
+    /// True if the run reached its end time.
+    pub fn is_ok(&self) -> bool {
+        self.status == "ok"
+    }
+
+    /// One line of JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("a summary always serialises")
+    }
+
+    /// The header line of [`RunSummary::csv_row`] (no newline).
+    pub fn csv_header() -> String {
+        SUMMARY_CSV_COLUMNS.join(",")
+    }
+
+    /// One CSV row (no newline) with the columns of [`SUMMARY_CSV_COLUMNS`]:
+    /// full-precision numbers, empty cells for unknown values, segments as
+    /// `method@t_start..t_end` joined by `;`.
+    pub fn csv_row(&self) -> String {
+        let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        let segments = self
+            .segments
+            .iter()
+            .map(|g| format!("{}@{}..{}", g.method, g.t_start, g.t_end))
+            .collect::<Vec<_>>()
+            .join(";");
+        let cells = [
+            csv_field(&self.name).into_owned(),
+            csv_field(&self.status).into_owned(),
+            csv_field(&self.method).into_owned(),
+            self.links.to_string(),
+            opt(self.t_end),
+            self.t_reached.to_string(),
+            opt(self.t_failed),
+            self.steps.to_string(),
+            self.rejected_steps.to_string(),
+            self.rhs_evals.to_string(),
+            self.jacobian_evals.to_string(),
+            self.lu_factorizations.to_string(),
+            self.stiffness_detections.to_string(),
+            self.wall_seconds.to_string(),
+            self.energy_start.to_string(),
+            self.energy_end.to_string(),
+            self.dissipated.to_string(),
+            self.energy_balance_error.to_string(),
+            self.max_energy_rise.to_string(),
+            self.energy_scale.to_string(),
+            self.damping_rate.to_string(),
+            self.tip_end[0].to_string(),
+            self.tip_end[1].to_string(),
+            self.tip_velocity_end[0].to_string(),
+            self.tip_velocity_end[1].to_string(),
+            self.tip_speed_max.to_string(),
+            self.t_tip_speed_max.to_string(),
+            csv_field(&segments).into_owned(),
+        ];
+        cells.join(",")
+    }
+}
+
+impl fmt::Display for RunSummary {
+    /// A readable multi-line summary.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{}: {} ({}, {} rods)",
+            self.name, self.status, self.method, self.links
+        )?;
+        match self.t_end {
+            Some(t) => writeln!(f, "  t reached         {} of {}", self.t_reached, t)?,
+            None => writeln!(f, "  t reached         {}", self.t_reached)?,
+        }
+        if let Some(t) = self.t_failed {
+            writeln!(f, "  failed at         t = {t}")?;
+        }
+        if self.segments.len() > 1 {
+            let spans: Vec<String> = self
+                .segments
+                .iter()
+                .map(|g| format!("{} [{:.4}, {:.4}]", g.method, g.t_start, g.t_end))
+                .collect();
+            writeln!(f, "  segments          {}", spans.join(", "))?;
+        }
+        writeln!(
+            f,
+            "  work              {} steps ({} rejected), {} RHS, {} Jacobians, {} LU",
+            self.steps,
+            self.rejected_steps,
+            self.rhs_evals,
+            self.jacobian_evals,
+            self.lu_factorizations
+        )?;
+        writeln!(f, "  wall time         {:.3e} s", self.wall_seconds)?;
+        writeln!(
+            f,
+            "  energy            {:.9} -> {:.9}, dissipated {:.3e}",
+            self.energy_start, self.energy_end, self.dissipated
+        )?;
+        writeln!(
+            f,
+            "  energy balance    {:.3e} ({:.3e} of M g L = {})",
+            self.energy_balance_error,
+            self.energy_balance_error / self.energy_scale,
+            self.energy_scale
+        )?;
+        writeln!(
+            f,
+            "  tip at end        ({:.6}, {:.6}), velocity ({:.6}, {:.6})",
+            self.tip_end[0], self.tip_end[1], self.tip_velocity_end[0], self.tip_velocity_end[1]
+        )?;
+        write!(
+            f,
+            "  max tip speed     {:.6} at t = {:.6}",
+            self.tip_speed_max, self.t_tip_speed_max
+        )
+    }
+}
