@@ -122,7 +122,7 @@ pub fn accelerations<T: Scalar>(
         // The articulated body seen from joint i-1 (rod i and all beyond it).
         let (hxx, hxy, hyy) = (hx * hx, hx * hy, hy * hy);
         mxx = (mxx + one) - hxx * dinv;
-        mxy = mxy - hxy * dinv;
+        mxy -= hxy * dinv;
         myy = (myy + one) - hyy * dinv;
         bx = (bx - w2 * (c * 0.5 + mux)) + hx * qi;
         by = (by + T::cst(g) - w2 * (s * 0.5 + muy)) + hy * qi;
@@ -141,9 +141,9 @@ pub fn accelerations<T: Scalar>(
 
     // Forward sweep: the loop-carried chain is one 2x2 affine map per rod.
     let (mut ax, mut ay) = (zero, zero);
-    for i in 0..n {
+    for (i, a) in acc.iter_mut().enumerate() {
         let [gx, gy] = ws.g[i];
-        acc[i] = ws.q[i] - (gx * ax + gy * ay);
+        *a = ws.q[i] - (gx * ax + gy * ay);
         let [t11, t12, t21, t22, c1, c2] = ws.map[i];
         let ax1 = (t11 * ax + c1) + t12 * ay;
         ay = (t21 * ax + c2) + t22 * ay;

@@ -45,9 +45,10 @@ impl Scalar for f64 {
         }
         if !in_range {
             for (o, &x) in out.iter_mut().zip(xs) {
-                if !(x.abs() < 1e5) {
-                    *o = f64::sin_cos(x);
+                if x.abs() < 1e5 {
+                    continue;
                 }
+                *o = f64::sin_cos(x);
             }
         }
     }
@@ -65,10 +66,11 @@ const P3: f64 = 2.022_266_248_795_950_6e-21;
 /// Arguments beyond `|x| < 1e5` (and NaN) fall back to the standard library.
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if !(x.abs() < 1e5) {
-        return f64::sin_cos(x);
+    if x.abs() < 1e5 {
+        reduced_sin_cos(x)
+    } else {
+        f64::sin_cos(x)
     }
-    reduced_sin_cos(x)
 }
 
 /// The branch-free core of [`sin_cos`], valid for `|x| < 1e5`; written with

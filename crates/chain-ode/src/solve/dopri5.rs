@@ -88,7 +88,7 @@ fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &AdaptiveOptions) -> f64 {
     (s / x.len() as f64).sqrt()
 }
 
-/// Hairer's starting step: from `|y0|`, `|f0|` and a trial Euler step.
+/// Hairer's starting step: from `|y0|`, `|f0|` and a trial Euler step (one RHS evaluation).
 fn initial_step<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
@@ -97,7 +97,6 @@ fn initial_step<S: OdeSystem>(
     span: f64,
     o: &AdaptiveOptions,
     scratch: (&mut [f64], &mut [f64]),
-    stats: &mut Stats,
 ) -> f64 {
     let (y1, f1) = scratch;
     let d0 = rms_norm(y0, y0, y0, o);
@@ -112,7 +111,6 @@ fn initial_step<S: OdeSystem>(
         y1[i] = y0[i] + h0 * f0[i];
     }
     sys.rhs(t0 + h0, y1, f1);
-    stats.rhs_evals += 1;
     for i in 0..y0.len() {
         y1[i] = f1[i] - f0[i];
     }
@@ -152,7 +150,10 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let span = t_end - t0;
     let mut h = match o.h0 {
         Some(h) => h.min(span),
-        None => initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err), &mut stats),
+        None => {
+            stats.rhs_evals += 1;
+            initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err))
+        }
     };
     let mut t = t0;
     let mut fac_old: f64 = 1e-4;

@@ -1,0 +1,221 @@
+//! diffsol's BDF against RK4, the energy balance, the stiff regime, and the
+//! statuses it ends with.
+
+use chain_ode::{solve, Chain, Method, SolveOptions, Start, Status, Trajectory};
+
+fn span3(n: usize, damping: f64) -> (Chain, chain_ode::State) {
+    let chain = Chain::report(n, damping).unwrap();
+    let start = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    };
+    let s = start.state(&chain).unwrap();
+    (chain, s)
+}
+
+fn run(chain: &Chain, s: &chain_ode::State, method: Method, opts: SolveOptions) -> Trajectory {
+    solve(chain, s, method, &opts).unwrap()
+}
+
+fn bdf(rtol: f64, atol: f64, t_end: f64) -> SolveOptions {
+    SolveOptions {
+        t_end,
+        rtol,
+        atol,
+        ..Default::default()
+    }
+}
+
+fn rk4(dt: f64, t_end: f64) -> SolveOptions {
+    SolveOptions {
+        t_end,
+        dt,
+        ..Default::default()
+    }
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+fn all_finite(y: &[f64]) -> bool {
+    y.iter().all(|v| v.is_finite())
+}
+
+#[test]
+fn agrees_with_rk4_at_tight_settings() {
+    let (chain, s) = span3(25, 5e-4);
+    let b = run(&chain, &s, Method::Bdf, bdf(1e-10, 1e-12, 2.0));
+    let r = run(&chain, &s, Method::Rk4, rk4(1e-3, 2.0));
+    assert_eq!(b.status, Status::Ok);
+    assert_eq!(r.status, Status::Ok);
+    assert_eq!(b.t_reached, 2.0);
+    let d = dist(b.summary.tip_end, r.summary.tip_end);
+    assert!(d < 1e-6, "tip differs by {d:e}");
+    // The tip-speed maximum is located with BDF's own dense output.
+    let dv = (b.summary.tip_speed_max - r.summary.tip_speed_max).abs();
+    assert!(
+        dv < 1e-6 * r.summary.tip_speed_max,
+        "max speed differs by {dv:e}"
+    );
+    // E + W = E(0) along the run, to the tolerance.
+    let scale = chain.energy_scale();
+    assert!(
+        b.summary.energy_balance_error < 1e-6 * scale,
+        "balance error {:e}",
+        b.summary.energy_balance_error
+    );
+    assert!(b.summary.dissipated > 0.0);
+    // Work counters: an implicit method with the exact Jacobian.
+    assert!(b.stats.steps > 0);
+    assert!(b.stats.jacobian_evals >= 1);
+    assert!(b.stats.lu_factorizations >= b.stats.jacobian_evals);
+    assert!(b.stats.rhs_evals > b.stats.steps);
+}
+
+#[test]
+fn undamped_energy_is_conserved_to_the_tolerance() {
+    let (chain, s) = span3(20, 0.0);
+    let scale = chain.energy_scale();
+    let loose = run(&chain, &s, Method::Bdf, bdf(1e-6, 1e-8, 2.0));
+    let tight = run(&chain, &s, Method::Bdf, bdf(1e-9, 1e-11, 2.0));
+    for (tr, rtol) in [(&loose, 1e-6), (&tight, 1e-9)] {
+        assert_eq!(tr.status, Status::Ok);
+        // Nothing is dissipated without friction, not even by rounding.
+        assert_eq!(tr.summary.dissipated, 0.0);
+        // Conserved to the tolerance, relative to the energy scale.
+        assert!(
+            tr.summary.energy_balance_error < rtol * scale,
+            "rtol {rtol:e}: balance error {:e}",
+            tr.summary.energy_balance_error
+        );
+    }
+    // Three decades tighter: the error follows the tolerance down.
+    let ratio = loose.summary.energy_balance_error / tight.summary.energy_balance_error;
+    assert!(ratio > 30.0, "ratio {ratio}");
+}
+
+#[test]
+fn stiff_chain_completes_in_far_fewer_steps_than_rk4_can_take() {
+    // gamma = r / (m l^2) ~ 35: the spectral radius at rest is ~48 gamma
+    // (physics.md), so RK4 (real stability interval ~2.785) needs
+    // dt < 2.785 / (48 gamma) ~ 1.7e-3, i.e. more than ~1200 steps to t = 2.
+    let (chain, s) = span3(50, 0.1);
+    let t_end = 2.0;
+    let rk4_min_steps = t_end * 48.0 * chain.damping_rate() / 2.785;
+    assert!(rk4_min_steps > 1000.0);
+
+    let b = run(&chain, &s, Method::Bdf, bdf(1e-6, 1e-8, t_end));
+    assert_eq!(b.status, Status::Ok);
+    assert_eq!(b.t_reached, t_end);
+    let attempts = (b.stats.steps + b.stats.rejected_steps) as f64;
+    assert!(
+        attempts < rk4_min_steps / 3.0,
+        "{attempts} BDF attempts vs RK4's {rk4_min_steps:.0}"
+    );
+
+    // RK4 at dt = 0.01, ~6x its stability limit, diverges ...
+    let unstable = run(&chain, &s, Method::Rk4, rk4(0.01, t_end));
+    assert_eq!(unstable.status, Status::Diverged);
+    assert!(unstable.t_reached < t_end);
+    // ... while below the limit it agrees with BDF to BDF's tolerance
+    // (rtol 1e-6 on a chain of length 6).
+    let stable = run(&chain, &s, Method::Rk4, rk4(1e-3, t_end));
+    assert_eq!(stable.status, Status::Ok);
+    let d = dist(b.summary.tip_end, stable.summary.tip_end);
+    assert!(d < 1e-5, "tip differs by {d:e}");
+    let scale = chain.energy_scale();
+    assert!(
+        b.summary.energy_balance_error < 1e-5 * scale,
+        "balance error {:e}",
+        b.summary.energy_balance_error
+    );
+    assert!(b.summary.dissipated > 0.0);
+}
+
+#[test]
+fn auto_hands_the_stiff_chain_over_to_bdf_mid_run() {
+    let (chain, s) = span3(50, 0.1);
+    let o = bdf(1e-6, 1e-8, 2.0);
+    let a = run(&chain, &s, Method::Auto, o.clone());
+    let b = run(&chain, &s, Method::Bdf, o);
+    assert_eq!(a.status, Status::Ok);
+    assert_eq!(a.t_reached, 2.0);
+    // BDF started from DOPRI5's state at t > 0 and finished the run.
+    let last = a.segments.last().unwrap();
+    assert_eq!(last.method, Method::Bdf);
+    assert!(last.t_start > 0.0 && last.t_start < 2.0);
+    assert_eq!(last.t_end, 2.0);
+    let d = dist(a.summary.tip_end, b.summary.tip_end);
+    assert!(d < 1e-5, "tip differs by {d:e}");
+}
+
+#[test]
+fn the_step_budget_ends_the_run_with_max_steps() {
+    let (chain, s) = span3(25, 5e-4);
+    let o = SolveOptions {
+        max_steps: 5,
+        ..bdf(1e-8, 1e-10, 2.0)
+    };
+    let tr = run(&chain, &s, Method::Bdf, o);
+    assert_eq!(tr.status, Status::MaxSteps);
+    assert!(tr.t_reached > 0.0 && tr.t_reached < 2.0);
+    // Every attempt, accepted or rejected, counts against the budget.
+    assert_eq!(tr.stats.steps + tr.stats.rejected_steps, 5);
+    assert!(all_finite(&tr.final_state));
+    assert!(tr.summary.energy_end.is_finite());
+}
+
+#[test]
+fn a_step_floor_above_the_needed_step_ends_with_step_size_too_small() {
+    let (chain, s) = span3(25, 5e-4);
+    let o = SolveOptions {
+        h_min: 0.5,
+        ..bdf(1e-8, 1e-10, 2.0)
+    };
+    let tr = run(&chain, &s, Method::Bdf, o);
+    assert_eq!(tr.status, Status::StepSizeTooSmall);
+    assert!(tr.t_reached < 2.0);
+    let t_failed = tr.t_failed.expect("a failed run says when");
+    assert!(t_failed > tr.t_reached);
+    assert!(all_finite(&tr.final_state));
+    // A floor below every step the run needs changes nothing.
+    let free = run(&chain, &s, Method::Bdf, bdf(1e-8, 1e-10, 2.0));
+    let floored = run(
+        &chain,
+        &s,
+        Method::Bdf,
+        SolveOptions {
+            h_min: 1e-9,
+            ..bdf(1e-8, 1e-10, 2.0)
+        },
+    );
+    assert_eq!(floored.status, Status::Ok);
+    assert_eq!(floored.final_state, free.final_state);
+}
+
+#[test]
+fn output_samples_land_on_the_grid_and_match_rk4() {
+    let (chain, s) = span3(25, 5e-4);
+    let out = |o: SolveOptions| SolveOptions {
+        output_dt: Some(0.1),
+        ..o
+    };
+    let b = run(&chain, &s, Method::Bdf, out(bdf(1e-10, 1e-12, 2.0)));
+    let r = run(&chain, &s, Method::Rk4, out(rk4(1e-3, 2.0)));
+    assert_eq!(b.status, Status::Ok);
+    assert_eq!(b.len(), 21);
+    assert_eq!(r.len(), 21);
+    for (k, (sb, sr)) in b.samples().zip(r.samples()).enumerate() {
+        let tk = 0.1 * k as f64;
+        assert!((sb.t - tk).abs() < 1e-12, "sample {k} at t = {}", sb.t);
+        let worst = sb
+            .angles
+            .iter()
+            .zip(sr.angles)
+            .chain(sb.rates.iter().zip(sr.rates))
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-6, "sample {k} (t = {tk}) differs by {worst:e}");
+    }
+}
