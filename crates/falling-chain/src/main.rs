@@ -129,7 +129,7 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         check_writable("--out", out)?;
     }
     let traj = run.solve()?;
-    let summary = RunSummary::from_trajectory(scene.name(), &traj).with_t_end(run.options.t_end);
+    let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
         println!("{}", summary.to_json());
     } else {

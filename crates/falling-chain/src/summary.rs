@@ -33,8 +33,8 @@ pub struct RunSummary {
     pub method: String,
     /// Number of rods `n`.
     pub links: usize,
-    /// The end time asked for (`None` if not known to the summary).
-    pub t_end: Option<f64>,
+    /// The end time asked for.
+    pub t_end: f64,
     /// The last time with a finite state.
     pub t_reached: f64,
     /// When the run failed, if it did.
@@ -106,8 +106,7 @@ pub const SUMMARY_CSV_COLUMNS: [&str; 28] = [
 ];
 
 impl RunSummary {
-    /// The summary of `traj`, under the scene name `name`. `t_end` is left
-    /// unknown; set it with [`RunSummary::with_t_end`].
+    /// The summary of `traj`, under the scene name `name`.
     pub fn from_trajectory(name: &str, traj: &Trajectory) -> Self {
         let s = &traj.summary;
         let st = &traj.stats;
@@ -116,7 +115,7 @@ impl RunSummary {
             status: traj.status.as_str().to_string(),
             method: traj.method.as_str().to_string(),
             links: traj.chain.links,
-            t_end: None,
+            t_end: traj.t_end,
             t_reached: traj.t_reached,
             t_failed: traj.t_failed,
             steps: st.steps,
@@ -147,12 +146,6 @@ impl RunSummary {
                 })
                 .collect(),
         }
-    }
-
-    /// The same summary with the end time asked for.
-    pub fn with_t_end(mut self, t_end: f64) -> Self {
-        self.t_end = Some(t_end);
-        self
     }
 
     /// True if the run reached its end time.
@@ -186,7 +179,7 @@ impl RunSummary {
             csv_field(&self.status).into_owned(),
             csv_field(&self.method).into_owned(),
             self.links.to_string(),
-            opt(self.t_end),
+            self.t_end.to_string(),
             self.t_reached.to_string(),
             opt(self.t_failed),
             self.steps.to_string(),
@@ -223,10 +216,11 @@ impl fmt::Display for RunSummary {
             "{}: {} ({}, {} rods)",
             self.name, self.status, self.method, self.links
         )?;
-        match self.t_end {
-            Some(t) => writeln!(f, "  t reached         {} of {}", self.t_reached, t)?,
-            None => writeln!(f, "  t reached         {}", self.t_reached)?,
-        }
+        writeln!(
+            f,
+            "  t reached         {} of {}",
+            self.t_reached, self.t_end
+        )?;
         if let Some(t) = self.t_failed {
             writeln!(f, "  failed at         t = {t}")?;
         }

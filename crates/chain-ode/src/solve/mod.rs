@@ -178,6 +178,8 @@ pub struct Trajectory {
     pub anchor: Vec2,
     pub method: Method,
     pub status: Status,
+    /// The requested end time.
+    pub t_end: f64,
     /// The last time with a finite state.
     pub t_reached: f64,
     /// When the run failed, if it did.
@@ -283,6 +285,7 @@ pub fn solve(
         anchor: start.anchor,
         method,
         status: outcome.status,
+        t_end: options.t_end,
         t_reached: outcome.t_reached,
         t_failed: outcome.t_failed,
         stats: outcome.stats,
