@@ -14,6 +14,7 @@ pub mod error;
 pub mod overrides;
 pub mod scene;
 pub mod summary;
+pub mod sweep;
 
 pub use catenary_report::{CatenaryReport, DiscreteReport};
 pub use error::{CatenaryNames, Error};

@@ -31,6 +31,46 @@ enum Command {
     Catenary(CatenaryArgs),
     /// Run a scene file and print a summary of the run.
     Simulate(SimulateArgs),
+    /// Run a scene once per value of one or more keys, in parallel; one
+    /// summary row per run (never trajectories).
+    Sweep(SweepArgs),
+}
+
+#[derive(Args)]
+struct SweepArgs {
+    /// The scene file (see scenes/README.md).
+    #[arg(value_name = "SCENE.toml")]
+    scene: PathBuf,
+    /// KEY=START:STOP:COUNT (COUNT values, ends included) or KEY=V1,V2,...
+    /// for any scene key by dotted path (array elements by index:
+    /// start.p1.0). Several --vary make the Cartesian product.
+    #[arg(
+        long,
+        value_name = "KEY=VALUES",
+        required = true,
+        allow_hyphen_values = true
+    )]
+    vary: Vec<String>,
+    /// Set any scene key before the sweep (as in simulate).
+    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+    set: Vec<String>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    jobs: Option<usize>,
+    /// Run only runs I, I+N, I+2N, ... of the sweep (0 <= I < N), for
+    /// splitting a sweep across machines; rows keep their run number.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
+    /// Write the rows as CSV (run, varied keys, then the summary fields of
+    /// simulate --json) instead of printing them.
+    #[arg(long, value_name = "FILE.csv")]
+    out: Option<PathBuf>,
+    /// Print a JSON array of row objects instead of CSV.
+    #[arg(long)]
+    json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
 }
 
 #[derive(Args)]
@@ -145,6 +185,77 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     })
 }
 
+fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
+    use falling_chain::sweep::{self, Shard, Vary};
+    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let vary = args
+        .vary
+        .iter()
+        .map(|v| Vary::parse(v))
+        .collect::<Result<Vec<_>, _>>()?;
+    let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
+    if args.jobs == Some(0) {
+        return Err(Error::field("--jobs", "must be an integer >= 1 (got 0)"));
+    }
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if let Some(out) = &args.out {
+        check_writable("--out", out)?;
+    }
+    sweep::check(&scene, &vary)?;
+    let bar = if args.quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(0).with_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} runs, {elapsed} ({eta} left)",
+            )
+            .expect("a valid progress template"),
+        )
+    };
+    let rows = sweep::run(&scene, &vary, shard, jobs, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })?;
+    bar.finish_and_clear();
+    let failed = rows.iter().filter(|r| !r.summary.is_ok()).count();
+    let csv_text = || {
+        let mut text = sweep::csv_header(&vary);
+        text.push('\n');
+        for r in &rows {
+            text.push_str(&sweep::csv_row(r));
+            text.push('\n');
+        }
+        text
+    };
+    if args.json {
+        let objects: Vec<serde_json::Value> = rows
+            .iter()
+            .map(|r| {
+                let values: serde_json::Map<String, serde_json::Value> = vary
+                    .iter()
+                    .zip(&r.values)
+                    .map(|(v, x)| (v.key.clone(), serde_json::to_value(x).unwrap_or_default()))
+                    .collect();
+                serde_json::json!({ "run": r.run, "values": values, "summary": r.summary })
+            })
+            .collect();
+        println!("{}", serde_json::Value::Array(objects));
+    } else if args.out.is_none() {
+        print!("{}", csv_text());
+    }
+    if let Some(out) = &args.out {
+        write_atomic("--out", out, |w| w.write_all(csv_text().as_bytes()))?;
+        eprintln!("wrote {} rows to {}", rows.len(), out.display());
+    }
+    if failed > 0 {
+        eprintln!("{failed} of {} runs failed (see their status)", rows.len());
+        return Ok(ExitCode::FAILURE);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 /// Clap's message on one line, without the usage and help hints.
 fn one_line(message: &str) -> String {
     message
@@ -176,6 +287,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Catenary(args) => catenary(args),
         Command::Simulate(args) => simulate(args),
+        Command::Sweep(args) => sweep(args),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e}");
