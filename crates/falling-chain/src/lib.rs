@@ -12,6 +12,7 @@ pub mod catenary_report;
 pub mod csv;
 pub mod error;
 pub mod overrides;
+pub mod render;
 pub mod scene;
 pub mod summary;
 pub mod sweep;

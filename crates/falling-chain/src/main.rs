@@ -34,6 +34,45 @@ enum Command {
     /// Run a scene once per value of one or more keys, in parallel; one
     /// summary row per run (never trajectories).
     Sweep(SweepArgs),
+    /// Draw the snapshot figure of a scene (the chain coloured by time).
+    Plot(PlotArgs),
+    /// Write an animated GIF of a scene's fall.
+    Animate(AnimateArgs),
+}
+
+#[derive(Args)]
+struct PlotArgs {
+    /// The scene file (see scenes/README.md).
+    #[arg(value_name = "SCENE.toml")]
+    scene: PathBuf,
+    /// The figure: FILE.png or FILE.svg.
+    #[arg(short = 'o', long = "out", value_name = "FILE.png|FILE.svg")]
+    out: PathBuf,
+    /// Set any scene key before the run (as in simulate).
+    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+    set: Vec<String>,
+    /// Number of snapshots drawn (spread evenly over the run).
+    #[arg(long, value_name = "N", default_value_t = 50)]
+    snapshots: usize,
+}
+
+#[derive(Args)]
+struct AnimateArgs {
+    /// The scene file (see scenes/README.md).
+    #[arg(value_name = "SCENE.toml")]
+    scene: PathBuf,
+    /// The animation, FILE.gif.
+    #[arg(short = 'o', long = "out", value_name = "FILE.gif")]
+    out: PathBuf,
+    /// Frames per second (1..=50).
+    #[arg(long, value_name = "F", default_value_t = 20)]
+    fps: u32,
+    /// Length of the animation in seconds of playback (sets the frame count).
+    #[arg(long, value_name = "S", default_value_t = 5.0)]
+    seconds: f64,
+    /// Set any scene key before the run (as in simulate).
+    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+    set: Vec<String>,
 }
 
 #[derive(Args)]
@@ -256,6 +295,108 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Runs `scene` with `frames` evenly spaced samples; returns the trajectory
+/// and the release point. A failed run is drawn up to where it got.
+fn run_for_drawing(
+    scene: &Scene,
+    frames: usize,
+) -> Result<(chain_ode::Trajectory, chain_ode::Vec2), Error> {
+    let mut run = scene.prepare()?;
+    run.options.output_dt = Some(run.options.t_end / frames.max(1) as f64);
+    let release = scene
+        .start()
+        .release_point(&run.chain)
+        .map_err(Error::from)?;
+    Ok((run.solve()?, release))
+}
+
+fn figure_error(what: &str, path: &std::path::Path, e: figures::FigureError) -> Error {
+    Error::field(what, format!("cannot write '{}': {e}", path.display()))
+}
+
+fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
+    let ext = args.out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if !matches!(ext.to_ascii_lowercase().as_str(), "png" | "svg") {
+        return Err(Error::field(
+            "--out",
+            format!("must end in .png or .svg (got '{}')", args.out.display()),
+        ));
+    }
+    if args.snapshots == 0 {
+        return Err(Error::field(
+            "--snapshots",
+            "must be an integer >= 1 (got 0)",
+        ));
+    }
+    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    check_writable("--out", &args.out)?;
+    let (traj, release) = run_for_drawing(&scene, args.snapshots)?;
+    let title = format!(
+        "{} (n = {}, {})",
+        scene.name(),
+        traj.chain.links,
+        traj.method
+    );
+    let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));
+    figures::chain_snapshots_to(&fig, &args.out)
+        .map_err(|e| figure_error("--out", &args.out, e))?;
+    eprintln!(
+        "wrote {} ({} snapshots, status {})",
+        args.out.display(),
+        fig.frames.len(),
+        traj.status
+    );
+    Ok(if traj.status.is_ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
+    if !args
+        .out
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gif"))
+    {
+        return Err(Error::field(
+            "--out",
+            format!("must end in .gif (got '{}')", args.out.display()),
+        ));
+    }
+    if !(1..=50).contains(&args.fps) {
+        return Err(Error::field(
+            "--fps",
+            format!("must be an integer in 1..=50 (got {})", args.fps),
+        ));
+    }
+    if !(args.seconds.is_finite() && args.seconds > 0.0 && args.seconds <= 600.0) {
+        return Err(Error::field(
+            "--seconds",
+            format!("must be a number in (0, 600] (got {})", args.seconds),
+        ));
+    }
+    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    check_writable("--out", &args.out)?;
+    let frames = ((args.seconds * f64::from(args.fps)).round() as usize).max(2);
+    let (traj, release) = run_for_drawing(&scene, frames)?;
+    let title = format!("{} (n = {})", scene.name(), traj.chain.links);
+    let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));
+    figures::chain_animation(&fig, &args.out, args.fps)
+        .map_err(|e| figure_error("--out", &args.out, e))?;
+    eprintln!(
+        "wrote {} ({} frames, status {})",
+        args.out.display(),
+        fig.frames.len(),
+        traj.status
+    );
+    Ok(if traj.status.is_ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
 /// Clap's message on one line, without the usage and help hints.
 fn one_line(message: &str) -> String {
     message
@@ -288,6 +429,8 @@ fn main() -> ExitCode {
         Command::Catenary(args) => catenary(args),
         Command::Simulate(args) => simulate(args),
         Command::Sweep(args) => sweep(args),
+        Command::Plot(args) => plot(args),
+        Command::Animate(args) => animate(args),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e}");

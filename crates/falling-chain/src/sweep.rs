@@ -50,6 +50,14 @@ fn vary_error(spec: &str, why: impl std::fmt::Display) -> Error {
 }
 
 impl Vary {
+    /// `key` over the numbers `values`.
+    pub fn floats(key: &str, values: &[f64]) -> Self {
+        Self {
+            key: key.to_string(),
+            values: values.iter().map(|&x| toml::Value::Float(x)).collect(),
+        }
+    }
+
     /// Parses `KEY=START:STOP:COUNT` or `KEY=V1,V2,...`.
     pub fn parse(spec: &str) -> Result<Self, Error> {
         let (key, rhs) = spec

@@ -1,0 +1,40 @@
+//! The study's figures: plain data in, files out.
+//!
+//! Every figure function takes finished data (never runs a simulation) and
+//! writes `<stem>.png` and `<stem>.svg` (or, for animations, one GIF).
+//! This crate depends on nothing of the project.
+//!
+//! Invariants:
+//! - text uses DejaVu Sans compiled into the binary (no system fonts, no
+//!   fontconfig, nothing fetched at run time), so a PNG is the same on every
+//!   machine;
+//! - the same input gives the same bytes (no timestamps, no hash-order
+//!   output);
+//! - files are written atomically (temporary file + rename): an error
+//!   leaves no half-written file.
+//!
+//! Look: the 'cool' colormap (cyan -> magenta) for time with a labelled
+//! colour bar, P0 red, P1 blue, equal axis scales for chain shapes; PNGs are
+//! about 1200 x 900 px with text of at least ~20 px, readable in print.
+
+mod animation;
+mod axes;
+mod category;
+mod colormap;
+mod curves;
+mod font;
+mod lines;
+mod output;
+mod sketch;
+mod snapshots;
+
+pub use animation::{chain_animation, ANIMATION_HEIGHT};
+pub use axes::format_number;
+pub use category::{category_map, CategoryMap, CategoryPanel};
+pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
+pub use curves::{colored_curves, ColoredCurves};
+pub use lines::{line_plot, line_plot_pair, LinePlot, Series, Style, LINE_PLOT_SIZE, PAIR_SIZE};
+pub use output::{FigureError, Output};
+pub use plotters::style::RGBColor;
+pub use sketch::{sketch, SKETCH_SIZE};
+pub use snapshots::{chain_snapshots, chain_snapshots_to, ChainSnapshots};
