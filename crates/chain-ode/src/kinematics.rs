@@ -4,6 +4,7 @@
 //! `r_k = P0 + l sum_{j<=k} (cos phi_j, sin phi_j)`; the tip is `r_n`.
 
 use crate::chain::Chain;
+use crate::scalar::sin_cos;
 
 /// A point or vector in the plane, `[x, y]`.
 pub type Vec2 = [f64; 2];
@@ -15,7 +16,7 @@ pub fn joints(chain: &Chain, p0: Vec2, phi: &[f64]) -> Vec<Vec2> {
     let mut out = Vec::with_capacity(phi.len() + 1);
     out.push(r);
     for &p in phi {
-        let (s, c) = p.sin_cos();
+        let (s, c) = sin_cos(p);
         r = [r[0] + l * c, r[1] + l * s];
         out.push(r);
     }
@@ -26,7 +27,7 @@ pub fn joints(chain: &Chain, p0: Vec2, phi: &[f64]) -> Vec<Vec2> {
 pub fn tip(chain: &Chain, p0: Vec2, phi: &[f64]) -> Vec2 {
     let l = chain.rod_length();
     phi.iter().fold(p0, |r, &p| {
-        let (s, c) = p.sin_cos();
+        let (s, c) = sin_cos(p);
         [r[0] + l * c, r[1] + l * s]
     })
 }
@@ -36,7 +37,7 @@ pub fn tip_velocity(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec2 {
     let l = chain.rod_length();
     let (mut vx, mut vy) = (0.0, 0.0);
     for (&p, &wj) in phi.iter().zip(w) {
-        let (s, c) = p.sin_cos();
+        let (s, c) = sin_cos(p);
         vx -= wj * s;
         vy += wj * c;
     }
@@ -49,7 +50,7 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
     let (mut jx, mut jy) = (0.0, 0.0); // velocity of the rod's lower joint, rod units
     let mut twice = 0.0;
     for (&p, &wk) in phi.iter().zip(w) {
-        let (s, c) = p.sin_cos();
+        let (s, c) = sin_cos(p);
         let (nx, ny) = (-s * wk, c * wk);
         let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
         twice += cx * cx + cy * cy + wk * wk / 12.0;

@@ -20,7 +20,7 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     let (mut ax, mut ay) = (0.0, 0.0);
     let (mut twice_t, mut v) = (0.0, 0.0);
     for i in 0..n {
-        let (s, c) = phi[i].sin_cos();
+        let (s, c) = crate::scalar::sin_cos(phi[i]);
         let (wi, ai) = (w[i], acc[i]);
         let (nx, ny) = (-s * wi, c * wi);
         let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
