@@ -126,7 +126,18 @@ fn every_scene_loads_and_starts_where_its_report_figure_does() {
         .filter_map(|f| f.strip_suffix(".toml").map(str::to_string))
         .collect();
     found.sort();
-    assert_eq!(found, expected);
+    for name in expected {
+        assert!(
+            found.iter().any(|f| f == name),
+            "scenes/{name}.toml is missing"
+        );
+    }
+    // Every scene file, report or not, loads and prepares.
+    for name in &found {
+        Scene::load(scene(name))
+            .and_then(|s| s.prepare())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
 
     for name in expected {
         let s = Scene::load(scene(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
