@@ -5,6 +5,7 @@
 mod catalog;
 mod make;
 mod runs;
+mod study;
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -49,8 +50,15 @@ fn parse(args: &[String]) -> Result<Args, String> {
         }
     }
     for id in &out.only {
-        if !FIGURES.iter().any(|f| f.id == id) && id != "anim" {
-            let ids: Vec<&str> = FIGURES.iter().map(|f| f.id).collect();
+        let known = FIGURES.iter().any(|f| f.id == id)
+            || study::all().iter().any(|s| s.id == id)
+            || id == "anim";
+        if !known {
+            let ids: Vec<&str> = FIGURES
+                .iter()
+                .map(|f| f.id)
+                .chain(study::all().iter().map(|s| s.id))
+                .collect();
             return Err(format!(
                 "--only: unknown figure '{id}' (known: {}, anim)",
                 ids.join(", ")
@@ -131,10 +139,33 @@ fn figures_cmd(args: Args) -> Result<(), String> {
     for name in &anim_scenes {
         println!("wrote figures/anim/{name}.gif");
     }
+    // The study figures, one after the other: some of them time runs.
+    let ctx = study::Ctx {
+        root: root.clone(),
+        out: out.clone(),
+        data: data_dir.clone(),
+        jobs,
+    };
+    fs::create_dir_all(&ctx.data).map_err(|e| e.to_string())?;
+    for st in study::all() {
+        if !(args.only.is_empty() || args.only.iter().any(|o| o == st.id)) {
+            continue;
+        }
+        let t0 = Instant::now();
+        match (st.make)(&ctx) {
+            Ok(files) => {
+                for f in files {
+                    println!("wrote {f}");
+                }
+                println!("  ({} in {:.1} s)", st.id, t0.elapsed().as_secs_f64());
+            }
+            Err(e) => failed.push(format!("{}: {e}", st.id)),
+        }
+    }
     fs::write(out.join("README.md"), readme()).map_err(|e| e.to_string())?;
     println!("wrote figures/README.md");
     println!(
-        "{} figures, {} animations from {} scene runs in {:.1} s",
+        "{} report figures, {} animations from {} scene runs, and the study figures, in {:.1} s",
         selected.len(),
         anim_scenes.len(),
         needed.len(),
@@ -172,6 +203,14 @@ fn readme() -> String {
             f.what,
             scenes,
             id = f.id
+        ));
+    }
+    s.push_str("\n## New figures\n\nTheir data are in `data/<id>*.csv`.\n\n| id | what it shows | command |\n|---|---|---|\n");
+    for st in study::all() {
+        s.push_str(&format!(
+            "| {id} | {} | `cargo xtask figures --only {id}` |\n",
+            st.what,
+            id = st.id
         ));
     }
     s
