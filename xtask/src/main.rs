@@ -105,6 +105,12 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         bar.inc(1);
     })?;
     let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if args.only.is_empty() {
+        fs::create_dir_all(&data_dir).map_err(|e| e.to_string())?;
+        fs::write(data_dir.join("scenes.csv"), runs::summary_csv(&runs))
+            .map_err(|e| e.to_string())?;
+        println!("wrote figures/data/scenes.csv");
+    }
     let inputs = make::Inputs {
         runs: &runs,
         data_dir: &data_dir,

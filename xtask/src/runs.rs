@@ -65,3 +65,37 @@ pub fn run_all(
         })
         .collect()
 }
+
+/// One row per scene run: what the paper quotes about the report's scenes.
+/// Deterministic (no wall times).
+pub fn summary_csv(runs: &BTreeMap<&'static str, SceneRun>) -> String {
+    let mut s = String::from(
+        "scene,method,links,damping,t_end,status,steps,rejected_steps,rhs_evals,\
+         energy_start,energy_end,dissipated,energy_balance_error,energy_scale,\
+         tip_speed_max,t_tip_speed_max,tip_end_x,tip_end_y\n",
+    );
+    for (name, r) in runs {
+        let (t, m) = (&r.traj, &r.traj.summary);
+        s.push_str(&format!(
+            "{name},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            t.method,
+            t.chain.links,
+            t.chain.damping,
+            t.t_end,
+            t.status,
+            t.stats.steps,
+            t.stats.rejected_steps,
+            t.stats.rhs_evals,
+            m.energy_start,
+            m.energy_end,
+            m.dissipated,
+            m.energy_balance_error,
+            t.chain.energy_scale(),
+            m.tip_speed_max,
+            m.t_tip_speed_max,
+            m.tip_end[0],
+            m.tip_end[1],
+        ));
+    }
+    s
+}
