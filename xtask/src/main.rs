@@ -4,6 +4,7 @@
 
 mod catalog;
 mod make;
+mod paper;
 mod runs;
 mod study;
 
@@ -18,7 +19,8 @@ use rayon::prelude::*;
 
 use catalog::{Figure, FIGURES};
 
-const USAGE: &str = "usage: cargo xtask figures [--only ID...] [--no-anim]";
+const USAGE: &str =
+    "usage: cargo xtask figures [--only ID...] [--no-anim] | cargo xtask paper [--check]";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -170,6 +172,9 @@ fn figures_cmd(args: Args) -> Result<(), String> {
     }
     fs::write(out.join("README.md"), readme()).map_err(|e| e.to_string())?;
     println!("wrote figures/README.md");
+    if args.only.is_empty() && root.join("paper/paper.tmpl.md").exists() {
+        paper::run(&root, false)?;
+    }
     println!(
         "{} report figures, {} animations from {} scene runs, and the study figures, in {:.1} s",
         selected.len(),
@@ -226,6 +231,11 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("figures") => parse(&args[1..]).and_then(figures_cmd),
+        Some("paper") => match &args[1..] {
+            [] => paper::run(&root(), false),
+            [c] if c == "--check" => paper::run(&root(), true),
+            _ => Err(USAGE.to_string()),
+        },
         _ => Err(USAGE.to_string()),
     };
     match result {

@@ -1,0 +1,254 @@
+//! `cargo xtask paper [--check]`: fills `paper/paper.tmpl.md` with numbers
+//! read from the CSVs in `figures/data/` and writes `paper/paper.md`.
+//!
+//! A placeholder is `{{FILE:FILTER:EXPR:FORMAT}}`:
+//! - `FILE`: a CSV in `figures/data/` (`scenes.csv`);
+//! - `FILTER`: `*`, or `col=value` conditions joined by `&`;
+//! - `EXPR`: `col` (the one matching row's cell), `min(col)`, `max(col)`,
+//!   `at_max(col,other)` / `at_min(col,other)` (`other` in the row where
+//!   `col` is largest / smallest), `count`, `ratio(a,b)` (`a / b` in the one
+//!   matching row);
+//! - `FORMAT`: `s3` (3 significant digits), `f2` (2 decimals), `e2`
+//!   (scientific, 2 decimals) or `raw`.
+//!
+//! `--check` renders in memory and fails if `paper/paper.md` differs (a
+//! number or the template changed) or if a figure it links to is missing.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::Path;
+
+type Table = (Vec<String>, Vec<Vec<String>>);
+
+fn read_csv(path: &Path) -> Result<Table, String> {
+    let text = fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .ok_or_else(|| format!("{}: empty", path.display()))?
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .filter(|l| !l.is_empty())
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    Ok((header, rows))
+}
+
+fn col(t: &Table, name: &str) -> Result<usize, String> {
+    t.0.iter()
+        .position(|c| c == name)
+        .ok_or_else(|| format!("no column '{name}' (columns: {})", t.0.join(", ")))
+}
+
+fn num(s: &str) -> Result<f64, String> {
+    s.parse::<f64>()
+        .map_err(|_| format!("'{s}' is not a number"))
+}
+
+/// Formats `x` as the placeholder asks.
+fn format(x: f64, fmt: &str) -> Result<String, String> {
+    let digits = |s: &str| -> Result<usize, String> {
+        s.parse::<usize>()
+            .map_err(|_| format!("bad format '{fmt}'"))
+    };
+    Ok(match fmt.split_at(1.min(fmt.len())) {
+        ("s", d) => {
+            let d = digits(d)?.max(1);
+            if x == 0.0 {
+                "0".to_string()
+            } else {
+                let mag = x.abs().log10().floor() as i32;
+                let decimals = (d as i32 - 1 - mag).max(0) as usize;
+                format!("{x:.decimals$}")
+            }
+        }
+        ("f", d) => format!("{x:.*}", digits(d)?),
+        ("e", d) => {
+            let s = format!("{x:.*e}", digits(d)?);
+            // 1.23e-5 -> 1.23 × 10^-5, as the paper prints it.
+            match s.split_once('e') {
+                Some((m, e)) => format!("{m}×10<sup>{e}</sup>"),
+                None => s,
+            }
+        }
+        _ => return Err(format!("bad format '{fmt}' (s3, f2, e2 or raw)")),
+    })
+}
+
+/// Evaluates one placeholder against the data folder.
+fn evaluate(
+    spec: &str,
+    data: &Path,
+    cache: &mut BTreeMap<String, Table>,
+) -> Result<String, String> {
+    let parts: Vec<&str> = spec.splitn(4, ':').collect();
+    let [file, filter, expr, fmt] = parts[..] else {
+        return Err("expected FILE:FILTER:EXPR:FORMAT".into());
+    };
+    if !cache.contains_key(file) {
+        cache.insert(file.to_string(), read_csv(&data.join(file))?);
+    }
+    let t = &cache[file];
+    let conds: Vec<(usize, &str)> = if filter == "*" {
+        vec![]
+    } else {
+        filter
+            .split('&')
+            .map(|c| {
+                let (k, v) = c.split_once('=').ok_or(format!("bad filter '{c}'"))?;
+                Ok((col(t, k)?, v))
+            })
+            .collect::<Result<_, String>>()?
+    };
+    let rows: Vec<&Vec<String>> =
+        t.1.iter()
+            .filter(|r| {
+                conds
+                    .iter()
+                    .all(|(i, v)| r.get(*i).map(String::as_str) == Some(*v))
+            })
+            .collect();
+    if rows.is_empty() {
+        return Err(format!("no row matches '{filter}'"));
+    }
+    let one = || -> Result<&Vec<String>, String> {
+        if rows.len() == 1 {
+            Ok(rows[0])
+        } else {
+            Err(format!(
+                "{} rows match '{filter}', expected one",
+                rows.len()
+            ))
+        }
+    };
+    let (name, args) = match expr.split_once('(') {
+        Some((f, rest)) => (f, rest.trim_end_matches(')').split(',').collect::<Vec<_>>()),
+        None if expr == "count" => ("count", vec![]),
+        None => ("", vec![expr]),
+    };
+    let value = |r: &Vec<String>, c: &str| -> Result<String, String> { Ok(r[col(t, c)?].clone()) };
+    let extreme = |largest: bool| -> Result<&Vec<String>, String> {
+        let c = col(t, args[0])?;
+        let mut best: Option<(f64, &Vec<String>)> = None;
+        for r in &rows {
+            let x = num(&r[c])?;
+            if best.is_none_or(|(b, _)| if largest { x > b } else { x < b }) {
+                best = Some((x, r));
+            }
+        }
+        Ok(best.expect("rows is not empty").1)
+    };
+    let text = match (name, args.len()) {
+        ("", 1) => value(one()?, args[0])?,
+        ("count", _) => rows.len().to_string(),
+        ("max", 1) => value(extreme(true)?, args[0])?,
+        ("min", 1) => value(extreme(false)?, args[0])?,
+        ("at_max", 2) => value(extreme(true)?, args[1])?,
+        ("at_min", 2) => value(extreme(false)?, args[1])?,
+        ("ratio", 2) => {
+            let r = one()?;
+            (num(&value(r, args[0])?)? / num(&value(r, args[1])?)?).to_string()
+        }
+        _ => return Err(format!("unknown expression '{expr}'")),
+    };
+    if fmt == "raw" {
+        Ok(text)
+    } else {
+        format(num(&text)?, fmt)
+    }
+}
+
+/// The paper with every placeholder filled in.
+pub fn render(template: &str, data: &Path) -> Result<String, String> {
+    let mut out = String::with_capacity(template.len());
+    let mut cache = BTreeMap::new();
+    let mut rest = template;
+    let mut errors = vec![];
+    while let Some(start) = rest.find("{{") {
+        out.push_str(&rest[..start]);
+        let Some(len) = rest[start..].find("}}") else {
+            return Err("a '{{' without its '}}'".into());
+        };
+        let spec = &rest[start + 2..start + len];
+        match evaluate(spec.trim(), data, &mut cache) {
+            Ok(v) => out.push_str(&v),
+            Err(e) => errors.push(format!("{{{{{spec}}}}}: {e}")),
+        }
+        rest = &rest[start + len + 2..];
+    }
+    out.push_str(rest);
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors.join("\n"))
+    }
+}
+
+/// Relative links to figures (`](../figures/...)`) that do not exist.
+pub fn missing_links(paper: &str, paper_dir: &Path) -> Vec<String> {
+    paper
+        .split("](")
+        .skip(1)
+        .filter_map(|s| s.split(')').next())
+        .filter(|l| !l.starts_with("http") && !l.starts_with('#'))
+        .filter(|l| !paper_dir.join(l).exists())
+        .map(str::to_string)
+        .collect()
+}
+
+/// `cargo xtask paper [--check]`.
+pub fn run(root: &Path, check: bool) -> Result<(), String> {
+    let dir = root.join("paper");
+    let template = fs::read_to_string(dir.join("paper.tmpl.md"))
+        .map_err(|e| format!("paper/paper.tmpl.md: {e}"))?;
+    let text = render(&template, &root.join("figures").join("data"))?;
+    let missing = missing_links(&text, &dir);
+    if !missing.is_empty() {
+        return Err(format!(
+            "paper links to missing files: {}",
+            missing.join(", ")
+        ));
+    }
+    let target = dir.join("paper.md");
+    if check {
+        let current = fs::read_to_string(&target).unwrap_or_default();
+        if current != text {
+            return Err(
+                "paper/paper.md is stale: its numbers or text differ from the \
+                        template filled with figures/data/ (run `cargo xtask paper`)"
+                    .into(),
+            );
+        }
+        println!("paper/paper.md is current ({} bytes)", text.len());
+    } else {
+        fs::write(&target, &text).map_err(|e| e.to_string())?;
+        println!("wrote paper/paper.md");
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn placeholders_read_the_csv() {
+        let dir = std::env::temp_dir().join(format!("xtask-paper-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("a.csv"), "k,x,y\np,1.23456,10\nq,2.5,20\n").unwrap();
+        let t = "{{a.csv:k=p:x:s3}} {{a.csv:*:max(x):f1}} {{a.csv:*:at_max(x,k):raw}} \
+                 {{a.csv:*:count:raw}} {{a.csv:k=q:ratio(y,x):f0}} {{a.csv:k=p:y:e1}}";
+        assert_eq!(
+            render(t, &dir).unwrap(),
+            "1.23 2.5 q 2 8 1.0×10<sup>1</sup>"
+        );
+        assert!(render("{{a.csv:k=z:x:s3}}", &dir).is_err());
+        assert!(render("{{a.csv:*:x:s3}}", &dir)
+            .unwrap_err()
+            .contains("2 rows"));
+        assert!(render("{{b.csv:*:x:s3}}", &dir).is_err());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+}
