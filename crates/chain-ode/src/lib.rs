@@ -9,6 +9,7 @@
 //! Conventions (see `physics.md`): angles `phi_i` from the horizontal,
 //! counter-clockwise; rod 1 pinned at `P0`; `mass` is per rod; gravity along -y.
 
+pub mod analysis;
 pub mod chain;
 pub mod dense;
 pub mod dynamics;

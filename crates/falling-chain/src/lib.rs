@@ -9,6 +9,7 @@
 
 pub mod atomic;
 pub mod catenary_report;
+pub mod converge;
 pub mod csv;
 pub mod error;
 pub mod overrides;

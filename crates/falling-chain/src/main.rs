@@ -38,6 +38,48 @@ enum Command {
     Plot(PlotArgs),
     /// Write an animated GIF of a scene's fall.
     Animate(AnimateArgs),
+    /// Run a scene at increasing numbers of rods n, with the continuum held
+    /// fixed, and report the smallest n that agrees with the finest.
+    ///
+    /// Refinement: the total mass M = n m and the bending viscosity
+    /// eta = r l of the scene are kept, so m = M/n and r = eta n/L (a joint's
+    /// friction torque r (w_{i+1} - w_i) is the viscous bending moment
+    /// r l d(omega)/ds). The damping rate r/(m l^2) then grows like n^4: large
+    /// n is stiff. An n is adequate when its tip_speed_max (relative) and its
+    /// tip end position (relative to L) differ from the finest n's by less
+    /// than --tol, and so do those of every n between it and the finest.
+    /// Exit 0 with the answer (or "refine further"), 1 if a run failed.
+    Converge(ConvergeArgs),
+}
+
+#[derive(Args)]
+struct ConvergeArgs {
+    /// The scene file (see scenes/README.md).
+    #[arg(value_name = "SCENE.toml")]
+    scene: PathBuf,
+    /// Relative tolerance on tip_speed_max and on the tip end (over L).
+    #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
+    tol: f64,
+    /// The numbers of rods to run, N1,N2,... (the largest is the reference).
+    #[arg(long, value_name = "N1,N2,...", default_value = "25,50,100,200,400")]
+    links: String,
+    /// Integration method of every run. The default is DOPRI5 because the
+    /// scaled damping makes a scene's fixed-step RK4 unstable at large n.
+    #[arg(long, value_name = "M", default_value = "dopri5")]
+    method: String,
+    /// Relative tolerance of adaptive runs (atol = rtol / 100); default:
+    /// the scene's run.rtol.
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    rtol: Option<f64>,
+    /// Set any scene key before refining (as in simulate).
+    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+    set: Vec<String>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    jobs: Option<usize>,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -397,6 +439,38 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
     })
 }
 
+fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
+    use falling_chain::converge;
+    converge::check_tol(args.tol)?;
+    let links = converge::parse_links(&args.links)?;
+    if args.jobs == Some(0) {
+        return Err(Error::field("--jobs", "must be an integer >= 1 (got 0)"));
+    }
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let report = converge::run(
+        &scene,
+        &links,
+        args.tol,
+        Some(&args.method),
+        args.rtol,
+        jobs,
+        &|done, total| eprintln!("converge: {done} of {total} runs done"),
+    )?;
+    if args.json {
+        println!("{}", report.to_json());
+    } else {
+        println!("{report}");
+    }
+    Ok(if report.all_ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
 /// Clap's message on one line, without the usage and help hints.
 fn one_line(message: &str) -> String {
     message
@@ -431,6 +505,7 @@ fn main() -> ExitCode {
         Command::Sweep(args) => sweep(args),
         Command::Plot(args) => plot(args),
         Command::Animate(args) => animate(args),
+        Command::Converge(args) => converge(args),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e}");

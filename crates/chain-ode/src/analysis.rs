@@ -1,0 +1,190 @@
+//! Quantities derived from finished runs, and the closed forms the model is
+//! validated against: the continuum refinement of a chain, the pivot force
+//! along a trajectory, level crossings of the tip, the folded chain's
+//! energy-conserving law and the Bessel-zero frequencies of the hanging
+//! chain.
+
+use crate::chain::{Chain, InvalidParameter};
+use crate::kinematics::{tip, tip_velocity, Vec2};
+use crate::solve::Trajectory;
+use crate::system::ChainSystem;
+
+/// The first zeros `j_{0,k}` of the Bessel function `J0`.
+pub const J0_ZEROS: [f64; 5] = [
+    2.404_825_557_695_773,
+    5.520_078_110_286_311,
+    8.653_727_912_911_013,
+    11.791_534_439_014_281,
+    14.930_917_708_487_787,
+];
+
+/// The continuum frequencies of the hanging chain, `omega_k = (j_{0,k}/2) sqrt(g/L)`.
+pub fn bessel_frequencies(chain: &Chain) -> [f64; 5] {
+    let s = (chain.gravity / chain.length).sqrt();
+    J0_ZEROS.map(|j| 0.5 * j * s)
+}
+
+/// The same continuous chain cut into `links` rods: `chain` refined (or
+/// coarsened) at fixed continuum properties.
+///
+/// * Length `L` and `g` are kept.
+/// * The total mass `M = n m` is kept: `m' = M / n'`.
+/// * The joint friction is kept as a continuum viscous bending moment
+///   `M_b(s) = eta * d(omega)/ds`: a joint's torque `r (w_{i+1} - w_i)`
+///   is `r l d(omega)/ds`, and the dissipated power `r sum (w_{i+1} - w_i)^2`
+///   tends to `r l * integral (d(omega)/ds)^2 ds`, so `eta = r l` is the
+///   continuum quantity and `r' = eta / l' = r n' / n`.
+///
+/// The damping rate `r / (m l^2) = eta n^4 / (M L^3)` then grows like `n^4`:
+/// the grid-scale bending modes of a viscous rope are damped that fast,
+/// which makes the refined problem stiff.
+pub fn refined(chain: &Chain, links: usize) -> Result<Chain, InvalidParameter> {
+    let ratio = links as f64 / chain.links as f64;
+    Chain::new(
+        chain.length,
+        links,
+        chain.total_mass() / links as f64,
+        chain.gravity,
+        chain.damping * ratio,
+    )
+}
+
+/// The continuum bending viscosity `eta = r l` of a chain (see [`refined`]).
+pub fn bending_viscosity(chain: &Chain) -> f64 {
+    chain.damping * chain.rod_length()
+}
+
+/// The force of the pivot on rod 1 (physical units) in the state
+/// `(angles, rates)`, from the O(n) recursion.
+pub fn pivot_force(sys: &mut ChainSystem, angles: &[f64], rates: &[f64]) -> Vec2 {
+    let y = ChainSystem::pack(angles, rates, 0.0);
+    let mut dy = vec![0.0; y.len()];
+    sys.rhs_with_reactions(&y, &mut dy).pivot_force
+}
+
+/// `(t, pivot force on rod 1)` at every sample of `traj`.
+pub fn pivot_forces(traj: &Trajectory) -> Vec<(f64, Vec2)> {
+    let mut sys = ChainSystem::new(&traj.chain);
+    traj.samples()
+        .map(|s| (s.t, pivot_force(&mut sys, s.angles, s.rates)))
+        .collect()
+}
+
+/// The tip's position and velocity at every sample: `(t, tip, v_tip)`.
+pub fn tip_track(traj: &Trajectory) -> Vec<(f64, Vec2, Vec2)> {
+    traj.samples()
+        .map(|s| {
+            (
+                s.t,
+                tip(&traj.chain, traj.anchor, s.angles),
+                tip_velocity(&traj.chain, s.angles, s.rates),
+            )
+        })
+        .collect()
+}
+
+/// The first time the tip's height falls to `level`, or `None`.
+///
+/// Between two samples the height is the cubic Hermite interpolant of the
+/// sampled heights and exact vertical velocities (error `O(dt^4)` for sample
+/// spacing `dt`); the crossing is located in it by bisection.
+pub fn first_time_below(track: &[(f64, Vec2, Vec2)], level: f64) -> Option<f64> {
+    for w in track.windows(2) {
+        let (t0, p0, v0) = w[0];
+        let (t1, p1, v1) = w[1];
+        if p0[1] < level {
+            return Some(t0);
+        }
+        let h = t1 - t0;
+        let y = |t: f64| {
+            let s = (t - t0) / h;
+            let (s2, s3) = (s * s, s * s * s);
+            (2.0 * s3 - 3.0 * s2 + 1.0) * p0[1]
+                + (s3 - 2.0 * s2 + s) * h * v0[1]
+                + (-2.0 * s3 + 3.0 * s2) * p1[1]
+                + (s3 - s2) * h * v1[1]
+        };
+        // The interpolant may dip below the level inside the step even if the
+        // end point does not: check a few interior points.
+        let mut lo = t0;
+        let mut hit = None;
+        for k in 1..=8 {
+            let t = t0 + h * k as f64 / 8.0;
+            if y(t) < level {
+                hit = Some(t);
+                break;
+            }
+            lo = t;
+        }
+        if let Some(mut hi) = hit {
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if y(mid) < level {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            return Some(0.5 * (lo + hi));
+        }
+    }
+    None
+}
+
+/// The energy-conserving law of the folded chain (Calkin & March 1989) for
+/// a chain of length `L` whose free end is released at the pivot's height:
+/// the free end, fallen by `x`, moves at `v^2 = g x (2L - x) / (L - x)`.
+pub mod folded_law {
+    /// Tip speed after a fall `x` (`0 <= x < L`).
+    pub fn speed(x: f64, length: f64, gravity: f64) -> f64 {
+        (gravity * x * (2.0 * length - x) / (length - x)).sqrt()
+    }
+
+    /// Free fall: `sqrt(2 g x)`.
+    pub fn free_fall_speed(x: f64, gravity: f64) -> f64 {
+        (2.0 * gravity * x).sqrt()
+    }
+
+    /// The time to fall `x` (`0 <= x <= L`), `t = integral dx / v`.
+    ///
+    /// With `x = L sin^2(theta)` the integrand is smooth and analytic:
+    /// `t = sqrt(L/g) * integral_0^asin(sqrt(x/L)) 2 cos^2(theta) / sqrt(2 - sin^2(theta)) dtheta`,
+    /// evaluated by composite Gauss–Legendre (5 points, 200 panels): to rounding.
+    pub fn time(x: f64, length: f64, gravity: f64) -> f64 {
+        let top = (x / length).clamp(0.0, 1.0).sqrt().asin();
+        let f = |th: f64| {
+            let (s, c) = th.sin_cos();
+            2.0 * c * c / (2.0 - s * s).sqrt()
+        };
+        const NODES: [f64; 5] = [
+            0.0,
+            -0.538_469_310_105_683_1,
+            0.538_469_310_105_683_1,
+            -0.906_179_845_938_664,
+            0.906_179_845_938_664,
+        ];
+        const WEIGHTS: [f64; 5] = [
+            0.568_888_888_888_888_9,
+            0.478_628_670_499_366_5,
+            0.478_628_670_499_366_5,
+            0.236_926_885_056_189_1,
+            0.236_926_885_056_189_1,
+        ];
+        let panels = 200;
+        let h = top / panels as f64;
+        let mut sum = 0.0;
+        for p in 0..panels {
+            let mid = (p as f64 + 0.5) * h;
+            for (z, w) in NODES.iter().zip(WEIGHTS) {
+                sum += w * f(mid + 0.5 * h * z);
+            }
+        }
+        0.5 * h * sum * (length / gravity).sqrt()
+    }
+
+    /// The support force on the pivot in units of the weight `M g`, after a
+    /// fall `x = xi L`: `(2 + 2 xi - 3 xi^2) / (4 (1 - xi))`.
+    pub fn support_force(xi: f64) -> f64 {
+        (2.0 + 2.0 * xi - 3.0 * xi * xi) / (4.0 * (1.0 - xi))
+    }
+}

@@ -1,0 +1,441 @@
+//! Convergence in the number of rods: one scene run at several `n` with the
+//! continuum held fixed, and the smallest `n` that agrees with the finest.
+//!
+//! A scene's `n`, `m` (per rod) and `r` describe one discretisation of a
+//! continuous chain. Refining it keeps what the continuum sees:
+//!
+//! * the total mass `M = n m` (so `m = M / n`);
+//! * the bending viscosity `eta = r l`: a joint's friction torque
+//!   `r (w_{i+1} - w_i)` is `r l d(omega)/ds`, a viscous bending moment, and
+//!   the dissipated power `r sum (w_{i+1} - w_i)^2` tends to
+//!   `eta * integral (d(omega)/ds)^2 ds`; so `r = eta n / L`.
+//!
+//! The damping rate `r / (m l^2) = eta n^4 / (M L^3)` then grows like `n^4`
+//! (the grid-scale bending modes are damped that fast): large `n` is stiff.
+//! At the report's fixed per-rod `m` and `r` the model itself would change
+//! with `n` (physics.md), which is not a refinement.
+//!
+//! A folded start's `start.down` (if given) scales with `n` (rounded down);
+//! an `angles` start cannot be refined.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use chain_ode::analysis::{bending_viscosity, tip_track};
+use chain_ode::{Chain, Vec2};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::error::Error;
+use crate::scene::{Scene, StartKind};
+use crate::summary::RunSummary;
+
+/// One line stating the refinement, for help texts, figures and data.
+pub const SCALING: &str = "total mass M = n m and bending viscosity eta = r l kept: \
+                           m = M/n, r = eta n/L (damping rate r/(m l^2) grows like n^4)";
+
+/// The default ladder of `n`.
+pub const DEFAULT_LINKS: [usize; 5] = [25, 50, 100, 200, 400];
+
+/// `scene` cut into `links` rods at fixed total mass and bending viscosity.
+pub fn refined_scene(scene: &Scene, links: usize) -> Result<Scene, Error> {
+    let chain = scene.chain()?;
+    let mut s = scene.with_value("chain.links", toml::Value::Integer(links as i64))?;
+    s = s.with_value(
+        "chain.mass",
+        toml::Value::Float(chain.total_mass() / links as f64),
+    )?;
+    s = s.with_value(
+        "chain.damping",
+        toml::Value::Float(chain.damping * links as f64 / chain.links as f64),
+    )?;
+    let start = scene.tree().get("start").and_then(|v| v.as_table());
+    let kind = start
+        .and_then(|t| t.get("kind"))
+        .and_then(|k| k.as_str())
+        .unwrap_or("");
+    if kind == StartKind::Angles.as_str() {
+        return Err(Error::field(
+            "start.kind",
+            "an \"angles\" start has a fixed number of rods and cannot be refined",
+        ));
+    }
+    if let Some(down) = start
+        .and_then(|t| t.get("down"))
+        .and_then(|d| d.as_integer())
+    {
+        let scaled = (down as u128 * links as u128 / chain.links as u128) as i64;
+        s = s.with_value("start.down", toml::Value::Integer(scaled))?;
+    }
+    Ok(s)
+}
+
+/// One finished run of the ladder.
+#[derive(Clone, Debug)]
+pub struct Level {
+    /// The refined chain it ran.
+    pub chain: Chain,
+    pub summary: RunSummary,
+    /// `(t, tip)` at every output sample.
+    pub track: Vec<(f64, Vec2)>,
+}
+
+impl Level {
+    /// Number of rods.
+    pub fn links(&self) -> usize {
+        self.chain.links
+    }
+}
+
+/// Runs `scene` refined to `links` rods with `method` and `rtol` (the
+/// scene's own when `None`).
+pub fn run_level(
+    scene: &Scene,
+    links: usize,
+    method: Option<&str>,
+    rtol: Option<f64>,
+) -> Result<Level, Error> {
+    let mut s = refined_scene(scene, links)?;
+    if let Some(m) = method {
+        s = s.with_value("run.method", toml::Value::String(m.to_string()))?;
+    }
+    if let Some(r) = rtol {
+        s = s.with_value("run.rtol", toml::Value::Float(r))?;
+        s = s.with_value("run.atol", toml::Value::Float(r * 1e-2))?;
+    }
+    let prepared = s.prepare()?;
+    let traj = prepared.solve()?;
+    let track = tip_track(&traj)
+        .into_iter()
+        .map(|(t, p, _)| (t, p))
+        .collect();
+    Ok(Level {
+        chain: prepared.chain,
+        summary: RunSummary::from_trajectory(scene.name(), &traj),
+        track,
+    })
+}
+
+/// How far one level is from the reference (the finest).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Deviation {
+    /// `|v_max / v_max_ref - 1|`.
+    pub tip_speed_max: f64,
+    /// `|tip_end - tip_end_ref| / L`.
+    pub tip_end: f64,
+    /// `max_t |tip(t) - tip_ref(t)| / L` over the common sample times.
+    pub tip_path: f64,
+}
+
+impl Deviation {
+    /// The deviation of `level` from `reference`.
+    pub fn between(level: &Level, reference: &Level) -> Self {
+        let length = reference.chain.length;
+        let d = |a: Vec2, b: Vec2| (a[0] - b[0]).hypot(a[1] - b[1]);
+        let path = level
+            .track
+            .iter()
+            .zip(&reference.track)
+            .filter(|(a, b)| (a.0 - b.0).abs() <= 1e-9 * a.0.abs().max(1.0))
+            .map(|(a, b)| d(a.1, b.1))
+            .fold(0.0, f64::max);
+        Self {
+            tip_speed_max: (level.summary.tip_speed_max / reference.summary.tip_speed_max - 1.0)
+                .abs(),
+            tip_end: d(level.summary.tip_end, reference.summary.tip_end) / length,
+            tip_path: path / length,
+        }
+    }
+}
+
+/// The smallest `n` of `levels` (sorted by `n`, the last the reference)
+/// from which on every coarser-than-reference level passes `ok`; `None` if
+/// even the one below the reference fails (or there is only one level).
+pub fn smallest_adequate(levels: &[Level], ok: impl Fn(&Deviation) -> bool) -> Option<usize> {
+    let reference = levels.last()?;
+    let below = &levels[..levels.len() - 1];
+    let mut answer = None;
+    for level in below.iter().rev() {
+        if ok(&Deviation::between(level, reference)) {
+            answer = Some(level.links());
+        } else {
+            break;
+        }
+    }
+    answer
+}
+
+/// The `converge` result: every level, its deviation and the answer.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub name: String,
+    pub tol: f64,
+    pub scaling: &'static str,
+    pub total_mass: f64,
+    pub bending_viscosity: f64,
+    /// The finest `n`, the reference.
+    pub reference_links: usize,
+    /// The smallest adequate `n` (`null`: none below the reference).
+    pub adequate_links: Option<usize>,
+    pub levels: Vec<ReportLevel>,
+}
+
+/// One row of [`Report`].
+#[derive(Clone, Debug, Serialize)]
+pub struct ReportLevel {
+    pub links: usize,
+    pub mass: f64,
+    pub damping: f64,
+    pub damping_rate: f64,
+    pub status: String,
+    /// `E(0)`: the start's energy (converges with n at fixed `M`).
+    pub energy_start: f64,
+    pub tip_speed_max: f64,
+    pub tip_end: [f64; 2],
+    pub deviation: Deviation,
+    pub rhs_evals: u64,
+    pub wall_seconds: f64,
+}
+
+/// Parses `--links 25,50,100`: at least two distinct integers >= 2 (sorted).
+pub fn parse_links(text: &str) -> Result<Vec<usize>, Error> {
+    let bad = |why: String| Error::field("--links", why);
+    let mut links = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<usize>()
+                .ok()
+                .filter(|&n| (2..=1_000_000).contains(&n))
+                .ok_or_else(|| {
+                    bad(format!(
+                        "'{}' is not an integer in 2..=1000000 (expected N1,N2,...)",
+                        s.trim()
+                    ))
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    links.sort_unstable();
+    links.dedup();
+    if links.len() < 2 {
+        return Err(bad(format!(
+            "needs at least two different numbers of rods (got '{text}')"
+        )));
+    }
+    Ok(links)
+}
+
+/// Checks `--tol`: a finite number in (0, 1).
+pub fn check_tol(tol: f64) -> Result<(), Error> {
+    if tol.is_finite() && tol > 0.0 && tol < 1.0 {
+        Ok(())
+    } else {
+        Err(Error::field(
+            "--tol",
+            format!("must be a number in (0, 1) (got {tol})"),
+        ))
+    }
+}
+
+/// Runs the ladder `links` on `jobs` threads and finds the smallest `n`
+/// whose tip_speed_max and tip end both agree with the finest `n` to `tol`
+/// (relative; the tip end relative to `L`), for it and every finer `n`
+/// below the finest. `progress(done, total)` is called after each run.
+pub fn run(
+    scene: &Scene,
+    links: &[usize],
+    tol: f64,
+    method: Option<&str>,
+    rtol: Option<f64>,
+    jobs: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Report, Error> {
+    check_tol(tol)?;
+    let mut links = links.to_vec();
+    links.sort_unstable();
+    links.dedup();
+    // Every scene is checked before any run starts.
+    for &n in &links {
+        let mut s = refined_scene(scene, n)?;
+        if let Some(m) = method {
+            s = s.with_value("run.method", toml::Value::String(m.to_string()))?;
+        }
+        if let Some(r) = rtol {
+            s = s.with_value("run.rtol", toml::Value::Float(r))?;
+        }
+        s.prepare()?;
+    }
+    let done = AtomicUsize::new(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.max(1))
+        .build()
+        .map_err(|e| Error::field("--jobs", e))?;
+    let total = links.len();
+    // Finest first: the longest run starts first.
+    let mut levels: Vec<Level> = pool.install(|| {
+        links
+            .par_iter()
+            .rev()
+            .map(|&n| {
+                let level = run_level(scene, n, method, rtol)?;
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                Ok(level)
+            })
+            .collect::<Result<Vec<_>, Error>>()
+    })?;
+    levels.sort_by_key(Level::links);
+    let reference = levels.last().expect("at least two levels");
+    let base = scene.chain()?;
+    let adequate = if levels.iter().all(|l| l.summary.is_ok()) {
+        smallest_adequate(&levels, |d| d.tip_speed_max < tol && d.tip_end < tol)
+    } else {
+        None
+    };
+    Ok(Report {
+        name: scene.name().to_string(),
+        tol,
+        scaling: SCALING,
+        total_mass: base.total_mass(),
+        bending_viscosity: bending_viscosity(&base),
+        reference_links: reference.links(),
+        adequate_links: adequate,
+        levels: levels
+            .iter()
+            .map(|l| ReportLevel {
+                links: l.links(),
+                mass: l.chain.mass,
+                damping: l.chain.damping,
+                damping_rate: l.chain.damping_rate(),
+                status: l.summary.status.clone(),
+                energy_start: l.summary.energy_start,
+                tip_speed_max: l.summary.tip_speed_max,
+                tip_end: l.summary.tip_end,
+                deviation: Deviation::between(l, reference),
+                rhs_evals: l.summary.rhs_evals,
+                wall_seconds: l.summary.wall_seconds,
+            })
+            .collect(),
+    })
+}
+
+impl Report {
+    /// True if every run reached its end time.
+    pub fn all_ok(&self) -> bool {
+        self.levels.iter().all(|l| l.status == "ok")
+    }
+
+    /// One line of JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("a report always serialises")
+    }
+}
+
+impl std::fmt::Display for Report {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{}: convergence in n (M = {}, eta = r l = {:e})",
+            self.name, self.total_mass, self.bending_viscosity
+        )?;
+        writeln!(f, "  refinement: {}", self.scaling)?;
+        writeln!(
+            f,
+            "  {:>7} {:>12} {:>12} {:>9} {:>14} {:>11} {:>11} {:>11} {:>9}",
+            "n",
+            "r",
+            "r/(m l^2)",
+            "status",
+            "tip_speed_max",
+            "d(vmax)",
+            "d(tip_end)",
+            "d(path)",
+            "wall s"
+        )?;
+        for l in &self.levels {
+            writeln!(
+                f,
+                "  {:>7} {:>12.4e} {:>12.4e} {:>9} {:>14.8} {:>11.3e} {:>11.3e} {:>11.3e} {:>9.2}",
+                l.links,
+                l.damping,
+                l.damping_rate,
+                l.status,
+                l.tip_speed_max,
+                l.deviation.tip_speed_max,
+                l.deviation.tip_end,
+                l.deviation.tip_path,
+                l.wall_seconds
+            )?;
+        }
+        writeln!(
+            f,
+            "  d(vmax) = |vmax/vmax_ref - 1|, d(tip_end) = |tip_end - tip_end_ref|/L, \
+             d(path) = max_t |tip - tip_ref|/L; reference n = {}",
+            self.reference_links
+        )?;
+        match self.adequate_links {
+            Some(n) => write!(
+                f,
+                "smallest adequate n = {n} (d(vmax) and d(tip_end) < {} from n = {n} on)",
+                self.tol
+            ),
+            None if !self.all_ok() => write!(f, "no answer: a run failed (see its status)"),
+            None => write!(
+                f,
+                "no n below {} agrees with it to {}: refine further",
+                self.reference_links, self.tol
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn links_and_tol_are_checked_by_name() {
+        assert_eq!(parse_links("100, 25,50,25").unwrap(), vec![25, 50, 100]);
+        for bad in ["", "25", "25,25", "a,50", "1,50", "-3,50"] {
+            let e = parse_links(bad).unwrap_err().to_string();
+            assert!(e.starts_with("--links: "), "{e}");
+        }
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1.0] {
+            let e = check_tol(bad).unwrap_err().to_string();
+            assert!(e.starts_with("--tol: ") && !e.contains('\n'), "{e}");
+        }
+        assert!(check_tol(0.01).is_ok());
+    }
+
+    #[test]
+    fn refinement_keeps_mass_viscosity_and_fold_proportions() {
+        let text = r#"
+[chain]
+links = 50
+mass = 0.2
+damping = 0.001
+[start]
+kind = "folded"
+down = 25
+[run]
+t_end = 1
+"#;
+        let scene = Scene::from_toml_str(text).unwrap();
+        let s = refined_scene(&scene, 200).unwrap();
+        let c = s.chain().unwrap();
+        assert_eq!(c.links, 200);
+        assert!((c.total_mass() - 10.0).abs() < 1e-12);
+        assert!((c.damping * c.rod_length() - 0.001 * 0.12).abs() < 1e-15);
+        assert_eq!(
+            s.start(),
+            chain_ode::Start::Folded {
+                p0: [0.0, 0.0],
+                down: Some(100)
+            }
+        );
+        let angles = Scene::from_toml_str(
+            "[chain]\nlinks = 2\n[start]\nkind = \"angles\"\nangles = [0, 0]\n[run]\nt_end = 1\n",
+        )
+        .unwrap();
+        let e = refined_scene(&angles, 4).unwrap_err().to_string();
+        assert!(e.starts_with("start.kind: "), "{e}");
+    }
+}

@@ -1,0 +1,256 @@
+//! `convergence-n`: how many rods the span scenes need.
+//!
+//! Each scene is refined at fixed continuum properties (total mass
+//! `M = n m` and bending viscosity `eta = r l`, see
+//! `falling_chain::converge`) over the ladder n = 25 .. 400, and to n = 800
+//! where the last doubling (200 -> 400) still moved the maximum tip speed by
+//! more than 0.05% (half the finest tolerance asked for). The finest n is
+//! the reference. All runs: DOPRI5, rtol 1e-9, atol 1e-11, tip sampled every
+//! 0.01 for the path comparison.
+
+use falling_chain::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
+use figures::{palette, LinePlot, RGBColor, Series, Style};
+use rayon::prelude::*;
+
+use super::{figure_files, num, pool, scene, stem, write_data};
+use crate::study::Ctx;
+
+const ID: &str = "convergence-n";
+const SCENES: [&str; 3] = ["span-d1", "span-d3", "span-d5"];
+const LADDER: [usize; 5] = [25, 50, 100, 200, 400];
+const FINEST: usize = 800;
+/// Go on to `FINEST` if the last doubling changed the max tip speed by more.
+const GO_ON: f64 = 5e-4;
+const RTOL: f64 = 1e-9;
+const OUTPUT_DT: f64 = 0.01;
+const TOLS: [f64; 2] = [1e-2, 1e-3];
+
+fn run(ctx: &Ctx, name: &str, links: usize) -> Result<Level, String> {
+    let s = scene(ctx, name)?
+        .with_overrides(&[format!("run.output_dt={OUTPUT_DT}")])
+        .map_err(|e| e.to_string())?;
+    let level = run_level(&s, links, Some("dopri5"), Some(RTOL)).map_err(|e| e.to_string())?;
+    if !level.summary.is_ok() {
+        return Err(format!(
+            "{name} at n = {links}: status {} at t = {}",
+            level.summary.status, level.summary.t_reached
+        ));
+    }
+    println!(
+        "  {ID}: {name} n = {links}: vmax {:.6}, {} RHS, {:.2} s",
+        level.summary.tip_speed_max, level.summary.rhs_evals, level.summary.wall_seconds
+    );
+    Ok(level)
+}
+
+/// The n at which each criterion first holds for good, as a CSV cell.
+fn cell(n: Option<usize>) -> String {
+    n.map_or("none".to_string(), |n| n.to_string())
+}
+
+pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
+    let pool = pool(ctx)?;
+    let jobs: Vec<(usize, usize)> = (0..SCENES.len())
+        .flat_map(|s| LADDER.iter().rev().map(move |&n| (s, n)))
+        .collect();
+    let first: Vec<(usize, Level)> = pool.install(|| {
+        jobs.par_iter()
+            .map(|&(s, n)| Ok((s, run(ctx, SCENES[s], n)?)))
+            .collect::<Result<Vec<_>, String>>()
+    })?;
+    let mut ladders: Vec<Vec<Level>> = vec![vec![]; SCENES.len()];
+    for (s, level) in first {
+        ladders[s].push(level);
+    }
+    for l in &mut ladders {
+        l.sort_by_key(Level::links);
+    }
+    let change = |l: &[Level]| {
+        let k = l.len();
+        (l[k - 1].summary.tip_speed_max / l[k - 2].summary.tip_speed_max - 1.0).abs()
+    };
+    let last_doubling: Vec<f64> = ladders.iter().map(|l| change(l)).collect();
+    let more: Vec<usize> = (0..SCENES.len())
+        .filter(|&s| last_doubling[s] > GO_ON)
+        .collect();
+    let extra: Vec<(usize, Level)> = pool.install(|| {
+        more.par_iter()
+            .map(|&s| Ok((s, run(ctx, SCENES[s], FINEST)?)))
+            .collect::<Result<Vec<_>, String>>()
+    })?;
+    let mut final_change = last_doubling.clone();
+    for (s, level) in extra {
+        ladders[s].push(level);
+        final_change[s] = change(&ladders[s]);
+    }
+
+    // The data.
+    let mut csv = String::from(
+        "scene,links,mass,damping,bending_viscosity,damping_rate,status,tip_speed_max,\
+         t_tip_speed_max,tip_end_x,tip_end_y,reference_links,dev_tip_speed_max,dev_tip_end,\
+         dev_tip_path,rhs_evals\n",
+    );
+    let mut summary = String::from(
+        "scene,reference_links,last_doubling_change,n_vmax_1pct,n_vmax_0.1pct,n_path_1pct,\
+         n_path_0.1pct,n_vmax_and_tip_end_1pct,n_vmax_and_tip_end_0.1pct,scaling\n",
+    );
+    let mut notes = vec![];
+    let mut short = vec![];
+    for (s, ladder) in ladders.iter().enumerate() {
+        let reference = ladder.last().expect("a ladder");
+        for l in ladder {
+            let d = Deviation::between(l, reference);
+            let c = &l.chain;
+            csv.push_str(&format!(
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                SCENES[s],
+                c.links,
+                num(c.mass),
+                num(c.damping),
+                num(c.damping * c.rod_length()),
+                num(c.damping_rate()),
+                l.summary.status,
+                num(l.summary.tip_speed_max),
+                num(l.summary.t_tip_speed_max),
+                num(l.summary.tip_end[0]),
+                num(l.summary.tip_end[1]),
+                reference.links(),
+                num(d.tip_speed_max),
+                num(d.tip_end),
+                num(d.tip_path),
+                l.summary.rhs_evals
+            ));
+        }
+        let at = |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol);
+        let path = |tol: f64| smallest_adequate(ladder, |d| d.tip_path < tol);
+        let both =
+            |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol && d.tip_end < tol);
+        summary.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},\"{}\"\n",
+            SCENES[s],
+            reference.links(),
+            num(final_change[s]),
+            cell(at(TOLS[0])),
+            cell(at(TOLS[1])),
+            cell(path(TOLS[0])),
+            cell(path(TOLS[1])),
+            cell(both(TOLS[0])),
+            cell(both(TOLS[1])),
+            SCALING
+        ));
+        short.push(format!(
+            "{}: {} / {}",
+            SCENES[s],
+            cell(at(TOLS[0])),
+            cell(at(TOLS[1]))
+        ));
+        notes.push(format!(
+            "{}: n = {} (1%), {} (0.1%); path: {}, {}",
+            SCENES[s],
+            cell(at(TOLS[0])),
+            cell(at(TOLS[1])),
+            cell(path(TOLS[0])),
+            cell(path(TOLS[1])),
+        ));
+    }
+    let mut files = vec![
+        write_data(ctx, &format!("{ID}.csv"), &csv)?,
+        write_data(ctx, &format!("{ID}-summary.csv"), &summary)?,
+    ];
+
+    // The figure, from the data above.
+    let x_label = format!(
+        "n (rods: {})",
+        ladders
+            .iter()
+            .max_by_key(|l| l.len())
+            .expect("a ladder")
+            .iter()
+            .map(|l| l.links().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut left = LinePlot::new("maximum tip speed", &x_label, "max tip speed |v|");
+    left.log_x = true;
+    let mut right = LinePlot::new(
+        "deviation from the finest n",
+        &x_label,
+        "relative deviation",
+    );
+    right.log_x = true;
+    right.log_y = true;
+    let gray = RGBColor(120, 120, 120);
+    let top = ladders
+        .iter()
+        .flatten()
+        .map(|l| l.summary.tip_speed_max)
+        .fold(0.0, f64::max);
+    for (s, ladder) in ladders.iter().enumerate() {
+        let reference = ladder.last().expect("a ladder");
+        left.series.push(
+            Series::new(
+                SCENES[s],
+                ladder
+                    .iter()
+                    .map(|l| (l.links() as f64, l.summary.tip_speed_max))
+                    .collect(),
+                Style::LinePoints,
+            )
+            .with_color(palette(s)),
+        );
+        let below = &ladder[..ladder.len() - 1];
+        let dev: Vec<Deviation> = below
+            .iter()
+            .map(|l| Deviation::between(l, reference))
+            .collect();
+        right.series.push(
+            Series::new(
+                format!("{}: max tip speed", SCENES[s]),
+                below
+                    .iter()
+                    .zip(&dev)
+                    .map(|(l, d)| (l.links() as f64, d.tip_speed_max))
+                    .collect(),
+                Style::LinePoints,
+            )
+            .with_color(palette(s)),
+        );
+        right.series.push(
+            Series::new(
+                format!("{}: tip path / L", SCENES[s]),
+                below
+                    .iter()
+                    .zip(&dev)
+                    .map(|(l, d)| (l.links() as f64, d.tip_path))
+                    .collect(),
+                Style::Dashed,
+            )
+            .with_color(palette(s)),
+        );
+    }
+    for (tol, label) in [(TOLS[0], "1% and 0.1%"), (TOLS[1], "")] {
+        right.series.push(
+            Series::new(label, vec![(20.0, tol), (1000.0, tol)], Style::Dashed).with_color(gray),
+        );
+    }
+    right.x_range = Some((20.0, 1000.0));
+    left.x_range = Some((20.0, 1000.0));
+    left.annotations = vec!["n for max tip speed within 1% / 0.1%:".to_string()];
+    left.annotations.extend(short);
+    let base = scene(ctx, SCENES[0])?.chain().map_err(|e| e.to_string())?;
+    left.annotations.push(format!(
+        "m = M/n, r = eta n/L: M = {}, eta = {:.1e}",
+        base.total_mass(),
+        base.damping * base.rod_length()
+    ));
+    left.y_range = Some((0.0, 1.9 * top));
+    right.y_range = Some((1e-5, 1e3));
+    let title = "Convergence in n at fixed total mass and bending viscosity (DOPRI5, rtol 1e-9)";
+    figures::line_plot_pair(&left, &right, title, &stem(ctx, ID))
+        .map_err(|e| format!("{ID}: {e}"))?;
+    for n in &notes {
+        println!("  {ID}: {n}");
+    }
+    files.extend(figure_files(ID));
+    Ok(files)
+}
