@@ -141,3 +141,34 @@ mod invariants {
         }
     }
 }
+
+#[test]
+fn auto_hands_over_only_where_bdf_pays() {
+    // n = 400, r = 5e-4: DOPRI5's detector fires (h |lambda| > 3.25 on many
+    // steps), but a dense LU of 801 x 801 costs more than the explicit steps:
+    // auto must stay explicit (it was 60x slower when it switched).
+    let chain = Chain::report(400, 5e-4).unwrap();
+    let s = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    }
+    .state(&chain)
+    .unwrap();
+    let dp = run(&chain, &s, Method::Dopri5, 4.157, 1e-4);
+    assert!(dp.stats.stiffness_detections > 0);
+    let auto = run(&chain, &s, Method::Auto, 4.157, 1e-4);
+    assert_eq!(auto.segments.len(), 1);
+    assert_eq!(auto.stats, dp.stats);
+    // ... while the stiff rope (n = 100, r = 1) is handed over early.
+    let chain = Chain::report(100, 1.0).unwrap();
+    let s = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    }
+    .state(&chain)
+    .unwrap();
+    let auto = run(&chain, &s, Method::Auto, 1.0, 1e-6);
+    assert_eq!(auto.segments.len(), 2);
+    assert_eq!(auto.segments[1].method, Method::Bdf);
+    assert!(auto.segments[1].t_start < 0.1);
+}

@@ -14,6 +14,9 @@ pub(crate) struct AdaptiveOptions {
     pub h0: Option<f64>,
     /// DOPRI5 only: return as soon as the stiffness detector fires (for `auto`).
     pub stop_when_stiff: bool,
+    /// With `stop_when_stiff`: the stiffness estimate `|lambda|` must also
+    /// exceed this (1/time) before DOPRI5 stops.
+    pub switch_lambda: f64,
 }
 
 impl AdaptiveOptions {

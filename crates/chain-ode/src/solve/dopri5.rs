@@ -254,7 +254,8 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
                 den += (y1[i] - ys[i]).powi(2);
             }
             let mut stiff_now = false;
-            if den > 0.0 && h * (num / den).sqrt() > STIFF_HLAMBDA {
+            let lambda = if den > 0.0 { (num / den).sqrt() } else { 0.0 };
+            if h * lambda > STIFF_HLAMBDA {
                 nonstiff_steps = 0;
                 stiff_steps += 1;
                 if stiff_steps == STIFF_COUNT {
@@ -305,7 +306,10 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
             }
             last_rejected = false;
             h = h_new;
-            if stiff_now && o.stop_when_stiff && t < t_end {
+            // Hand over only where the implicit method should be cheaper:
+            // its dense LU costs O(dim^3) per factorisation, while the
+            // explicit cost per unit time grows like dim |lambda|.
+            if stiff_now && o.stop_when_stiff && lambda > o.switch_lambda && t < t_end {
                 let mut out = Outcome::ended(Status::Ok, t, None, stats, y);
                 out.stiff_at = Some(t);
                 return out;

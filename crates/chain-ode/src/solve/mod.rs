@@ -263,6 +263,7 @@ pub fn solve(
         max_steps: options.max_steps,
         h0: None,
         stop_when_stiff: false,
+        switch_lambda: 0.0,
     };
     let (outcome, segments) = run(&mut sys, &y0, method, options, &adaptive, &mut obs);
     let wall_seconds = clock.elapsed().as_secs_f64();
@@ -330,8 +331,14 @@ fn run<S: OdeSystem, O: Observer>(
         Method::Dopri5 => single(dopri5::integrate(sys, 0.0, y0, t_end, adaptive, obs)),
         Method::Bdf => single(bdf::integrate(sys, 0.0, y0, t_end, adaptive, obs)),
         Method::Auto => {
+            // Measured on the span d = 3 start (`examples/stiffness.rs`, the
+            // README's table): BDF overtakes DOPRI5 roughly where the
+            // stiffness |lambda| exceeds ~n^2/2 = dim^2/8, because BDF's
+            // dense LU costs O(n^3) and DOPRI5's steps cost O(n |lambda|).
+            let dim = sys.dim() as f64;
             let explicit = AdaptiveOptions {
                 stop_when_stiff: true,
+                switch_lambda: dim * dim / 8.0,
                 ..*adaptive
             };
             let first = dopri5::integrate(sys, 0.0, y0, t_end, &explicit, obs);
