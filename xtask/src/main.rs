@@ -134,6 +134,10 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         }))
         .collect();
     bar.finish_and_clear();
+    let mut timing = vec![(
+        "report figures and animations".to_string(),
+        clock.elapsed().as_secs_f64(),
+    )];
     let mut failed = vec![];
     for d in &drawn {
         match d {
@@ -165,13 +169,25 @@ fn figures_cmd(args: Args) -> Result<(), String> {
                 for f in files {
                     println!("wrote {f}");
                 }
-                println!("  ({} in {:.1} s)", st.id, t0.elapsed().as_secs_f64());
+                let secs = t0.elapsed().as_secs_f64();
+                println!("  ({} in {secs:.1} s)", st.id);
+                timing.push((st.id.to_string(), secs));
             }
             Err(e) => failed.push(format!("{}: {e}", st.id)),
         }
     }
     fs::write(out.join("README.md"), readme()).map_err(|e| e.to_string())?;
     println!("wrote figures/README.md");
+    if args.only.is_empty() {
+        // How long each step took, for the paper's reproducibility section.
+        timing.push(("all".to_string(), clock.elapsed().as_secs_f64()));
+        let mut csv = String::from("step,seconds\n");
+        for (step, secs) in &timing {
+            csv.push_str(&format!("{step},{secs:.1}\n"));
+        }
+        fs::write(data_dir.join("timing.csv"), csv).map_err(|e| e.to_string())?;
+        println!("wrote figures/data/timing.csv");
+    }
     if args.only.is_empty() && root.join("paper/paper.tmpl.md").exists() {
         paper::run(&root, false)?;
     }

@@ -5,7 +5,7 @@
 //! - `FILE`: a CSV in `figures/data/` (`scenes.csv`);
 //! - `FILTER`: `*`, or `col=value` conditions joined by `&`;
 //! - `EXPR`: `col` (the one matching row's cell), `min(col)`, `max(col)`,
-//!   `at_max(col,other)` / `at_min(col,other)` (`other` in the row where
+//!   `maxabs(col)`, `at_max(col,other)` / `at_min(col,other)` (`other` in the row where
 //!   `col` is largest / smallest), `count`, `ratio(a,b)` (`a / b` in the one
 //!   matching row);
 //! - `FORMAT`: `s3` (3 significant digits), `f2` (2 decimals), `e2`
@@ -144,6 +144,14 @@ fn evaluate(
         ("", 1) => value(one()?, args[0])?,
         ("count", _) => rows.len().to_string(),
         ("max", 1) => value(extreme(true)?, args[0])?,
+        ("maxabs", 1) => {
+            let c = col(t, args[0])?;
+            let mut m: f64 = 0.0;
+            for r in &rows {
+                m = m.max(num(&r[c])?.abs());
+            }
+            m.to_string()
+        }
         ("min", 1) => value(extreme(false)?, args[0])?,
         ("at_max", 2) => value(extreme(true)?, args[1])?,
         ("at_min", 2) => value(extreme(false)?, args[1])?,

@@ -12,7 +12,7 @@ use super::{figure_files, num, stem, write_data};
 use crate::study::Ctx;
 
 const ID: &str = "normal-modes";
-const LINKS: [usize; 12] = [10, 14, 20, 28, 40, 57, 80, 113, 160, 226, 320, 400];
+const LINKS: [usize; 12] = [10, 14, 20, 28, 40, 57, 80, 100, 160, 226, 320, 400];
 const MODES: usize = 5;
 const FIT_FROM: usize = 40;
 
