@@ -371,6 +371,7 @@ mod tests {
             max_steps: 1_000_000,
             h0: None,
             stop_when_stiff: false,
+            switch_lambda: 0.0,
         }
     }
 
