@@ -372,7 +372,21 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
     }
     let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
     check_writable("--out", &args.out)?;
-    let (traj, release) = run_for_drawing(&scene, args.snapshots)?;
+    draw_scene(&scene, &args.out, args.snapshots, "snapshots", |fig| {
+        figures::chain_snapshots_to(fig, &args.out)
+    })
+}
+
+/// Runs `scene` for drawing, draws it with `draw` and reports what it wrote;
+/// exit 1 if the run failed (what it computed is still drawn).
+fn draw_scene(
+    scene: &Scene,
+    out: &std::path::Path,
+    frames: usize,
+    noun: &str,
+    draw: impl FnOnce(&figures::ChainSnapshots) -> Result<(), figures::FigureError>,
+) -> Result<ExitCode, Error> {
+    let (traj, release) = run_for_drawing(scene, frames)?;
     let title = format!(
         "{} (n = {}, {})",
         scene.name(),
@@ -380,11 +394,10 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
         traj.method
     );
     let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));
-    figures::chain_snapshots_to(&fig, &args.out)
-        .map_err(|e| figure_error("--out", &args.out, e))?;
+    draw(&fig).map_err(|e| figure_error("--out", out, e))?;
     eprintln!(
-        "wrote {} ({} snapshots, status {})",
-        args.out.display(),
+        "wrote {} ({} {noun}, status {})",
+        out.display(),
         fig.frames.len(),
         traj.status
     );
@@ -421,21 +434,8 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
     let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
     check_writable("--out", &args.out)?;
     let frames = ((args.seconds * f64::from(args.fps)).round() as usize).max(2);
-    let (traj, release) = run_for_drawing(&scene, frames)?;
-    let title = format!("{} (n = {})", scene.name(), traj.chain.links);
-    let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));
-    figures::chain_animation(&fig, &args.out, args.fps)
-        .map_err(|e| figure_error("--out", &args.out, e))?;
-    eprintln!(
-        "wrote {} ({} frames, status {})",
-        args.out.display(),
-        fig.frames.len(),
-        traj.status
-    );
-    Ok(if traj.status.is_ok() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
+    draw_scene(&scene, &args.out, frames, "frames", |fig| {
+        figures::chain_animation(fig, &args.out, args.fps)
     })
 }
 
