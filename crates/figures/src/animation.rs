@@ -4,42 +4,15 @@
 
 use std::path::Path;
 
-use plotters::coord::Shift;
-use plotters::prelude::{DrawingArea, DrawingBackend};
-
 use crate::axes::Theme;
-use crate::curves::{self, Current, Geometry, Spec};
+use crate::curves::{Current, Drawing, Geometry};
 use crate::font;
-use crate::output::{self, Draw};
+use crate::output;
 use crate::snapshots::ChainSnapshots;
 use crate::FigureError;
 
 /// Height of the animation's frames in pixels (the width follows the data).
 pub const ANIMATION_HEIGHT: u32 = 600;
-
-struct Frame<'s, 'a> {
-    spec: &'s Spec<'a>,
-    geom: &'s Geometry,
-    index: usize,
-}
-
-impl Draw for Frame<'_, '_> {
-    fn size(&self) -> (u32, u32) {
-        self.geom.size
-    }
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        scale: u32,
-    ) -> Result<(), FigureError> {
-        curves::draw_figure(
-            root,
-            self.spec,
-            &self.geom.scaled(scale),
-            Some(Current { index: self.index }),
-        )
-    }
-}
 
 /// Write an animated GIF of `fig`'s frames (in time order) to `path`,
 /// `fps` frames per second, looping.
@@ -67,10 +40,10 @@ pub fn chain_animation(fig: &ChainSnapshots, path: &Path, fps: u32) -> Result<()
         let mut enc = gif::Encoder::new(&mut bytes, w16, h16, &[]).map_err(enc_err)?;
         enc.set_repeat(gif::Repeat::Infinite).map_err(enc_err)?;
         for index in 0..spec.curves.len() {
-            let rgb = output::render_rgb(&Frame {
+            let rgb = output::render_rgb(&Drawing {
                 spec: &spec,
                 geom: &geom,
-                index,
+                current: Some(Current { index }),
             })?;
             let mut frame = gif::Frame::from_rgb_speed(w16, h16, &rgb, 10);
             frame.delay = delay;
@@ -103,10 +76,10 @@ mod tests {
         let spec = fig.spec();
         let geom = Geometry::new(&spec, ANIMATION_HEIGHT, Theme { k: 0.7 }).unwrap();
         let render = |index| {
-            output::render_rgb(&Frame {
+            output::render_rgb(&Drawing {
                 spec: &spec,
                 geom: &geom,
-                index,
+                current: Some(Current { index }),
             })
             .unwrap()
         };

@@ -98,7 +98,14 @@ pub(crate) fn render_static(mut spec: Spec, stem: &Path) -> Result<Output, Figur
     font::ensure_registered()?;
     spec.sort();
     let geom = Geometry::new(&spec, 900, Theme::STANDARD)?;
-    output::save(&Static { spec: &spec, geom }, stem)
+    output::save(
+        &Drawing {
+            spec: &spec,
+            geom: &geom,
+            current: None,
+        },
+        stem,
+    )
 }
 
 /// As [`render_static`], to one file whose extension picks PNG or SVG.
@@ -106,7 +113,14 @@ pub(crate) fn render_static_to(mut spec: Spec, path: &Path) -> Result<(), Figure
     font::ensure_registered()?;
     spec.sort();
     let geom = Geometry::new(&spec, 900, Theme::STANDARD)?;
-    output::save_one(&Static { spec: &spec, geom }, path)
+    output::save_one(
+        &Drawing {
+            spec: &spec,
+            geom: &geom,
+            current: None,
+        },
+        path,
+    )
 }
 
 impl Spec<'_> {
@@ -318,12 +332,15 @@ fn cbar_width(theme: &Theme, cbar: &Axis, label: &str) -> i32 {
     base + labels + desc + theme.px(24.0)
 }
 
-struct Static<'s, 'a> {
-    spec: &'s Spec<'a>,
-    geom: Geometry,
+/// A coloured-curves figure ready to draw: all curves, or (in an
+/// animation) the one at `current` highlighted.
+pub(crate) struct Drawing<'s, 'a> {
+    pub spec: &'s Spec<'a>,
+    pub geom: &'s Geometry,
+    pub current: Option<Current>,
 }
 
-impl Draw for Static<'_, '_> {
+impl Draw for Drawing<'_, '_> {
     fn size(&self) -> (u32, u32) {
         self.geom.size
     }
@@ -332,12 +349,11 @@ impl Draw for Static<'_, '_> {
         root: &DrawingArea<DB, Shift>,
         scale: u32,
     ) -> Result<(), FigureError> {
-        draw_figure(root, self.spec, &self.geom.scaled(scale), None)
+        draw_figure(root, self.spec, &self.geom.scaled(scale), self.current)
     }
 }
 
-/// Which frame an animation shows; `None` draws every curve.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub(crate) struct Current {
     pub index: usize,
 }
