@@ -11,6 +11,7 @@
 
 pub mod analysis;
 pub mod chain;
+pub mod dae;
 pub mod dense;
 pub mod dynamics;
 pub mod kinematics;

@@ -77,6 +77,9 @@ pub enum Status {
     StepSizeTooSmall,
     /// The step budget ran out.
     MaxSteps,
+    /// An implicit method's Newton matrix could not be factorised, even
+    /// after the step was cut.
+    LinearSolveFailed,
 }
 
 impl Status {
@@ -87,6 +90,7 @@ impl Status {
             Self::Diverged => "diverged",
             Self::StepSizeTooSmall => "step_size_too_small",
             Self::MaxSteps => "max_steps",
+            Self::LinearSolveFailed => "linear_solve_failed",
         }
     }
 

@@ -109,7 +109,9 @@ impl Outcome {
                 }
             }
             Status::Diverged => Outcome::Diverged,
-            Status::StepSizeTooSmall => Outcome::StepSizeTooSmall,
+            // A Newton matrix that cannot be factorised even at smaller
+            // steps is, for the map, a step that could not be made.
+            Status::StepSizeTooSmall | Status::LinearSolveFailed => Outcome::StepSizeTooSmall,
             Status::MaxSteps => Outcome::MaxSteps,
         }
     }

@@ -1,0 +1,384 @@
+//! `bdf-dense`: diffsol's BDF (variable order 1-5) on the explicit form
+//! `y' = f(y)` with the exact Jacobian-vector product of the system.
+//!
+//! diffsol builds the dense Jacobian column by column from `dim` calls of
+//! [`OdeSystem::jvp`] (O(n^2)) and factorises `I - c J` with faer's dense LU
+//! (O(n^3)). It is kept beside the O(n) `bdf` to show what the banded form
+//! buys; the step loop around diffsol is [`super::diffsol_driver`].
+
+use std::cell::{Cell, RefCell};
+
+use diffsol::ode_solver::OdeSolverStatistics;
+use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
+
+use super::adaptive::AdaptiveOptions;
+use super::diffsol_driver::{drive, Driven};
+use crate::ode::{all_finite, Observer, OdeSystem, Outcome, Stats, Status};
+
+type Mat = FaerMat<f64>;
+type Lu = FaerLU<f64>;
+
+/// What the wrapped system has been asked to do, counted exactly.
+#[derive(Default)]
+struct Counters {
+    rhs: Cell<u64>,
+    jvp: Cell<u64>,
+    /// A non-finite value came out of `rhs` or `jvp` since the last reset.
+    nonfinite: Cell<bool>,
+}
+
+/// Integrates from `t0` to `t_end` with diffsol's BDF on the explicit form.
+pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    opts: &AdaptiveOptions,
+    obs: &mut O,
+) -> Outcome {
+    let d = sys.dim();
+    let mut stats = Stats::default();
+    let y = y0.to_vec();
+    let mut f = vec![0.0; d];
+
+    sys.rhs(t0, &y, &mut f);
+    stats.rhs_evals += 1;
+    if !all_finite(&y) || !all_finite(&f) {
+        return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
+    }
+    obs.start(t0, &y, &f);
+    if t_end <= t0 {
+        return Outcome::ended(Status::Ok, t0, None, stats, y);
+    }
+
+    // diffsol's closures are `Fn`: the system is reached through a RefCell.
+    // Borrowing it allocates nothing; it is never borrowed twice, because
+    // diffsol never calls back while the driver holds it.
+    let sys = RefCell::new(sys);
+    let counters = Counters::default();
+    let rhs = |x: &[f64], _p: &[f64], t: f64, dy: &mut [f64]| {
+        sys.borrow_mut().rhs(t, x, dy);
+        counters.rhs.set(counters.rhs.get() + 1);
+        if !all_finite(dy) {
+            counters.nonfinite.set(true);
+        }
+    };
+    let jvp = |x: &[f64], _p: &[f64], t: f64, v: &[f64], jv: &mut [f64]| {
+        sys.borrow_mut().jvp(t, x, v, jv);
+        counters.jvp.set(counters.jvp.get() + 1);
+        if !all_finite(jv) {
+            counters.nonfinite.set(true);
+        }
+    };
+    // Building the problem or the solver only fails on a programming error
+    // (a shape mismatch): reported as a failure at the start.
+    let fail_setup =
+        |stats: Stats, y: Vec<f64>| Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
+    let mut builder = OdeBuilder::<Mat>::new()
+        .t0(t0)
+        .rtol(opts.rtol)
+        .atol([opts.atol])
+        .rhs_implicit(rhs, jvp)
+        .init(|_p, _t, out| out.copy_from_slice(y0), d);
+    if let Some(h0) = opts.h0 {
+        // Only its sign is used: diffsol picks the first step itself.
+        builder = builder.h0(h0);
+    }
+    let Ok(problem) = builder.build() else {
+        return fail_setup(stats, y);
+    };
+    let Ok(mut solver) = problem.bdf::<Lu>() else {
+        return fail_setup(stats, y);
+    };
+    let driven = if solver.set_stop_time(t_end).is_err() {
+        // t_end is within rounding of t0: there is nothing to integrate.
+        Driven {
+            status: Status::Ok,
+            t: t_end,
+            t_failed: None,
+            discarded: 0,
+            own_rhs: 0,
+            y,
+        }
+    } else {
+        let mut own = |t: f64, y: &[f64], f: &mut [f64]| sys.borrow_mut().rhs(t, y, f);
+        drive(
+            &mut solver,
+            t0,
+            y,
+            t_end,
+            opts,
+            obs,
+            &mut own,
+            &counters.nonfinite,
+            &|| false,
+        )
+    };
+    outcome(
+        driven,
+        solver.get_statistics(),
+        &counters,
+        stats.rhs_evals,
+        d,
+    )
+}
+
+/// The outcome of a run, with diffsol's counters and the exact call counts.
+fn outcome(
+    driven: Driven,
+    s: &OdeSolverStatistics,
+    counters: &Counters,
+    start_rhs: u64,
+    d: usize,
+) -> Outcome {
+    let stats = Stats {
+        steps: s.number_of_steps as u64 - driven.discarded,
+        rejected_steps: (s.number_of_error_test_failures + s.number_of_nonlinear_solver_fails)
+            as u64
+            + driven.discarded,
+        rhs_evals: start_rhs + driven.own_rhs + counters.rhs.get(),
+        // diffsol builds each dense Jacobian from exactly `d` JVPs and calls
+        // the JVP for nothing else (no sensitivities here).
+        jacobian_evals: counters.jvp.get() / d as u64,
+        // Every linear-solver setup is one faer LU of `I - c J`.
+        lu_factorizations: s.number_of_linear_solver_setups as u64,
+        stiffness_detections: 0,
+    };
+    Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::StepView;
+
+    type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
+    type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
+
+    /// A small system given by closures, counting its own calls.
+    struct Toy {
+        dim: usize,
+        f: Rhs,
+        j: Jvp,
+        rhs_calls: u64,
+        jvp_calls: u64,
+    }
+
+    impl OdeSystem for Toy {
+        fn dim(&self) -> usize {
+            self.dim
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+            self.rhs_calls += 1;
+            (self.f)(t, y, dy)
+        }
+        fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+            self.jvp_calls += 1;
+            (self.j)(t, y, v, jv)
+        }
+    }
+
+    fn toy(dim: usize, f: Rhs, j: Jvp) -> Toy {
+        Toy {
+            dim,
+            f,
+            j,
+            rhs_calls: 0,
+            jvp_calls: 0,
+        }
+    }
+
+    /// `x'' = -x`: `y = [x, v]`.
+    fn oscillator() -> Toy {
+        toy(
+            2,
+            Box::new(|_t, y, dy| {
+                dy[0] = y[1];
+                dy[1] = -y[0];
+            }),
+            Box::new(|_t, _y, v, jv| {
+                jv[0] = v[1];
+                jv[1] = -v[0];
+            }),
+        )
+    }
+
+    /// Van der Pol with `mu = 1000`: stiff, nonlinear, with rejections.
+    fn van_der_pol() -> Toy {
+        const MU: f64 = 1000.0;
+        toy(
+            2,
+            Box::new(|_t, y, dy| {
+                dy[0] = y[1];
+                dy[1] = MU * (1.0 - y[0] * y[0]) * y[1] - y[0];
+            }),
+            Box::new(|_t, y, v, jv| {
+                jv[0] = v[1];
+                jv[1] = (-2.0 * MU * y[0] * y[1] - 1.0) * v[0] + MU * (1.0 - y[0] * y[0]) * v[1];
+            }),
+        )
+    }
+
+    fn options(rtol: f64, atol: f64) -> AdaptiveOptions {
+        AdaptiveOptions {
+            rtol,
+            atol,
+            h_min: 0.0,
+            max_steps: 1_000_000,
+            h0: None,
+            stop_when_stiff: false,
+            switch_lambda: 0.0,
+        }
+    }
+
+    /// Checks the oscillator's steps against `x = cos(t), v = -sin(t)`.
+    #[derive(Default)]
+    struct Exact {
+        starts: u32,
+        steps: u32,
+        t_last: f64,
+        worst_dense: f64,
+        worst_ends: f64,
+    }
+
+    impl Observer for Exact {
+        fn start(&mut self, t0: f64, _y0: &[f64], _f0: &[f64]) {
+            self.starts += 1;
+            self.t_last = t0;
+        }
+        fn step(&mut self, s: &StepView<'_>) {
+            assert_eq!(s.t0, self.t_last, "steps are contiguous");
+            assert!(s.t1 > s.t0);
+            self.t_last = s.t1;
+            self.steps += 1;
+            let mut out = [0.0; 2];
+            // The dense output passes through both ends of the step ...
+            for (t, y) in [(s.t0, s.y0), (s.t1, s.y1)] {
+                s.interpolant.eval(t, &mut out);
+                let e = (out[0] - y[0]).abs().max((out[1] - y[1]).abs());
+                self.worst_ends = self.worst_ends.max(e);
+            }
+            // ... and follows the solution in between.
+            for k in 1..4 {
+                let t = s.t0 + (s.t1 - s.t0) * k as f64 / 4.0;
+                s.interpolant.eval(t, &mut out);
+                let e = (out[0] - t.cos()).abs().max((out[1] + t.sin()).abs());
+                self.worst_dense = self.worst_dense.max(e);
+            }
+            // f1 is f(t1, y1).
+            assert_eq!(s.f1, &[s.y1[1], -s.y1[0]]);
+        }
+    }
+
+    #[test]
+    fn oscillator_matches_the_exact_solution_with_dense_output() {
+        for t0 in [0.0, 1.5] {
+            let mut sys = oscillator();
+            let mut obs = Exact::default();
+            let y0 = [f64::cos(t0), -f64::sin(t0)];
+            let t_end = 10.0;
+            let out = integrate(&mut sys, t0, &y0, t_end, &options(1e-10, 1e-12), &mut obs);
+            assert_eq!(out.status, Status::Ok);
+            assert_eq!(out.t_reached, t_end);
+            assert_eq!(out.t_failed, None);
+            assert_eq!(obs.starts, 1);
+            assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
+            assert_eq!(obs.steps as u64, out.stats.steps);
+            let e = (out.y_end[0] - t_end.cos()).abs() + (out.y_end[1] + t_end.sin()).abs();
+            assert!(e < 1e-7, "end error {e:e}");
+            assert!(obs.worst_dense < 1e-7, "dense error {:e}", obs.worst_dense);
+            assert!(obs.worst_ends < 1e-12, "ends {:e}", obs.worst_ends);
+        }
+    }
+
+    /// Records nothing.
+    struct Quiet;
+    impl Observer for Quiet {
+        fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
+        fn step(&mut self, _: &StepView<'_>) {}
+    }
+
+    #[test]
+    fn counters_are_exact_on_a_stiff_problem() {
+        let mut sys = van_der_pol();
+        let out = integrate(
+            &mut sys,
+            0.0,
+            &[2.0, 0.0],
+            3000.0,
+            &options(1e-6, 1e-8),
+            &mut Quiet,
+        );
+        assert_eq!(out.status, Status::Ok);
+        assert!(out.stats.rejected_steps > 0, "{:?}", out.stats);
+        assert_eq!(out.stats.rhs_evals, sys.rhs_calls);
+        assert_eq!(out.stats.jacobian_evals * 2, sys.jvp_calls);
+        assert!(out.stats.lu_factorizations >= out.stats.jacobian_evals);
+        // A relaxation oscillation of period ~ (3 - 2 ln 2) mu ~ 1614:
+        // after 3000 time units x is on the slow branch, |x| in [1, 2].
+        assert!((1.0..=2.0).contains(&out.y_end[0].abs()), "{:?}", out.y_end);
+    }
+
+    #[test]
+    fn the_budget_counts_every_attempt() {
+        let mut rejected_seen = false;
+        for max_steps in 1..200 {
+            let mut sys = van_der_pol();
+            let o = AdaptiveOptions {
+                max_steps,
+                ..options(1e-6, 1e-8)
+            };
+            let out = integrate(&mut sys, 0.0, &[2.0, 0.0], 3000.0, &o, &mut Quiet);
+            assert_eq!(out.status, Status::MaxSteps, "budget {max_steps}");
+            assert_eq!(out.stats.steps + out.stats.rejected_steps, max_steps);
+            assert!(out.t_reached < 3000.0 && all_finite(&out.y_end));
+            rejected_seen |= out.stats.rejected_steps > 0;
+        }
+        assert!(rejected_seen);
+    }
+
+    #[test]
+    fn a_blow_up_ends_with_a_status_and_a_finite_state() {
+        // y' = y^2, y(0) = 1: y = 1 / (1 - t) leaves every bound at t = 1.
+        let mut sys = toy(
+            1,
+            Box::new(|_t, y, dy| dy[0] = y[0] * y[0]),
+            Box::new(|_t, y, v, jv| jv[0] = 2.0 * y[0] * v[0]),
+        );
+        let out = integrate(
+            &mut sys,
+            0.0,
+            &[1.0],
+            2.0,
+            &options(1e-8, 1e-10),
+            &mut Quiet,
+        );
+        assert!(
+            matches!(out.status, Status::Diverged | Status::StepSizeTooSmall),
+            "{:?}",
+            out.status
+        );
+        assert!(out.t_reached < 1.0);
+        assert!(out.t_failed.is_some_and(|t| t >= out.t_reached));
+        assert!(all_finite(&out.y_end));
+        // It stopped on the numerical solution's pole: y = 1 / (t_pole - t)
+        // with t_pole = 1 to the tolerance (y itself is ill-conditioned there).
+        let t_pole = out.t_reached + 1.0 / out.y_end[0];
+        assert!((t_pole - 1.0).abs() < 1e-5, "{out:?}");
+    }
+
+    #[test]
+    fn a_non_finite_start_is_diverged() {
+        let mut sys = oscillator();
+        let out = integrate(
+            &mut sys,
+            0.0,
+            &[f64::NAN, 0.0],
+            1.0,
+            &options(1e-8, 1e-10),
+            &mut Quiet,
+        );
+        assert_eq!(out.status, Status::Diverged);
+        assert_eq!(out.t_reached, 0.0);
+    }
+}

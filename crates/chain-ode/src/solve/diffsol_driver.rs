@@ -1,0 +1,208 @@
+//! The step loop around diffsol's BDF, shared by `bdf` (the sparse DAE) and
+//! `bdf-dense` (the explicit form): the step budget, the step floor, the map
+//! from diffsol's errors to a [`Status`], and the observer, which sees
+//! diffsol's own dense output.
+//!
+//! Three things about diffsol 0.18 shape it:
+//! * One `step()` call retries rejected attempts internally. To count every
+//!   attempt against `max_steps`, the error-test limit is set to 1 (diffsol
+//!   then returns after each rejection, with the smaller step already set, and
+//!   the next `step()` carries on from there) and the nonlinear-failure limit
+//!   (cumulative over the run in diffsol) to the failures so far plus what is
+//!   left of the budget.
+//! * Its minimum step is absolute: it is reset to `floor(t)` before each call.
+//!   diffsol's first step is its own guess and is not checked against the
+//!   minimum, so an accepted step below the floor (other than the one that
+//!   lands on `t_end`) is treated as the failure.
+//! * Its stop time lands the last step on `t_end` only to rounding; the run's
+//!   end time is reported as `t_end` exactly.
+//!
+//! The observed state is the first `y.len()` unknowns of diffsol's state (all
+//! of them for the explicit form; `[phi, w, W]` of the DAE).
+
+use std::cell::{Cell, RefCell};
+
+use diffsol::error::OdeSolverError;
+use diffsol::{
+    BdfConfig, DiffsolError, FaerContext, FaerVec, OdeEquations, OdeSolverMethod,
+    OdeSolverStopReason, Vector, VectorCommon,
+};
+
+use super::adaptive::AdaptiveOptions;
+use crate::ode::{all_finite, Interpolant, Observer, Status, StepView};
+
+/// The entries of a (single-batch) faer vector.
+pub(crate) fn slice(v: &FaerVec<f64>) -> &[f64] {
+    v.inner().col_as_slice(0)
+}
+
+/// The entries of a (single-batch) faer vector, mutably.
+pub(crate) fn slice_mut(v: &mut FaerVec<f64>) -> &mut [f64] {
+    v.inner_mut().col_as_slice_mut(0)
+}
+
+/// diffsol's dense output of the last accepted step, as an [`Interpolant`].
+struct Dense<'a> {
+    eval: &'a dyn Fn(f64, &mut [f64]),
+}
+
+impl Interpolant for Dense<'_> {
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        (self.eval)(t, out)
+    }
+}
+
+/// How the loop ended.
+pub(crate) struct Driven {
+    pub status: Status,
+    pub t: f64,
+    pub t_failed: Option<f64>,
+    /// A step diffsol accepted below the floor (0 or 1): counted as rejected.
+    pub discarded: u64,
+    /// Right-hand sides evaluated by the loop itself (one per accepted step).
+    pub own_rhs: u64,
+    /// The observed state at `t`.
+    pub y: Vec<f64>,
+}
+
+/// Steps `solver` from `t0` (observed state `y`, already shown to `obs`) to
+/// `t_end`. `rhs(t, y_full, f_full)` evaluates the right-hand side at an
+/// accepted state, for the observer's `f1` (its first `y.len()` entries);
+/// `nonfinite` is set by the caller's right-hand sides when they produce a
+/// non-finite value and is cleared here after every accepted step;
+/// `linear_failed` reports whether the last linear solve failed.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn drive<'a, Eqn, S, O>(
+    solver: &mut S,
+    t0: f64,
+    mut y: Vec<f64>,
+    t_end: f64,
+    opts: &AdaptiveOptions,
+    obs: &mut O,
+    rhs: &mut dyn FnMut(f64, &[f64], &mut [f64]),
+    nonfinite: &Cell<bool>,
+    linear_failed: &dyn Fn() -> bool,
+) -> Driven
+where
+    Eqn: OdeEquations<T = f64, V = FaerVec<f64>, C = FaerContext> + 'a,
+    S: OdeSolverMethod<'a, Eqn, Config = BdfConfig<f64>>,
+    O: Observer,
+{
+    let d = y.len();
+    let full = solver.state().y.len();
+    let mut t = t0;
+    let mut f1 = vec![0.0; full];
+    let buf = RefCell::new(FaerVec::zeros(full, *solver.problem().context()));
+    let mut own_rhs = 0;
+    let mut discarded = 0;
+    macro_rules! finish {
+        ($status:expr, $t:expr, $t_failed:expr) => {
+            return Driven {
+                status: $status,
+                t: $t,
+                t_failed: $t_failed,
+                discarded,
+                own_rhs,
+                y,
+            }
+        };
+    }
+    loop {
+        let st = solver.get_statistics();
+        let nl_fails = st.number_of_nonlinear_solver_fails;
+        let attempts = (st.number_of_steps
+            + st.number_of_error_test_failures
+            + st.number_of_nonlinear_solver_fails) as u64;
+        if attempts >= opts.max_steps {
+            finish!(Status::MaxSteps, t, Some(t));
+        }
+        let remaining = usize::try_from(opts.max_steps - attempts).unwrap_or(usize::MAX);
+        {
+            let cfg = solver.config_mut();
+            cfg.minimum_timestep = opts.floor(t);
+            cfg.maximum_error_test_failures = 1;
+            cfg.maximum_newton_fails = nl_fails.saturating_add(remaining - 1);
+        }
+        let result = solver.step();
+
+        // A step can be accepted and the call still fail (the next step size
+        // fell below the minimum): take the accepted step first.
+        let state = solver.state();
+        if state.t > t {
+            let landed = matches!(result, Ok(OdeSolverStopReason::TstopReached));
+            let t1 = if landed { t_end } else { state.t };
+            let y1 = slice(state.y);
+            if !all_finite(y1) {
+                finish!(Status::Diverged, t, Some(t1));
+            }
+            if !landed && t1 - t < opts.floor(t) {
+                // Not taken: counted as a rejected attempt.
+                discarded = 1;
+                finish!(Status::StepSizeTooSmall, t, Some(t1));
+            }
+            rhs(t1, y1, &mut f1);
+            own_rhs += 1;
+            if !all_finite(&f1[..d]) {
+                finish!(Status::Diverged, t, Some(t1));
+            }
+            let t_top = state.t;
+            let eval = |tq: f64, out: &mut [f64]| {
+                let mut b = buf.borrow_mut();
+                // The stop time may sit a rounding error past diffsol's time.
+                match solver.interpolate_inplace(tq.min(t_top), &mut b) {
+                    Ok(()) => out.copy_from_slice(&slice(&b)[..d]),
+                    // Unreachable: the time is in the step and the shapes match.
+                    Err(_) => out.copy_from_slice(&y1[..d]),
+                }
+            };
+            obs.step(&StepView {
+                t0: t,
+                t1,
+                y0: &y,
+                y1: &y1[..d],
+                f1: &f1[..d],
+                interpolant: &Dense { eval: &eval },
+            });
+            y.copy_from_slice(&y1[..d]);
+            t = t1;
+            nonfinite.set(false);
+        }
+
+        match result {
+            Ok(OdeSolverStopReason::TstopReached) => {
+                finish!(Status::Ok, t_end, None);
+            }
+            Ok(_) => {}
+            Err(e) => {
+                let state = solver.state();
+                let (h, t_try) = (state.h, state.t + state.h);
+                let bad = nonfinite.get() || !h.is_finite();
+                let status = match e {
+                    // One rejected attempt (the limit is 1); diffsol has set
+                    // the smaller step, and the next call goes on from it. A
+                    // NaN error norm leaves a NaN step: diverged.
+                    DiffsolError::OdeSolverError(OdeSolverError::TooManyErrorTestFailures {
+                        ..
+                    }) if h.is_finite() => continue,
+                    // Only reachable through the budget set above.
+                    DiffsolError::OdeSolverError(
+                        OdeSolverError::TooManyNonlinearSolverFailures { .. },
+                    ) => Status::MaxSteps,
+                    _ if bad => Status::Diverged,
+                    // The Newton matrix could not be factorised, and smaller
+                    // steps did not help.
+                    _ if linear_failed() => Status::LinearSolveFailed,
+                    DiffsolError::OdeSolverError(OdeSolverError::StepSizeTooSmall { .. }) => {
+                        Status::StepSizeTooSmall
+                    }
+                    // Anything else means the solver could not go on from a
+                    // finite state: the closest is "the step could not be
+                    // made", i.e. StepSizeTooSmall.
+                    _ => Status::StepSizeTooSmall,
+                };
+                let t_failed = if t_try.is_finite() { t_try } else { t };
+                finish!(status, t, Some(t_failed));
+            }
+        }
+    }
+}
