@@ -25,6 +25,8 @@ pub mod system;
 pub use chain::{Chain, InvalidParameter};
 pub use kinematics::Vec2;
 pub use ode::{Stats, Status};
-pub use solve::{solve, Method, Sample, Segment, SolveOptions, Summary, Trajectory};
+pub use solve::{
+    bdf_crossover_gamma, solve, Method, Sample, Segment, SolveOptions, Summary, Trajectory,
+};
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

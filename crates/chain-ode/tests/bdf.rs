@@ -133,21 +133,36 @@ fn stiff_chain_completes_in_far_fewer_steps_than_rk4_can_take() {
     assert!(b.summary.dissipated > 0.0);
 }
 
+/// `auto` runs the method that the `stiffness` study measured to be faster:
+/// DOPRI5 (DOP853 at tight tolerances) below the crossover damping rate, BDF
+/// past it, with the same result as that method run alone.
 #[test]
-fn auto_hands_the_stiff_chain_over_to_bdf_mid_run() {
-    let (chain, s) = span3(50, 0.1);
-    let o = bdf(1e-6, 1e-8, 2.0);
-    let a = run(&chain, &s, Method::Auto, o.clone());
-    let b = run(&chain, &s, Method::Bdf, o);
-    assert_eq!(a.status, Status::Ok);
-    assert_eq!(a.t_reached, 2.0);
-    // BDF started from DOPRI5's state at t > 0 and finished the run.
-    let last = a.segments.last().unwrap();
-    assert_eq!(last.method, Method::Bdf);
-    assert!(last.t_start > 0.0 && last.t_start < 2.0);
-    assert_eq!(last.t_end, 2.0);
-    let d = dist(a.summary.tip_end, b.summary.tip_end);
-    assert!(d < 1e-5, "tip differs by {d:e}");
+fn auto_picks_the_side_of_the_crossover_it_is_on() {
+    for n in [25, 50, 400] {
+        let unit = Chain::report(n, 0.0).unwrap();
+        let m_l2 = unit.mass * unit.rod_length().powi(2);
+        let cross = chain_ode::bdf_crossover_gamma(&unit);
+        for (factor, rtol, expect) in [
+            (0.25, 1e-6, Method::Dopri5),
+            (0.25, 1e-10, Method::Dop853),
+            (4.0, 1e-6, Method::Bdf),
+            (4.0, 1e-10, Method::Bdf),
+        ] {
+            let (chain, s) = span3(n, factor * cross * m_l2);
+            let o = bdf(rtol, rtol * 1e-2, 0.5);
+            let a = run(&chain, &s, Method::Auto, o.clone());
+            let alone = run(&chain, &s, expect, o);
+            assert_eq!(a.status, Status::Ok);
+            let methods: Vec<Method> = a.segments.iter().map(|g| g.method).collect();
+            assert_eq!(
+                methods,
+                vec![expect],
+                "n = {n}, gamma = {factor} x crossover, rtol {rtol:e}"
+            );
+            assert_eq!(a.final_state, alone.final_state);
+            assert_eq!(a.stats, alone.stats);
+        }
+    }
 }
 
 #[test]

@@ -9,6 +9,8 @@
 mod cost;
 #[path = "precision_map.rs"]
 mod map;
+#[path = "precision_stiffness.rs"]
+mod stiffness;
 #[path = "precision_wp.rs"]
 mod wp;
 
@@ -45,6 +47,13 @@ pub const STUDIES: &[Study] = &[
         what: "where each method fails: method x dt / rtol x scene -> completed, energy-balance \
                error above 1% of M g L, diverged, step size too small, step budget exhausted",
         make: map::make,
+    },
+    Study {
+        id: "stiffness",
+        what: "where BDF pays: DOPRI5's wall time over the O(n) BDF's against the damping rate \
+               gamma for n = 25 to 3200 (span d = 3, t = 1, rtol 1e-6), and the crossover gamma \
+               for each n",
+        make: stiffness::make,
     },
     Study {
         id: "rhs-cost",

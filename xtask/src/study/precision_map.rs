@@ -62,13 +62,12 @@ const SCENES: [MapScene; 5] = [
         label: "n = 400 (d = 3)",
         scene: "span-d3",
         overrides: &["chain.links=400", "chain.damping=5e-4"],
-        // 2.5 s per run at rtol 1e-2, 7 s at 1e-3, 11 s at 1e-4 (measured
-        // on two shared cores): dense 801 x 801 Jacobians and LU.
-        // (auto stays explicit here: it hands over only where BDF pays.)
+        // bdf-dense: 2.5 s per run at rtol 1e-2, 7 s at 1e-3, 11 s at 1e-4
+        // (measured on two shared cores): dense 801 x 801 Jacobians and LU.
         skip: Some((
-            &[Method::Bdf],
+            &[Method::BdfDense],
             1e-3,
-            "cost: BDF at n = 400 takes 2.5 to 11 s per run (dense 801 x 801 Jacobian and LU)",
+            "cost: bdf-dense at n = 400 takes 2.5 to 11 s per run (dense 801 x 801 Jacobian and LU)",
         )),
     },
     MapScene {

@@ -52,6 +52,9 @@ impl Interpolant for Dense<'_> {
     }
 }
 
+/// `rhs(t, y, f)` at an accepted state (full unknowns in and out).
+pub(crate) type StateRhs<'a> = &'a mut dyn FnMut(f64, &[f64], &mut [f64]);
+
 /// How the loop ended.
 pub(crate) struct Driven {
     pub status: Status,
@@ -79,7 +82,7 @@ pub(crate) fn drive<'a, Eqn, S, O>(
     t_end: f64,
     opts: &AdaptiveOptions,
     obs: &mut O,
-    rhs: &mut dyn FnMut(f64, &[f64], &mut [f64]),
+    rhs: StateRhs<'_>,
     nonfinite: &Cell<bool>,
     linear_failed: &dyn Fn() -> bool,
 ) -> Driven

@@ -4,6 +4,7 @@ mod adaptive;
 mod bdf;
 mod bdf_dense;
 mod diffsol_driver;
+mod dop853;
 mod dopri5;
 mod observer;
 mod rk4;
@@ -15,7 +16,7 @@ use std::time::Instant;
 
 use crate::chain::{check, Chain, InvalidParameter};
 use crate::kinematics::{tip, tip_velocity, Vec2};
-use crate::ode::{Observer, OdeSystem, Outcome};
+use crate::ode::{Observer, Outcome};
 use crate::ode::{Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
@@ -29,21 +30,27 @@ pub enum Method {
     Rk4,
     /// Adaptive Dormand–Prince 5(4) with dense output (`rtol`, `atol`).
     Dopri5,
+    /// Adaptive Dormand–Prince 8(5,3) with 7th-order dense output, for tight
+    /// tolerances (`rtol`, `atol`).
+    Dop853,
     /// Implicit variable-order BDF from diffsol on the banded DAE, sparse LU:
     /// O(n) per step (`rtol`, `atol`).
     Bdf,
     /// diffsol's BDF on the explicit form with a dense Jacobian and dense LU:
     /// O(n^3) per factorisation, kept as the reference for `bdf` (`rtol`, `atol`).
     BdfDense,
-    /// DOPRI5, switching to BDF when the stiffness detector keeps firing.
+    /// BDF where the damping rate is past the measured crossover; otherwise
+    /// DOPRI5 (DOP853 at tight tolerances), handing over to BDF when the
+    /// stiffness detector keeps firing with an eigenvalue past the crossover.
     Auto,
 }
 
 impl Method {
     /// Every method, in the order figures list them.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Rk4,
         Method::Dopri5,
+        Method::Dop853,
         Method::Bdf,
         Method::BdfDense,
         Method::Auto,
@@ -54,6 +61,7 @@ impl Method {
         match self {
             Self::Rk4 => "rk4",
             Self::Dopri5 => "dopri5",
+            Self::Dop853 => "dop853",
             Self::Bdf => "bdf",
             Self::BdfDense => "bdf-dense",
             Self::Auto => "auto",
@@ -75,7 +83,7 @@ impl FromStr for Method {
             .find(|m| m.as_str() == s)
             .ok_or_else(|| InvalidParameter {
                 field: "run.method",
-                accepted: "one of rk4, dopri5, bdf, bdf-dense, auto",
+                accepted: "one of rk4, dopri5, dop853, bdf, bdf-dense, auto",
                 got: s.to_string(),
             })
     }
@@ -312,8 +320,44 @@ pub fn solve(
     })
 }
 
-/// Dispatches to the method; `auto` runs DOPRI5 until its stiffness detector
-/// keeps firing, then continues with BDF from that state.
+/// The damping rate `gamma = r / (m l^2)` (1/time) past which the O(n) BDF
+/// overtakes DOPRI5 on this chain, and from which `auto` runs BDF from the
+/// start.
+///
+/// An explicit step is held below `~3.3 / |lambda|`, and the chain has two
+/// fast rates: damping, `|lambda| ~ 48 gamma`, and its fastest undamped mode,
+/// `omega_max ~ 3.4 sqrt(g L) / l` (the hanging chain's top frequency; it
+/// grows like n). So the crossover grows with n once `omega_max` dominates.
+/// The `stiffness` study (span d = 3, t = 1, rtol 1e-6, n = 25 to 3200)
+/// measured it and fits it as `27 sqrt(g/L) + 0.12 sqrt(g L) / l`: 12 at
+/// n = 25 and 168 at n = 3200 in the report's units.
+pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
+    let (g, big_l) = (chain.gravity, chain.length);
+    27.0 * (g / big_l).sqrt() + 0.12 * (g * big_l).sqrt() / chain.rod_length()
+}
+
+/// Relative tolerance at and below which `auto`'s explicit method is DOP853
+/// rather than DOPRI5 (measured on the work-precision diagrams).
+pub const AUTO_DOP853_RTOL: f64 = 1e-8;
+
+impl Method {
+    /// The methods `auto` runs for this chain and tolerance: the explicit one
+    /// it starts with (none when the chain is past the crossover), and BDF.
+    pub fn auto_plan(chain: &Chain, rtol: f64) -> Option<Method> {
+        if chain.damping_rate() >= bdf_crossover_gamma(chain) {
+            None
+        } else if rtol <= AUTO_DOP853_RTOL {
+            Some(Method::Dop853)
+        } else {
+            Some(Method::Dopri5)
+        }
+    }
+}
+
+/// Dispatches to the method; `auto` follows [`Method::auto_plan`]: BDF from
+/// the start past the crossover, else the explicit method until its
+/// stiffness detector keeps firing with `|lambda|` past the crossover's
+/// `48 gamma`, then BDF from that state.
 fn run<O: Observer>(
     sys: &mut ChainSystem,
     y0: &[f64],
@@ -328,36 +372,50 @@ fn run<O: Observer>(
         t_start,
         t_end: out.t_reached,
     };
-    let single = |out: Outcome| {
+    let single = |method, out: Outcome| {
         let seg = vec![segment(method, 0.0, &out)];
         (out, seg)
     };
     match method {
-        Method::Rk4 => single(rk4::integrate(
-            sys,
-            0.0,
-            y0,
-            t_end,
-            options.dt,
-            options.max_steps,
-            obs,
-        )),
-        Method::Dopri5 => single(dopri5::integrate(sys, 0.0, y0, t_end, adaptive, obs)),
-        Method::Bdf => single(bdf::integrate(sys.chain(), 0.0, y0, t_end, adaptive, obs)),
-        Method::BdfDense => single(bdf_dense::integrate(sys, 0.0, y0, t_end, adaptive, obs)),
+        Method::Rk4 => single(
+            method,
+            rk4::integrate(sys, 0.0, y0, t_end, options.dt, options.max_steps, obs),
+        ),
+        Method::Dopri5 => single(
+            method,
+            dopri5::integrate(sys, 0.0, y0, t_end, adaptive, obs),
+        ),
+        Method::Dop853 => single(
+            method,
+            dop853::integrate(sys, 0.0, y0, t_end, adaptive, obs),
+        ),
+        Method::Bdf => single(
+            method,
+            bdf::integrate(sys.chain(), 0.0, y0, t_end, adaptive, obs),
+        ),
+        Method::BdfDense => single(
+            method,
+            bdf_dense::integrate(sys, 0.0, y0, t_end, adaptive, obs),
+        ),
         Method::Auto => {
-            // Measured on the span d = 3 start (`examples/stiffness.rs`, the
-            // README's table): BDF overtakes DOPRI5 roughly where the
-            // stiffness |lambda| exceeds ~n^2/2 = dim^2/8, because BDF's
-            // dense LU costs O(n^3) and DOPRI5's steps cost O(n |lambda|).
-            let dim = sys.dim() as f64;
-            let explicit = AdaptiveOptions {
+            let chain = sys.chain().clone();
+            let Some(explicit) = Method::auto_plan(&chain, adaptive.rtol) else {
+                return single(
+                    Method::Bdf,
+                    bdf::integrate(&chain, 0.0, y0, t_end, adaptive, obs),
+                );
+            };
+            let watch = AdaptiveOptions {
                 stop_when_stiff: true,
-                switch_lambda: dim * dim / 8.0,
+                switch_lambda: 48.0 * bdf_crossover_gamma(&chain),
                 ..*adaptive
             };
-            let first = dopri5::integrate(sys, 0.0, y0, t_end, &explicit, obs);
-            let mut segments = vec![segment(Method::Dopri5, 0.0, &first)];
+            let first = if explicit == Method::Dop853 {
+                dop853::integrate(sys, 0.0, y0, t_end, &watch, obs)
+            } else {
+                dopri5::integrate(sys, 0.0, y0, t_end, &watch, obs)
+            };
+            let mut segments = vec![segment(explicit, 0.0, &first)];
             let Some(t_switch) = first.stiff_at.filter(|_| first.status.is_ok()) else {
                 return (first, segments);
             };
@@ -368,7 +426,7 @@ fn run<O: Observer>(
                     .max(1),
                 ..*adaptive
             };
-            let mut second = bdf_dense::integrate(sys, t_switch, &first.y_end, t_end, &budget, obs);
+            let mut second = bdf::integrate(&chain, t_switch, &first.y_end, t_end, &budget, obs);
             segments.push(segment(Method::Bdf, t_switch, &second));
             second.stats += first.stats;
             (second, segments)

@@ -1,0 +1,248 @@
+//! `stiffness`: where the implicit method pays. DOPRI5 against the O(n) BDF
+//! over rods `n` and the damping rate `gamma = r / (m l^2)`, on the span
+//! d = 3 start (report chain, `r` set from `gamma`), `t_end = 1`, rtol 1e-6,
+//! atol 1e-8. The cell is DOPRI5's wall time over BDF's (median of 3 where a
+//! run is short).
+//!
+//! An explicit method on a stiff chain is held at its stability limit: its
+//! steps are all alike, and its cost is proportional to the time it covers.
+//! Where DOPRI5 would take far more than [`EXPLICIT_BUDGET`] seconds, it is
+//! stopped by a step budget and its wall time is extrapolated to `t_end`
+//! from the time it reached (`dopri5_extrapolated = 1` in the CSV).
+//!
+//! Also written: the crossover `gamma` for each `n` (where the ratio first
+//! exceeds 1, interpolated in `log gamma`) beside the rule `auto` uses
+//! ([`chain_ode::bdf_crossover_gamma`]), and BDF's wall time per step.
+
+use std::fmt::Write as _;
+
+use chain_ode::{
+    bdf_crossover_gamma, solve, Chain, Method, SolveOptions, Start, Status, Trajectory,
+};
+use figures::{palette, LinePlot, RGBColor, Series, Style};
+
+use super::{median, write_text, written, Ctx};
+
+const ID: &str = "stiffness";
+/// Rods.
+const RODS: [usize; 8] = [25, 50, 100, 200, 400, 800, 1600, 3200];
+/// Damping rates `gamma` (1/time).
+const GAMMAS: [f64; 8] = [1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3, 1e4, 1e5];
+const T_END: f64 = 1.0;
+const RTOL: f64 = 1e-6;
+const ATOL: f64 = 1e-8;
+/// Seconds DOPRI5 may run per cell before its time is extrapolated.
+const EXPLICIT_BUDGET: f64 = 0.4;
+/// Repeat a run (median of 3) when it is shorter than this (s).
+const REPEAT_BELOW: f64 = 0.2;
+/// DOPRI5's wall time per step and rod on this kind of machine (s), for its
+/// step budget only: 6 right-hand sides at about 28 ns per rod.
+const DOPRI5_STEP_PER_ROD: f64 = 1.7e-7;
+
+/// The span d = 3 start of `n` rods at damping rate `gamma`.
+fn scene(n: usize, gamma: f64) -> Result<(Chain, chain_ode::State), String> {
+    let base = Chain::report(n, 0.0).map_err(|e| e.to_string())?;
+    let r = gamma * base.mass * base.rod_length().powi(2);
+    let chain = Chain::report(n, r).map_err(|e| e.to_string())?;
+    let s = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    }
+    .state(&chain)
+    .map_err(|e| e.to_string())?;
+    Ok((chain, s))
+}
+
+/// The run and its median wall time.
+fn timed(chain: &Chain, s: &chain_ode::State, m: Method, o: &SolveOptions) -> (Trajectory, f64) {
+    let first = solve(chain, s, m, o).expect("valid options");
+    if first.summary.wall_seconds > REPEAT_BELOW {
+        let w = first.summary.wall_seconds;
+        return (first, w);
+    }
+    let mut walls = vec![first.summary.wall_seconds];
+    for _ in 0..2 {
+        walls.push(
+            solve(chain, s, m, o)
+                .expect("valid options")
+                .summary
+                .wall_seconds,
+        );
+    }
+    (first, median(&mut walls))
+}
+
+/// One cell of the table.
+struct Cell {
+    n: usize,
+    gamma: f64,
+    explicit: Trajectory,
+    /// DOPRI5's wall time to `t_end`, measured or extrapolated.
+    explicit_wall: f64,
+    extrapolated: bool,
+    bdf: Trajectory,
+    bdf_wall: f64,
+}
+
+impl Cell {
+    /// DOPRI5's wall time over BDF's.
+    fn ratio(&self) -> f64 {
+        self.explicit_wall / self.bdf_wall
+    }
+}
+
+/// Runs one cell.
+fn cell(n: usize, gamma: f64) -> Result<Cell, String> {
+    let (chain, s) = scene(n, gamma)?;
+    let base = SolveOptions {
+        t_end: T_END,
+        rtol: RTOL,
+        atol: ATOL,
+        ..Default::default()
+    };
+    let budget = (EXPLICIT_BUDGET / (DOPRI5_STEP_PER_ROD * n as f64)).max(2000.0) as u64;
+    let explicit_opts = SolveOptions {
+        max_steps: budget,
+        ..base.clone()
+    };
+    let (explicit, wall) = timed(&chain, &s, Method::Dopri5, &explicit_opts);
+    let extrapolated = explicit.status == Status::MaxSteps;
+    let explicit_wall = if extrapolated {
+        wall * T_END / explicit.t_reached
+    } else {
+        wall
+    };
+    let (bdf, bdf_wall) = timed(&chain, &s, Method::Bdf, &base);
+    if !bdf.status.is_ok() {
+        return Err(format!(
+            "n = {n}, gamma = {gamma:e}: bdf ended {}",
+            bdf.status
+        ));
+    }
+    Ok(Cell {
+        n,
+        gamma,
+        explicit,
+        explicit_wall,
+        extrapolated,
+        bdf,
+        bdf_wall,
+    })
+}
+
+/// The `gamma` at which `ratio` first exceeds 1, interpolated in log-log.
+fn crossover(row: &[&Cell]) -> Option<f64> {
+    row.windows(2).find_map(|p| {
+        let (a, b) = (p[0], p[1]);
+        let (ra, rb) = (a.ratio().ln(), b.ratio().ln());
+        (ra < 0.0 && rb >= 0.0).then(|| {
+            let s = -ra / (rb - ra);
+            (a.gamma.ln() + s * (b.gamma.ln() - a.gamma.ln())).exp()
+        })
+    })
+}
+
+pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
+    let mut cells = vec![];
+    for &n in &RODS {
+        for &gamma in &GAMMAS {
+            cells.push(cell(n, gamma)?);
+        }
+    }
+
+    let mut csv = String::from(
+        "n,gamma,r,dopri5_status,dopri5_steps,dopri5_t_reached,dopri5_wall,dopri5_extrapolated,\
+         bdf_status,bdf_steps,bdf_rejected,bdf_jacobians,bdf_lu,bdf_wall,bdf_wall_per_step,\
+         tip_difference,ratio_dopri5_over_bdf\n",
+    );
+    for c in &cells {
+        // The tip difference only where both reached t_end.
+        let tip = if c.extrapolated {
+            f64::NAN
+        } else {
+            let (a, b) = (c.explicit.summary.tip_end, c.bdf.summary.tip_end);
+            (a[0] - b[0]).hypot(a[1] - b[1])
+        };
+        writeln!(
+            csv,
+            "{},{:e},{:e},{},{},{:.6},{:.4e},{},{},{},{},{},{},{:.4e},{:.4e},{:.2e},{:.4}",
+            c.n,
+            c.gamma,
+            c.bdf.chain.damping,
+            c.explicit.status,
+            c.explicit.stats.steps,
+            c.explicit.t_reached,
+            c.explicit_wall,
+            u8::from(c.extrapolated),
+            c.bdf.status,
+            c.bdf.stats.steps,
+            c.bdf.stats.rejected_steps,
+            c.bdf.stats.jacobian_evals,
+            c.bdf.stats.lu_factorizations,
+            c.bdf_wall,
+            c.bdf_wall / c.bdf.stats.steps.max(1) as f64,
+            tip,
+            c.ratio()
+        )
+        .unwrap();
+    }
+    let mut files = vec![write_text(ctx, &ctx.data.join(format!("{ID}.csv")), &csv)?];
+
+    let rows: Vec<Vec<&Cell>> = RODS
+        .iter()
+        .map(|&n| cells.iter().filter(|c| c.n == n).collect())
+        .collect();
+    // The measured crossover beside auto's rule (`bdf_crossover_gamma`).
+    let mut cross = String::from("n,gamma_crossover,gamma_crossover_rule,rule_over_measured\n");
+    let mut crossings = vec![];
+    for (&n, row) in RODS.iter().zip(&rows) {
+        let g = crossover(row).unwrap_or(f64::NAN);
+        if g.is_finite() {
+            crossings.push(g);
+        }
+        let rule = bdf_crossover_gamma(&Chain::report(n, 0.0).map_err(|e| e.to_string())?);
+        writeln!(cross, "{n},{g:.4e},{rule:.4e},{:.3}", rule / g).unwrap();
+    }
+    files.push(write_text(
+        ctx,
+        &ctx.data.join(format!("{ID}-crossover.csv")),
+        &cross,
+    )?);
+
+    let mut plot = LinePlot::new(
+        "Where BDF pays: DOPRI5 wall time over BDF's (span d = 3, t = 1, rtol 1e-6)",
+        "damping rate γ = r / (m l²)",
+        "DOPRI5 time / BDF time",
+    );
+    plot.log_x = true;
+    plot.log_y = true;
+    for (k, (n, row)) in RODS.iter().zip(&rows).enumerate() {
+        let pts = row.iter().map(|c| (c.gamma, c.ratio())).collect();
+        plot.series
+            .push(Series::new(format!("n = {n}"), pts, Style::LinePoints).with_color(palette(k)));
+    }
+    plot.series.push(
+        Series::new(
+            "equal cost",
+            vec![(GAMMAS[0], 1.0), (GAMMAS[GAMMAS.len() - 1], 1.0)],
+            Style::Dashed,
+        )
+        .with_color(RGBColor(0, 0, 0)),
+    );
+    if let (Some(lo), Some(hi)) = (
+        crossings.iter().copied().reduce(f64::min),
+        crossings.iter().copied().reduce(f64::max),
+    ) {
+        plot.annotations.push(format!(
+            "crossover γ from {lo:.3} to {hi:.3} (×{:.1}) over n = {}..{}",
+            hi / lo,
+            RODS[0],
+            RODS[RODS.len() - 1]
+        ));
+    }
+    plot.annotations
+        .push("DOPRI5 beyond 0.4 s: extrapolated from the time reached".into());
+    let out = figures::line_plot(&plot, &ctx.out.join(ID)).map_err(|e| e.to_string())?;
+    files.extend(written(ctx, &out));
+    Ok(files)
+}
