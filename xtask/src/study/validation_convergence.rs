@@ -2,8 +2,8 @@
 //!
 //! Each scene is refined at fixed continuum properties (total mass
 //! `M = n m` and bending viscosity `eta = r l`, see
-//! `falling_chain::converge`) over the ladder n = 25 .. 800, and to n = 1600
-//! where the last doubling (400 -> 800) still moved the maximum tip speed by
+//! `falling_chain::converge`) over the ladder n = 25 .. 1600, and to n = 3200
+//! where the last doubling (800 -> 1600) still moved the maximum tip speed by
 //! more than 0.05% (half the finest tolerance asked for). The finest n is
 //! the reference. All runs: `auto`, rtol 1e-9, atol 1e-11, tip sampled every
 //! 0.01 for the path comparison. At fixed bending viscosity the damping rate
@@ -19,8 +19,8 @@ use crate::study::Ctx;
 
 const ID: &str = "convergence-n";
 const SCENES: [&str; 3] = ["span-d1", "span-d3", "span-d5"];
-const LADDER: [usize; 6] = [25, 50, 100, 200, 400, 800];
-const FINEST: usize = 1600;
+const LADDER: [usize; 7] = [25, 50, 100, 200, 400, 800, 1600];
+const FINEST: usize = 3200;
 const METHOD: &str = "auto";
 /// Go on to `FINEST` if the last doubling changed the max tip speed by more.
 const GO_ON: f64 = 5e-4;
@@ -233,11 +233,11 @@ pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
     }
     for (tol, label) in [(TOLS[0], "1% and 0.1%"), (TOLS[1], "")] {
         right.series.push(
-            Series::new(label, vec![(20.0, tol), (2000.0, tol)], Style::Dashed).with_color(gray),
+            Series::new(label, vec![(20.0, tol), (4000.0, tol)], Style::Dashed).with_color(gray),
         );
     }
-    right.x_range = Some((20.0, 2000.0));
-    left.x_range = Some((20.0, 2000.0));
+    right.x_range = Some((20.0, 4000.0));
+    left.x_range = Some((20.0, 4000.0));
     left.annotations = vec!["n for max tip speed within 1% / 0.1%:".to_string()];
     left.annotations.extend(short);
     let base = scene(ctx, SCENES[0])?.chain().map_err(|e| e.to_string())?;
