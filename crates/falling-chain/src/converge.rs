@@ -26,7 +26,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::error::Error;
-use crate::scene::{Scene, StartKind};
+use crate::scene::Scene;
+use crate::schema::StartKind;
 use crate::summary::RunSummary;
 
 /// One line stating the refinement, for help texts, figures and data.
