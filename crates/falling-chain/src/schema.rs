@@ -443,9 +443,13 @@ fn number_text(x: f64) -> String {
     }
 }
 
-/// The start kind of `tree`, if `start.kind` is given and valid.
+/// The key whose value says which start kind a scene has, and so which of
+/// the [`Kinds::Only`] keys it takes.
+pub const START_KIND: &str = "start.kind";
+
+/// The start kind of `tree`, if [`START_KIND`] is given and valid.
 fn start_kind(tree: &toml::Table) -> Option<StartKind> {
-    let name = tree.get("start")?.get("kind")?.as_str()?;
+    let name = lookup(tree, key(START_KIND)?)?.as_str()?;
     StartKind::ALL.into_iter().find(|k| k.as_str() == name)
 }
 
@@ -477,18 +481,19 @@ pub fn check(tree: &toml::Table) -> Result<toml::Table, Error> {
     }
 
     let kind = start_kind(tree);
-    if let (Some(kind), Some(start)) = (kind, tree.get("start").and_then(|s| s.as_table())) {
-        for name in start.keys() {
-            if !kind.keys().contains(&name.as_str()) {
-                return Err(Error::field(
-                    format!("start.{name}"),
-                    format!(
-                        "not a key of a {0} start (kind = \"{0}\" takes {1})",
-                        kind.as_str(),
-                        kind.keys().join(", ")
-                    ),
-                ));
-            }
+    if let Some(kind) = kind {
+        let misplaced = KEYS
+            .iter()
+            .find(|k| !k.kinds.accepts(kind) && lookup(tree, k).is_some());
+        if let Some(k) = misplaced {
+            return Err(Error::field(
+                k.path,
+                format!(
+                    "not a key of a {0} start (kind = \"{0}\" takes {1})",
+                    kind.as_str(),
+                    kind.keys().join(", ")
+                ),
+            ));
         }
     }
 
