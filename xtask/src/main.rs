@@ -19,8 +19,8 @@ use rayon::prelude::*;
 
 use catalog::{Figure, FIGURES};
 
-const USAGE: &str =
-    "usage: cargo xtask figures [--only ID...] [--no-anim] | cargo xtask paper [--check]";
+const USAGE: &str = "usage: cargo xtask figures [--only ID...] [--no-anim] | \
+                     cargo xtask paper [--check] | cargo xtask scene-keys [--check]";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -243,6 +243,27 @@ fn readme() -> String {
     s
 }
 
+/// `cargo xtask scene-keys [--check]`: writes the key table of
+/// `scenes/README.md` from falling-chain's scene schema; `--check` fails if
+/// it is stale (falling-chain's tests check it too).
+fn scene_keys(check: bool) -> Result<(), String> {
+    let path = root().join("scenes/README.md");
+    let text = fs::read_to_string(&path).map_err(|e| format!("scenes/README.md: {e}"))?;
+    let want = falling_chain::schema::with_markdown_table(&text)
+        .map_err(|e| format!("scenes/README.md: {e}"))?;
+    if want == text {
+        println!("scenes/README.md: the key table is up to date");
+    } else if check {
+        return Err("scenes/README.md: the key table differs from \
+                    crates/falling-chain/src/schema.rs (run `cargo xtask scene-keys`)"
+            .into());
+    } else {
+        fs::write(&path, want).map_err(|e| format!("scenes/README.md: {e}"))?;
+        println!("wrote scenes/README.md");
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
@@ -250,6 +271,11 @@ fn main() -> ExitCode {
         Some("paper") => match &args[1..] {
             [] => paper::run(&root(), false),
             [c] if c == "--check" => paper::run(&root(), true),
+            _ => Err(USAGE.to_string()),
+        },
+        Some("scene-keys") => match &args[1..] {
+            [] => scene_keys(false),
+            [c] if c == "--check" => scene_keys(true),
             _ => Err(USAGE.to_string()),
         },
         _ => Err(USAGE.to_string()),

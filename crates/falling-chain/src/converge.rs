@@ -21,12 +21,12 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use chain_ode::analysis::{bending_viscosity, tip_track};
-use chain_ode::{Chain, Vec2};
+use chain_ode::{Chain, Start, Vec2};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::error::Error;
-use crate::scene::{Scene, StartKind};
+use crate::scene::Scene;
 use crate::summary::RunSummary;
 
 /// One line stating the refinement, for help texts, figures and data.
@@ -48,23 +48,20 @@ pub fn refined_scene(scene: &Scene, links: usize) -> Result<Scene, Error> {
         "chain.damping",
         toml::Value::Float(chain.damping * links as f64 / chain.links as f64),
     )?;
-    let start = scene.tree().get("start").and_then(|v| v.as_table());
-    let kind = start
-        .and_then(|t| t.get("kind"))
-        .and_then(|k| k.as_str())
-        .unwrap_or("");
-    if kind == StartKind::Angles.as_str() {
-        return Err(Error::field(
-            "start.kind",
-            "an \"angles\" start has a fixed number of rods and cannot be refined",
-        ));
-    }
-    if let Some(down) = start
-        .and_then(|t| t.get("down"))
-        .and_then(|d| d.as_integer())
-    {
-        let scaled = (down as u128 * links as u128 / chain.links as u128) as i64;
-        s = s.with_value("start.down", toml::Value::Integer(scaled))?;
+    match scene.start() {
+        Start::Angles { .. } => {
+            return Err(Error::field(
+                "start.kind",
+                "an \"angles\" start has a fixed number of rods and cannot be refined",
+            ))
+        }
+        Start::Folded {
+            down: Some(down), ..
+        } => {
+            let scaled = (down as u128 * links as u128 / chain.links as u128) as i64;
+            s = s.with_value("start.down", toml::Value::Integer(scaled))?;
+        }
+        _ => {}
     }
     Ok(s)
 }

@@ -2,8 +2,8 @@
 //!
 //! This is the only crate of the workspace that knows TOML, CSV and JSON:
 //! [`Scene`] reads a scene file (and `--set` overrides) into the chain-ode
-//! types, [`RunSummary`] is what a run prints as JSON or as a CSV row,
-//! [`csv`] writes a trajectory's samples, and [`atomic`] makes every output
+//! types, checked against [`schema::KEYS`], the one table of scene keys;
+//! [`RunSummary`] is what a run prints as JSON or as a CSV row, [`csv`] writes a trajectory's samples, and [`atomic`] makes every output
 //! file appear whole or not at all. Every error is an [`Error`], one line
 //! that starts with the field it is about.
 
@@ -15,10 +15,12 @@ pub mod error;
 pub mod overrides;
 pub mod render;
 pub mod scene;
+pub mod schema;
 pub mod summary;
 pub mod sweep;
 
 pub use catenary_report::{CatenaryReport, DiscreteReport};
 pub use error::{CatenaryNames, Error};
-pub use scene::{Prepared, Scene, StartKind};
+pub use scene::{Prepared, Scene};
+pub use schema::StartKind;
 pub use summary::{RunSummary, SegmentSummary, SUMMARY_CSV_COLUMNS};

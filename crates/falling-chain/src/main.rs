@@ -52,11 +52,51 @@ enum Command {
     Converge(ConvergeArgs),
 }
 
+/// What every scene-taking command (simulate, sweep, converge, plot,
+/// animate) reads: the scene file and its `--set` overrides.
 #[derive(Args)]
-struct ConvergeArgs {
-    /// The scene file (see scenes/README.md).
+struct SceneArgs {
+    /// The scene file (its keys: scenes/README.md).
     #[arg(value_name = "SCENE.toml")]
     scene: PathBuf,
+    /// Set any scene key by its dotted path, e.g. chain.links=100,
+    /// start.p1=[3.0,0.0], start.p1.0=2.5. Repeatable; applied in order,
+    /// before the command's own flags (simulate's --method, --dt, ...,
+    /// sweep's --vary, converge's refinement).
+    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+    set: Vec<String>,
+}
+
+impl SceneArgs {
+    /// The scene file with the overrides applied.
+    fn load(&self) -> Result<Scene, Error> {
+        Scene::load(&self.scene)?.with_overrides(&self.set)
+    }
+}
+
+/// `--jobs` of the commands that run scenes in parallel (sweep, converge).
+#[derive(Args)]
+struct JobsArgs {
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    jobs: Option<usize>,
+}
+
+impl JobsArgs {
+    /// The number of threads: `--jobs`, else every core; 0 is an error.
+    fn threads(&self) -> Result<usize, Error> {
+        match self.jobs {
+            Some(0) => Err(Error::field("--jobs", "must be an integer >= 1 (got 0)")),
+            Some(n) => Ok(n),
+            None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+        }
+    }
+}
+
+#[derive(Args)]
+struct ConvergeArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
     /// Relative tolerance on tip_speed_max and on the tip end (over L).
     #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
     tol: f64,
@@ -71,12 +111,8 @@ struct ConvergeArgs {
     /// the scene's run.rtol.
     #[arg(long, value_name = "R", allow_negative_numbers = true)]
     rtol: Option<f64>,
-    /// Set any scene key before refining (as in simulate).
-    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
-    set: Vec<String>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "N")]
-    jobs: Option<usize>,
+    #[command(flatten)]
+    jobs: JobsArgs,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -84,15 +120,11 @@ struct ConvergeArgs {
 
 #[derive(Args)]
 struct PlotArgs {
-    /// The scene file (see scenes/README.md).
-    #[arg(value_name = "SCENE.toml")]
-    scene: PathBuf,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// The figure: FILE.png or FILE.svg.
     #[arg(short = 'o', long = "out", value_name = "FILE.png|FILE.svg")]
     out: PathBuf,
-    /// Set any scene key before the run (as in simulate).
-    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
-    set: Vec<String>,
     /// Number of snapshots drawn (spread evenly over the run).
     #[arg(long, value_name = "N", default_value_t = 50)]
     snapshots: usize,
@@ -100,9 +132,8 @@ struct PlotArgs {
 
 #[derive(Args)]
 struct AnimateArgs {
-    /// The scene file (see scenes/README.md).
-    #[arg(value_name = "SCENE.toml")]
-    scene: PathBuf,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// The animation, FILE.gif.
     #[arg(short = 'o', long = "out", value_name = "FILE.gif")]
     out: PathBuf,
@@ -112,16 +143,12 @@ struct AnimateArgs {
     /// Length of the animation in seconds of playback (sets the frame count).
     #[arg(long, value_name = "S", default_value_t = 5.0)]
     seconds: f64,
-    /// Set any scene key before the run (as in simulate).
-    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
-    set: Vec<String>,
 }
 
 #[derive(Args)]
 struct SweepArgs {
-    /// The scene file (see scenes/README.md).
-    #[arg(value_name = "SCENE.toml")]
-    scene: PathBuf,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// KEY=START:STOP:COUNT (COUNT values, ends included) or KEY=V1,V2,...
     /// for any scene key by dotted path (array elements by index:
     /// start.p1.0). Several --vary make the Cartesian product.
@@ -132,12 +159,8 @@ struct SweepArgs {
         allow_hyphen_values = true
     )]
     vary: Vec<String>,
-    /// Set any scene key before the sweep (as in simulate).
-    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
-    set: Vec<String>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "N")]
-    jobs: Option<usize>,
+    #[command(flatten)]
+    jobs: JobsArgs,
     /// Run only runs I, I+N, I+2N, ... of the sweep (0 <= I < N), for
     /// splitting a sweep across machines; rows keep their run number.
     #[arg(long, value_name = "I/N")]
@@ -175,9 +198,8 @@ struct CatenaryArgs {
 
 #[derive(Args)]
 struct SimulateArgs {
-    /// The scene file (see scenes/README.md).
-    #[arg(value_name = "SCENE.toml")]
-    scene: PathBuf,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// Integration method (overrides run.method).
     #[arg(long, value_name = "M")]
     method: Option<String>,
@@ -193,10 +215,6 @@ struct SimulateArgs {
     /// End time (overrides run.t_end).
     #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
     t_end: Option<f64>,
-    /// Set any scene key by its dotted path, e.g. chain.links=100,
-    /// start.p1=[3.0,0.0], start.p1.0=2.5 (applied before the flags above).
-    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
-    set: Vec<String>,
     /// Write every sample as CSV: t, tip_x, tip_y, tip_vx, tip_vy, energy,
     /// dissipated, phi_1..phi_n.
     #[arg(long, value_name = "FILE.csv")]
@@ -232,7 +250,7 @@ fn catenary(args: &CatenaryArgs) -> Result<ExitCode, Error> {
 }
 
 fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
-    let mut scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let mut scene = args.scene.load()?;
     let flags = [
         ("run.method", args.method.clone().map(toml::Value::String)),
         ("run.dt", args.dt.map(toml::Value::Float)),
@@ -268,19 +286,14 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
 
 fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     use falling_chain::sweep::{self, Shard, Vary};
-    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let scene = args.scene.load()?;
     let vary = args
         .vary
         .iter()
         .map(|v| Vary::parse(v))
         .collect::<Result<Vec<_>, _>>()?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
-    if args.jobs == Some(0) {
-        return Err(Error::field("--jobs", "must be an integer >= 1 (got 0)"));
-    }
-    let jobs = args
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let jobs = args.jobs.threads()?;
     if let Some(out) = &args.out {
         check_writable("--out", out)?;
     }
@@ -370,7 +383,7 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
             "must be an integer >= 1 (got 0)",
         ));
     }
-    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let scene = args.scene.load()?;
     check_writable("--out", &args.out)?;
     draw_scene(&scene, &args.out, args.snapshots, "snapshots", |fig| {
         figures::chain_snapshots_to(fig, &args.out)
@@ -431,7 +444,7 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
             format!("must be a number in (0, 600] (got {})", args.seconds),
         ));
     }
-    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let scene = args.scene.load()?;
     check_writable("--out", &args.out)?;
     let frames = ((args.seconds * f64::from(args.fps)).round() as usize).max(2);
     draw_scene(&scene, &args.out, frames, "frames", |fig| {
@@ -443,13 +456,8 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
     use falling_chain::converge;
     converge::check_tol(args.tol)?;
     let links = converge::parse_links(&args.links)?;
-    if args.jobs == Some(0) {
-        return Err(Error::field("--jobs", "must be an integer >= 1 (got 0)"));
-    }
-    let jobs = args
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let scene = Scene::load(&args.scene)?.with_overrides(&args.set)?;
+    let jobs = args.jobs.threads()?;
+    let scene = args.scene.load()?;
     let report = converge::run(
         &scene,
         &links,

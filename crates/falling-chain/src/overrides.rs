@@ -8,7 +8,7 @@
 //! (`dopri5`) is taken as a string.
 
 use crate::error::Error;
-use crate::scene::{section_keys, TOP_KEYS};
+use crate::schema;
 
 /// Splits `KEY=VALUE` and parses the value; the error names the key.
 pub fn parse_assignment(assignment: &str) -> Result<(String, toml::Value), Error> {
@@ -44,40 +44,34 @@ pub fn parse_value(text: &str) -> Result<toml::Value, String> {
 }
 
 /// Sets the value at the dotted `path` of `tree`, creating a missing section
-/// table or key. The path must name a scene key (or an element of an array
-/// that is set); the error names the path.
+/// table or key. The path must name a scene key of [`schema::KEYS`] (whose
+/// value is coerced to the key's type, [`schema::Key::coerce`]), a section
+/// (set whole), or an element of an array that is set; the error names the
+/// path.
 pub fn set_path(tree: &mut toml::Table, path: &str, value: toml::Value) -> Result<(), Error> {
     let segments: Vec<&str> = path.split('.').collect();
-    let unknown = |hint: String| Error::field(path, format!("unknown key: {hint}"));
     let top = segments[0];
-    if !TOP_KEYS.contains(&top) {
-        return Err(unknown(format!(
-            "a scene has the keys {}",
-            TOP_KEYS.join(", ")
-        )));
+    if let Some(key) = schema::key(path) {
+        let value = key.coerce(value);
+        match key.section() {
+            None => {
+                tree.insert(top.to_string(), value);
+            }
+            Some(_) => {
+                section(tree, path, top)?.insert(key.name().to_string(), value);
+            }
+        }
+        return Ok(());
     }
-    if segments.len() == 1 {
+    if segments.len() == 1 && schema::is_section(top) {
         tree.insert(top.to_string(), value);
         return Ok(());
     }
-    let Some(keys) = section_keys(top) else {
-        return Err(unknown(format!("'{top}' is not a table")));
-    };
-    let key = segments[1];
-    if !keys.contains(&key) {
-        return Err(unknown(format!("[{top}] has the keys {}", keys.join(", "))));
+    let key = segments.get(1).copied().unwrap_or_default();
+    if segments.len() < 3 || schema::key(&format!("{top}.{key}")).is_none() {
+        return Err(schema::unknown_key(path));
     }
-    let section = tree
-        .entry(top.to_string())
-        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-    let Some(section) = section.as_table_mut() else {
-        return Err(Error::field(path, format!("'{top}' is not a table")));
-    };
-    if segments.len() == 2 {
-        section.insert(key.to_string(), value);
-        return Ok(());
-    }
-    let mut node = section.get_mut(key).ok_or_else(|| {
+    let mut node = section(tree, path, top)?.get_mut(key).ok_or_else(|| {
         Error::field(
             path,
             format!("'{top}.{key}' is not set in the scene: set it whole (e.g. {top}.{key}=[...])"),
@@ -104,6 +98,18 @@ pub fn set_path(tree: &mut toml::Table, path: &str, value: toml::Value) -> Resul
     }
     *node = value;
     Ok(())
+}
+
+/// The section table `top` of `tree`, made if missing.
+fn section<'a>(
+    tree: &'a mut toml::Table,
+    path: &str,
+    top: &str,
+) -> Result<&'a mut toml::Table, Error> {
+    tree.entry(top.to_string())
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+        .as_table_mut()
+        .ok_or_else(|| Error::field(path, format!("'{top}' is not a table")))
 }
 
 /// Applies `KEY=VALUE` assignments to `tree` in order.
@@ -153,6 +159,9 @@ mod tests {
         assert_eq!(t["chain"]["links"].as_integer(), Some(100));
         assert_eq!(t["start"]["p1"][0].as_float(), Some(2.5));
         assert_eq!(t["run"]["method"].as_str(), Some("dopri5"));
+        // Integer keys take whole floats (what a --vary range gives).
+        set_path(&mut t, "chain.links", toml::Value::Float(8.0)).unwrap();
+        assert_eq!(t["chain"]["links"].as_integer(), Some(8));
     }
 
     #[test]

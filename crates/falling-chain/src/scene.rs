@@ -1,183 +1,95 @@
 //! Scenes: a chain, how it starts, and how to run it, as a TOML file.
 //!
 //! ```toml
-//! name = "span-d3"                 # default: the file's stem ("scene" from a string)
-//! description = "Report Fig. 7b"   # default: ""
+//! name = "span-d3"
+//! description = "Report Fig. 7b"
 //!
 //! [chain]
-//! length = 6.0      # L, default 6
-//! links = 50        # n, required
-//! mass = 0.2        # m per rod, default 0.2
-//! gravity = 1.0     # g, default 1
-//! damping = 0.0005  # r, default 0
+//! links = 50
+//! damping = 0.0005
 //!
 //! [start]
-//! kind = "catenary" # required: "stretched" | "catenary" | "folded" | "angles"
-//! p0 = [0.0, 0.0]   # pivot P0, every kind, default [0, 0]
-//! p1 = [3.0, 0.0]   # release point P1, stretched and catenary only, required there
-//! # down = 25       # folded only: rods hanging down, default links / 2 (rounded down)
-//! # angles = [...]  # angles only, required: phi_1..phi_n (rad)
-//! # rates = [...]   # angles only: w_1..w_n (rad/time), default all 0
+//! kind = "catenary"
+//! p1 = [3.0, 0.0]
 //!
 //! [run]
-//! t_end = 4.157     # required
-//! method = "rk4"    # default "rk4"; any name chain_ode::Method parses
-//! dt = 0.01         # fixed step (rk4), default 0.01
-//! rtol = 1e-8       # adaptive methods, default 1e-8
-//! atol = 1e-10      # adaptive methods, default 1e-10
-//! output_dt = 0.01  # spacing of recorded samples, default 0.01
-//! max_steps = 100000000  # step budget, default 1e8
-//! h_min = 0.0       # smallest adaptive step (0: the rounding limit), default 0
+//! t_end = 4.157
 //! ```
 //!
-//! Unknown keys, and keys of another start kind, are errors naming the key.
-//! Integers are accepted wherever a number is expected. Loading checks the
-//! structure and the types only; ranges are checked by chain-ode when the
-//! chain-ode types are built ([`Scene::chain`], [`Scene::options`], ...).
+//! The keys, their types, defaults and the start kinds that take them are
+//! the rows of [`crate::schema::KEYS`] (rendered in `scenes/README.md`).
+//! Loading checks the tree against that table ([`schema::check`]: unknown
+//! keys, keys of another start kind, types, required keys; defaults filled
+//! in), then reads it into the serde structs below; ranges are checked by
+//! chain-ode when the chain-ode types are built ([`Scene::chain`],
+//! [`Scene::options`], ...).
 
-use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
 use chain_ode::{solve, Chain, Method, SolveOptions, Start, State, Trajectory};
-use serde::de::DeserializeOwned;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
 use crate::overrides;
+use crate::schema::{self, StartKind};
 
-/// Default `chain.length` (the report's `L`).
-pub const DEFAULT_LENGTH: f64 = 6.0;
-/// Default `chain.mass` (per rod, the report's `m`).
-pub const DEFAULT_MASS: f64 = 0.2;
-/// Default `chain.gravity`.
-pub const DEFAULT_GRAVITY: f64 = 1.0;
-/// Default `chain.damping` (`r`).
-pub const DEFAULT_DAMPING: f64 = 0.0;
-/// Default `start.p0`.
-pub const DEFAULT_P0: [f64; 2] = [0.0, 0.0];
-/// Default `run.method`.
-pub const DEFAULT_METHOD: &str = "rk4";
-/// Default `run.dt`.
-pub const DEFAULT_DT: f64 = 0.01;
-/// Default `run.rtol`.
-pub const DEFAULT_RTOL: f64 = 1e-8;
-/// Default `run.atol`.
-pub const DEFAULT_ATOL: f64 = 1e-10;
-/// Default `run.output_dt`.
-pub const DEFAULT_OUTPUT_DT: f64 = 0.01;
-/// Default `run.max_steps`.
-pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
-
-/// Keys at the top of a scene file.
-pub const TOP_KEYS: [&str; 5] = ["name", "description", "chain", "start", "run"];
-/// Keys of `[chain]`.
-pub const CHAIN_KEYS: [&str; 5] = ["length", "links", "mass", "gravity", "damping"];
-/// Keys of `[start]` (each kind takes a subset, see [`StartKind::keys`]).
-pub const START_KEYS: [&str; 6] = ["kind", "p0", "p1", "down", "angles", "rates"];
-/// Keys of `[run]`.
-pub const RUN_KEYS: [&str; 8] = [
-    "t_end",
-    "method",
-    "dt",
-    "rtol",
-    "atol",
-    "output_dt",
-    "max_steps",
-    "h_min",
-];
-
-/// The keys of the section table `name`, if it is one.
-pub fn section_keys(name: &str) -> Option<&'static [&'static str]> {
-    match name {
-        "chain" => Some(&CHAIN_KEYS),
-        "start" => Some(&START_KEYS),
-        "run" => Some(&RUN_KEYS),
-        _ => None,
-    }
-}
-
-#[derive(Deserialize)]
+/// A scene file after [`schema::check`]: one field per row of
+/// [`schema::KEYS`] (a test keeps them equal). Keys with a default are
+/// plain values; the others are options.
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
     name: Option<String>,
-    description: Option<String>,
-    chain: Option<toml::Table>,
-    start: Option<toml::Table>,
-    run: Option<toml::Table>,
+    description: String,
+    chain: ChainSection,
+    start: StartSection,
+    run: RunSection,
 }
 
-#[derive(Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct ChainSection {
-    length: Option<f64>,
-    links: Option<usize>,
-    mass: Option<f64>,
-    gravity: Option<f64>,
-    damping: Option<f64>,
+    length: f64,
+    links: usize,
+    mass: f64,
+    gravity: f64,
+    damping: f64,
 }
 
-/// The kinds of start a scene can ask for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum StartKind {
-    Stretched,
-    Catenary,
-    Folded,
-    Angles,
-}
-
-impl StartKind {
-    /// Every kind.
-    pub const ALL: [StartKind; 4] = [
-        StartKind::Stretched,
-        StartKind::Catenary,
-        StartKind::Folded,
-        StartKind::Angles,
-    ];
-
-    /// Its name in a scene file.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Self::Stretched => "stretched",
-            Self::Catenary => "catenary",
-            Self::Folded => "folded",
-            Self::Angles => "angles",
-        }
-    }
-
-    /// The `[start]` keys this kind takes.
-    pub fn keys(self) -> &'static [&'static str] {
-        match self {
-            Self::Stretched | Self::Catenary => &["kind", "p0", "p1"],
-            Self::Folded => &["kind", "p0", "down"],
-            Self::Angles => &["kind", "p0", "angles", "rates"],
-        }
-    }
-}
-
-#[derive(Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct StartSection {
-    kind: Option<StartKind>,
-    p0: Option<[f64; 2]>,
+    kind: StartKind,
+    p0: [f64; 2],
     p1: Option<[f64; 2]>,
     down: Option<usize>,
     angles: Option<Vec<f64>>,
     rates: Option<Vec<f64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RunSection {
-    t_end: Option<f64>,
-    method: Option<String>,
-    dt: Option<f64>,
-    rtol: Option<f64>,
-    atol: Option<f64>,
-    output_dt: Option<f64>,
-    max_steps: Option<u64>,
-    h_min: Option<f64>,
+    t_end: f64,
+    method: String,
+    dt: f64,
+    rtol: f64,
+    atol: f64,
+    output_dt: f64,
+    max_steps: u64,
+    h_min: f64,
+}
+
+impl SceneFile {
+    /// Checks `tree` against the schema and reads it.
+    fn read(tree: &toml::Table) -> Result<Self, Error> {
+        // After the check, serde cannot fail but on a key missing from
+        // these structs (a test keeps them and the table equal).
+        schema::check(tree)?
+            .try_into()
+            .map_err(|e: toml::de::Error| Error::field("scene", e.message()))
+    }
 }
 
 /// A scene: its TOML tree (kept, so that overrides can be applied to it) and
@@ -209,35 +121,6 @@ impl Prepared {
     }
 }
 
-fn join(prefix: &str, key: &str) -> String {
-    if prefix.is_empty() {
-        key.to_string()
-    } else {
-        format!("{prefix}.{key}")
-    }
-}
-
-/// Deserialises `table` as `T`. On failure, finds the key whose value alone
-/// fails (an unknown key or a wrong type) to name it in the error. Every
-/// field of `T` is optional, so a table of a single key fails only because
-/// of that key.
-fn from_table<T: DeserializeOwned>(table: &toml::Table, prefix: &str) -> Result<T, Error> {
-    table.clone().try_into::<T>().map_err(|whole| {
-        for (key, value) in table {
-            let single: toml::Table = [(key.clone(), value.clone())].into_iter().collect();
-            if let Err(e) = single.try_into::<T>() {
-                return Error::field(join(prefix, key), e.message());
-            }
-        }
-        let subject = if prefix.is_empty() { "scene" } else { prefix };
-        Error::field(subject, whole.message())
-    })
-}
-
-fn required<T>(value: Option<T>, field: &str, why: impl fmt::Display) -> Result<T, Error> {
-    value.ok_or_else(|| Error::field(field, format!("required {why}")))
-}
-
 impl Scene {
     /// Reads and parses a scene file. A missing `name` becomes the file's stem.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
@@ -260,78 +143,56 @@ impl Scene {
 
     /// Reads a scene from its TOML tree (the form overrides act on).
     pub fn from_tree(tree: toml::Table) -> Result<Self, Error> {
-        let file: SceneFile = from_table(&tree, "")?;
-        let chain = from_table::<ChainSection>(&file.chain.unwrap_or_default(), "chain")?;
-        let start_table = file.start.unwrap_or_default();
-        let start = from_table::<StartSection>(&start_table, "start")?;
-        let run = from_table::<RunSection>(&file.run.unwrap_or_default(), "run")?;
-
+        let SceneFile {
+            name,
+            description,
+            chain,
+            start,
+            run,
+        } = SceneFile::read(&tree)?;
         let chain = Chain {
-            length: chain.length.unwrap_or(DEFAULT_LENGTH),
-            links: required(
-                chain.links,
-                "chain.links",
-                "(the number of rods, no default)",
-            )?,
-            mass: chain.mass.unwrap_or(DEFAULT_MASS),
-            gravity: chain.gravity.unwrap_or(DEFAULT_GRAVITY),
-            damping: chain.damping.unwrap_or(DEFAULT_DAMPING),
+            length: chain.length,
+            links: chain.links,
+            mass: chain.mass,
+            gravity: chain.gravity,
+            damping: chain.damping,
         };
-
-        let kinds = StartKind::ALL.map(StartKind::as_str).join(", ");
-        let kind = required(start.kind, "start.kind", format_args!("(one of {kinds})"))?;
-        if let Some(key) = start_table
-            .keys()
-            .find(|k| !kind.keys().contains(&k.as_str()))
-        {
-            return Err(Error::field(
-                format!("start.{key}"),
-                format!(
-                    "not a key of a {0} start (kind = \"{0}\" takes {1})",
-                    kind.as_str(),
-                    kind.keys().join(", ")
-                ),
-            ));
-        }
-        let p0 = start.p0.unwrap_or(DEFAULT_P0);
-        let needed = format!("for kind = \"{}\"", kind.as_str());
-        let start = match kind {
-            StartKind::Stretched => Start::Stretched {
-                p0,
-                p1: required(start.p1, "start.p1", &needed)?,
-            },
-            StartKind::Catenary => Start::Catenary {
-                p0,
-                p1: required(start.p1, "start.p1", &needed)?,
-            },
-            StartKind::Folded => Start::Folded {
+        // `schema::check` has made sure that each kind's required keys are there.
+        let p0 = start.p0;
+        let start = match (start.kind, start.p1, start.angles) {
+            (StartKind::Stretched, Some(p1), _) => Start::Stretched { p0, p1 },
+            (StartKind::Catenary, Some(p1), _) => Start::Catenary { p0, p1 },
+            (StartKind::Folded, ..) => Start::Folded {
                 p0,
                 down: start.down,
             },
-            StartKind::Angles => Start::Angles {
+            (StartKind::Angles, _, Some(angles)) => Start::Angles {
                 p0,
-                angles: required(start.angles, "start.angles", &needed)?,
+                angles,
                 rates: start.rates,
             },
+            (kind, ..) => {
+                return Err(Error::field(
+                    "start",
+                    format!("incomplete {} start", kind.as_str()),
+                ))
+            }
         };
-
-        let defaults = SolveOptions::default();
         let options = SolveOptions {
-            t_end: required(run.t_end, "run.t_end", "(the end time, no default)")?,
-            dt: run.dt.unwrap_or(DEFAULT_DT),
-            rtol: run.rtol.unwrap_or(DEFAULT_RTOL),
-            atol: run.atol.unwrap_or(DEFAULT_ATOL),
-            output_dt: Some(run.output_dt.unwrap_or(DEFAULT_OUTPUT_DT)),
-            max_steps: run.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
-            h_min: run.h_min.unwrap_or(defaults.h_min),
+            t_end: run.t_end,
+            dt: run.dt,
+            rtol: run.rtol,
+            atol: run.atol,
+            output_dt: Some(run.output_dt),
+            max_steps: run.max_steps,
+            h_min: run.h_min,
         };
-
         Ok(Self {
-            name: file.name.unwrap_or_else(|| "scene".into()),
-            description: file.description.unwrap_or_default(),
+            name: name.unwrap_or_else(|| "scene".into()),
+            description,
             chain,
             start,
-            method: run.method.unwrap_or_else(|| DEFAULT_METHOD.into()),
+            method: run.method,
             options,
             tree,
         })
@@ -463,27 +324,141 @@ t_end = 4
         assert_eq!(s.name(), "span-d3");
     }
 
-    #[test]
-    fn every_listed_key_is_read() {
-        // A key missing from a section struct would fail here as "unknown field".
-        for (section, keys) in [
-            ("chain", &CHAIN_KEYS[..]),
-            ("start", &START_KEYS[..]),
-            ("run", &RUN_KEYS[..]),
-        ] {
-            for key in keys {
-                let single: toml::Table = [(key.to_string(), toml::Value::Integer(0))]
-                    .into_iter()
-                    .collect();
-                let e = match section {
-                    "chain" => from_table::<ChainSection>(&single, section).err(),
-                    "start" => from_table::<StartSection>(&single, section).err(),
-                    _ => from_table::<RunSection>(&single, section).err(),
-                };
-                if let Some(e) = e {
-                    assert!(!e.to_string().contains("unknown field"), "{e}");
+    /// A value of `k`'s type unlike any default, as `--set` text.
+    fn sample(k: &schema::Key, kind: StartKind) -> &'static str {
+        match k.ty {
+            schema::Type::Number => "0.375",
+            schema::Type::Integer => "7",
+            schema::Type::Point => "[1.5, -0.5]",
+            schema::Type::Numbers => "[0.25, 0.5]",
+            schema::Type::Text => "sample",
+            schema::Type::OneOf(_) => kind.as_str(),
+        }
+    }
+
+    /// The smallest scene of each start kind.
+    fn base(kind: StartKind) -> toml::Table {
+        let extra = match kind {
+            StartKind::Stretched | StartKind::Catenary => "p1 = [3, 0]",
+            StartKind::Folded => "",
+            StartKind::Angles => "angles = [0, 0, 0, 0]",
+        };
+        format!(
+            "[chain]\nlinks = 4\n[start]\nkind = \"{}\"\n{extra}\n[run]\nt_end = 1\n",
+            kind.as_str()
+        )
+        .parse()
+        .unwrap()
+    }
+
+    /// The kinds of start under which a key can be set.
+    fn kinds_taking(k: &schema::Key) -> Vec<StartKind> {
+        match k.kinds {
+            schema::Kinds::Any => vec![StartKind::Catenary],
+            schema::Kinds::Only(kinds) => kinds.to_vec(),
+        }
+    }
+
+    fn at<'a>(v: &'a serde_json::Value, path: &str) -> &'a serde_json::Value {
+        path.split('.').fold(v, |v, part| &v[part])
+    }
+
+    /// Every leaf path of a JSON object (arrays are leaves).
+    fn leaves(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
+        match v {
+            serde_json::Value::Object(map) => {
+                for (k, v) in map {
+                    let path = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    leaves(v, &path, out);
                 }
             }
+            _ => out.push(prefix.to_string()),
+        }
+    }
+
+    #[test]
+    fn the_serde_structs_have_exactly_the_table_keys() {
+        // Every row set at once (kinds mixed: this bypasses schema::check).
+        let mut tree = toml::Table::new();
+        for k in schema::KEYS {
+            let value = overrides::parse_value(sample(k, StartKind::Catenary)).unwrap();
+            overrides::set_path(&mut tree, k.path, value).unwrap();
+        }
+        // A row missing from the structs is an unknown field here...
+        let file: SceneFile = tree.try_into().unwrap_or_else(|e| panic!("{e}"));
+        // ...and a field missing from the table is a path too many here.
+        let mut paths = vec![];
+        leaves(&serde_json::to_value(&file).unwrap(), "", &mut paths);
+        paths.sort();
+        let mut rows: Vec<&str> = schema::KEYS.iter().map(|k| k.path).collect();
+        rows.sort();
+        assert_eq!(paths, rows);
+    }
+
+    #[test]
+    fn every_row_round_trips_through_set() {
+        for k in schema::KEYS {
+            for kind in kinds_taking(k) {
+                let mut tree = base(kind);
+                let text = sample(k, kind);
+                overrides::apply(&mut tree, &[format!("{}={text}", k.path)])
+                    .unwrap_or_else(|e| panic!("{}: {e}", k.path));
+                let file = SceneFile::read(&tree).unwrap_or_else(|e| panic!("{}: {e}", k.path));
+                let got = serde_json::to_value(&file).unwrap();
+                let want = serde_json::to_value(overrides::parse_value(text).unwrap()).unwrap();
+                assert_eq!(at(&got, k.path), &want, "{} ({kind:?})", k.path);
+            }
+        }
+    }
+
+    #[test]
+    fn every_error_names_a_table_key() {
+        let bad: &[(schema::Type, &[&str])] = &[
+            (
+                schema::Type::Number,
+                &["-1", "0", "nan", "inf", "1e300", "true"],
+            ),
+            (
+                schema::Type::Integer,
+                &["0", "1", "4", "100000000000", "-1", "2.5"],
+            ),
+            (
+                schema::Type::Point,
+                &["[nan, 0]", "[100, 0]", "[0, 0]", "[1]"],
+            ),
+            (
+                schema::Type::Numbers,
+                &["[nan, 0, 0, 0]", "[]", "[1, 2]", "1"],
+            ),
+            (schema::Type::Text, &["nonesuch", "1"]),
+        ];
+        let names = crate::CatenaryNames::SCENE;
+        for k in schema::KEYS {
+            for kind in kinds_taking(k) {
+                let values = bad
+                    .iter()
+                    .find(|(t, _)| *t == k.ty)
+                    .map_or(&[][..], |b| b.1);
+                for text in values {
+                    let mut tree = base(kind);
+                    overrides::apply(&mut tree, &[format!("{}={text}", k.path)]).unwrap();
+                    if let Err(e) = Scene::from_tree(tree).and_then(|s| s.prepare()) {
+                        let subject = e.subject();
+                        assert!(
+                            schema::key(subject).is_some() || subject == names.other,
+                            "{}={text}: {e}",
+                            k.path
+                        );
+                    }
+                }
+            }
+        }
+        for name in [names.p0, names.p1, names.length, names.links] {
+            assert!(schema::key(name).is_some(), "{name}");
         }
     }
 

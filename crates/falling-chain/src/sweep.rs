@@ -145,38 +145,13 @@ pub fn grid(vary: &[Vary]) -> Vec<Vec<toml::Value>> {
     })
 }
 
-/// Integer-valued keys take integers: `chain.links = 100.0` becomes 100.
-fn coerce(scene: &Scene, key: &str, value: &toml::Value) -> Result<toml::Value, Error> {
-    let root = toml::Value::Table(scene.tree().clone());
-    let existing = key
-        .split('.')
-        .try_fold(&root, |node, part| -> Option<&toml::Value> {
-            match node {
-                toml::Value::Table(t) => t.get(part),
-                toml::Value::Array(a) => a.get(part.parse::<usize>().ok()?),
-                _ => None,
-            }
-        });
-    let wants_int = matches!(existing, Some(toml::Value::Integer(_)))
-        || matches!(key, "chain.links" | "start.down" | "run.max_steps");
-    match (value, wants_int) {
-        (toml::Value::Float(x), true) => {
-            if x.fract() == 0.0 && x.abs() < 9e15 {
-                Ok(toml::Value::Integer(*x as i64))
-            } else {
-                Err(Error::field(key, format!("must be an integer (got {x})")))
-            }
-        }
-        _ => Ok(value.clone()),
-    }
-}
-
-/// The scene of one run: `scene` with the run's values set. Sweeps keep
-/// summaries only, so output sampling is switched off.
+/// The scene of one run: `scene` with the run's values set (an integer
+/// key takes a whole float, as the schema says: `chain.links = 100.0` is
+/// 100). Sweeps keep summaries only: [`run`] switches output sampling off.
 pub fn scene_for(scene: &Scene, vary: &[Vary], values: &[toml::Value]) -> Result<Scene, Error> {
     let mut s = scene.clone();
     for (v, x) in vary.iter().zip(values) {
-        s = s.with_value(&v.key, coerce(scene, &v.key, x)?)?;
+        s = s.with_value(&v.key, x.clone())?;
     }
     Ok(s)
 }

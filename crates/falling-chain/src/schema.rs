@@ -1,0 +1,742 @@
+//! The scene schema: [`KEYS`], one row per scene key, is the single source
+//! of each key's dotted path, type, default, the start kinds that take it,
+//! and its doc line.
+//!
+//! Everything else derives from it: the loader's checks ([`check`]: unknown
+//! keys, wrong types, keys of another start kind, required keys, defaults),
+//! `--set` and `sweep --vary` (which paths exist, which keys take integers:
+//! [`Key::coerce`]), the key names in error messages, and the table in
+//! `scenes/README.md` ([`markdown_table`], checked by a test and rewritten by
+//! `cargo xtask scene-keys`).
+//!
+//! Adding a key: add its row here, then read its value where a scene is
+//! built (`scene.rs`, a field of the serde section struct). The tests fail
+//! until the row, the serde struct and the README agree.
+
+use std::fmt::Write as _;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+
+/// The kinds of start a scene can ask for (`start.kind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum StartKind {
+    Stretched,
+    Catenary,
+    Folded,
+    Angles,
+}
+
+impl StartKind {
+    /// Every kind.
+    pub const ALL: [StartKind; 4] = [
+        StartKind::Stretched,
+        StartKind::Catenary,
+        StartKind::Folded,
+        StartKind::Angles,
+    ];
+
+    /// Their names in a scene file, in the order of [`StartKind::ALL`].
+    pub const NAMES: [&'static str; 4] = ["stretched", "catenary", "folded", "angles"];
+
+    /// Its name in a scene file.
+    pub fn as_str(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+
+    /// The `[start]` keys this kind takes (their names within `[start]`),
+    /// in table order.
+    pub fn keys(self) -> Vec<&'static str> {
+        section_rows("start")
+            .filter(|k| k.kinds.accepts(self))
+            .map(Key::name)
+            .collect()
+    }
+}
+
+/// What a key's value is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Type {
+    /// A number; an integer is accepted (`t_end = 4`).
+    Number,
+    /// An integer >= 0. `--set` and `--vary` turn a whole float into one.
+    Integer,
+    /// A point `[x, y]` of two numbers; elements are set by index (`start.p1.0`).
+    Point,
+    /// A list of numbers; elements are set by index.
+    Numbers,
+    /// A string.
+    Text,
+    /// One of these strings.
+    OneOf(&'static [&'static str]),
+}
+
+/// A default as a constant (turned into TOML by [`Literal::to_toml`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Literal {
+    Number(f64),
+    Integer(i64),
+    Point([f64; 2]),
+    Text(&'static str),
+}
+
+/// What an omitted key is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DefaultValue {
+    /// It must be given (by every start kind that takes it).
+    Required,
+    /// This value, filled in by [`check`].
+    Value(Literal),
+    /// Worked out from other values when the scene is built (by the loader
+    /// or by chain-ode); the text says how.
+    Computed(&'static str),
+}
+
+/// Which start kinds take a key.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Kinds {
+    /// Not a `[start]` key: whatever the start.
+    Any,
+    /// A `[start]` key taken by these kinds only.
+    Only(&'static [StartKind]),
+}
+
+impl Kinds {
+    /// Whether a scene whose start is `kind` takes the key.
+    pub fn accepts(self, kind: StartKind) -> bool {
+        match self {
+            Self::Any => true,
+            Self::Only(kinds) => kinds.contains(&kind),
+        }
+    }
+}
+
+/// One scene key: a row of [`KEYS`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Key {
+    /// Dotted path: `name`, `chain.links`, `start.p1`, `run.rtol`.
+    pub path: &'static str,
+    pub ty: Type,
+    pub default: DefaultValue,
+    pub kinds: Kinds,
+    /// One line (markdown) for the README table.
+    pub doc: &'static str,
+}
+
+const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
+
+/// Every scene key, in the order of the README table. The sections
+/// (`chain`, `start`, `run`) are the first parts of the dotted paths.
+pub static KEYS: &[Key] = &[
+    Key {
+        path: "name",
+        ty: Type::Text,
+        default: DefaultValue::Computed("the file's stem"),
+        kinds: Kinds::Any,
+        doc: "the scene's name (in summaries)",
+    },
+    Key {
+        path: "description",
+        ty: Type::Text,
+        default: DefaultValue::Value(Literal::Text("")),
+        kinds: Kinds::Any,
+        doc: "free text: which report figure, what it shows",
+    },
+    Key {
+        path: "chain.length",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(6.0)),
+        kinds: Kinds::Any,
+        doc: "total length `L`",
+    },
+    Key {
+        path: "chain.links",
+        ty: Type::Integer,
+        default: DefaultValue::Required,
+        kinds: Kinds::Any,
+        doc: "number of rods `n`",
+    },
+    Key {
+        path: "chain.mass",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.2)),
+        kinds: Kinds::Any,
+        doc: "mass of **one rod** `m`",
+    },
+    Key {
+        path: "chain.gravity",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(1.0)),
+        kinds: Kinds::Any,
+        doc: "`g`, along -y",
+    },
+    Key {
+        path: "chain.damping",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.0)),
+        kinds: Kinds::Any,
+        doc: "joint friction `r`",
+    },
+    Key {
+        path: "start.kind",
+        ty: Type::OneOf(&StartKind::NAMES),
+        default: DefaultValue::Required,
+        kinds: ALL_KINDS,
+        doc: "how the chain lies at `t = 0` (see Starts below)",
+    },
+    Key {
+        path: "start.p0",
+        ty: Type::Point,
+        default: DefaultValue::Value(Literal::Point([0.0, 0.0])),
+        kinds: ALL_KINDS,
+        doc: "the pivot `P0`",
+    },
+    Key {
+        path: "start.p1",
+        ty: Type::Point,
+        default: DefaultValue::Required,
+        kinds: Kinds::Only(&[StartKind::Stretched, StartKind::Catenary]),
+        doc: "where the free end is held, `P1`",
+    },
+    Key {
+        path: "start.down",
+        ty: Type::Integer,
+        default: DefaultValue::Computed("`links / 2`, rounded down"),
+        kinds: Kinds::Only(&[StartKind::Folded]),
+        doc: "rods hanging down from `P0`",
+    },
+    Key {
+        path: "start.angles",
+        ty: Type::Numbers,
+        default: DefaultValue::Required,
+        kinds: Kinds::Only(&[StartKind::Angles]),
+        doc: "`phi_1..phi_n` in rad from the horizontal",
+    },
+    Key {
+        path: "start.rates",
+        ty: Type::Numbers,
+        default: DefaultValue::Computed("all `0`"),
+        kinds: Kinds::Only(&[StartKind::Angles]),
+        doc: "`w_1..w_n` in rad/time",
+    },
+    Key {
+        path: "run.t_end",
+        ty: Type::Number,
+        default: DefaultValue::Required,
+        kinds: Kinds::Any,
+        doc: "end time",
+    },
+    Key {
+        path: "run.method",
+        ty: Type::Text,
+        default: DefaultValue::Value(Literal::Text("rk4")),
+        kinds: Kinds::Any,
+        doc: "integration method: any name chain-ode's `Method` parses (`rk4`, `dopri5`, ...)",
+    },
+    Key {
+        path: "run.dt",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.01)),
+        kinds: Kinds::Any,
+        doc: "fixed step of RK4",
+    },
+    Key {
+        path: "run.rtol",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(1e-8)),
+        kinds: Kinds::Any,
+        doc: "relative tolerance of the adaptive methods",
+    },
+    Key {
+        path: "run.atol",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(1e-10)),
+        kinds: Kinds::Any,
+        doc: "absolute tolerance of the adaptive methods",
+    },
+    Key {
+        path: "run.output_dt",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.01)),
+        kinds: Kinds::Any,
+        doc: "spacing of recorded samples (`--out` rows)",
+    },
+    Key {
+        path: "run.max_steps",
+        ty: Type::Integer,
+        default: DefaultValue::Value(Literal::Integer(100_000_000)),
+        kinds: Kinds::Any,
+        doc: "step budget (the run ends with status `max_steps`)",
+    },
+    Key {
+        path: "run.h_min",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.0)),
+        kinds: Kinds::Any,
+        doc: "smallest adaptive step (0: the rounding limit)",
+    },
+];
+
+/// The row of the key at `path` (`chain.links`), if it is one.
+pub fn key(path: &str) -> Option<&'static Key> {
+    KEYS.iter().find(|k| k.path == path)
+}
+
+/// The names a scene file may have at its top: the top-level keys and the
+/// sections, in table order (`name, description, chain, start, run`).
+pub fn top_names() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = vec![];
+    for k in KEYS {
+        let top = k.section().unwrap_or(k.path);
+        if !names.contains(&top) {
+            names.push(top);
+        }
+    }
+    names
+}
+
+/// Whether `name` is a section (`chain`, `start`, `run`).
+pub fn is_section(name: &str) -> bool {
+    KEYS.iter().any(|k| k.section() == Some(name))
+}
+
+/// The rows of `section`, in table order.
+pub fn section_rows(section: &str) -> impl Iterator<Item = &'static Key> + '_ {
+    KEYS.iter().filter(move |k| k.section() == Some(section))
+}
+
+/// The names of the keys of `section` (`length, links, ...`).
+pub fn section_keys(section: &str) -> Vec<&'static str> {
+    section_rows(section).map(Key::name).collect()
+}
+
+/// The error for a path that names no key: it says which keys there are.
+pub fn unknown_key(path: &str) -> Error {
+    let (top, rest) = path.split_once('.').unwrap_or((path, ""));
+    let hint = if rest.is_empty() || !top_names().contains(&top) {
+        format!("a scene has the keys {}", top_names().join(", "))
+    } else if !is_section(top) {
+        format!("'{top}' is not a table")
+    } else {
+        format!("[{top}] has the keys {}", section_keys(top).join(", "))
+    };
+    Error::field(path, format!("unknown key: {hint}"))
+}
+
+impl Key {
+    /// The section (`chain` of `chain.links`); `None` for a top-level key.
+    pub fn section(&self) -> Option<&'static str> {
+        self.path.split_once('.').map(|(s, _)| s)
+    }
+
+    /// The name within its section (`links` of `chain.links`).
+    pub fn name(&self) -> &'static str {
+        self.path.split_once('.').map_or(self.path, |(_, n)| n)
+    }
+
+    /// `value` in the form the key takes: a whole float becomes an integer
+    /// for an integer key (`--vary chain.links=50:200:4` gives floats).
+    /// Anything else is returned as it is, for [`check`] to judge.
+    pub fn coerce(&self, value: toml::Value) -> toml::Value {
+        match (self.ty, value) {
+            (Type::Integer, toml::Value::Float(x)) if x.fract() == 0.0 && x.abs() < 9e15 => {
+                toml::Value::Integer(x as i64)
+            }
+            (_, v) => v,
+        }
+    }
+
+    /// Checks the type of `value`; the error names the key and what it takes.
+    pub fn check(&self, value: &toml::Value) -> Result<(), Error> {
+        use toml::Value as V;
+        let number = |v: &V| matches!(v, V::Integer(_) | V::Float(_));
+        let ok = match (self.ty, value) {
+            (Type::Number, v) => number(v),
+            (Type::Integer, V::Integer(i)) => *i >= 0,
+            (Type::Point, V::Array(a)) => a.len() == 2 && a.iter().all(number),
+            (Type::Numbers, V::Array(a)) => a.iter().all(number),
+            (Type::Text, V::String(_)) => true,
+            (Type::OneOf(names), V::String(s)) => names.contains(&s.as_str()),
+            _ => false,
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(Error::field(
+                self.path,
+                format!("must be {} (got {value})", self.ty.accepted()),
+            ))
+        }
+    }
+
+    /// The error for this key missing; `kind` is the scene's start kind.
+    fn missing(&self, kind: Option<StartKind>) -> Error {
+        let why = match (self.ty, self.kinds, kind) {
+            (Type::OneOf(names), _, _) => format!("required (one of {})", names.join(", ")),
+            (_, Kinds::Only(kinds), Some(kind)) if kinds.len() < StartKind::ALL.len() => {
+                format!("required for kind = \"{}\"", kind.as_str())
+            }
+            _ => format!("required ({}, no default)", self.doc.replace('`', "")),
+        };
+        Error::field(self.path, why)
+    }
+}
+
+impl Type {
+    /// What a value of this type is, for error messages.
+    pub fn accepted(self) -> String {
+        match self {
+            Self::Number => "a number".into(),
+            Self::Integer => "an integer >= 0".into(),
+            Self::Point => "a point [x, y] of two numbers".into(),
+            Self::Numbers => "a list of numbers [a, b, ...]".into(),
+            Self::Text => "a string".into(),
+            Self::OneOf(names) => format!("one of {}", names.join(", ")),
+        }
+    }
+
+    /// Its name in the README table.
+    fn markdown(self) -> String {
+        match self {
+            Self::Number => "number".into(),
+            Self::Integer => "integer".into(),
+            Self::Point => "`[x, y]`".into(),
+            Self::Numbers => "list of numbers".into(),
+            Self::Text => "string".into(),
+            Self::OneOf(names) => {
+                let quoted: Vec<String> = names.iter().map(|n| format!("`\"{n}\"`")).collect();
+                quoted.join(", ")
+            }
+        }
+    }
+}
+
+impl Literal {
+    /// The value in a scene's TOML tree.
+    pub fn to_toml(self) -> toml::Value {
+        match self {
+            Self::Number(x) => toml::Value::Float(x),
+            Self::Integer(i) => toml::Value::Integer(i),
+            Self::Point(p) => toml::Value::Array(p.map(toml::Value::Float).to_vec()),
+            Self::Text(s) => toml::Value::String(s.into()),
+        }
+    }
+
+    fn markdown(self) -> String {
+        match self {
+            Self::Number(x) => format!("`{}`", number_text(x)),
+            Self::Integer(i) => format!("`{i}`"),
+            Self::Point([x, y]) => format!("`[{}, {}]`", number_text(x), number_text(y)),
+            Self::Text(s) => format!("`\"{s}\"`"),
+        }
+    }
+}
+
+/// `6`, `0.2`, `1e-8`: a number as a person writes it.
+fn number_text(x: f64) -> String {
+    if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e7) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// The key whose value says which start kind a scene has, and so which of
+/// the [`Kinds::Only`] keys it takes.
+pub const START_KIND: &str = "start.kind";
+
+/// The start kind of `tree`, if [`START_KIND`] is given and valid.
+fn start_kind(tree: &toml::Table) -> Option<StartKind> {
+    let name = lookup(tree, key(START_KIND)?)?.as_str()?;
+    StartKind::ALL.into_iter().find(|k| k.as_str() == name)
+}
+
+/// Checks a scene's TOML tree against [`KEYS`] and returns it with every
+/// omitted key that has a [`DefaultValue::Value`] filled in.
+///
+/// In order: every key is a row (else "unknown key", listing the keys
+/// there are) of the right type; every `[start]` key is taken by the
+/// scene's start kind; every required key is given. Ranges are not checked
+/// here: chain-ode checks them when its types are built.
+pub fn check(tree: &toml::Table) -> Result<toml::Table, Error> {
+    for (top, value) in tree {
+        if let Some(k) = key(top) {
+            k.check(value)?;
+        } else if is_section(top) {
+            let Some(section) = value.as_table() else {
+                return Err(Error::field(
+                    top.as_str(),
+                    format!("must be a table ([{top}]) (got {value})"),
+                ));
+            };
+            for (name, value) in section {
+                let path = format!("{top}.{name}");
+                key(&path).ok_or_else(|| unknown_key(&path))?.check(value)?;
+            }
+        } else {
+            return Err(unknown_key(top));
+        }
+    }
+
+    let kind = start_kind(tree);
+    if let Some(kind) = kind {
+        let misplaced = KEYS
+            .iter()
+            .find(|k| !k.kinds.accepts(kind) && lookup(tree, k).is_some());
+        if let Some(k) = misplaced {
+            return Err(Error::field(
+                k.path,
+                format!(
+                    "not a key of a {0} start (kind = \"{0}\" takes {1})",
+                    kind.as_str(),
+                    kind.keys().join(", ")
+                ),
+            ));
+        }
+    }
+
+    let mut filled = tree.clone();
+    for k in KEYS {
+        let taken = match (k.kinds, kind) {
+            (Kinds::Any, _) => true,
+            // Without a (valid) kind, only the keys every kind takes.
+            (Kinds::Only(kinds), None) => kinds.len() == StartKind::ALL.len(),
+            (kinds, Some(kind)) => kinds.accepts(kind),
+        };
+        if !taken || lookup(tree, k).is_some() {
+            continue;
+        }
+        match k.default {
+            DefaultValue::Required => return Err(k.missing(kind)),
+            DefaultValue::Value(v) => insert(&mut filled, k, v.to_toml()),
+            DefaultValue::Computed(_) => {}
+        }
+    }
+    Ok(filled)
+}
+
+/// The value of `k` in `tree`, if given.
+fn lookup<'a>(tree: &'a toml::Table, k: &Key) -> Option<&'a toml::Value> {
+    match k.section() {
+        None => tree.get(k.path),
+        Some(section) => tree.get(section)?.as_table()?.get(k.name()),
+    }
+}
+
+/// Sets `k` in `tree`, making its section if needed (the section, if
+/// present, has been checked to be a table).
+fn insert(tree: &mut toml::Table, k: &Key, value: toml::Value) {
+    match k.section() {
+        None => {
+            tree.insert(k.path.into(), value);
+        }
+        Some(section) => {
+            if let Some(table) = tree
+                .entry(section)
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+                .as_table_mut()
+            {
+                table.insert(k.name().into(), value);
+            }
+        }
+    }
+}
+
+/// The line before the generated table in `scenes/README.md`.
+pub const README_BEGIN: &str = "<!-- keys:begin -->";
+/// The line after it.
+pub const README_END: &str = "<!-- keys:end -->";
+
+/// [`KEYS`] as the markdown table of `scenes/README.md`.
+pub fn markdown_table() -> String {
+    let mut s =
+        String::from("| key | type | default | start kinds | meaning |\n|---|---|---|---|---|\n");
+    for k in KEYS {
+        let default = match k.default {
+            DefaultValue::Required => "required".to_string(),
+            DefaultValue::Value(v) => v.markdown(),
+            DefaultValue::Computed(how) => how.to_string(),
+        };
+        let kinds = match k.kinds {
+            Kinds::Any => "—".into(),
+            Kinds::Only(kinds) if kinds.len() == StartKind::ALL.len() => "all".into(),
+            Kinds::Only(kinds) => kinds
+                .iter()
+                .map(|k| k.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+        };
+        let _ = writeln!(
+            s,
+            "| `{}` | {} | {default} | {kinds} | {} |",
+            k.path,
+            k.ty.markdown(),
+            k.doc
+        );
+    }
+    s
+}
+
+/// `readme` with the text between [`README_BEGIN`] and [`README_END`]
+/// replaced by [`markdown_table`]; an error if the markers are missing.
+pub fn with_markdown_table(readme: &str) -> Result<String, String> {
+    let begin = readme
+        .find(README_BEGIN)
+        .ok_or_else(|| format!("no '{README_BEGIN}' line"))?;
+    let start = begin + README_BEGIN.len();
+    let end = readme[start..]
+        .find(README_END)
+        .map(|i| start + i)
+        .ok_or_else(|| format!("no '{README_END}' line after '{README_BEGIN}'"))?;
+    Ok(format!(
+        "{}\n{}{}",
+        &readme[..start],
+        markdown_table(),
+        &readme[end..]
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_are_unique_and_sections_hold_the_start_kinds() {
+        for (i, k) in KEYS.iter().enumerate() {
+            assert!(
+                KEYS[..i].iter().all(|o| o.path != k.path),
+                "{} twice",
+                k.path
+            );
+            assert!(k.path.split('.').count() <= 2, "{}", k.path);
+            assert!(
+                !k.doc.is_empty() && !k.doc.contains(['\n', '|']),
+                "{}",
+                k.path
+            );
+            // Start kinds are said of [start] keys, and only of them.
+            let start = k.section() == Some("start");
+            assert_eq!(start, matches!(k.kinds, Kinds::Only(_)), "{}", k.path);
+            if let DefaultValue::Value(v) = k.default {
+                k.check(&v.to_toml())
+                    .unwrap_or_else(|e| panic!("default of {}: {e}", k.path));
+            }
+        }
+        assert_eq!(
+            top_names(),
+            ["name", "description", "chain", "start", "run"]
+        );
+        assert_eq!(StartKind::Catenary.keys(), ["kind", "p0", "p1"]);
+        assert_eq!(StartKind::Folded.keys(), ["kind", "p0", "down"]);
+        assert_eq!(StartKind::Angles.keys(), ["kind", "p0", "angles", "rates"]);
+    }
+
+    #[test]
+    fn start_kind_names_are_its_serde_names() {
+        for kind in StartKind::ALL {
+            let v = toml::Value::try_from(kind).unwrap();
+            assert_eq!(v.as_str(), Some(kind.as_str()));
+        }
+    }
+
+    #[test]
+    fn integer_keys_take_whole_floats_and_nothing_else_changes() {
+        let links = key("chain.links").unwrap();
+        let f = toml::Value::Float;
+        assert_eq!(links.coerce(f(100.0)), toml::Value::Integer(100));
+        assert_eq!(links.coerce(f(2.5)), f(2.5));
+        assert!(links.check(&f(2.5)).is_err());
+        assert!(links.check(&toml::Value::Integer(-1)).is_err());
+        let damping = key("chain.damping").unwrap();
+        assert_eq!(damping.coerce(f(1.0)), f(1.0));
+        assert!(damping.check(&toml::Value::Integer(0)).is_ok());
+        let three = toml::Value::Array(vec![f(3.0), f(0.0), f(1.0)]);
+        let e = key("start.p1").unwrap().check(&three).unwrap_err();
+        assert!(
+            e.to_string().starts_with("start.p1: must be a point"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn unknown_keys_say_which_keys_there_are() {
+        for (path, hint) in [
+            (
+                "colour",
+                "a scene has the keys name, description, chain, start, run",
+            ),
+            (
+                "chain.lenght",
+                "[chain] has the keys length, links, mass, gravity, damping",
+            ),
+            ("name.x", "'name' is not a table"),
+        ] {
+            let e = unknown_key(path).to_string();
+            assert_eq!(e, format!("{path}: unknown key: {hint}"));
+        }
+    }
+
+    #[test]
+    fn numbers_are_written_as_people_write_them() {
+        assert_eq!(number_text(6.0), "6");
+        assert_eq!(number_text(0.2), "0.2");
+        assert_eq!(number_text(1e-8), "1e-8");
+        assert_eq!(number_text(0.0), "0");
+    }
+
+    /// Every scene path the crate's code spells out (outside its tests: in
+    /// error fields, overrides, flags) is a row of the table.
+    #[test]
+    fn every_path_named_in_the_code_is_a_row() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src");
+        let sections: Vec<String> = top_names()
+            .into_iter()
+            .filter(|t| is_section(t))
+            .map(|s| format!("{s}."))
+            .collect();
+        let mut seen = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let text = std::fs::read_to_string(&path).unwrap();
+            let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+            for (i, _) in code.match_indices('"') {
+                let rest = &code[i + 1..];
+                let end = rest
+                    .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.'))
+                    .unwrap_or(rest.len());
+                let word = &rest[..end];
+                if rest[end..].starts_with('"') && sections.iter().any(|s| word.starts_with(s)) {
+                    // An element path (`start.p1.0`) is checked by its key.
+                    let key_path: Vec<&str> = word.splitn(3, '.').take(2).collect();
+                    assert!(
+                        key(&key_path.join(".")).is_some(),
+                        "{}: \"{word}\" is not a scene key",
+                        path.display()
+                    );
+                    seen += 1;
+                }
+            }
+        }
+        assert!(seen > 10, "the scan found {seen} paths");
+    }
+
+    /// `scenes/README.md` carries the table as rendered: it cannot drift.
+    /// `cargo xtask scene-keys` rewrites it.
+    #[test]
+    fn the_readme_table_is_the_rendered_table() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/README.md");
+        let readme = std::fs::read_to_string(path).unwrap();
+        let want = with_markdown_table(&readme).unwrap();
+        assert!(
+            readme == want,
+            "scenes/README.md's key table differs from crates/falling-chain/src/schema.rs \
+             (run `cargo xtask scene-keys`); it should read:\n{}",
+            markdown_table()
+        );
+        for k in KEYS {
+            assert!(readme.contains(&format!("| `{}` |", k.path)), "{}", k.path);
+        }
+    }
+}

@@ -1,0 +1,101 @@
+//! Helpers shared by the end-to-end tests: the binary, the scene files,
+//! scratch directories and reading outputs.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+pub const BIN: &str = env!("CARGO_BIN_EXE_falling-chain");
+
+/// The contract keys of `simulate --json`.
+pub const CONTRACT_KEYS: [&str; 16] = [
+    "status",
+    "method",
+    "links",
+    "t_reached",
+    "steps",
+    "rejected_steps",
+    "rhs_evals",
+    "jacobian_evals",
+    "wall_seconds",
+    "energy_start",
+    "energy_end",
+    "dissipated",
+    "energy_balance_error",
+    "tip_end",
+    "tip_speed_max",
+    "t_tip_speed_max",
+];
+
+pub fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+pub fn scene(name: &str) -> String {
+    scenes_dir()
+        .join(format!("{name}.toml"))
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// A fresh, empty directory for one test.
+pub fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("falling-chain-cli-{test}-{}", std::process::id()));
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+pub fn run(args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).unwrap()
+}
+
+pub fn json(o: &Output) -> Value {
+    serde_json::from_str(stdout(o).trim())
+        .unwrap_or_else(|e| panic!("not one JSON object ({e}): {}", stdout(o)))
+}
+
+pub fn num(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("'{key}' is not a number in {v}"))
+}
+
+pub fn pair(v: &Value, key: &str) -> [f64; 2] {
+    let a = v[key]
+        .as_array()
+        .unwrap_or_else(|| panic!("'{key}' in {v}"));
+    assert_eq!(a.len(), 2, "{key}");
+    [a[0].as_f64().unwrap(), a[1].as_f64().unwrap()]
+}
+
+/// The tip from the angles, summed here: `P0 + l sum (cos phi, sin phi)`.
+pub fn tip_by_hand(p0: [f64; 2], length: f64, angles: &[f64]) -> [f64; 2] {
+    let l = length / angles.len() as f64;
+    angles
+        .iter()
+        .fold(p0, |r, phi| [r[0] + l * phi.cos(), r[1] + l * phi.sin()])
+}
+
+pub fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}

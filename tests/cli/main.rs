@@ -1,0 +1,12 @@
+//! End-to-end tests of the `falling-chain` binary, run as a user would, and of
+//! the scene files in `scenes/`, one module per command. Expected values come
+//! from the physics (closed forms, energy balance, geometry), never from
+//! earlier output.
+
+mod catenary;
+mod common;
+mod converge;
+mod plot;
+mod scenes;
+mod simulate;
+mod sweep;

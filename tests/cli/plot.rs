@@ -1,0 +1,69 @@
+//! `falling-chain plot` and `animate`: the figure and the GIF of a scene.
+
+use std::fs;
+use std::path::Path;
+
+use crate::common::*;
+
+#[test]
+fn plot_and_animate_write_the_format_asked_for_or_nothing() {
+    let dir = scratch("plot");
+    let png = dir.join("span.png");
+    let out = run(&[
+        "plot",
+        &scene("span-d3"),
+        "-o",
+        png.to_str().unwrap(),
+        "--set",
+        "run.t_end=1",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    // IHDR: width and height, big-endian, at bytes 16..24.
+    let h = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+    assert_eq!(h, 900);
+    assert!(!dir.join("span.svg").exists(), "only the format asked for");
+
+    let gif = dir.join("fall.gif");
+    let out = run(&[
+        "animate",
+        &scene("span-d3"),
+        "-o",
+        gif.to_str().unwrap(),
+        "--seconds",
+        "0.5",
+        "--fps",
+        "10",
+        "--set",
+        "run.t_end=0.5",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(&fs::read(&gif).unwrap()[..6], b"GIF89a");
+
+    for (args, field) in [
+        (vec!["plot", &scene("span-d3"), "-o", "x.jpg"], "--out"),
+        (
+            vec!["animate", &scene("span-d3"), "-o", "x.gif", "--fps", "0"],
+            "--fps",
+        ),
+        (vec!["animate", &scene("span-d3"), "-o", "x.png"], "--out"),
+    ] {
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(field) && err.trim().lines().count() == 1,
+            "{err}"
+        );
+    }
+    assert!(!Path::new("x.gif").exists() && !Path::new("x.jpg").exists());
+}

@@ -1,0 +1,135 @@
+//! The scene files of `scenes/`: each loads and starts where its report
+//! figure does.
+
+use std::fs;
+
+use chain_ode::kinematics::tip;
+use chain_ode::Start;
+use falling_chain::Scene;
+
+use crate::common::*;
+
+#[test]
+fn every_scene_loads_and_starts_where_its_report_figure_does() {
+    let expected = [
+        "catenary-fall",
+        "folded",
+        "height-h0",
+        "height-h2",
+        "height-h4",
+        "height-hm2",
+        "horizontal-damped",
+        "horizontal-settling",
+        "horizontal-undamped",
+        "span-d1",
+        "span-d3",
+        "span-d5",
+        "span-d6",
+    ];
+    let mut found: Vec<String> = names_in(&scenes_dir())
+        .into_iter()
+        .filter_map(|f| f.strip_suffix(".toml").map(str::to_string))
+        .collect();
+    found.sort();
+    for name in expected {
+        assert!(
+            found.iter().any(|f| f == name),
+            "scenes/{name}.toml is missing"
+        );
+    }
+    // Every scene file, report or not, loads and prepares.
+    for name in &found {
+        Scene::load(scene(name))
+            .and_then(|s| s.prepare())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+
+    for name in expected {
+        let s = Scene::load(scene(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(s.name(), name);
+        assert!(
+            s.description().contains("Fig."),
+            "{name}: {}",
+            s.description()
+        );
+        let run = s.prepare().unwrap_or_else(|e| panic!("{name}: {e}"));
+        let c = &run.chain;
+        // The report's parameters.
+        assert_eq!((c.length, c.mass, c.gravity), (6.0, 0.2, 1.0), "{name}");
+        // t_end is an integer report time times sqrt(l/g), to the 4 digits kept.
+        let l = c.length / c.links as f64;
+        let t_report = run.options.t_end / (l / c.gravity).sqrt();
+        assert!(
+            (t_report - t_report.round()).abs() < 2e-3 * t_report,
+            "{name}: t_end {} is report t {t_report}",
+            run.options.t_end
+        );
+        // About as many snapshots as the report draws.
+        let snapshots = run.options.t_end / run.options.output_dt.unwrap();
+        assert!((40.0..=60.0).contains(&snapshots), "{name}: {snapshots}");
+
+        let at = tip(c, run.state.anchor, &run.state.angles);
+        let by_hand = tip_by_hand(run.state.anchor, c.length, &run.state.angles);
+        assert!((at[0] - by_hand[0]).abs() < 1e-12 && (at[1] - by_hand[1]).abs() < 1e-12);
+        assert!(run.state.rates.iter().all(|w| *w == 0.0), "{name}: at rest");
+        match s.start() {
+            Start::Catenary { p0, p1 } | Start::Stretched { p0, p1 } => {
+                assert_eq!(p0, [0.0, 0.0], "{name}");
+                assert!(
+                    (at[0] - p1[0]).abs() < 1e-10 && (at[1] - p1[1]).abs() < 1e-10,
+                    "{name}: tip {at:?} vs P1 {p1:?}"
+                );
+            }
+            Start::Folded { p0, .. } => {
+                let want = [p0[0] + l, p0[1] - l];
+                assert!(
+                    (at[0] - want[0]).abs() < 1e-12 && (at[1] - want[1]).abs() < 1e-12,
+                    "{name}: tip {at:?} vs {want:?}"
+                );
+            }
+            other => panic!("{name}: unexpected start {other:?}"),
+        }
+    }
+}
+
+/// Every command that takes a scene takes `--set` the same way (one
+/// `SceneArgs`), and an unknown key is one line naming it and the keys there
+/// are, exit 2, with no output written.
+#[test]
+fn every_scene_command_names_an_unknown_set_key_and_writes_nothing() {
+    let dir = scratch("scene-args");
+    let span = scene("span-d3");
+    let png = dir.join("x.png");
+    let gif = dir.join("x.gif");
+    let csv = dir.join("x.csv");
+    let commands: [Vec<&str>; 5] = [
+        vec!["simulate", &span, "--out", csv.to_str().unwrap()],
+        vec![
+            "sweep",
+            &span,
+            "--vary",
+            "chain.links=8,12",
+            "--out",
+            csv.to_str().unwrap(),
+        ],
+        vec!["converge", &span, "--tol", "0.1"],
+        vec!["plot", &span, "-o", png.to_str().unwrap()],
+        vec!["animate", &span, "-o", gif.to_str().unwrap()],
+    ];
+    for command in commands {
+        let mut args = command.clone();
+        args.extend(["--set", "chain.lenght=6"]);
+        let o = run(&args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(
+            err.trim_end(),
+            "error: chain.lenght: unknown key: [chain] has the keys \
+             length, links, mass, gravity, damping",
+            "{args:?}"
+        );
+        assert!(stdout(&o).is_empty(), "{args:?}");
+        assert!(names_in(&dir).is_empty(), "{args:?} wrote a file");
+    }
+    fs::remove_dir_all(&dir).unwrap();
+}
