@@ -4,11 +4,11 @@
 
 use std::path::Path;
 
-use crate::axes::Theme;
 use crate::curves::{Current, Drawing, Geometry};
 use crate::font;
 use crate::output;
 use crate::snapshots::ChainSnapshots;
+use crate::theme::Theme;
 use crate::FigureError;
 
 /// Height of the animation's frames in pixels (the width follows the data).

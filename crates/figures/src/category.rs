@@ -7,9 +7,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::axes::{text_width, Theme};
 use crate::font;
 use crate::output::{self, Draw};
+use crate::theme::{text_width, Theme};
 use crate::{FigureError, Output};
 
 /// One map: `cells[row][col]` is a category index, or `None` (not run,

@@ -9,10 +9,15 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::axes::{self, Axis, Corner, Layout, Occupancy, Swatch, Theme};
 use crate::colormap::{cool, P0_RED, P1_BLUE};
 use crate::font;
+use crate::layout::{self, Layout};
+use crate::legend::{self, Swatch};
 use crate::output::{self, Draw};
+use crate::placement::{Corner, Occupancy};
+use crate::theme::{self, Theme};
+use crate::ticks::Axis;
+use crate::{chart, clip};
 use crate::{FigureError, Output};
 
 /// Curves coloured by a parameter (cyan at the smallest value, magenta at
@@ -168,7 +173,7 @@ impl Geometry {
             .collect();
         pts.push(spec.p0);
         pts.extend(spec.p1);
-        let (bx0, bx1, by0, by1) = axes::bounds(&pts)
+        let (bx0, bx1, by0, by1) = layout::bounds(&pts)
             .ok_or_else(|| FigureError::Data("no finite point to draw".into()))?;
         let pad = 0.04;
         let padded = |lo: f64, hi: f64| {
@@ -196,7 +201,7 @@ impl Geometry {
             .chain(std::iter::once(spec.p0).chain(spec.p1).map(|p| vec![p]))
             .chain(spec.markers.iter().map(|&p| vec![p]))
             .collect();
-        let legend = axes::box_size(&theme, &legend_lines(spec), true);
+        let legend = legend::box_size(&theme, &legend_lines(spec), true);
         let inset = theme.px(14.0);
         let plot = g.layout.plot_size((
             g.size.0 - g.cbar_w as u32,
@@ -248,7 +253,7 @@ impl Geometry {
         let mut x = Axis::linear(xr.0, xr.1, tx(plot(&layout).0));
         if spec.equal_aspect {
             for _ in 0..2 {
-                let (ex, ey) = axes::equalize(xr, yr, plot(&layout));
+                let (ex, ey) = layout::equalize(xr, yr, plot(&layout));
                 x = Axis::linear(ex.0, ex.1, tx(plot(&layout).0));
                 y = Axis::linear(ey.0, ey.1, ty);
                 layout = Layout::standard(&theme, y.max_label_width(theme.tick()));
@@ -325,7 +330,7 @@ fn cbar_width(theme: &Theme, cbar: &Axis, label: &str) -> i32 {
     let desc = if label.is_empty() {
         0
     } else if cbar_label_upright(label) {
-        theme.px(18.0) + axes::text_width(label, theme.label())
+        theme.px(18.0) + theme::text_width(label, theme.label())
     } else {
         theme.px(12.0) + (theme.label() * 1.2) as i32
     };
@@ -380,10 +385,10 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
         }
         None => spec.title.to_string(),
     };
-    let area = axes::titled(root, theme, &title)?;
+    let area = layout::titled(root, theme, &title)?;
     let (aw, _) = area.dim_in_pixel();
     let (main, bar) = area.split_horizontally(aw as i32 - g.cbar_w);
-    let mut chart = axes::chart(
+    let mut chart = chart::chart(
         &main,
         theme,
         &g.layout,
@@ -401,7 +406,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             .iter()
             .map(|&q| (q.0.is_finite() && q.1.is_finite()).then_some(q))
             .collect();
-        axes::clip_polyline(&p, xr, yr)
+        clip::clip_polyline(&p, xr, yr)
     };
     let inside = |q: &(f64, f64)| q.0 >= xr.0 && q.0 <= xr.1 && q.1 >= yr.0 && q.1 <= yr.1;
 
@@ -482,16 +487,16 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             }),
         ));
     }
-    axes::frame(&chart, theme)?;
+    chart::frame(&chart, theme)?;
 
     let pa = chart.plotting_area().strip_coord_spec();
     let (pw, ph) = pa.dim_in_pixel();
     let plot = (pw as i32, ph as i32);
     let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-    let size = axes::box_size(theme, &lines, true);
+    let size = legend::box_size(theme, &lines, true);
     let inset = theme.px(14.0);
     let origin = Occupancy::origin(g.legend_corner, size, plot, inset);
-    axes::draw_box(&pa, theme, origin, &legend)?;
+    legend::draw_box(&pa, theme, origin, &legend)?;
     drop(chart);
 
     let marker = current.and_then(|c| spec.curves.get(c.index)).map(|c| c.0);

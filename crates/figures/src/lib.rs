@@ -18,21 +18,28 @@
 //! about 1200 x 900 px with text of at least ~20 px, readable in print.
 
 mod animation;
-mod axes;
 mod category;
+mod chart;
+mod clip;
 mod colormap;
 mod curves;
 mod font;
+mod format;
+mod layout;
+mod legend;
 mod lines;
 mod output;
+mod placement;
 mod sketch;
 mod snapshots;
+mod theme;
+mod ticks;
 
 pub use animation::{chain_animation, ANIMATION_HEIGHT};
-pub use axes::format_number;
 pub use category::{category_map, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
+pub use format::format_number;
 pub use lines::{line_plot, line_plot_pair, LinePlot, Series, Style, LINE_PLOT_SIZE, PAIR_SIZE};
 pub use output::{FigureError, Output};
 pub use plotters::style::RGBColor;

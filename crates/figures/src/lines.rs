@@ -6,9 +6,14 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::axes::{self, Axis, Corner, Layout, Occupancy, Swatch, Theme};
 use crate::colormap::palette;
+use crate::layout::{self, Layout};
+use crate::legend::{self, Swatch};
 use crate::output::{self, Draw};
+use crate::placement::{Corner, Occupancy};
+use crate::theme::Theme;
+use crate::ticks::Axis;
+use crate::{chart, clip};
 use crate::{FigureError, Output};
 
 /// How a series is drawn.
@@ -143,7 +148,7 @@ impl Draw for Pair<'_, '_> {
     ) -> Result<(), FigureError> {
         root.fill(&WHITE)?;
         let theme = Theme { k: 1.1 }.scaled(scale);
-        let area = axes::titled(root, &theme, self.title)?;
+        let area = layout::titled(root, &theme, self.title)?;
         let (w, _) = area.dim_in_pixel();
         let (l, r) = area.split_horizontally(w / 2);
         draw_plot(&l, self.left, &theme)?;
@@ -169,7 +174,7 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
         .flat_map(|s| s.points.iter().copied())
         .filter(|&(x, y)| valid(x, p.log_x) && valid(y, p.log_y))
         .collect();
-    let (x0, x1, y0, y1) = axes::bounds(&pts).unwrap_or((1.0, 10.0, 1.0, 10.0));
+    let (x0, x1, y0, y1) = layout::bounds(&pts).unwrap_or((1.0, 10.0, 1.0, 10.0));
     let pad = 0.04;
     let build = |headroom: f64| {
         let mut layout = Layout::standard(theme, 0);
@@ -191,7 +196,7 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
         if p.equal_aspect && !p.log_x && !p.log_y {
             let (bx, by) = ((x.lo, x.hi), (y.lo, y.hi));
             for _ in 0..2 {
-                let (ex, ey) = axes::equalize(bx, by, layout.plot_size(size));
+                let (ex, ey) = layout::equalize(bx, by, layout.plot_size(size));
                 x = Axis::linear(ex.0, ex.1, tx);
                 y = Axis::linear(ey.0, ey.1, ty);
                 layout = Layout::standard(theme, y.max_label_width(theme.tick()));
@@ -213,12 +218,12 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
             if s.style == Style::Points {
                 pts.into_iter().flatten().map(|q| vec![q]).collect()
             } else {
-                axes::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi))
+                clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi))
             }
         })
         .collect();
     let occ = Occupancy::new(&lines, &x, &y, plot);
-    let legend = axes::box_size(theme, &labels, true);
+    let legend = legend::box_size(theme, &labels, true);
     let (_, hidden) = occ.best_with_count(legend, plot, theme.px(14.0), &[]);
     if hidden == 0 {
         return (x, y, layout);
@@ -240,9 +245,9 @@ fn draw_plot<DB: DrawingBackend>(
     p: &LinePlot,
     theme: &Theme,
 ) -> Result<(), FigureError> {
-    let area = axes::titled(area, theme, p.title)?;
+    let area = layout::titled(area, theme, p.title)?;
     let (x, y, layout) = choose_axes(p, theme, area.dim_in_pixel());
-    let mut chart = axes::chart(&area, theme, &layout, &x, &y, p.x_label, p.y_label)?;
+    let mut chart = chart::chart(&area, theme, &layout, &x, &y, p.x_label, p.y_label)?;
 
     let line_w = theme.line();
     let radius = theme.px(5.5);
@@ -254,7 +259,7 @@ fn draw_plot<DB: DrawingBackend>(
         let has_line = matches!(s.style, Style::Line | Style::LinePoints | Style::Dashed);
         let has_marks = matches!(s.style, Style::Points | Style::LinePoints);
         if has_line {
-            for piece in axes::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi)) {
+            for piece in clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi)) {
                 if piece.len() < 2 {
                     continue;
                 }
@@ -308,7 +313,7 @@ fn draw_plot<DB: DrawingBackend>(
             legend.push((s.label.clone(), Some(swatch)));
         }
     }
-    axes::frame(&chart, theme)?;
+    chart::frame(&chart, theme)?;
 
     let pa = chart.plotting_area().strip_coord_spec();
     let (pw, ph) = pa.dim_in_pixel();
@@ -318,17 +323,17 @@ fn draw_plot<DB: DrawingBackend>(
     let mut taken: Vec<Corner> = Vec::new();
     if !legend.is_empty() {
         let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-        let size = axes::box_size(theme, &lines, true);
+        let size = legend::box_size(theme, &lines, true);
         let c = occ.best(size, plot, inset, &taken);
-        axes::draw_box(&pa, theme, Occupancy::origin(c, size, plot, inset), &legend)?;
+        legend::draw_box(&pa, theme, Occupancy::origin(c, size, plot, inset), &legend)?;
         taken.push(c);
     }
     if !p.annotations.is_empty() {
-        let size = axes::box_size(theme, &p.annotations, false);
+        let size = legend::box_size(theme, &p.annotations, false);
         let c = occ.best(size, plot, inset, &taken);
         let entries: Vec<(String, Option<Swatch>)> =
             p.annotations.iter().map(|a| (a.clone(), None)).collect();
-        axes::draw_box(
+        legend::draw_box(
             &pa,
             theme,
             Occupancy::origin(c, size, plot, inset),

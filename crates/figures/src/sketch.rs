@@ -8,10 +8,10 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::axes::Theme;
 use crate::colormap::{cool, P0_RED, P1_BLUE};
 use crate::font;
 use crate::output::{self, Draw};
+use crate::theme::Theme;
 use crate::{FigureError, Output};
 
 /// Canvas of the sketch.

@@ -1,0 +1,68 @@
+//! Sizes of text and lines for a canvas about 900 px tall, the embedded
+//! font as a text style, and text widths.
+
+use plotters::prelude::*;
+use plotters::style::FontDesc;
+
+use crate::font::FAMILY;
+
+/// Sizes of text and lines, in pixels, for a canvas about 900 px tall.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Theme {
+    pub k: f64,
+}
+
+impl Theme {
+    pub const STANDARD: Theme = Theme { k: 1.0 };
+
+    /// This theme on a canvas `s` times larger.
+    pub fn scaled(self, s: u32) -> Theme {
+        Theme {
+            k: self.k * f64::from(s),
+        }
+    }
+
+    /// plotters' font size is the line height (ascent + descent); the em is
+    /// about 0.86 of it, so a tick label of 28 has an em of about 24 px.
+    pub fn title(&self) -> f64 {
+        40.0 * self.k
+    }
+    pub fn label(&self) -> f64 {
+        34.0 * self.k
+    }
+    pub fn tick(&self) -> f64 {
+        28.0 * self.k
+    }
+    pub fn legend(&self) -> f64 {
+        28.0 * self.k
+    }
+    pub fn note(&self) -> f64 {
+        26.0 * self.k
+    }
+    /// Width of a data line.
+    pub fn line(&self) -> u32 {
+        self.px(3.0) as u32
+    }
+    /// Width of axes and frames.
+    pub fn axis(&self) -> u32 {
+        self.px(2.0) as u32
+    }
+    pub fn px(&self, v: f64) -> i32 {
+        (v * self.k).round().max(1.0) as i32
+    }
+    pub fn font(&self, size: f64) -> TextStyle<'static> {
+        TextStyle::from(FontDesc::new(
+            FontFamily::Name(FAMILY),
+            size,
+            FontStyle::Normal,
+        ))
+    }
+}
+
+/// Width in pixels of `text` in the embedded font at `size`.
+pub(crate) fn text_width(text: &str, size: f64) -> i32 {
+    FontDesc::new(FontFamily::Name(FAMILY), size, FontStyle::Normal)
+        .box_size(text)
+        .map(|(w, _)| w as i32)
+        .unwrap_or_else(|_| (text.chars().count() as f64 * 0.6 * size) as i32)
+}
