@@ -5,7 +5,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::layout::Layout;
-use crate::theme::Theme;
+use crate::sizes::Sizes;
 use crate::ticks::{Axis, Coord};
 use crate::FigureError;
 
@@ -15,7 +15,7 @@ pub(crate) type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<Coord, Coord>>;
 /// axis names.
 pub(crate) fn chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
-    theme: &Theme,
+    sizes: &Sizes,
     layout: &Layout,
     x: &Axis,
     y: &Axis,
@@ -34,12 +34,12 @@ pub(crate) fn chart<'a, DB: DrawingBackend>(
     let fy = |v: &f64| y.label_at(*v);
     chart
         .configure_mesh()
-        .bold_line_style(RGBColor(220, 220, 220).stroke_width(theme.px(1.0) as u32))
-        .light_line_style(RGBColor(240, 240, 240).stroke_width(theme.px(1.0) as u32))
-        .axis_style(BLACK.stroke_width(theme.axis()))
-        .set_all_tick_mark_size(theme.px(8.0))
-        .label_style(theme.font(theme.tick()))
-        .axis_desc_style(theme.font(theme.label()))
+        .bold_line_style(RGBColor(220, 220, 220).stroke_width(sizes.px(1.0) as u32))
+        .light_line_style(RGBColor(240, 240, 240).stroke_width(sizes.px(1.0) as u32))
+        .axis_style(BLACK.stroke_width(sizes.axis()))
+        .set_all_tick_mark_size(sizes.px(8.0))
+        .label_style(sizes.font(sizes.tick()))
+        .axis_desc_style(sizes.font(sizes.label()))
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
         .x_desc(x_desc)
@@ -52,14 +52,14 @@ pub(crate) fn chart<'a, DB: DrawingBackend>(
 /// bottom axes, this adds the top and right sides.
 pub(crate) fn frame<DB: DrawingBackend>(
     chart: &Chart<'_, DB>,
-    theme: &Theme,
+    sizes: &Sizes,
 ) -> Result<(), FigureError> {
     let pa = chart.plotting_area().strip_coord_spec();
     let (w, h) = pa.dim_in_pixel();
     let (w, h) = (w as i32 - 1, h as i32 - 1);
     pa.draw(&PathElement::new(
         vec![(0, 0), (w, 0), (w, h)],
-        BLACK.stroke_width(theme.axis()),
+        BLACK.stroke_width(sizes.axis()),
     ))?;
     Ok(())
 }

@@ -15,7 +15,7 @@ use crate::layout::{self, Layout};
 use crate::legend::{self, Swatch};
 use crate::output::{self, Draw};
 use crate::placement::{Corner, Occupancy};
-use crate::theme::{self, Theme};
+use crate::sizes::{text_width, Sizes};
 use crate::ticks::Axis;
 use crate::{chart, clip};
 use crate::{FigureError, Output};
@@ -102,7 +102,7 @@ pub(crate) struct Spec<'a> {
 pub(crate) fn render_static(mut spec: Spec, stem: &Path) -> Result<Output, FigureError> {
     font::ensure_registered()?;
     spec.sort();
-    let geom = Geometry::new(&spec, 900, Theme::STANDARD)?;
+    let geom = Geometry::new(&spec, 900, Sizes::STANDARD)?;
     output::save(
         &Drawing {
             spec: &spec,
@@ -117,7 +117,7 @@ pub(crate) fn render_static(mut spec: Spec, stem: &Path) -> Result<Output, Figur
 pub(crate) fn render_static_to(mut spec: Spec, path: &Path) -> Result<(), FigureError> {
     font::ensure_registered()?;
     spec.sort();
-    let geom = Geometry::new(&spec, 900, Theme::STANDARD)?;
+    let geom = Geometry::new(&spec, 900, Sizes::STANDARD)?;
     output::save_one(
         &Drawing {
             spec: &spec,
@@ -150,7 +150,7 @@ impl Spec<'_> {
 /// Sizes and axes, fixed once per figure (also across animation frames).
 #[derive(Debug, Clone)]
 pub(crate) struct Geometry {
-    pub theme: Theme,
+    pub sizes: Sizes,
     pub size: (u32, u32),
     pub x: Axis,
     pub y: Axis,
@@ -164,7 +164,7 @@ pub(crate) struct Geometry {
 }
 
 impl Geometry {
-    pub fn new(spec: &Spec, height: u32, theme: Theme) -> Result<Geometry, FigureError> {
+    pub fn new(spec: &Spec, height: u32, sizes: Sizes) -> Result<Geometry, FigureError> {
         let mut pts: Vec<(f64, f64)> = spec
             .curves
             .iter()
@@ -190,7 +190,7 @@ impl Geometry {
 
         let (vmin, vmax) = spec.value_range();
         let cbar = Axis::linear(vmin, vmax, 6);
-        let mut g = Self::lay_out(spec, height, theme, xr, yr, cbar.clone());
+        let mut g = Self::lay_out(spec, height, sizes, xr, yr, cbar.clone());
 
         // Where the legend goes; if it would hide data anywhere, make room
         // above the data (unless the y range is fixed).
@@ -201,11 +201,11 @@ impl Geometry {
             .chain(std::iter::once(spec.p0).chain(spec.p1).map(|p| vec![p]))
             .chain(spec.markers.iter().map(|&p| vec![p]))
             .collect();
-        let legend = legend::box_size(&theme, &legend_lines(spec), true);
-        let inset = theme.px(14.0);
+        let legend = legend::box_size(&sizes, &legend_lines(spec), true);
+        let inset = sizes.px(14.0);
         let plot = g.layout.plot_size((
             g.size.0 - g.cbar_w as u32,
-            g.size.1 - title_height(&theme, spec.title) as u32,
+            g.size.1 - title_height(&sizes, spec.title) as u32,
         ));
         let occ = Occupancy::new(&lines, &g.x, &g.y, plot);
         let (corner, hidden) = occ.best_with_count(legend, plot, inset, &[]);
@@ -213,7 +213,7 @@ impl Geometry {
         if hidden > 0 && spec.y_range.is_none() {
             let extra = (legend.1 + 2 * inset) as f64 / plot.1.max(1) as f64 * (yr.1 - yr.0);
             yr.1 += extra;
-            g = Self::lay_out(spec, height, theme, xr, yr, cbar);
+            g = Self::lay_out(spec, height, sizes, xr, yr, cbar);
             g.legend_corner = if matches!(corner, Corner::UpperLeft | Corner::LowerLeft) {
                 Corner::UpperLeft
             } else {
@@ -227,20 +227,20 @@ impl Geometry {
     fn lay_out(
         spec: &Spec,
         height: u32,
-        theme: Theme,
+        sizes: Sizes,
         xr: (f64, f64),
         yr: (f64, f64),
         cbar: Axis,
     ) -> Geometry {
         let (vmin, vmax) = (cbar.lo, cbar.hi);
-        let cbar_w = cbar_width(&theme, &cbar, spec.cbar_label);
-        let title_h = title_height(&theme, spec.title);
+        let cbar_w = cbar_width(&sizes, &cbar, spec.cbar_label);
+        let title_h = title_height(&sizes, spec.title);
         let area_h = height as i32 - title_h;
-        let mut layout = Layout::standard(&theme, 0);
+        let mut layout = Layout::standard(&sizes, 0);
         let ph = area_h - layout.top - layout.bottom - layout.x_area;
-        let ty = (ph as f64 / (95.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
+        let ty = (ph as f64 / (95.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
         let mut y = Axis::linear(yr.0, yr.1, ty);
-        layout = Layout::standard(&theme, y.max_label_width(theme.tick()));
+        layout = Layout::standard(&sizes, y.max_label_width(sizes.tick()));
         let fixed = layout.left + layout.y_area + layout.right + cbar_w;
         let width = if spec.equal_aspect {
             let pw = ph as f64 * (xr.1 - xr.0) / (yr.1 - yr.0);
@@ -249,18 +249,18 @@ impl Geometry {
             (height as f64 * 4.0 / 3.0) as i32
         };
         let plot = |l: &Layout| (width - cbar_w - l.left - l.right - l.y_area, ph);
-        let tx = |pw: i32| (pw as f64 / (170.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
+        let tx = |pw: i32| (pw as f64 / (170.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
         let mut x = Axis::linear(xr.0, xr.1, tx(plot(&layout).0));
         if spec.equal_aspect {
             for _ in 0..2 {
                 let (ex, ey) = layout::equalize(xr, yr, plot(&layout));
                 x = Axis::linear(ex.0, ex.1, tx(plot(&layout).0));
                 y = Axis::linear(ey.0, ey.1, ty);
-                layout = Layout::standard(&theme, y.max_label_width(theme.tick()));
+                layout = Layout::standard(&sizes, y.max_label_width(sizes.tick()));
             }
         }
         Geometry {
-            theme,
+            sizes,
             size: (width as u32, height),
             x,
             y,
@@ -278,7 +278,7 @@ impl Geometry {
         let k = s as i32;
         let l = &self.layout;
         Geometry {
-            theme: self.theme.scaled(s),
+            sizes: self.sizes.scaled(s),
             size: (self.size.0 * s, self.size.1 * s),
             layout: Layout {
                 top: l.top * k,
@@ -311,11 +311,11 @@ fn legend_lines(spec: &Spec) -> Vec<String> {
     v
 }
 
-fn title_height(theme: &Theme, title: &str) -> i32 {
+fn title_height(sizes: &Sizes, title: &str) -> i32 {
     if title.is_empty() {
         0
     } else {
-        (theme.title() * 1.6) as i32 + theme.px(8.0)
+        (sizes.title() * 1.6) as i32 + sizes.px(8.0)
     }
 }
 
@@ -324,17 +324,17 @@ fn cbar_label_upright(label: &str) -> bool {
     label.chars().count() <= 3
 }
 
-fn cbar_width(theme: &Theme, cbar: &Axis, label: &str) -> i32 {
-    let base = theme.px(40.0) + theme.px(34.0) + theme.px(8.0) + theme.px(10.0);
-    let labels = cbar.max_label_width(theme.tick());
+fn cbar_width(sizes: &Sizes, cbar: &Axis, label: &str) -> i32 {
+    let base = sizes.px(40.0) + sizes.px(34.0) + sizes.px(8.0) + sizes.px(10.0);
+    let labels = cbar.max_label_width(sizes.tick());
     let desc = if label.is_empty() {
         0
     } else if cbar_label_upright(label) {
-        theme.px(18.0) + theme::text_width(label, theme.label())
+        sizes.px(18.0) + text_width(label, sizes.label())
     } else {
-        theme.px(12.0) + (theme.label() * 1.2) as i32
+        sizes.px(12.0) + (sizes.label() * 1.2) as i32
     };
-    base + labels + desc + theme.px(24.0)
+    base + labels + desc + sizes.px(24.0)
 }
 
 /// A coloured-curves figure ready to draw: all curves, or (in an
@@ -371,7 +371,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     g: &Geometry,
     current: Option<Current>,
 ) -> Result<(), FigureError> {
-    let theme = &g.theme;
+    let sizes = &g.sizes;
     root.fill(&WHITE)?;
     let title = match current {
         Some(c) => {
@@ -385,12 +385,12 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
         }
         None => spec.title.to_string(),
     };
-    let area = layout::titled(root, theme, &title)?;
+    let area = layout::titled(root, sizes, &title)?;
     let (aw, _) = area.dim_in_pixel();
     let (main, bar) = area.split_horizontally(aw as i32 - g.cbar_w);
     let mut chart = chart::chart(
         &main,
-        theme,
+        sizes,
         &g.layout,
         &g.x,
         &g.y,
@@ -412,7 +412,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
 
     match current {
         None => {
-            let w = theme.px(2.5) as u32;
+            let w = sizes.px(2.5) as u32;
             for (v, pts) in &spec.curves {
                 let color = g.color(*v);
                 for piece in clip(pts) {
@@ -430,7 +430,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             for piece in clip(&trail) {
                 chart.draw_series(LineSeries::new(
                     piece,
-                    RGBColor(170, 170, 170).stroke_width(theme.px(2.0) as u32),
+                    RGBColor(170, 170, 170).stroke_width(sizes.px(2.0) as u32),
                 ))?;
             }
             if let Some((v, pts)) = spec.curves.get(c.index) {
@@ -438,7 +438,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
                 for piece in clip(pts) {
                     chart.draw_series(LineSeries::new(
                         piece,
-                        color.stroke_width(theme.px(4.0) as u32),
+                        color.stroke_width(sizes.px(4.0) as u32),
                     ))?;
                 }
                 if pts.len() <= 201 {
@@ -446,7 +446,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
                     chart.draw_series(
                         pts.iter()
                             .filter(|q| inside(q))
-                            .map(|&q| Circle::new(q, theme.px(3.0), dark.filled())),
+                            .map(|&q| Circle::new(q, sizes.px(3.0), dark.filled())),
                     )?;
                 }
             }
@@ -454,7 +454,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     }
 
     // Markers, then the anchor points on top.
-    let mr = theme.px(5.0);
+    let mr = sizes.px(5.0);
     chart.draw_series(
         spec.markers
             .iter()
@@ -462,7 +462,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             .map(|&q| Circle::new(q, mr, BLACK.filled())),
     )?;
     drawn.extend(spec.markers.iter().filter(|q| inside(q)).map(|&q| vec![q]));
-    let pr = theme.px(9.0);
+    let pr = sizes.px(9.0);
     let mut legend: Vec<(String, Option<Swatch>)> = Vec::new();
     let anchors = [(Some(spec.p0), P0_RED, "P₀"), (spec.p1, P1_BLUE, "P₁")];
     for (p, color, name) in anchors {
@@ -472,7 +472,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             chart.draw_series(std::iter::once(Circle::new(
                 p,
                 pr,
-                BLACK.stroke_width(theme.px(1.5) as u32),
+                BLACK.stroke_width(sizes.px(1.5) as u32),
             )))?;
             drawn.push(vec![p]);
         }
@@ -487,16 +487,16 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             }),
         ));
     }
-    chart::frame(&chart, theme)?;
+    chart::frame(&chart, sizes)?;
 
     let pa = chart.plotting_area().strip_coord_spec();
     let (pw, ph) = pa.dim_in_pixel();
     let plot = (pw as i32, ph as i32);
     let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-    let size = legend::box_size(theme, &lines, true);
-    let inset = theme.px(14.0);
+    let size = legend::box_size(sizes, &lines, true);
+    let inset = sizes.px(14.0);
     let origin = Occupancy::origin(g.legend_corner, size, plot, inset);
-    legend::draw_box(&pa, theme, origin, &legend)?;
+    legend::draw_box(&pa, sizes, origin, &legend)?;
     drop(chart);
 
     let marker = current.and_then(|c| spec.curves.get(c.index)).map(|c| c.0);
@@ -510,12 +510,12 @@ fn draw_colorbar<DB: DrawingBackend>(
     label: &str,
     marker: Option<f64>,
 ) -> Result<(), FigureError> {
-    let theme = &g.theme;
+    let sizes = &g.sizes;
     let (_, ah) = area.dim_in_pixel();
     let top = g.layout.top;
     let bottom = ah as i32 - g.layout.bottom - g.layout.x_area - 1;
-    let x0 = theme.px(40.0);
-    let x1 = x0 + theme.px(34.0);
+    let x0 = sizes.px(40.0);
+    let x1 = x0 + sizes.px(34.0);
     let bands = 128;
     let h = (bottom - top) as f64;
     for i in 0..bands {
@@ -530,31 +530,31 @@ fn draw_colorbar<DB: DrawingBackend>(
     }
     area.draw(&Rectangle::new(
         [(x0, top), (x1, bottom)],
-        BLACK.stroke_width(theme.axis()),
+        BLACK.stroke_width(sizes.axis()),
     ))?;
     let to_y = |v: f64| bottom as f64 - h * (v - g.vmin) / (g.vmax - g.vmin);
-    let tick_style = theme
-        .font(theme.tick())
+    let tick_style = sizes
+        .font(sizes.tick())
         .pos(Pos::new(HPos::Left, VPos::Center));
-    let tick = theme.px(8.0);
+    let tick = sizes.px(8.0);
     for (v, text) in g.cbar.ticks.iter().zip(&g.cbar.labels) {
         let y = to_y(*v).round() as i32;
         area.draw(&PathElement::new(
             vec![(x1, y), (x1 + tick, y)],
-            BLACK.stroke_width(theme.axis()),
+            BLACK.stroke_width(sizes.axis()),
         ))?;
         area.draw(&Text::new(
             text.clone(),
-            (x1 + tick + theme.px(8.0), y),
+            (x1 + tick + sizes.px(8.0), y),
             tick_style.clone(),
         ))?;
     }
     if let Some(v) = marker {
         let y = to_y(v).round() as i32;
-        let k = theme.px(7.0);
+        let k = sizes.px(7.0);
         area.draw(&PathElement::new(
             vec![(x0, y), (x1, y)],
-            BLACK.stroke_width(theme.px(3.0) as u32),
+            BLACK.stroke_width(sizes.px(3.0) as u32),
         ))?;
         area.draw(&Polygon::new(
             vec![(x0 - 2 * k, y - k), (x0 - 2, y), (x0 - 2 * k, y + k)],
@@ -562,21 +562,21 @@ fn draw_colorbar<DB: DrawingBackend>(
         ))?;
     }
     if !label.is_empty() {
-        let lx = x1 + tick + theme.px(8.0) + g.cbar.max_label_width(theme.tick());
+        let lx = x1 + tick + sizes.px(8.0) + g.cbar.max_label_width(sizes.tick());
         let cy = (top + bottom) / 2;
         if cbar_label_upright(label) {
-            let st = theme
-                .font(theme.label())
+            let st = sizes
+                .font(sizes.label())
                 .pos(Pos::new(HPos::Left, VPos::Center));
-            area.draw(&Text::new(label.to_string(), (lx + theme.px(18.0), cy), st))?;
+            area.draw(&Text::new(label.to_string(), (lx + sizes.px(18.0), cy), st))?;
         } else {
-            let st = theme
-                .font(theme.label())
+            let st = sizes
+                .font(sizes.label())
                 .transform(FontTransform::Rotate90)
                 .pos(Pos::new(HPos::Center, VPos::Top));
             area.draw(&Text::new(
                 label.to_string(),
-                (lx + theme.px(12.0) + (theme.label() * 1.2) as i32, cy),
+                (lx + sizes.px(12.0) + (sizes.label() * 1.2) as i32, cy),
                 st,
             ))?;
         }

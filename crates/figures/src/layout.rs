@@ -5,7 +5,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::theme::Theme;
+use crate::sizes::Sizes;
 use crate::FigureError;
 
 /// Expand the shorter range so both axes have the same data units per pixel.
@@ -57,14 +57,14 @@ pub(crate) struct Layout {
 
 impl Layout {
     /// Standard margins; the y area fits `y_label_width` px tick labels.
-    pub fn standard(theme: &Theme, y_label_width: i32) -> Layout {
+    pub fn standard(sizes: &Sizes, y_label_width: i32) -> Layout {
         Layout {
-            top: theme.px(20.0),
-            right: theme.px(30.0),
-            bottom: theme.px(10.0),
-            left: theme.px(10.0),
-            x_area: (theme.tick() + theme.label() * 1.3 + theme.px(22.0) as f64) as i32,
-            y_area: y_label_width + (theme.label() * 1.3) as i32 + theme.px(24.0),
+            top: sizes.px(20.0),
+            right: sizes.px(30.0),
+            bottom: sizes.px(10.0),
+            left: sizes.px(10.0),
+            x_area: (sizes.tick() + sizes.label() * 1.3 + sizes.px(22.0) as f64) as i32,
+            y_area: y_label_width + (sizes.label() * 1.3) as i32 + sizes.px(24.0),
         }
     }
 
@@ -80,22 +80,22 @@ impl Layout {
 /// Draw `title` centred at the top of `area` and return the area below it.
 pub(crate) fn titled<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    theme: &Theme,
+    sizes: &Sizes,
     title: &str,
 ) -> Result<DrawingArea<DB, Shift>, FigureError> {
     if title.is_empty() {
         return Ok(area.clone());
     }
-    let size = theme.title();
+    let size = sizes.title();
     let h = (size * 1.6) as i32;
     let (w, _) = area.dim_in_pixel();
-    let style = theme.font(size).pos(Pos::new(HPos::Center, VPos::Center));
+    let style = sizes.font(size).pos(Pos::new(HPos::Center, VPos::Center));
     area.draw(&Text::new(
         title.to_string(),
-        (w as i32 / 2, h / 2 + theme.px(8.0)),
+        (w as i32 / 2, h / 2 + sizes.px(8.0)),
         style,
     ))?;
-    let (_, rest) = area.split_vertically(h + theme.px(8.0));
+    let (_, rest) = area.split_vertically(h + sizes.px(8.0));
     Ok(rest)
 }
 

@@ -5,7 +5,7 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::theme::{text_width, Theme};
+use crate::sizes::{text_width, Sizes};
 use crate::FigureError;
 
 /// How a legend entry is drawn.
@@ -28,12 +28,12 @@ pub(crate) enum Swatch {
 }
 
 /// Size in pixels of a legend (or, with no swatches, a note box).
-pub(crate) fn box_size(theme: &Theme, lines: &[String], swatch: bool) -> (i32, i32) {
-    let size = theme.legend();
+pub(crate) fn box_size(sizes: &Sizes, lines: &[String], swatch: bool) -> (i32, i32) {
+    let size = sizes.legend();
     let row = (size * 1.25) as i32;
-    let pad = theme.px(12.0);
+    let pad = sizes.px(12.0);
     let sw = if swatch {
-        theme.px(56.0) + theme.px(12.0)
+        sizes.px(56.0) + sizes.px(12.0)
     } else {
         0
     };
@@ -45,13 +45,13 @@ pub(crate) fn box_size(theme: &Theme, lines: &[String], swatch: bool) -> (i32, i
 /// its top-left corner at `origin` in plot-area pixels.
 pub(crate) fn draw_box<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    theme: &Theme,
+    sizes: &Sizes,
     origin: (i32, i32),
     entries: &[(String, Option<Swatch>)],
 ) -> Result<(), FigureError> {
     let lines: Vec<String> = entries.iter().map(|e| e.0.clone()).collect();
     let has_swatch = entries.iter().any(|e| e.1.is_some());
-    let (bw, bh) = box_size(theme, &lines, has_swatch);
+    let (bw, bh) = box_size(sizes, &lines, has_swatch);
     let (ox, oy) = origin;
     area.draw(&Rectangle::new(
         [(ox, oy), (ox + bw, oy + bh)],
@@ -59,20 +59,20 @@ pub(crate) fn draw_box<DB: DrawingBackend>(
     ))?;
     area.draw(&Rectangle::new(
         [(ox, oy), (ox + bw, oy + bh)],
-        RGBColor(120, 120, 120).stroke_width(theme.px(1.0) as u32),
+        RGBColor(120, 120, 120).stroke_width(sizes.px(1.0) as u32),
     ))?;
-    let size = theme.legend();
+    let size = sizes.legend();
     let row = (size * 1.25) as i32;
-    let pad = theme.px(12.0);
-    let sw_len = theme.px(56.0);
+    let pad = sizes.px(12.0);
+    let sw_len = sizes.px(56.0);
     let text_x = ox
         + pad
         + if has_swatch {
-            sw_len + theme.px(12.0)
+            sw_len + sizes.px(12.0)
         } else {
             0
         };
-    let style = theme.font(size).pos(Pos::new(HPos::Left, VPos::Center));
+    let style = sizes.font(size).pos(Pos::new(HPos::Left, VPos::Center));
     for (i, (text, swatch)) in entries.iter().enumerate() {
         let cy = oy + pad + row * i as i32 + row / 2;
         let (sx0, sx1) = (ox + pad, ox + pad + sw_len);
@@ -86,8 +86,8 @@ pub(crate) fn draw_box<DB: DrawingBackend>(
                 if *dashed {
                     area.draw(&DashedPathElement::new(
                         vec![(sx0, cy), (sx1, cy)],
-                        theme.px(12.0),
-                        theme.px(7.0),
+                        sizes.px(12.0),
+                        sizes.px(7.0),
                         st,
                     ))?;
                 } else {

@@ -30,9 +30,9 @@ mod legend;
 mod lines;
 mod output;
 mod placement;
+mod sizes;
 mod sketch;
 mod snapshots;
-mod theme;
 mod ticks;
 
 pub use animation::{chain_animation, ANIMATION_HEIGHT};

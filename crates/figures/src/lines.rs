@@ -11,7 +11,7 @@ use crate::layout::{self, Layout};
 use crate::legend::{self, Swatch};
 use crate::output::{self, Draw};
 use crate::placement::{Corner, Occupancy};
-use crate::theme::Theme;
+use crate::sizes::Sizes;
 use crate::ticks::Axis;
 use crate::{chart, clip};
 use crate::{FigureError, Output};
@@ -127,7 +127,7 @@ impl Draw for Single<'_, '_> {
         scale: u32,
     ) -> Result<(), FigureError> {
         root.fill(&WHITE)?;
-        draw_plot(root, self.0, &Theme::STANDARD.scaled(scale))
+        draw_plot(root, self.0, &Sizes::STANDARD.scaled(scale))
     }
 }
 
@@ -147,12 +147,12 @@ impl Draw for Pair<'_, '_> {
         scale: u32,
     ) -> Result<(), FigureError> {
         root.fill(&WHITE)?;
-        let theme = Theme { k: 1.1 }.scaled(scale);
-        let area = layout::titled(root, &theme, self.title)?;
+        let sizes = Sizes { scale: 1.1 }.scaled(scale);
+        let area = layout::titled(root, &sizes, self.title)?;
         let (w, _) = area.dim_in_pixel();
         let (l, r) = area.split_horizontally(w / 2);
-        draw_plot(&l, self.left, &theme)?;
-        draw_plot(&r, self.right, &theme)
+        draw_plot(&l, self.left, &sizes)?;
+        draw_plot(&r, self.right, &sizes)
     }
 }
 
@@ -166,7 +166,7 @@ fn to_plot(s: &Series, x: &Axis, y: &Axis) -> Vec<Option<(f64, f64)>> {
 
 /// Choose both axes for `p` in an area of `size` pixels. If the legend
 /// would hide data in every corner, room is made above the data.
-fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, Layout) {
+fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, Layout) {
     let valid = |v: f64, log: bool| v.is_finite() && (!log || v > 0.0);
     let pts: Vec<(f64, f64)> = p
         .series
@@ -177,9 +177,9 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
     let (x0, x1, y0, y1) = layout::bounds(&pts).unwrap_or((1.0, 10.0, 1.0, 10.0));
     let pad = 0.04;
     let build = |headroom: f64| {
-        let mut layout = Layout::standard(theme, 0);
+        let mut layout = Layout::standard(sizes, 0);
         let (_, ph) = layout.plot_size(size);
-        let ty = (ph as f64 / (95.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
+        let ty = (ph as f64 / (95.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
         let mut y = Axis::auto(y0, y1, p.y_range, p.log_y, pad, ty);
         if headroom > 0.0 {
             let hi = y.hi + headroom * y.span();
@@ -189,9 +189,9 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
                 Axis::linear(y.lo, hi, ty)
             };
         }
-        layout = Layout::standard(theme, y.max_label_width(theme.tick()));
+        layout = Layout::standard(sizes, y.max_label_width(sizes.tick()));
         let (pw, _) = layout.plot_size(size);
-        let tx = (pw as f64 / (170.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
+        let tx = (pw as f64 / (170.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
         let mut x = Axis::auto(x0, x1, p.x_range, p.log_x, pad, tx);
         if p.equal_aspect && !p.log_x && !p.log_y {
             let (bx, by) = ((x.lo, x.hi), (y.lo, y.hi));
@@ -199,7 +199,7 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
                 let (ex, ey) = layout::equalize(bx, by, layout.plot_size(size));
                 x = Axis::linear(ex.0, ex.1, tx);
                 y = Axis::linear(ey.0, ey.1, ty);
-                layout = Layout::standard(theme, y.max_label_width(theme.tick()));
+                layout = Layout::standard(sizes, y.max_label_width(sizes.tick()));
             }
         }
         (x, y, layout)
@@ -223,12 +223,12 @@ fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, La
         })
         .collect();
     let occ = Occupancy::new(&lines, &x, &y, plot);
-    let legend = legend::box_size(theme, &labels, true);
-    let (_, hidden) = occ.best_with_count(legend, plot, theme.px(14.0), &[]);
+    let legend = legend::box_size(sizes, &labels, true);
+    let (_, hidden) = occ.best_with_count(legend, plot, sizes.px(14.0), &[]);
     if hidden == 0 {
         return (x, y, layout);
     }
-    let frac = (legend.1 + 2 * theme.px(14.0)) as f64 / plot.1.max(1) as f64;
+    let frac = (legend.1 + 2 * sizes.px(14.0)) as f64 / plot.1.max(1) as f64;
     build(frac / (1.0 - frac).max(0.3))
 }
 
@@ -243,14 +243,14 @@ fn legend_lines(p: &LinePlot) -> Vec<String> {
 fn draw_plot<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &LinePlot,
-    theme: &Theme,
+    sizes: &Sizes,
 ) -> Result<(), FigureError> {
-    let area = layout::titled(area, theme, p.title)?;
-    let (x, y, layout) = choose_axes(p, theme, area.dim_in_pixel());
-    let mut chart = chart::chart(&area, theme, &layout, &x, &y, p.x_label, p.y_label)?;
+    let area = layout::titled(area, sizes, p.title)?;
+    let (x, y, layout) = choose_axes(p, sizes, area.dim_in_pixel());
+    let mut chart = chart::chart(&area, sizes, &layout, &x, &y, p.x_label, p.y_label)?;
 
-    let line_w = theme.line();
-    let radius = theme.px(5.5);
+    let line_w = sizes.line();
+    let radius = sizes.px(5.5);
     let mut drawn: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut legend: Vec<(String, Option<Swatch>)> = Vec::new();
     for (i, s) in p.series.iter().enumerate() {
@@ -266,8 +266,8 @@ fn draw_plot<DB: DrawingBackend>(
                 if s.style == Style::Dashed {
                     chart.draw_series(DashedLineSeries::new(
                         piece.clone(),
-                        theme.px(14.0),
-                        theme.px(8.0),
+                        sizes.px(14.0),
+                        sizes.px(8.0),
                         color.stroke_width(line_w),
                     ))?;
                 } else {
@@ -313,29 +313,29 @@ fn draw_plot<DB: DrawingBackend>(
             legend.push((s.label.clone(), Some(swatch)));
         }
     }
-    chart::frame(&chart, theme)?;
+    chart::frame(&chart, sizes)?;
 
     let pa = chart.plotting_area().strip_coord_spec();
     let (pw, ph) = pa.dim_in_pixel();
     let plot = (pw as i32, ph as i32);
     let occ = Occupancy::new(&drawn, &x, &y, plot);
-    let inset = theme.px(14.0);
+    let inset = sizes.px(14.0);
     let mut taken: Vec<Corner> = Vec::new();
     if !legend.is_empty() {
         let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-        let size = legend::box_size(theme, &lines, true);
+        let size = legend::box_size(sizes, &lines, true);
         let c = occ.best(size, plot, inset, &taken);
-        legend::draw_box(&pa, theme, Occupancy::origin(c, size, plot, inset), &legend)?;
+        legend::draw_box(&pa, sizes, Occupancy::origin(c, size, plot, inset), &legend)?;
         taken.push(c);
     }
     if !p.annotations.is_empty() {
-        let size = legend::box_size(theme, &p.annotations, false);
+        let size = legend::box_size(sizes, &p.annotations, false);
         let c = occ.best(size, plot, inset, &taken);
         let entries: Vec<(String, Option<Swatch>)> =
             p.annotations.iter().map(|a| (a.clone(), None)).collect();
         legend::draw_box(
             &pa,
-            theme,
+            sizes,
             Occupancy::origin(c, size, plot, inset),
             &entries,
         )?;

@@ -7,7 +7,7 @@ use std::ops::Range;
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 
 use crate::format::{linear_labels, power_of_ten};
-use crate::theme::text_width;
+use crate::sizes::text_width;
 
 /// The coordinate type of every chart in this crate: linear over plot
 /// space with our own ticks (bold key points) and minor grid lines (light).

@@ -1,43 +1,46 @@
-//! Sizes of text and lines for a canvas about 900 px tall, the embedded
-//! font as a text style, and text widths.
+//! Sizes of text, lines and margins in pixels, the embedded font as a text
+//! style, and text widths.
 
 use plotters::prelude::*;
 use plotters::style::FontDesc;
 
 use crate::font::FAMILY;
 
-/// Sizes of text and lines, in pixels, for a canvas about 900 px tall.
+/// Sizes of text, lines and margins in pixels: those of a canvas about
+/// 900 px tall ([`Sizes::STANDARD`]) times `scale`.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Theme {
-    pub k: f64,
+pub(crate) struct Sizes {
+    /// Every size is this many times its standard value (e.g. 2 on a
+    /// canvas drawn at twice the size, 0.7 for the smaller animation).
+    pub scale: f64,
 }
 
-impl Theme {
-    pub const STANDARD: Theme = Theme { k: 1.0 };
+impl Sizes {
+    pub const STANDARD: Sizes = Sizes { scale: 1.0 };
 
-    /// This theme on a canvas `s` times larger.
-    pub fn scaled(self, s: u32) -> Theme {
-        Theme {
-            k: self.k * f64::from(s),
+    /// These sizes on a canvas `s` times larger.
+    pub fn scaled(self, s: u32) -> Sizes {
+        Sizes {
+            scale: self.scale * f64::from(s),
         }
     }
 
     /// plotters' font size is the line height (ascent + descent); the em is
     /// about 0.86 of it, so a tick label of 28 has an em of about 24 px.
     pub fn title(&self) -> f64 {
-        40.0 * self.k
+        40.0 * self.scale
     }
     pub fn label(&self) -> f64 {
-        34.0 * self.k
+        34.0 * self.scale
     }
     pub fn tick(&self) -> f64 {
-        28.0 * self.k
+        28.0 * self.scale
     }
     pub fn legend(&self) -> f64 {
-        28.0 * self.k
+        28.0 * self.scale
     }
     pub fn note(&self) -> f64 {
-        26.0 * self.k
+        26.0 * self.scale
     }
     /// Width of a data line.
     pub fn line(&self) -> u32 {
@@ -48,7 +51,7 @@ impl Theme {
         self.px(2.0) as u32
     }
     pub fn px(&self, v: f64) -> i32 {
-        (v * self.k).round().max(1.0) as i32
+        (v * self.scale).round().max(1.0) as i32
     }
     pub fn font(&self, size: f64) -> TextStyle<'static> {
         TextStyle::from(FontDesc::new(
