@@ -6,13 +6,11 @@ use plotters::prelude::*;
 
 use crate::layout::Layout;
 use crate::sizes::Sizes;
-use crate::ticks::{Axis, Coord};
+use crate::ticks::Axis;
 use crate::FigureError;
 
-pub(crate) type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<Coord, Coord>>;
-
-/// Build a chart with axes `x`, `y` and draw its grid, ticks, labels and
-/// axis names.
+/// Build a chart with axes `x`, `y` (coordinates: [`Axis::coord`]) and draw
+/// its grid, ticks, labels and axis names.
 pub(crate) fn chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     sizes: &Sizes,
@@ -21,7 +19,10 @@ pub(crate) fn chart<'a, DB: DrawingBackend>(
     y: &Axis,
     x_desc: &str,
     y_desc: &str,
-) -> Result<Chart<'a, DB>, FigureError> {
+) -> Result<
+    ChartContext<'a, DB, Cartesian2d<impl Ranged<ValueType = f64>, impl Ranged<ValueType = f64>>>,
+    FigureError,
+> {
     let mut chart = ChartBuilder::on(area)
         .margin_top(layout.top)
         .margin_right(layout.right)
@@ -50,8 +51,8 @@ pub(crate) fn chart<'a, DB: DrawingBackend>(
 
 /// Close the frame around the plot area: plotters draws the left and
 /// bottom axes, this adds the top and right sides.
-pub(crate) fn frame<DB: DrawingBackend>(
-    chart: &Chart<'_, DB>,
+pub(crate) fn frame<DB: DrawingBackend, X: Ranged, Y: Ranged>(
+    chart: &ChartContext<'_, DB, Cartesian2d<X, Y>>,
     sizes: &Sizes,
 ) -> Result<(), FigureError> {
     let pa = chart.plotting_area().strip_coord_spec();

@@ -1,46 +1,12 @@
 //! Axis ranges and ticks: linear axes with nice steps, logarithmic axes
 //! drawn as linear axes over `log10` of the data with our own key points
-//! (exactly the powers of ten), and the coordinate type every chart uses.
+//! (exactly the powers of ten), handed to plotters as fixed key points.
 
-use std::ops::Range;
-
-use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
+use plotters::coord::ranged1d::DefaultFormatting;
+use plotters::prelude::{BindKeyPoints, IntoPartialAxis, Ranged};
 
 use crate::format::{linear_labels, power_of_ten};
 use crate::sizes::text_width;
-
-/// The coordinate type of every chart in this crate: linear over plot
-/// space with our own ticks (bold key points) and minor grid lines (light).
-#[derive(Debug, Clone)]
-pub(crate) struct Coord {
-    lo: f64,
-    hi: f64,
-    ticks: Vec<f64>,
-    minor: Vec<f64>,
-}
-
-impl Ranged for Coord {
-    type FormatOption = DefaultFormatting;
-    type ValueType = f64;
-
-    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
-        let t = ((v - self.lo) / (self.hi - self.lo)).clamp(-1e4, 1e4);
-        let t = if t.is_nan() { 0.0 } else { t };
-        limit.0 + (f64::from(limit.1 - limit.0) * t).round() as i32
-    }
-
-    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
-        if hint.weight().allow_light_points() {
-            self.minor.clone()
-        } else {
-            self.ticks.clone()
-        }
-    }
-
-    fn range(&self) -> Range<f64> {
-        self.lo..self.hi
-    }
-}
 
 /// One axis: its range and ticks in plot space (`log10` of the data on a
 /// log axis) and the tick labels.
@@ -171,13 +137,20 @@ impl Axis {
             .unwrap_or_default()
     }
 
-    pub fn coord(&self) -> Coord {
-        Coord {
-            lo: self.lo,
-            hi: self.hi,
-            ticks: self.ticks.clone(),
-            minor: self.minor.clone(),
-        }
+    /// The plotters coordinate of this axis: linear over plot space, with
+    /// the ticks as fixed bold key points and the minor grid lines as light
+    /// ones.
+    ///
+    /// The outer `partial_axis` over the whole range changes nothing drawn:
+    /// in plotters 0.3.7 `WithKeyPoints` over an `f64` range lacks the value
+    /// formatter `configure_mesh` asks for (fixed after 0.3.7 by plotters
+    /// PR #653), and `PartialAxis` brings the default one, which our label
+    /// formatters replace.
+    pub fn coord(&self) -> impl Ranged<ValueType = f64, FormatOption = DefaultFormatting> {
+        (self.lo..self.hi)
+            .with_key_points(self.ticks.clone())
+            .with_light_points(self.minor.iter().copied())
+            .partial_axis(self.lo..self.hi)
     }
 
     /// Widest tick label in pixels.
