@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::font;
+use crate::layout;
 use crate::output::{self, Draw};
 use crate::sizes::{text_width, Sizes};
 use crate::{FigureError, Output};
@@ -139,11 +140,7 @@ impl Plan {
         let tick = t.tick();
         let margin = t.px(30.0);
         let gap = t.px(60.0);
-        let title_h = if map.title.is_empty() {
-            0
-        } else {
-            (t.title() * 1.6) as i32 + t.px(8.0)
-        };
+        let title_h = layout::title_height(t, map.title);
         let ylab_w = if map.y_label.is_empty() {
             0
         } else {
@@ -271,14 +268,7 @@ impl Draw for Figure<'_, '_> {
         let (w, _) = root.dim_in_pixel();
         let w = w as i32;
         let center = |size: f64| t.font(size).pos(Pos::new(HPos::Center, VPos::Center));
-        if !map.title.is_empty() {
-            let h = (t.title() * 1.6) as i32;
-            root.draw(&Text::new(
-                map.title.to_string(),
-                (w / 2, h / 2 + t.px(8.0)),
-                center(t.title()),
-            ))?;
-        }
+        layout::titled(root, t, map.title)?;
         for (p, pp) in map.panels.iter().zip(&plan.panels) {
             let gw = pp.cw * p.col_labels.len() as i32;
             let gh = pp.ch * p.row_labels.len() as i32;

@@ -205,7 +205,7 @@ impl Geometry {
         let inset = sizes.px(14.0);
         let plot = g.layout.plot_size((
             g.size.0 - g.cbar_w as u32,
-            g.size.1 - title_height(&sizes, spec.title) as u32,
+            g.size.1 - layout::title_height(&sizes, spec.title) as u32,
         ));
         let occ = Occupancy::new(&lines, &g.x, &g.y, plot);
         let (corner, hidden) = occ.best_with_count(legend, plot, inset, &[]);
@@ -234,7 +234,7 @@ impl Geometry {
     ) -> Geometry {
         let (vmin, vmax) = (cbar.lo, cbar.hi);
         let cbar_w = cbar_width(&sizes, &cbar, spec.cbar_label);
-        let title_h = title_height(&sizes, spec.title);
+        let title_h = layout::title_height(&sizes, spec.title);
         let area_h = height as i32 - title_h;
         let mut layout = Layout::standard(&sizes, 0);
         let ph = area_h - layout.top - layout.bottom - layout.x_area;
@@ -309,14 +309,6 @@ fn legend_lines(spec: &Spec) -> Vec<String> {
         v.push(spec.markers_label.to_string());
     }
     v
-}
-
-fn title_height(sizes: &Sizes, title: &str) -> i32 {
-    if title.is_empty() {
-        0
-    } else {
-        (sizes.title() * 1.6) as i32 + sizes.px(8.0)
-    }
 }
 
 /// Short colour-bar labels are written upright, longer ones rotated.

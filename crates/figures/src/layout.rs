@@ -3,9 +3,8 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::sizes::Sizes;
+use crate::sizes::{text_size, Sizes};
 use crate::FigureError;
 
 /// Expand the shorter range so both axes have the same data units per pixel.
@@ -77,7 +76,25 @@ impl Layout {
     }
 }
 
-/// Draw `title` centred at the top of `area` and return the area below it.
+/// Space above a title.
+fn title_margin(sizes: &Sizes) -> i32 {
+    sizes.px(20.0)
+}
+
+/// Height of the band [`titled`] takes from the top of an area (0 for no
+/// title): our margin, then plotters' title (its text height and a padding
+/// of up to 5 px above and below).
+pub(crate) fn title_height(sizes: &Sizes, title: &str) -> i32 {
+    if title.is_empty() {
+        return 0;
+    }
+    let text_h = text_size(title, sizes.title()).1;
+    title_margin(sizes) + text_h + 2 * (text_h / 2).min(5)
+}
+
+/// Draw `title` centred at the top of `area` (plotters'
+/// `DrawingArea::titled`, below our margin) and return the area under it,
+/// [`title_height`] shorter.
 pub(crate) fn titled<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     sizes: &Sizes,
@@ -86,17 +103,8 @@ pub(crate) fn titled<DB: DrawingBackend>(
     if title.is_empty() {
         return Ok(area.clone());
     }
-    let size = sizes.title();
-    let h = (size * 1.6) as i32;
-    let (w, _) = area.dim_in_pixel();
-    let style = sizes.font(size).pos(Pos::new(HPos::Center, VPos::Center));
-    area.draw(&Text::new(
-        title.to_string(),
-        (w as i32 / 2, h / 2 + sizes.px(8.0)),
-        style,
-    ))?;
-    let (_, rest) = area.split_vertically(h + sizes.px(8.0));
-    Ok(rest)
+    let (_, below) = area.split_vertically(title_margin(sizes));
+    Ok(below.titled(title, sizes.font(sizes.title()))?)
 }
 
 #[cfg(test)]

@@ -62,10 +62,21 @@ impl Sizes {
     }
 }
 
-/// Width in pixels of `text` in the embedded font at `size`.
-pub(crate) fn text_width(text: &str, size: f64) -> i32 {
+/// Width and height in pixels of `text` in the embedded font at `size`,
+/// as plotters measures it (the height is the font's, whatever the text).
+pub(crate) fn text_size(text: &str, size: f64) -> (i32, i32) {
     FontDesc::new(FontFamily::Name(FAMILY), size, FontStyle::Normal)
         .box_size(text)
-        .map(|(w, _)| w as i32)
-        .unwrap_or_else(|_| (text.chars().count() as f64 * 0.6 * size) as i32)
+        .map(|(w, h)| (w as i32, h as i32))
+        .unwrap_or_else(|_| {
+            (
+                (text.chars().count() as f64 * 0.6 * size) as i32,
+                (size / 1.24) as i32,
+            )
+        })
+}
+
+/// Width in pixels of `text` in the embedded font at `size`.
+pub(crate) fn text_width(text: &str, size: f64) -> i32 {
+    text_size(text, size).0
 }
