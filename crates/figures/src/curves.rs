@@ -208,7 +208,7 @@ impl Geometry {
             g.size.1 - layout::title_height(&sizes, spec.title) as u32,
         ));
         let occ = Occupancy::new(&lines, &g.x, &g.y, plot);
-        let (corner, hidden) = occ.best_with_count(legend, plot, inset, &[]);
+        let (corner, hidden) = occ.best_corner(legend, plot, inset);
         g.legend_corner = corner;
         if hidden > 0 && spec.y_range.is_none() {
             let extra = (legend.1 + 2 * inset) as f64 / plot.1.max(1) as f64 * (yr.1 - yr.0);
@@ -391,7 +391,6 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     )?;
     let xr = (g.x.lo, g.x.hi);
     let yr = (g.y.lo, g.y.hi);
-    let mut drawn: Vec<Vec<(f64, f64)>> = Vec::new();
 
     let clip = |pts: &[(f64, f64)]| {
         let p: Vec<Option<(f64, f64)>> = pts
@@ -408,8 +407,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             for (v, pts) in &spec.curves {
                 let color = g.color(*v);
                 for piece in clip(pts) {
-                    chart.draw_series(LineSeries::new(piece.clone(), color.stroke_width(w)))?;
-                    drawn.push(piece);
+                    chart.draw_series(LineSeries::new(piece, color.stroke_width(w)))?;
                 }
             }
         }
@@ -453,9 +451,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             .filter(|q| inside(q))
             .map(|&q| Circle::new(q, mr, BLACK.filled())),
     )?;
-    drawn.extend(spec.markers.iter().filter(|q| inside(q)).map(|&q| vec![q]));
     let pr = sizes.px(9.0);
-    let mut legend: Vec<(String, Option<Swatch>)> = Vec::new();
     let anchors = [(Some(spec.p0), P0_RED, "P₀"), (spec.p1, P1_BLUE, "P₁")];
     for (p, color, name) in anchors {
         let Some(p) = p else { continue };
@@ -466,29 +462,24 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
                 pr,
                 BLACK.stroke_width(sizes.px(1.5) as u32),
             )))?;
-            drawn.push(vec![p]);
         }
-        legend.push((name.to_string(), Some(Swatch::Marker { color, radius: pr })));
+        let swatch = Swatch::Marker { color, radius: pr };
+        legend::add_entry(&mut chart, sizes, name, swatch)?;
     }
     if !spec.markers_label.is_empty() && !spec.markers.is_empty() {
-        legend.push((
-            spec.markers_label.to_string(),
-            Some(Swatch::Marker {
-                color: BLACK,
-                radius: mr,
-            }),
-        ));
+        let swatch = Swatch::Marker {
+            color: BLACK,
+            radius: mr,
+        };
+        legend::add_entry(&mut chart, sizes, spec.markers_label, swatch)?;
     }
     chart::frame(&chart, sizes)?;
 
-    let pa = chart.plotting_area().strip_coord_spec();
-    let (pw, ph) = pa.dim_in_pixel();
+    let (pw, ph) = chart.plotting_area().dim_in_pixel();
     let plot = (pw as i32, ph as i32);
-    let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-    let size = legend::box_size(sizes, &lines, true);
-    let inset = sizes.px(14.0);
-    let origin = Occupancy::origin(g.legend_corner, size, plot, inset);
-    legend::draw_box(&pa, sizes, origin, &legend)?;
+    let size = legend::box_size(sizes, &legend_lines(spec), true);
+    let legend = g.legend_corner.rect(size, plot, sizes.px(14.0));
+    legend::draw_legend(&mut chart, sizes, legend.origin())?;
     drop(chart);
 
     let marker = current.and_then(|c| spec.curves.get(c.index)).map(|c| c.0);

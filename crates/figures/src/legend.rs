@@ -1,15 +1,15 @@
-//! Legend and note boxes: their size and drawing.
+//! Legend and note boxes: their size, the legend drawn by plotters' series
+//! labels, and the note box drawn to look the same.
 
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::sizes::{text_width, Sizes};
+use crate::sizes::{text_size, Sizes};
 use crate::FigureError;
 
 /// How a legend entry is drawn.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) enum Swatch {
     Line {
         color: RGBColor,
@@ -27,90 +27,136 @@ pub(crate) enum Swatch {
     },
 }
 
-/// Size in pixels of a legend (or, with no swatches, a note box).
-pub(crate) fn box_size(sizes: &Sizes, lines: &[String], swatch: bool) -> (i32, i32) {
-    let size = sizes.legend();
-    let row = (size * 1.25) as i32;
-    let pad = sizes.px(12.0);
-    let sw = if swatch {
-        sizes.px(56.0) + sizes.px(12.0)
-    } else {
-        0
-    };
-    let tw = lines.iter().map(|l| text_width(l, size)).max().unwrap_or(0);
-    (2 * pad + sw + tw, 2 * pad + row * lines.len() as i32)
+/// Length of a swatch.
+fn swatch_length(sizes: &Sizes) -> i32 {
+    sizes.px(56.0)
 }
 
-/// Draw a legend (entries with swatches) or a note box (no swatches) with
-/// its top-left corner at `origin` in plot-area pixels.
-pub(crate) fn draw_box<DB: DrawingBackend>(
+/// Width left of a legend's text: the swatch and a gap.
+fn swatch_area(sizes: &Sizes) -> i32 {
+    swatch_length(sizes) + sizes.px(12.0)
+}
+
+/// Space between a box's border and its content.
+fn padding(sizes: &Sizes) -> i32 {
+    sizes.px(12.0)
+}
+
+/// Text lines are this many font sizes apart (plotters' multi-line text).
+const LINE_SPACING: f64 = 1.25;
+
+const BORDER: RGBColor = RGBColor(120, 120, 120);
+
+/// Size in pixels of a legend (`swatch`) or a note box of `lines`, laid out
+/// as plotters lays out series labels.
+pub(crate) fn box_size(sizes: &Sizes, lines: &[String], swatch: bool) -> (i32, i32) {
+    let size = sizes.legend();
+    let (mut w, mut h) = (0, 0);
+    for (i, line) in lines.iter().enumerate() {
+        let (tw, th) = text_size(line, size);
+        let top = (i as f64 * size * LINE_SPACING).round() as i32;
+        w = w.max(tw);
+        h = h.max(top + th);
+    }
+    let left = if swatch { swatch_area(sizes) } else { 0 };
+    (w + left + 2 * padding(sizes), h + 2 * padding(sizes))
+}
+
+/// Add a legend entry to `chart`. plotters keeps a label with each series
+/// drawn; this series draws nothing, so every entry is one series whatever
+/// the pieces its data was drawn in. plotters calls the swatch closure with
+/// the left end of the swatch's place, level with the middle of the text.
+pub(crate) fn add_entry<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    sizes: &Sizes,
+    label: &str,
+    swatch: Swatch,
+) -> Result<(), FigureError> {
+    let len = swatch_length(sizes);
+    let (dash, gap) = (sizes.px(12.0), sizes.px(7.0));
+    let entry = chart
+        .draw_series(std::iter::empty::<EmptyElement<(f64, f64), DB>>())?
+        .label(label);
+    match swatch {
+        Swatch::Line {
+            color,
+            width,
+            dashed: false,
+        } => entry.legend(move |(x, y)| {
+            PathElement::new(vec![(x, y), (x + len, y)], color.stroke_width(width))
+        }),
+        Swatch::Line {
+            color,
+            width,
+            dashed: true,
+        } => entry.legend(move |(x, y)| {
+            DashedPathElement::new(
+                vec![(x, y), (x + len, y)],
+                dash,
+                gap,
+                color.stroke_width(width),
+            )
+        }),
+        Swatch::Marker { color, radius } => {
+            entry.legend(move |(x, y)| Circle::new((x + len / 2, y), radius, color.filled()))
+        }
+        Swatch::LineMarker {
+            color,
+            width,
+            radius,
+        } => entry.legend(move |(x, y)| {
+            EmptyElement::at((x, y))
+                + PathElement::new(vec![(0, 0), (len, 0)], color.stroke_width(width))
+                + Circle::new((len / 2, 0), radius, color.filled())
+        }),
+    };
+    Ok(())
+}
+
+/// Draw the legend of `chart` (its entries from [`add_entry`]) with plotters'
+/// series labels, the top-left corner at `origin` in plot-area pixels; its
+/// size is [`box_size`].
+pub(crate) fn draw_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    sizes: &Sizes,
+    origin: (i32, i32),
+) -> Result<(), FigureError> {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::Coordinate(origin.0, origin.1))
+        .margin(padding(sizes))
+        .legend_area_size(swatch_area(sizes))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BORDER.stroke_width(sizes.px(1.0) as u32))
+        .label_font(sizes.font(sizes.legend()))
+        .draw()?;
+    Ok(())
+}
+
+/// Draw a note box, `lines` of text in a box like the legend's, with its
+/// top-left corner at `origin` in pixels of `area`; its size is
+/// [`box_size`] without swatches.
+pub(crate) fn draw_note<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     sizes: &Sizes,
     origin: (i32, i32),
-    entries: &[(String, Option<Swatch>)],
+    lines: &[String],
 ) -> Result<(), FigureError> {
-    let lines: Vec<String> = entries.iter().map(|e| e.0.clone()).collect();
-    let has_swatch = entries.iter().any(|e| e.1.is_some());
-    let (bw, bh) = box_size(sizes, &lines, has_swatch);
-    let (ox, oy) = origin;
+    let (w, h) = box_size(sizes, lines, false);
+    let (x, y) = origin;
+    let corners = [(x, y), (x + w, y + h)];
+    area.draw(&Rectangle::new(corners, WHITE.mix(0.9).filled()))?;
     area.draw(&Rectangle::new(
-        [(ox, oy), (ox + bw, oy + bh)],
-        WHITE.mix(0.9).filled(),
+        corners,
+        BORDER.stroke_width(sizes.px(1.0) as u32),
     ))?;
-    area.draw(&Rectangle::new(
-        [(ox, oy), (ox + bw, oy + bh)],
-        RGBColor(120, 120, 120).stroke_width(sizes.px(1.0) as u32),
-    ))?;
-    let size = sizes.legend();
-    let row = (size * 1.25) as i32;
-    let pad = sizes.px(12.0);
-    let sw_len = sizes.px(56.0);
-    let text_x = ox
-        + pad
-        + if has_swatch {
-            sw_len + sizes.px(12.0)
-        } else {
-            0
-        };
-    let style = sizes.font(size).pos(Pos::new(HPos::Left, VPos::Center));
-    for (i, (text, swatch)) in entries.iter().enumerate() {
-        let cy = oy + pad + row * i as i32 + row / 2;
-        let (sx0, sx1) = (ox + pad, ox + pad + sw_len);
-        match swatch {
-            Some(Swatch::Line {
-                color,
-                width,
-                dashed,
-            }) => {
-                let st = color.stroke_width(*width);
-                if *dashed {
-                    area.draw(&DashedPathElement::new(
-                        vec![(sx0, cy), (sx1, cy)],
-                        sizes.px(12.0),
-                        sizes.px(7.0),
-                        st,
-                    ))?;
-                } else {
-                    area.draw(&PathElement::new(vec![(sx0, cy), (sx1, cy)], st))?;
-                }
-            }
-            Some(Swatch::Marker { color, radius }) => {
-                area.draw(&Circle::new(((sx0 + sx1) / 2, cy), *radius, color.filled()))?;
-            }
-            Some(Swatch::LineMarker {
-                color,
-                width,
-                radius,
-            }) => {
-                area.draw(&PathElement::new(
-                    vec![(sx0, cy), (sx1, cy)],
-                    color.stroke_width(*width),
-                ))?;
-                area.draw(&Circle::new(((sx0 + sx1) / 2, cy), *radius, color.filled()))?;
-            }
-            None => {}
-        }
-        area.draw(&Text::new(text.clone(), (text_x, cy), style.clone()))?;
+    let font = sizes.font(sizes.legend());
+    let pad = padding(sizes);
+    let mut text = MultiLineText::<_, &str>::new((x + pad, y + pad), &font);
+    text.set_line_height(LINE_SPACING);
+    for line in lines {
+        text.push_line(line.as_str());
     }
+    area.draw(&text)?;
     Ok(())
 }

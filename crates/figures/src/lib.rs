@@ -40,8 +40,12 @@ pub use category::{category_map, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
 pub use format::format_number;
-pub use lines::{line_plot, line_plot_pair, LinePlot, Series, Style, LINE_PLOT_SIZE, PAIR_SIZE};
+pub use lines::{
+    line_plot, line_plot_boxes, line_plot_pair, LinePlot, LinePlotBoxes, Series, Style,
+    LINE_PLOT_SIZE, PAIR_SIZE,
+};
 pub use output::{FigureError, Output};
+pub use placement::PixelRect;
 pub use plotters::style::RGBColor;
 pub use sketch::{sketch, SKETCH_SIZE};
 pub use snapshots::{chain_snapshots, chain_snapshots_to, ChainSnapshots};

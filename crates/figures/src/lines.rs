@@ -10,10 +10,10 @@ use crate::colormap::palette;
 use crate::layout::{self, Layout};
 use crate::legend::{self, Swatch};
 use crate::output::{self, Draw};
-use crate::placement::{Corner, Occupancy};
+use crate::placement::{self, Boxes, Occupancy, PixelRect};
 use crate::sizes::Sizes;
 use crate::ticks::Axis;
-use crate::{chart, clip};
+use crate::{chart, clip, font};
 use crate::{FigureError, Output};
 
 /// How a series is drawn.
@@ -164,6 +164,68 @@ fn to_plot(s: &Series, x: &Axis, y: &Axis) -> Vec<Option<(f64, f64)>> {
         .collect()
 }
 
+fn has_line(style: Style) -> bool {
+    matches!(style, Style::Line | Style::LinePoints | Style::Dashed)
+}
+
+fn has_marks(style: Style) -> bool {
+    matches!(style, Style::Points | Style::LinePoints)
+}
+
+/// The pieces of series `s` drawn on axes `x`, `y` (plot space): its line
+/// clipped to the axes, and each of its marks inside them as one point.
+fn drawn_pieces(s: &Series, x: &Axis, y: &Axis) -> Vec<Vec<(f64, f64)>> {
+    let pts = to_plot(s, x, y);
+    let mut pieces = Vec::new();
+    if has_line(s.style) {
+        pieces.extend(
+            clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi))
+                .into_iter()
+                .filter(|piece| piece.len() >= 2),
+        );
+    }
+    if has_marks(s.style) {
+        pieces.extend(
+            pts.iter()
+                .flatten()
+                .filter(|q| q.0 >= x.lo && q.0 <= x.hi && q.1 >= y.lo && q.1 <= y.hi)
+                .map(|&q| vec![q]),
+        );
+    }
+    pieces
+}
+
+/// Where the data of `p` is drawn, in pixels of a `plot` area.
+fn occupancy(p: &LinePlot, x: &Axis, y: &Axis, plot: (i32, i32)) -> Occupancy {
+    let pieces: Vec<Vec<(f64, f64)>> = p
+        .series
+        .iter()
+        .flat_map(|s| drawn_pieces(s, x, y))
+        .collect();
+    Occupancy::new(&pieces, x, y, plot)
+}
+
+/// Size of the legend of `p` (`None` if no series is labelled).
+fn legend_size(p: &LinePlot, sizes: &Sizes) -> Option<(i32, i32)> {
+    let labels: Vec<String> = p
+        .series
+        .iter()
+        .filter(|s| !s.label.is_empty())
+        .map(|s| s.label.clone())
+        .collect();
+    (!labels.is_empty()).then(|| legend::box_size(sizes, &labels, true))
+}
+
+/// Size of the note box of `p` (`None` without notes).
+fn note_size(p: &LinePlot, sizes: &Sizes) -> Option<(i32, i32)> {
+    (!p.annotations.is_empty()).then(|| legend::box_size(sizes, &p.annotations, false))
+}
+
+/// Distance of the boxes from the edges of the plot area and each other.
+fn inset(sizes: &Sizes) -> i32 {
+    sizes.px(14.0)
+}
+
 /// Choose both axes for `p` in an area of `size` pixels. If the legend
 /// would hide data in every corner, room is made above the data.
 fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, Layout) {
@@ -205,39 +267,81 @@ fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, La
         (x, y, layout)
     };
     let (x, y, layout) = build(0.0);
-    let labels = legend_lines(p);
-    if labels.is_empty() || p.y_range.is_some() {
-        return (x, y, layout);
-    }
+    let legend = match legend_size(p, sizes) {
+        Some(legend) if p.y_range.is_none() => legend,
+        _ => return (x, y, layout),
+    };
     let plot = layout.plot_size(size);
-    let lines: Vec<Vec<(f64, f64)>> = p
-        .series
-        .iter()
-        .flat_map(|s| {
-            let pts = to_plot(s, &x, &y);
-            if s.style == Style::Points {
-                pts.into_iter().flatten().map(|q| vec![q]).collect()
-            } else {
-                clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi))
-            }
-        })
-        .collect();
-    let occ = Occupancy::new(&lines, &x, &y, plot);
-    let legend = legend::box_size(sizes, &labels, true);
-    let (_, hidden) = occ.best_with_count(legend, plot, sizes.px(14.0), &[]);
-    if hidden == 0 {
+    let occ = occupancy(p, &x, &y, plot);
+    let inset = inset(sizes);
+    if occ.best_corner(legend, plot, inset).1 == 0 {
         return (x, y, layout);
     }
-    let frac = (legend.1 + 2 * sizes.px(14.0)) as f64 / plot.1.max(1) as f64;
+    let frac = (legend.1 + 2 * inset) as f64 / plot.1.max(1) as f64;
     build(frac / (1.0 - frac).max(0.3))
 }
 
-fn legend_lines(p: &LinePlot) -> Vec<String> {
-    p.series
-        .iter()
-        .filter(|s| !s.label.is_empty())
-        .map(|s| s.label.clone())
-        .collect()
+/// Axes, margins and the places of the legend and the note box of one plot.
+struct Plan {
+    x: Axis,
+    y: Axis,
+    layout: Layout,
+    /// Size of the plot area.
+    plot: (i32, i32),
+    boxes: Boxes,
+}
+
+impl Plan {
+    /// The plan of `p` in an area of `size` pixels (under its title).
+    fn new(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> Plan {
+        let (x, y, layout) = choose_axes(p, sizes, size);
+        let plot = layout.plot_size(size);
+        let occ = occupancy(p, &x, &y, plot);
+        let boxes = placement::place_boxes(
+            &occ,
+            plot,
+            inset(sizes),
+            legend_size(p, sizes),
+            note_size(p, sizes),
+        );
+        Plan {
+            x,
+            y,
+            layout,
+            plot,
+            boxes,
+        }
+    }
+}
+
+/// Where [`line_plot`] puts the legend and the note box of `p`, in pixels of
+/// its plot area as drawn in the SVG (the PNG is drawn at twice the size).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LinePlotBoxes {
+    /// Size of the plot area (inside the axes).
+    pub plot: (i32, i32),
+    /// The legend; `None` if no series is labelled.
+    pub legend: Option<PixelRect>,
+    /// The note box of [`LinePlot::annotations`]; `None` without notes.
+    pub note: Option<PixelRect>,
+    /// How many samples of the drawn data (about 6 px apart along every
+    /// line, and every mark) the two boxes cover.
+    pub hidden: usize,
+}
+
+/// The layout [`line_plot`] draws `p` with: where its legend and note box go.
+pub fn line_plot_boxes(p: &LinePlot) -> Result<LinePlotBoxes, FigureError> {
+    font::ensure_registered()?;
+    let sizes = Sizes::STANDARD;
+    let (w, h) = LINE_PLOT_SIZE;
+    let title_h = layout::title_height(&sizes, p.title) as u32;
+    let plan = Plan::new(p, &sizes, (w, h - title_h));
+    Ok(LinePlotBoxes {
+        plot: plan.plot,
+        legend: plan.boxes.legend,
+        note: plan.boxes.note,
+        hidden: plan.boxes.hidden,
+    })
 }
 
 fn draw_plot<DB: DrawingBackend>(
@@ -246,50 +350,39 @@ fn draw_plot<DB: DrawingBackend>(
     sizes: &Sizes,
 ) -> Result<(), FigureError> {
     let area = layout::titled(area, sizes, p.title)?;
-    let (x, y, layout) = choose_axes(p, sizes, area.dim_in_pixel());
-    let mut chart = chart::chart(&area, sizes, &layout, &x, &y, p.x_label, p.y_label)?;
+    let plan = Plan::new(p, sizes, area.dim_in_pixel());
+    let (x, y) = (&plan.x, &plan.y);
+    let mut chart = chart::chart(&area, sizes, &plan.layout, x, y, p.x_label, p.y_label)?;
 
     let line_w = sizes.line();
     let radius = sizes.px(5.5);
-    let mut drawn: Vec<Vec<(f64, f64)>> = Vec::new();
-    let mut legend: Vec<(String, Option<Swatch>)> = Vec::new();
     for (i, s) in p.series.iter().enumerate() {
         let color = s.color.unwrap_or_else(|| palette(i));
-        let pts = to_plot(s, &x, &y);
-        let has_line = matches!(s.style, Style::Line | Style::LinePoints | Style::Dashed);
-        let has_marks = matches!(s.style, Style::Points | Style::LinePoints);
-        if has_line {
+        let pts = to_plot(s, x, y);
+        if has_line(s.style) {
             for piece in clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi)) {
                 if piece.len() < 2 {
                     continue;
                 }
                 if s.style == Style::Dashed {
                     chart.draw_series(DashedLineSeries::new(
-                        piece.clone(),
+                        piece,
                         sizes.px(14.0),
                         sizes.px(8.0),
                         color.stroke_width(line_w),
                     ))?;
                 } else {
-                    chart
-                        .draw_series(LineSeries::new(piece.clone(), color.stroke_width(line_w)))?;
+                    chart.draw_series(LineSeries::new(piece, color.stroke_width(line_w)))?;
                 }
-                drawn.push(piece);
             }
         }
-        if has_marks {
-            let inside: Vec<(f64, f64)> = pts
-                .iter()
-                .flatten()
-                .copied()
-                .filter(|q| q.0 >= x.lo && q.0 <= x.hi && q.1 >= y.lo && q.1 <= y.hi)
-                .collect();
+        if has_marks(s.style) {
             chart.draw_series(
-                inside
-                    .iter()
+                pts.iter()
+                    .flatten()
+                    .filter(|q| q.0 >= x.lo && q.0 <= x.hi && q.1 >= y.lo && q.1 <= y.hi)
                     .map(|&q| Circle::new(q, radius, color.filled())),
             )?;
-            drawn.extend(inside.iter().map(|&q| vec![q]));
         }
         if !s.label.is_empty() {
             let swatch = match s.style {
@@ -310,37 +403,19 @@ fn draw_plot<DB: DrawingBackend>(
                     radius,
                 },
             };
-            legend.push((s.label.clone(), Some(swatch)));
+            legend::add_entry(&mut chart, sizes, &s.label, swatch)?;
         }
     }
     chart::frame(&chart, sizes)?;
 
     let pa = chart.plotting_area().strip_coord_spec();
     let (pw, ph) = pa.dim_in_pixel();
-    let plot = (pw as i32, ph as i32);
-    let occ = Occupancy::new(&drawn, &x, &y, plot);
-    let inset = sizes.px(14.0);
-    let mut taken: Vec<Corner> = Vec::new();
-    if !legend.is_empty() {
-        let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-        let size = legend::box_size(sizes, &lines, true);
-        let c = occ.best(size, plot, inset, &taken);
-        legend::draw_box(&pa, sizes, Occupancy::origin(c, size, plot, inset), &legend)?;
-        taken.push(c);
+    debug_assert_eq!((pw as i32, ph as i32), plan.plot, "plot area as planned");
+    if let Some(r) = plan.boxes.legend {
+        legend::draw_legend(&mut chart, sizes, r.origin())?;
     }
-    if !p.annotations.is_empty() {
-        let size = legend::box_size(sizes, &p.annotations, false);
-        let c = occ.best(size, plot, inset, &taken);
-        let entries: Vec<(String, Option<Swatch>)> =
-            p.annotations.iter().map(|a| (a.clone(), None)).collect();
-        legend::draw_box(
-            &pa,
-            sizes,
-            Occupancy::origin(c, size, plot, inset),
-            &entries,
-        )?;
+    if let Some(r) = plan.boxes.note {
+        legend::draw_note(&pa, sizes, r.origin(), &p.annotations)?;
     }
-    // Keep the chart alive until everything on its area is drawn.
-    drop(chart);
     Ok(())
 }
