@@ -226,8 +226,9 @@ fn inset(sizes: &Sizes) -> i32 {
     sizes.px(14.0)
 }
 
-/// Choose both axes for `p` in an area of `size` pixels. If the legend
-/// would hide data in every corner, room is made above the data.
+/// Choose both axes for `p` in an area of `size` pixels. If the legend and
+/// the note box would hide data wherever they go, room is made above the
+/// data (unless the y range is fixed).
 fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, Layout) {
     let valid = |v: f64, log: bool| v.is_finite() && (!log || v > 0.0);
     let pts: Vec<(f64, f64)> = p
@@ -267,17 +268,18 @@ fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, La
         (x, y, layout)
     };
     let (x, y, layout) = build(0.0);
-    let legend = match legend_size(p, sizes) {
-        Some(legend) if p.y_range.is_none() => legend,
-        _ => return (x, y, layout),
-    };
+    let (legend, note) = (legend_size(p, sizes), note_size(p, sizes));
+    if (legend.is_none() && note.is_none()) || p.y_range.is_some() {
+        return (x, y, layout);
+    }
     let plot = layout.plot_size(size);
     let occ = occupancy(p, &x, &y, plot);
     let inset = inset(sizes);
-    if occ.best_corner(legend, plot, inset).1 == 0 {
+    if placement::place_boxes(&occ, plot, inset, legend, note).hidden == 0 {
         return (x, y, layout);
     }
-    let frac = (legend.1 + 2 * inset) as f64 / plot.1.max(1) as f64;
+    let band = placement::top_band(plot, inset, legend, note);
+    let frac = (band + 2 * inset) as f64 / plot.1.max(1) as f64;
     build(frac / (1.0 - frac).max(0.3))
 }
 

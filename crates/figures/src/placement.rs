@@ -172,8 +172,14 @@ pub(crate) struct Boxes {
     pub hidden: usize,
 }
 
-/// Place a legend in its best corner, then a note box in the best corner
-/// the legend left.
+/// Place a legend and a note box of the given sizes (either may be absent)
+/// in a `plot` area. Each goes in a corner, `inset` px from the edges, or
+/// the note right under an upper legend (above a lower one) on its side.
+/// The two never overlap and keep `inset` px apart; of all such places, the
+/// pair that hides the fewest data samples wins, then the one whose legend
+/// hides fewer, then the first in the order of [`Corner::ALL`] (the note's
+/// corners before the place beside the legend). Only in a plot too small
+/// for both apart does the note go to the best corner the legend left.
 pub(crate) fn place_boxes(
     occ: &Occupancy,
     plot: (i32, i32),
@@ -181,24 +187,101 @@ pub(crate) fn place_boxes(
     legend: Option<(i32, i32)>,
     note: Option<(i32, i32)>,
 ) -> Boxes {
-    let mut boxes = Boxes {
-        legend: None,
-        note: None,
-        hidden: 0,
-    };
-    let mut taken = None;
-    if let Some(size) = legend {
+    let alone = |size: (i32, i32)| {
         let (c, hidden) = occ.best_corner(size, plot, inset);
-        boxes.legend = Some(c.rect(size, plot, inset));
-        boxes.hidden += hidden;
-        taken = Some(c);
+        (c.rect(size, plot, inset), hidden)
+    };
+    let (legend_size, note_size) = match (legend, note) {
+        (Some(l), Some(n)) => (l, n),
+        (Some(l), None) => {
+            let (r, hidden) = alone(l);
+            return Boxes {
+                legend: Some(r),
+                note: None,
+                hidden,
+            };
+        }
+        (None, Some(n)) => {
+            let (r, hidden) = alone(n);
+            return Boxes {
+                legend: None,
+                note: Some(r),
+                hidden,
+            };
+        }
+        (None, None) => {
+            return Boxes {
+                legend: None,
+                note: None,
+                hidden: 0,
+            }
+        }
+    };
+    // (hidden by both, hidden by the legend, legend, note)
+    let mut best: Option<(usize, usize, PixelRect, PixelRect)> = None;
+    for lc in Corner::ALL {
+        let l = lc.rect(legend_size, plot, inset);
+        let l_hidden = occ.covered(&l);
+        let beside = {
+            let x = if lc.is_left() {
+                inset
+            } else {
+                plot.0 - inset - note_size.0
+            };
+            let y = if lc.is_upper() {
+                l.y1 + inset
+            } else {
+                l.y0 - inset - note_size.1
+            };
+            PixelRect::new((x, y), note_size)
+        };
+        let notes = Corner::ALL
+            .into_iter()
+            .filter(|&c| c != lc)
+            .map(|c| c.rect(note_size, plot, inset))
+            .chain(std::iter::once(beside));
+        for n in notes {
+            if !n.inside(plot) || n.overlaps(&l.grown(inset)) {
+                continue;
+            }
+            let key = (l_hidden + occ.covered(&n), l_hidden);
+            if best.is_none_or(|b| key < (b.0, b.1)) {
+                best = Some((key.0, key.1, l, n));
+            }
+        }
     }
-    if let Some(size) = note {
-        let (c, hidden) = occ.best_corner_except(size, plot, inset, taken);
-        boxes.note = Some(c.rect(size, plot, inset));
-        boxes.hidden += hidden;
+    match best {
+        Some((hidden, _, l, n)) => Boxes {
+            legend: Some(l),
+            note: Some(n),
+            hidden,
+        },
+        None => {
+            let (lc, l_hidden) = occ.best_corner(legend_size, plot, inset);
+            let (nc, n_hidden) = occ.best_corner_except(note_size, plot, inset, Some(lc));
+            Boxes {
+                legend: Some(lc.rect(legend_size, plot, inset)),
+                note: Some(nc.rect(note_size, plot, inset)),
+                hidden: l_hidden + n_hidden,
+            }
+        }
     }
-    boxes
+}
+
+/// Height of the band at the top of a `plot` that holds the legend and the
+/// note: side by side if they fit in its width, else one under the other.
+pub(crate) fn top_band(
+    plot: (i32, i32),
+    inset: i32,
+    legend: Option<(i32, i32)>,
+    note: Option<(i32, i32)>,
+) -> i32 {
+    match (legend, note) {
+        (Some(l), Some(n)) if l.0 + n.0 + 3 * inset <= plot.0 => l.1.max(n.1),
+        (Some(l), Some(n)) => l.1 + inset + n.1,
+        (Some(b), None) | (None, Some(b)) => b.1,
+        (None, None) => 0,
+    }
 }
 
 #[cfg(test)]
@@ -219,5 +302,36 @@ mod tests {
         assert_eq!((c, hidden), (Corner::LowerLeft, 0));
         let (c2, _) = occ.best_corner_except((200, 100), (1000, 800), 10, Some(c));
         assert_eq!(c2, Corner::LowerRight);
+    }
+
+    #[test]
+    fn wide_boxes_over_free_bottom_are_stacked() {
+        // Data along the top: the lower band is free but too narrow for two
+        // 600 px boxes side by side, so the note goes above the legend.
+        let plot = (1000, 800);
+        let occ = unit_occupancy(&[vec![(0.0, 0.95), (1.0, 0.95)]], plot);
+        let b = place_boxes(&occ, plot, 10, Some((600, 100)), Some((600, 80)));
+        let (l, n) = (b.legend.unwrap(), b.note.unwrap());
+        assert_eq!(b.hidden, 0);
+        assert!(!l.overlaps(&n) && l.inside(plot) && n.inside(plot));
+        assert_eq!(l, Corner::LowerLeft.rect((600, 100), plot, 10));
+        assert_eq!(n.y1 + 10, l.y0);
+    }
+
+    #[test]
+    fn a_plot_too_small_for_both_still_gets_both() {
+        let plot = (300, 200);
+        let occ = unit_occupancy(&[], plot);
+        let b = place_boxes(&occ, plot, 10, Some((250, 150)), Some((250, 150)));
+        assert!(b.legend.is_some() && b.note.is_some());
+        assert_ne!(b.legend, b.note);
+    }
+
+    #[test]
+    fn top_band_fits_side_by_side_or_stacked() {
+        let (l, n) = (Some((300, 100)), Some((200, 60)));
+        assert_eq!(top_band((1000, 800), 10, l, n), 100);
+        assert_eq!(top_band((520, 800), 10, l, n), 170);
+        assert_eq!(top_band((520, 800), 10, None, n), 60);
     }
 }
