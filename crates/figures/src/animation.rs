@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use crate::curves::{Current, Drawing, Geometry};
+use crate::curve_layout::Geometry;
+use crate::curves::{Current, Drawing};
 use crate::font;
 use crate::output;
 use crate::sizes::Sizes;

@@ -21,12 +21,15 @@ mod animation;
 mod category;
 mod chart;
 mod clip;
+mod colorbar;
 mod colormap;
+mod curve_layout;
 mod curves;
 mod font;
 mod format;
 mod layout;
 mod legend;
+mod line_layout;
 mod lines;
 mod output;
 mod placement;
@@ -40,10 +43,8 @@ pub use category::{category_map, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
 pub use format::format_number;
-pub use lines::{
-    line_plot, line_plot_boxes, line_plot_pair, LinePlot, LinePlotBoxes, Series, Style,
-    LINE_PLOT_SIZE, PAIR_SIZE,
-};
+pub use line_layout::{line_plot_boxes, LinePlotBoxes};
+pub use lines::{line_plot, line_plot_pair, LinePlot, Series, Style, LINE_PLOT_SIZE, PAIR_SIZE};
 pub use output::{FigureError, Output};
 pub use placement::PixelRect;
 pub use plotters::style::RGBColor;
