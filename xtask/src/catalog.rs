@@ -25,9 +25,21 @@ pub enum Kind {
     VmaxVsSpan {
         scene: &'static str,
         stretched: &'static str,
-        report_spans: (f64, f64, usize, usize, usize),
+        report_spans: LinspaceSlice,
         dense: (f64, f64, usize),
     },
+}
+
+/// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
+/// values from `start` to `stop` (both included), of which those at the
+/// indices `from..to` are kept.
+#[derive(Clone, Copy, Debug)]
+pub struct LinspaceSlice {
+    pub start: f64,
+    pub stop: f64,
+    pub num: usize,
+    pub from: usize,
+    pub to: usize,
 }
 
 /// One figure: `figures/<id>.png` and `.svg`.
@@ -114,8 +126,13 @@ pub const FIGURES: &[Figure] = &[
         kind: Kind::VmaxVsSpan {
             scene: "span-d3",
             stretched: "span-d6",
-            // linspace(0, 6, 20)[5..19]
-            report_spans: (0.0, 6.0, 20, 5, 19),
+            report_spans: LinspaceSlice {
+                start: 0.0,
+                stop: 6.0,
+                num: 20,
+                from: 5,
+                to: 19,
+            },
             dense: (0.3, 5.97, 120),
         },
     },

@@ -9,7 +9,7 @@ use falling_chain::render;
 use falling_chain::sweep::{self, Vary};
 use figures::{LinePlot, Series, Style};
 
-use crate::catalog::{Figure, Kind};
+use crate::catalog::{Figure, Kind, LinspaceSlice};
 use crate::runs::{SceneRun, FINE};
 
 /// Everything a figure may draw from.
@@ -118,7 +118,7 @@ pub fn figure(fig: &Figure, inputs: &Inputs, out: &Path) -> Result<(), String> {
     res.map(|_| ()).map_err(|e| format!("{}: {e}", fig.id))
 }
 
-/// The spans `linspace(a, b, n)[from..to]`.
+/// `n` evenly spaced values from `a` to `b` (both included).
 fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
@@ -132,12 +132,12 @@ fn vmax_vs_span(
     inputs: &Inputs,
     scene: &str,
     stretched: &str,
-    report_spans: (f64, f64, usize, usize, usize),
+    report_spans: LinspaceSlice,
     dense: (f64, f64, usize),
     stem: &Path,
 ) -> Result<(), String> {
-    let (a, b, n, from, to) = report_spans;
-    let report: Vec<f64> = linspace(a, b, n)[from..to].to_vec();
+    let s = report_spans;
+    let report: Vec<f64> = linspace(s.start, s.stop, s.num)[s.from..s.to].to_vec();
     let dense: Vec<f64> = linspace(dense.0, dense.1, dense.2);
     let base = &inputs.runs[scene].scene;
     // Adaptive DOPRI5 for every span: RK4 at the report's dt diverges near d = 1.

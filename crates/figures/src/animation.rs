@@ -4,10 +4,11 @@
 
 use std::path::Path;
 
-use crate::axes::Theme;
-use crate::curves::{Current, Drawing, Geometry};
+use crate::curve_layout::Geometry;
+use crate::curves::{Current, Drawing};
 use crate::font;
 use crate::output;
+use crate::sizes::Sizes;
 use crate::snapshots::ChainSnapshots;
 use crate::FigureError;
 
@@ -22,7 +23,7 @@ pub fn chain_animation(fig: &ChainSnapshots, path: &Path, fps: u32) -> Result<()
         return Err(FigureError::Data("no frame to animate".into()));
     }
     let spec = fig.spec();
-    let geom = Geometry::new(&spec, ANIMATION_HEIGHT, Theme { k: 0.7 })?;
+    let geom = Geometry::new(&spec, ANIMATION_HEIGHT, Sizes { scale: 0.7 })?;
     let (w, h) = geom.size;
     let (w16, h16) = match (u16::try_from(w), u16::try_from(h)) {
         (Ok(a), Ok(b)) => (a, b),
@@ -74,7 +75,7 @@ mod tests {
         let mut fig = ChainSnapshots::new("swing", frames(), [0.0, 0.0]);
         fig.p1 = Some([6.0, 0.0]);
         let spec = fig.spec();
-        let geom = Geometry::new(&spec, ANIMATION_HEIGHT, Theme { k: 0.7 }).unwrap();
+        let geom = Geometry::new(&spec, ANIMATION_HEIGHT, Sizes { scale: 0.7 }).unwrap();
         let render = |index| {
             output::render_rgb(&Drawing {
                 spec: &spec,

@@ -7,9 +7,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::axes::{text_width, Theme};
 use crate::font;
+use crate::layout;
 use crate::output::{self, Draw};
+use crate::sizes::{text_width, Sizes};
 use crate::{FigureError, Output};
 
 /// One map: `cells[row][col]` is a category index, or `None` (not run,
@@ -47,7 +48,7 @@ pub fn category_map(map: &CategoryMap, stem: &Path) -> Result<Output, FigureErro
     validate(map)?;
     // As many panels per row as give the shape closest to a page's 4:3.
     let plan = (1..=map.panels.len().min(4))
-        .map(|per_row| Plan::new(map, Theme::STANDARD, per_row))
+        .map(|per_row| Plan::new(map, Sizes::STANDARD, per_row))
         .min_by(|a, b| a.misfit().total_cmp(&b.misfit()))
         .ok_or_else(|| FigureError::Data("category map without panels".into()))?;
     output::save(&Figure { map, plan }, stem)
@@ -100,7 +101,7 @@ struct PanelPlan {
 
 #[derive(Debug, Clone)]
 struct Plan {
-    theme: Theme,
+    sizes: Sizes,
     size: (u32, u32),
     panels: Vec<PanelPlan>,
     legend_y: i32,
@@ -134,23 +135,19 @@ impl Plan {
         (aspect / (4.0 / 3.0)).ln().abs()
     }
 
-    fn new(map: &CategoryMap, theme: Theme, per_row: usize) -> Plan {
-        let t = &theme;
+    fn new(map: &CategoryMap, sizes: Sizes, per_row: usize) -> Plan {
+        let t = &sizes;
         let tick = t.tick();
         let margin = t.px(30.0);
         let gap = t.px(60.0);
-        let title_h = if map.title.is_empty() {
-            0
-        } else {
-            (t.title() * 1.6) as i32 + t.px(8.0)
-        };
+        let title_h = layout::title_height(t, map.title);
         let ylab_w = if map.y_label.is_empty() {
             0
         } else {
             (t.label() * 1.3) as i32 + t.px(10.0)
         };
         // Size every panel.
-        let mut sizes = Vec::new();
+        let mut panel_sizes = Vec::new();
         for p in &map.panels {
             let row_label_w = p
                 .row_labels
@@ -190,14 +187,14 @@ impl Plan {
             let gw = cw * p.col_labels.len() as i32;
             let gh = ch * p.row_labels.len() as i32;
             let w = row_label_w + t.px(12.0) + gw;
-            sizes.push((w, ptitle, gh, col_area, cw, ch, row_label_w, cols_rotated));
+            panel_sizes.push((w, ptitle, gh, col_area, cw, ch, row_label_w, cols_rotated));
         }
         // Rows of panels.
         let mut panels = Vec::new();
         let mut y = title_h + margin;
         let mut width = 0;
         let mut grids_y = (i32::MAX, 0);
-        for chunk in sizes.chunks(per_row.max(1)) {
+        for chunk in panel_sizes.chunks(per_row.max(1)) {
             let ptitle = chunk.iter().map(|s| s.1).max().unwrap_or(0);
             let gh = chunk.iter().map(|s| s.2).max().unwrap_or(0);
             let col_area = chunk.iter().map(|s| s.3).max().unwrap_or(0);
@@ -224,11 +221,11 @@ impl Plan {
             y += (t.label() * 1.4) as i32;
         }
         let legend_y = y + t.px(10.0);
-        let (legend_w, legend_h) = legend_size(map, &theme);
+        let (legend_w, legend_h) = legend_size(map, &sizes);
         let height = legend_y + legend_h + margin;
         let width = width.max(legend_w + 2 * margin).max(t.px(900.0));
         Plan {
-            theme,
+            sizes,
             size: (width as u32, height.max(t.px(500.0)) as u32),
             panels,
             legend_y,
@@ -239,7 +236,7 @@ impl Plan {
     }
 }
 
-fn legend_size(map: &CategoryMap, t: &Theme) -> (i32, i32) {
+fn legend_size(map: &CategoryMap, t: &Sizes) -> (i32, i32) {
     let w: i32 = legend_entries(map)
         .iter()
         .map(|(l, _)| legend_item_w(l, t))
@@ -247,7 +244,7 @@ fn legend_size(map: &CategoryMap, t: &Theme) -> (i32, i32) {
     (w, (t.legend() * 1.5) as i32)
 }
 
-fn legend_item_w(label: &str, t: &Theme) -> i32 {
+fn legend_item_w(label: &str, t: &Sizes) -> i32 {
     t.px(32.0) + t.px(10.0) + text_width(label, t.legend()) + t.px(36.0)
 }
 
@@ -265,20 +262,13 @@ impl Draw for Figure<'_, '_> {
         root: &DrawingArea<DB, Shift>,
         scale: u32,
     ) -> Result<(), FigureError> {
-        let plan = &Plan::new(self.map, self.plan.theme.scaled(scale), self.plan.per_row);
-        let (map, t) = (self.map, &plan.theme);
+        let plan = &Plan::new(self.map, self.plan.sizes.scaled(scale), self.plan.per_row);
+        let (map, t) = (self.map, &plan.sizes);
         root.fill(&WHITE)?;
         let (w, _) = root.dim_in_pixel();
         let w = w as i32;
         let center = |size: f64| t.font(size).pos(Pos::new(HPos::Center, VPos::Center));
-        if !map.title.is_empty() {
-            let h = (t.title() * 1.6) as i32;
-            root.draw(&Text::new(
-                map.title.to_string(),
-                (w / 2, h / 2 + t.px(8.0)),
-                center(t.title()),
-            ))?;
-        }
+        layout::titled(root, t, map.title)?;
         for (p, pp) in map.panels.iter().zip(&plan.panels) {
             let gw = pp.cw * p.col_labels.len() as i32;
             let gh = pp.ch * p.row_labels.len() as i32;

@@ -1,18 +1,19 @@
 //! Curves coloured by a parameter with a colour bar (report Fig. 2: the
-//! catenaries coloured by L), and the machinery shared with the chain
-//! snapshots and the animation: equal axis scales with a canvas width that
-//! follows the data's aspect, the 'cool' colour bar, P0 and P1 markers.
+//! catenaries coloured by L), and the drawing shared with the chain
+//! snapshots and the animation: the curves (or the current one and the
+//! path of its end), markers, P0 and P1, the legend and the colour bar.
 
 use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::axes::{self, Axis, Corner, Layout, Occupancy, Swatch, Theme};
-use crate::colormap::{cool, P0_RED, P1_BLUE};
-use crate::font;
+use crate::colormap::{P0_RED, P1_BLUE};
+use crate::curve_layout::{self, Geometry};
+use crate::legend::{self, Swatch};
 use crate::output::{self, Draw};
+use crate::sizes::Sizes;
+use crate::{chart, clip, colorbar, font, layout};
 use crate::{FigureError, Output};
 
 /// Curves coloured by a parameter (cyan at the smallest value, magenta at
@@ -97,7 +98,7 @@ pub(crate) struct Spec<'a> {
 pub(crate) fn render_static(mut spec: Spec, stem: &Path) -> Result<Output, FigureError> {
     font::ensure_registered()?;
     spec.sort();
-    let geom = Geometry::new(&spec, 900, Theme::STANDARD)?;
+    let geom = Geometry::new(&spec, 900, Sizes::STANDARD)?;
     output::save(
         &Drawing {
             spec: &spec,
@@ -112,7 +113,7 @@ pub(crate) fn render_static(mut spec: Spec, stem: &Path) -> Result<Output, Figur
 pub(crate) fn render_static_to(mut spec: Spec, path: &Path) -> Result<(), FigureError> {
     font::ensure_registered()?;
     spec.sort();
-    let geom = Geometry::new(&spec, 900, Theme::STANDARD)?;
+    let geom = Geometry::new(&spec, 900, Sizes::STANDARD)?;
     output::save_one(
         &Drawing {
             spec: &spec,
@@ -129,7 +130,8 @@ impl Spec<'_> {
         self.curves.sort_by(|a, b| a.0.total_cmp(&b.0));
     }
 
-    fn value_range(&self) -> (f64, f64) {
+    /// The smallest and largest finite parameter ((0, 1) if there is none).
+    pub fn value_range(&self) -> (f64, f64) {
         let vals = self.curves.iter().map(|c| c.0).filter(|v| v.is_finite());
         let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
@@ -140,196 +142,6 @@ impl Spec<'_> {
             (0.0, 1.0)
         }
     }
-}
-
-/// Sizes and axes, fixed once per figure (also across animation frames).
-#[derive(Debug, Clone)]
-pub(crate) struct Geometry {
-    pub theme: Theme,
-    pub size: (u32, u32),
-    pub x: Axis,
-    pub y: Axis,
-    pub layout: Layout,
-    pub cbar_w: i32,
-    pub vmin: f64,
-    pub vmax: f64,
-    cbar: Axis,
-    /// Where the legend goes (the same in every animation frame).
-    pub legend_corner: Corner,
-}
-
-impl Geometry {
-    pub fn new(spec: &Spec, height: u32, theme: Theme) -> Result<Geometry, FigureError> {
-        let mut pts: Vec<(f64, f64)> = spec
-            .curves
-            .iter()
-            .flat_map(|c| c.1.iter().copied())
-            .chain(spec.markers.iter().copied())
-            .collect();
-        pts.push(spec.p0);
-        pts.extend(spec.p1);
-        let (bx0, bx1, by0, by1) = axes::bounds(&pts)
-            .ok_or_else(|| FigureError::Data("no finite point to draw".into()))?;
-        let pad = 0.04;
-        let padded = |lo: f64, hi: f64| {
-            let (lo, hi) = if hi - lo <= 1e-12 * lo.abs().max(hi.abs()).max(1.0) {
-                let d = 0.5 * lo.abs().max(1.0);
-                (lo - d, hi + d)
-            } else {
-                (lo, hi)
-            };
-            (lo - pad * (hi - lo), hi + pad * (hi - lo))
-        };
-        let xr = spec.x_range.unwrap_or_else(|| padded(bx0, bx1));
-        let mut yr = spec.y_range.unwrap_or_else(|| padded(by0, by1));
-
-        let (vmin, vmax) = spec.value_range();
-        let cbar = Axis::linear(vmin, vmax, 6);
-        let mut g = Self::lay_out(spec, height, theme, xr, yr, cbar.clone());
-
-        // Where the legend goes; if it would hide data anywhere, make room
-        // above the data (unless the y range is fixed).
-        let lines: Vec<Vec<(f64, f64)>> = spec
-            .curves
-            .iter()
-            .map(|c| c.1.clone())
-            .chain(std::iter::once(spec.p0).chain(spec.p1).map(|p| vec![p]))
-            .chain(spec.markers.iter().map(|&p| vec![p]))
-            .collect();
-        let legend = axes::box_size(&theme, &legend_lines(spec), true);
-        let inset = theme.px(14.0);
-        let plot = g.layout.plot_size((
-            g.size.0 - g.cbar_w as u32,
-            g.size.1 - title_height(&theme, spec.title) as u32,
-        ));
-        let occ = Occupancy::new(&lines, &g.x, &g.y, plot);
-        let (corner, hidden) = occ.best_with_count(legend, plot, inset, &[]);
-        g.legend_corner = corner;
-        if hidden > 0 && spec.y_range.is_none() {
-            let extra = (legend.1 + 2 * inset) as f64 / plot.1.max(1) as f64 * (yr.1 - yr.0);
-            yr.1 += extra;
-            g = Self::lay_out(spec, height, theme, xr, yr, cbar);
-            g.legend_corner = if matches!(corner, Corner::UpperLeft | Corner::LowerLeft) {
-                Corner::UpperLeft
-            } else {
-                Corner::UpperRight
-            };
-        }
-        Ok(g)
-    }
-
-    /// Axes and canvas for data ranges `xr`, `yr`.
-    fn lay_out(
-        spec: &Spec,
-        height: u32,
-        theme: Theme,
-        xr: (f64, f64),
-        yr: (f64, f64),
-        cbar: Axis,
-    ) -> Geometry {
-        let (vmin, vmax) = (cbar.lo, cbar.hi);
-        let cbar_w = cbar_width(&theme, &cbar, spec.cbar_label);
-        let title_h = title_height(&theme, spec.title);
-        let area_h = height as i32 - title_h;
-        let mut layout = Layout::standard(&theme, 0);
-        let ph = area_h - layout.top - layout.bottom - layout.x_area;
-        let ty = (ph as f64 / (95.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
-        let mut y = Axis::linear(yr.0, yr.1, ty);
-        layout = Layout::standard(&theme, y.max_label_width(theme.tick()));
-        let fixed = layout.left + layout.y_area + layout.right + cbar_w;
-        let width = if spec.equal_aspect {
-            let pw = ph as f64 * (xr.1 - xr.0) / (yr.1 - yr.0);
-            (pw as i32 + fixed).clamp((0.85 * height as f64) as i32, 2 * height as i32)
-        } else {
-            (height as f64 * 4.0 / 3.0) as i32
-        };
-        let plot = |l: &Layout| (width - cbar_w - l.left - l.right - l.y_area, ph);
-        let tx = |pw: i32| (pw as f64 / (170.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
-        let mut x = Axis::linear(xr.0, xr.1, tx(plot(&layout).0));
-        if spec.equal_aspect {
-            for _ in 0..2 {
-                let (ex, ey) = axes::equalize(xr, yr, plot(&layout));
-                x = Axis::linear(ex.0, ex.1, tx(plot(&layout).0));
-                y = Axis::linear(ey.0, ey.1, ty);
-                layout = Layout::standard(&theme, y.max_label_width(theme.tick()));
-            }
-        }
-        Geometry {
-            theme,
-            size: (width as u32, height),
-            x,
-            y,
-            layout,
-            cbar_w,
-            vmin,
-            vmax,
-            cbar,
-            legend_corner: Corner::UpperRight,
-        }
-    }
-
-    /// The same figure on a canvas `s` times larger.
-    pub fn scaled(&self, s: u32) -> Geometry {
-        let k = s as i32;
-        let l = &self.layout;
-        Geometry {
-            theme: self.theme.scaled(s),
-            size: (self.size.0 * s, self.size.1 * s),
-            layout: Layout {
-                top: l.top * k,
-                right: l.right * k,
-                bottom: l.bottom * k,
-                left: l.left * k,
-                x_area: l.x_area * k,
-                y_area: l.y_area * k,
-            },
-            cbar_w: self.cbar_w * k,
-            ..self.clone()
-        }
-    }
-
-    /// Colour of parameter value `v`.
-    pub fn color(&self, v: f64) -> RGBColor {
-        cool((v - self.vmin) / (self.vmax - self.vmin))
-    }
-}
-
-/// Legend texts: P0, P1 if any, the markers if labelled.
-fn legend_lines(spec: &Spec) -> Vec<String> {
-    let mut v = vec!["P₀".to_string()];
-    if spec.p1.is_some() {
-        v.push("P₁".into());
-    }
-    if !spec.markers_label.is_empty() && !spec.markers.is_empty() {
-        v.push(spec.markers_label.to_string());
-    }
-    v
-}
-
-fn title_height(theme: &Theme, title: &str) -> i32 {
-    if title.is_empty() {
-        0
-    } else {
-        (theme.title() * 1.6) as i32 + theme.px(8.0)
-    }
-}
-
-/// Short colour-bar labels are written upright, longer ones rotated.
-fn cbar_label_upright(label: &str) -> bool {
-    label.chars().count() <= 3
-}
-
-fn cbar_width(theme: &Theme, cbar: &Axis, label: &str) -> i32 {
-    let base = theme.px(40.0) + theme.px(34.0) + theme.px(8.0) + theme.px(10.0);
-    let labels = cbar.max_label_width(theme.tick());
-    let desc = if label.is_empty() {
-        0
-    } else if cbar_label_upright(label) {
-        theme.px(18.0) + axes::text_width(label, theme.label())
-    } else {
-        theme.px(12.0) + (theme.label() * 1.2) as i32
-    };
-    base + labels + desc + theme.px(24.0)
 }
 
 /// A coloured-curves figure ready to draw: all curves, or (in an
@@ -366,7 +178,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     g: &Geometry,
     current: Option<Current>,
 ) -> Result<(), FigureError> {
-    let theme = &g.theme;
+    let sizes = &g.sizes;
     root.fill(&WHITE)?;
     let title = match current {
         Some(c) => {
@@ -380,12 +192,12 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
         }
         None => spec.title.to_string(),
     };
-    let area = axes::titled(root, theme, &title)?;
+    let area = layout::titled(root, sizes, &title)?;
     let (aw, _) = area.dim_in_pixel();
     let (main, bar) = area.split_horizontally(aw as i32 - g.cbar_w);
-    let mut chart = axes::chart(
+    let mut chart = chart::chart(
         &main,
-        theme,
+        sizes,
         &g.layout,
         &g.x,
         &g.y,
@@ -394,25 +206,23 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     )?;
     let xr = (g.x.lo, g.x.hi);
     let yr = (g.y.lo, g.y.hi);
-    let mut drawn: Vec<Vec<(f64, f64)>> = Vec::new();
 
     let clip = |pts: &[(f64, f64)]| {
         let p: Vec<Option<(f64, f64)>> = pts
             .iter()
             .map(|&q| (q.0.is_finite() && q.1.is_finite()).then_some(q))
             .collect();
-        axes::clip_polyline(&p, xr, yr)
+        clip::clip_polyline(&p, xr, yr)
     };
     let inside = |q: &(f64, f64)| q.0 >= xr.0 && q.0 <= xr.1 && q.1 >= yr.0 && q.1 <= yr.1;
 
     match current {
         None => {
-            let w = theme.px(2.5) as u32;
+            let w = sizes.px(2.5) as u32;
             for (v, pts) in &spec.curves {
                 let color = g.color(*v);
                 for piece in clip(pts) {
-                    chart.draw_series(LineSeries::new(piece.clone(), color.stroke_width(w)))?;
-                    drawn.push(piece);
+                    chart.draw_series(LineSeries::new(piece, color.stroke_width(w)))?;
                 }
             }
         }
@@ -425,7 +235,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             for piece in clip(&trail) {
                 chart.draw_series(LineSeries::new(
                     piece,
-                    RGBColor(170, 170, 170).stroke_width(theme.px(2.0) as u32),
+                    RGBColor(170, 170, 170).stroke_width(sizes.px(2.0) as u32),
                 ))?;
             }
             if let Some((v, pts)) = spec.curves.get(c.index) {
@@ -433,7 +243,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
                 for piece in clip(pts) {
                     chart.draw_series(LineSeries::new(
                         piece,
-                        color.stroke_width(theme.px(4.0) as u32),
+                        color.stroke_width(sizes.px(4.0) as u32),
                     ))?;
                 }
                 if pts.len() <= 201 {
@@ -441,7 +251,7 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
                     chart.draw_series(
                         pts.iter()
                             .filter(|q| inside(q))
-                            .map(|&q| Circle::new(q, theme.px(3.0), dark.filled())),
+                            .map(|&q| Circle::new(q, sizes.px(3.0), dark.filled())),
                     )?;
                 }
             }
@@ -449,16 +259,14 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     }
 
     // Markers, then the anchor points on top.
-    let mr = theme.px(5.0);
+    let mr = sizes.px(5.0);
     chart.draw_series(
         spec.markers
             .iter()
             .filter(|q| inside(q))
             .map(|&q| Circle::new(q, mr, BLACK.filled())),
     )?;
-    drawn.extend(spec.markers.iter().filter(|q| inside(q)).map(|&q| vec![q]));
-    let pr = theme.px(9.0);
-    let mut legend: Vec<(String, Option<Swatch>)> = Vec::new();
+    let pr = sizes.px(9.0);
     let anchors = [(Some(spec.p0), P0_RED, "P₀"), (spec.p1, P1_BLUE, "P₁")];
     for (p, color, name) in anchors {
         let Some(p) = p else { continue };
@@ -467,114 +275,28 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             chart.draw_series(std::iter::once(Circle::new(
                 p,
                 pr,
-                BLACK.stroke_width(theme.px(1.5) as u32),
+                BLACK.stroke_width(sizes.px(1.5) as u32),
             )))?;
-            drawn.push(vec![p]);
         }
-        legend.push((name.to_string(), Some(Swatch::Marker { color, radius: pr })));
+        let swatch = Swatch::Marker { color, radius: pr };
+        legend::add_entry(&mut chart, sizes, name, swatch)?;
     }
     if !spec.markers_label.is_empty() && !spec.markers.is_empty() {
-        legend.push((
-            spec.markers_label.to_string(),
-            Some(Swatch::Marker {
-                color: BLACK,
-                radius: mr,
-            }),
-        ));
+        let swatch = Swatch::Marker {
+            color: BLACK,
+            radius: mr,
+        };
+        legend::add_entry(&mut chart, sizes, spec.markers_label, swatch)?;
     }
-    axes::frame(&chart, theme)?;
+    chart::frame(&chart, sizes)?;
 
-    let pa = chart.plotting_area().strip_coord_spec();
-    let (pw, ph) = pa.dim_in_pixel();
+    let (pw, ph) = chart.plotting_area().dim_in_pixel();
     let plot = (pw as i32, ph as i32);
-    let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-    let size = axes::box_size(theme, &lines, true);
-    let inset = theme.px(14.0);
-    let origin = Occupancy::origin(g.legend_corner, size, plot, inset);
-    axes::draw_box(&pa, theme, origin, &legend)?;
+    let size = legend::box_size(sizes, &curve_layout::legend_lines(spec), true);
+    let legend = g.legend_corner.rect(size, plot, sizes.px(14.0));
+    legend::draw_legend(&mut chart, sizes, legend.origin())?;
     drop(chart);
 
     let marker = current.and_then(|c| spec.curves.get(c.index)).map(|c| c.0);
-    draw_colorbar(&bar, g, spec.cbar_label, marker)
-}
-
-/// The vertical colour bar, aligned with the plot area.
-fn draw_colorbar<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    g: &Geometry,
-    label: &str,
-    marker: Option<f64>,
-) -> Result<(), FigureError> {
-    let theme = &g.theme;
-    let (_, ah) = area.dim_in_pixel();
-    let top = g.layout.top;
-    let bottom = ah as i32 - g.layout.bottom - g.layout.x_area - 1;
-    let x0 = theme.px(40.0);
-    let x1 = x0 + theme.px(34.0);
-    let bands = 128;
-    let h = (bottom - top) as f64;
-    for i in 0..bands {
-        // Band i covers [i, i+1] / bands from the bottom (vmin) up.
-        let ya = bottom as f64 - h * i as f64 / bands as f64;
-        let yb = bottom as f64 - h * (i + 1) as f64 / bands as f64;
-        let color = cool((i as f64 + 0.5) / bands as f64);
-        area.draw(&Rectangle::new(
-            [(x0, yb.floor() as i32), (x1, ya.ceil() as i32)],
-            color.filled(),
-        ))?;
-    }
-    area.draw(&Rectangle::new(
-        [(x0, top), (x1, bottom)],
-        BLACK.stroke_width(theme.axis()),
-    ))?;
-    let to_y = |v: f64| bottom as f64 - h * (v - g.vmin) / (g.vmax - g.vmin);
-    let tick_style = theme
-        .font(theme.tick())
-        .pos(Pos::new(HPos::Left, VPos::Center));
-    let tick = theme.px(8.0);
-    for (v, text) in g.cbar.ticks.iter().zip(&g.cbar.labels) {
-        let y = to_y(*v).round() as i32;
-        area.draw(&PathElement::new(
-            vec![(x1, y), (x1 + tick, y)],
-            BLACK.stroke_width(theme.axis()),
-        ))?;
-        area.draw(&Text::new(
-            text.clone(),
-            (x1 + tick + theme.px(8.0), y),
-            tick_style.clone(),
-        ))?;
-    }
-    if let Some(v) = marker {
-        let y = to_y(v).round() as i32;
-        let k = theme.px(7.0);
-        area.draw(&PathElement::new(
-            vec![(x0, y), (x1, y)],
-            BLACK.stroke_width(theme.px(3.0) as u32),
-        ))?;
-        area.draw(&Polygon::new(
-            vec![(x0 - 2 * k, y - k), (x0 - 2, y), (x0 - 2 * k, y + k)],
-            BLACK.filled(),
-        ))?;
-    }
-    if !label.is_empty() {
-        let lx = x1 + tick + theme.px(8.0) + g.cbar.max_label_width(theme.tick());
-        let cy = (top + bottom) / 2;
-        if cbar_label_upright(label) {
-            let st = theme
-                .font(theme.label())
-                .pos(Pos::new(HPos::Left, VPos::Center));
-            area.draw(&Text::new(label.to_string(), (lx + theme.px(18.0), cy), st))?;
-        } else {
-            let st = theme
-                .font(theme.label())
-                .transform(FontTransform::Rotate90)
-                .pos(Pos::new(HPos::Center, VPos::Top));
-            area.draw(&Text::new(
-                label.to_string(),
-                (lx + theme.px(12.0) + (theme.label() * 1.2) as i32, cy),
-                st,
-            ))?;
-        }
-    }
-    Ok(())
+    colorbar::draw(&bar, g, spec.cbar_label, marker)
 }

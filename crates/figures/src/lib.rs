@@ -18,23 +18,35 @@
 //! about 1200 x 900 px with text of at least ~20 px, readable in print.
 
 mod animation;
-mod axes;
 mod category;
+mod chart;
+mod clip;
+mod colorbar;
 mod colormap;
+mod curve_layout;
 mod curves;
 mod font;
+mod format;
+mod layout;
+mod legend;
+mod line_layout;
 mod lines;
 mod output;
+mod placement;
+mod sizes;
 mod sketch;
 mod snapshots;
+mod ticks;
 
 pub use animation::{chain_animation, ANIMATION_HEIGHT};
-pub use axes::format_number;
 pub use category::{category_map, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
+pub use format::format_number;
+pub use line_layout::{line_plot_boxes, LinePlotBoxes};
 pub use lines::{line_plot, line_plot_pair, LinePlot, Series, Style, LINE_PLOT_SIZE, PAIR_SIZE};
 pub use output::{FigureError, Output};
+pub use placement::PixelRect;
 pub use plotters::style::RGBColor;
 pub use sketch::{sketch, SKETCH_SIZE};
 pub use snapshots::{chain_snapshots, chain_snapshots_to, ChainSnapshots};

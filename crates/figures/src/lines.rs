@@ -6,9 +6,13 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::axes::{self, Axis, Corner, Layout, Occupancy, Swatch, Theme};
 use crate::colormap::palette;
+use crate::layout;
+use crate::legend::{self, Swatch};
+use crate::line_layout::{has_line, has_marks, to_plot, Plan};
 use crate::output::{self, Draw};
+use crate::sizes::Sizes;
+use crate::{chart, clip};
 use crate::{FigureError, Output};
 
 /// How a series is drawn.
@@ -122,7 +126,7 @@ impl Draw for Single<'_, '_> {
         scale: u32,
     ) -> Result<(), FigureError> {
         root.fill(&WHITE)?;
-        draw_plot(root, self.0, &Theme::STANDARD.scaled(scale))
+        draw_plot(root, self.0, &Sizes::STANDARD.scaled(scale))
     }
 }
 
@@ -142,149 +146,54 @@ impl Draw for Pair<'_, '_> {
         scale: u32,
     ) -> Result<(), FigureError> {
         root.fill(&WHITE)?;
-        let theme = Theme { k: 1.1 }.scaled(scale);
-        let area = axes::titled(root, &theme, self.title)?;
+        let sizes = Sizes { scale: 1.1 }.scaled(scale);
+        let area = layout::titled(root, &sizes, self.title)?;
         let (w, _) = area.dim_in_pixel();
         let (l, r) = area.split_horizontally(w / 2);
-        draw_plot(&l, self.left, &theme)?;
-        draw_plot(&r, self.right, &theme)
+        draw_plot(&l, self.left, &sizes)?;
+        draw_plot(&r, self.right, &sizes)
     }
-}
-
-/// Series points in plot space (`None` where a point cannot be shown).
-fn to_plot(s: &Series, x: &Axis, y: &Axis) -> Vec<Option<(f64, f64)>> {
-    s.points
-        .iter()
-        .map(|&(px, py)| Some((x.to_plot(px)?, y.to_plot(py)?)))
-        .collect()
-}
-
-/// Choose both axes for `p` in an area of `size` pixels. If the legend
-/// would hide data in every corner, room is made above the data.
-fn choose_axes(p: &LinePlot, theme: &Theme, size: (u32, u32)) -> (Axis, Axis, Layout) {
-    let valid = |v: f64, log: bool| v.is_finite() && (!log || v > 0.0);
-    let pts: Vec<(f64, f64)> = p
-        .series
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .filter(|&(x, y)| valid(x, p.log_x) && valid(y, p.log_y))
-        .collect();
-    let (x0, x1, y0, y1) = axes::bounds(&pts).unwrap_or((1.0, 10.0, 1.0, 10.0));
-    let pad = 0.04;
-    let build = |headroom: f64| {
-        let mut layout = Layout::standard(theme, 0);
-        let (_, ph) = layout.plot_size(size);
-        let ty = (ph as f64 / (95.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
-        let mut y = Axis::auto(y0, y1, p.y_range, p.log_y, pad, ty);
-        if headroom > 0.0 {
-            let hi = y.hi + headroom * y.span();
-            y = if y.log {
-                Axis::log(y.lo, hi, ty)
-            } else {
-                Axis::linear(y.lo, hi, ty)
-            };
-        }
-        layout = Layout::standard(theme, y.max_label_width(theme.tick()));
-        let (pw, _) = layout.plot_size(size);
-        let tx = (pw as f64 / (170.0 * theme.k)).round().clamp(3.0, 10.0) as usize;
-        let mut x = Axis::auto(x0, x1, p.x_range, p.log_x, pad, tx);
-        if p.equal_aspect && !p.log_x && !p.log_y {
-            let (bx, by) = ((x.lo, x.hi), (y.lo, y.hi));
-            for _ in 0..2 {
-                let (ex, ey) = axes::equalize(bx, by, layout.plot_size(size));
-                x = Axis::linear(ex.0, ex.1, tx);
-                y = Axis::linear(ey.0, ey.1, ty);
-                layout = Layout::standard(theme, y.max_label_width(theme.tick()));
-            }
-        }
-        (x, y, layout)
-    };
-    let (x, y, layout) = build(0.0);
-    let labels = legend_lines(p);
-    if labels.is_empty() || p.y_range.is_some() {
-        return (x, y, layout);
-    }
-    let plot = layout.plot_size(size);
-    let lines: Vec<Vec<(f64, f64)>> = p
-        .series
-        .iter()
-        .flat_map(|s| {
-            let pts = to_plot(s, &x, &y);
-            if s.style == Style::Points {
-                pts.into_iter().flatten().map(|q| vec![q]).collect()
-            } else {
-                axes::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi))
-            }
-        })
-        .collect();
-    let occ = Occupancy::new(&lines, &x, &y, plot);
-    let legend = axes::box_size(theme, &labels, true);
-    let (_, hidden) = occ.best_with_count(legend, plot, theme.px(14.0), &[]);
-    if hidden == 0 {
-        return (x, y, layout);
-    }
-    let frac = (legend.1 + 2 * theme.px(14.0)) as f64 / plot.1.max(1) as f64;
-    build(frac / (1.0 - frac).max(0.3))
-}
-
-fn legend_lines(p: &LinePlot) -> Vec<String> {
-    p.series
-        .iter()
-        .filter(|s| !s.label.is_empty())
-        .map(|s| s.label.clone())
-        .collect()
 }
 
 fn draw_plot<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &LinePlot,
-    theme: &Theme,
+    sizes: &Sizes,
 ) -> Result<(), FigureError> {
-    let area = axes::titled(area, theme, p.title)?;
-    let (x, y, layout) = choose_axes(p, theme, area.dim_in_pixel());
-    let mut chart = axes::chart(&area, theme, &layout, &x, &y, p.x_label, p.y_label)?;
+    let area = layout::titled(area, sizes, p.title)?;
+    let plan = Plan::new(p, sizes, area.dim_in_pixel());
+    let (x, y) = (&plan.x, &plan.y);
+    let mut chart = chart::chart(&area, sizes, &plan.layout, x, y, p.x_label, p.y_label)?;
 
-    let line_w = theme.line();
-    let radius = theme.px(5.5);
-    let mut drawn: Vec<Vec<(f64, f64)>> = Vec::new();
-    let mut legend: Vec<(String, Option<Swatch>)> = Vec::new();
+    let line_w = sizes.line();
+    let radius = sizes.px(5.5);
     for (i, s) in p.series.iter().enumerate() {
         let color = s.color.unwrap_or_else(|| palette(i));
-        let pts = to_plot(s, &x, &y);
-        let has_line = matches!(s.style, Style::Line | Style::LinePoints | Style::Dashed);
-        let has_marks = matches!(s.style, Style::Points | Style::LinePoints);
-        if has_line {
-            for piece in axes::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi)) {
+        let pts = to_plot(s, x, y);
+        if has_line(s.style) {
+            for piece in clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi)) {
                 if piece.len() < 2 {
                     continue;
                 }
                 if s.style == Style::Dashed {
                     chart.draw_series(DashedLineSeries::new(
-                        piece.clone(),
-                        theme.px(14.0),
-                        theme.px(8.0),
+                        piece,
+                        sizes.px(14.0),
+                        sizes.px(8.0),
                         color.stroke_width(line_w),
                     ))?;
                 } else {
-                    chart
-                        .draw_series(LineSeries::new(piece.clone(), color.stroke_width(line_w)))?;
+                    chart.draw_series(LineSeries::new(piece, color.stroke_width(line_w)))?;
                 }
-                drawn.push(piece);
             }
         }
-        if has_marks {
-            let inside: Vec<(f64, f64)> = pts
-                .iter()
-                .flatten()
-                .copied()
-                .filter(|q| q.0 >= x.lo && q.0 <= x.hi && q.1 >= y.lo && q.1 <= y.hi)
-                .collect();
+        if has_marks(s.style) {
             chart.draw_series(
-                inside
-                    .iter()
+                pts.iter()
+                    .flatten()
+                    .filter(|q| q.0 >= x.lo && q.0 <= x.hi && q.1 >= y.lo && q.1 <= y.hi)
                     .map(|&q| Circle::new(q, radius, color.filled())),
             )?;
-            drawn.extend(inside.iter().map(|&q| vec![q]));
         }
         if !s.label.is_empty() {
             let swatch = match s.style {
@@ -305,37 +214,19 @@ fn draw_plot<DB: DrawingBackend>(
                     radius,
                 },
             };
-            legend.push((s.label.clone(), Some(swatch)));
+            legend::add_entry(&mut chart, sizes, &s.label, swatch)?;
         }
     }
-    axes::frame(&chart, theme)?;
+    chart::frame(&chart, sizes)?;
 
     let pa = chart.plotting_area().strip_coord_spec();
     let (pw, ph) = pa.dim_in_pixel();
-    let plot = (pw as i32, ph as i32);
-    let occ = Occupancy::new(&drawn, &x, &y, plot);
-    let inset = theme.px(14.0);
-    let mut taken: Vec<Corner> = Vec::new();
-    if !legend.is_empty() {
-        let lines: Vec<String> = legend.iter().map(|e| e.0.clone()).collect();
-        let size = axes::box_size(theme, &lines, true);
-        let c = occ.best(size, plot, inset, &taken);
-        axes::draw_box(&pa, theme, Occupancy::origin(c, size, plot, inset), &legend)?;
-        taken.push(c);
+    debug_assert_eq!((pw as i32, ph as i32), plan.plot, "plot area as planned");
+    if let Some(r) = plan.boxes.legend {
+        legend::draw_legend(&mut chart, sizes, r.origin())?;
     }
-    if !p.annotations.is_empty() {
-        let size = axes::box_size(theme, &p.annotations, false);
-        let c = occ.best(size, plot, inset, &taken);
-        let entries: Vec<(String, Option<Swatch>)> =
-            p.annotations.iter().map(|a| (a.clone(), None)).collect();
-        axes::draw_box(
-            &pa,
-            theme,
-            Occupancy::origin(c, size, plot, inset),
-            &entries,
-        )?;
+    if let Some(r) = plan.boxes.note {
+        legend::draw_note(&pa, sizes, r.origin(), &p.annotations)?;
     }
-    // Keep the chart alive until everything on its area is drawn.
-    drop(chart);
     Ok(())
 }

@@ -8,10 +8,10 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::axes::Theme;
 use crate::colormap::{cool, P0_RED, P1_BLUE};
 use crate::font;
 use crate::output::{self, Draw};
+use crate::sizes::Sizes;
 use crate::{FigureError, Output};
 
 /// Canvas of the sketch.
@@ -167,7 +167,7 @@ impl Draw for Sketch {
         root: &DrawingArea<DB, Shift>,
         scale: u32,
     ) -> Result<(), FigureError> {
-        let t = Theme::STANDARD.scaled(scale);
+        let t = Sizes::STANDARD.scaled(scale);
         root.fill(&WHITE)?;
         let (w, h) = root.dim_in_pixel();
         // Chain-unit box to show, then fit it with equal scales.
@@ -178,7 +178,7 @@ impl Draw for Sketch {
             .chain(self.falling.iter().flatten())
             .fold(0.0f64, |m, p| m.min(p.1));
         let (y0, y1) = (ymin - 0.3, H + 1.0);
-        let m = 30.0 * t.k;
+        let m = 30.0 * t.scale;
         let s = ((w as f64 - 2.0 * m) / (x1 - x0)).min((h as f64 - 2.0 * m) / (y1 - y0));
         let ox = w as f64 / 2.0 - s * (x0 + x1) / 2.0;
         let oy = h as f64 / 2.0 + s * (y0 + y1) / 2.0;

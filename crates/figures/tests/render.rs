@@ -346,6 +346,67 @@ fn line_plot_linear_equal_aspect_and_pair() {
     done(&dir);
 }
 
+/// A plot whose legend and note box are each wider than half the plot.
+fn wide_boxes_plot(series: Vec<Series>) -> LinePlot<'static> {
+    let mut p = LinePlot::new("Wide legend and note", "x", "y");
+    p.series = series;
+    p.annotations = vec![
+        "fitted order 4.02 over the three finest tolerances".into(),
+        "reference: DOPRI5 at rtol 1e-13".into(),
+    ];
+    p
+}
+
+fn assert_apart(b: &LinePlotBoxes) -> (PixelRect, PixelRect) {
+    let (legend, note) = (b.legend.expect("a legend"), b.note.expect("a note"));
+    assert!(
+        !legend.overlaps(&note),
+        "note {note:?} on legend {legend:?}"
+    );
+    assert!(legend.inside(b.plot) && note.inside(b.plot), "{b:?}");
+    (legend, note)
+}
+
+#[test]
+fn note_box_never_covers_the_legend() {
+    // Data across the lower part: both upper corners are free, but the
+    // legend and the note are too wide to sit side by side there.
+    let bottom: Vec<(f64, f64)> = (0..=50).map(|i| (i as f64 / 50.0, 0.1)).collect();
+    let mut p = wide_boxes_plot(vec![
+        Series::line("DOPRI5 (rtol 1e-3 … 1e-12), adaptive steps", bottom.clone()),
+        Series::points("RK4 (dt 3e-5 … 2e-2), fixed steps", bottom),
+    ]);
+    p.y_range = Some((0.0, 1.0));
+    let b = line_plot_boxes(&p).unwrap();
+    let (legend, note) = assert_apart(&b);
+    let widths = (legend.x1 - legend.x0) + (note.x1 - note.x0);
+    assert!(widths > b.plot.0, "the two would fit side by side: {b:?}");
+    assert_eq!(b.hidden, 0, "{b:?}");
+
+    let dir = scratch("note");
+    let out = line_plot(&p, &dir.join("note")).unwrap();
+    assert_has_text(&svg_texts(&out.svg), "reference: DOPRI5 at rtol 1e-13");
+    done(&dir);
+}
+
+#[test]
+fn legend_and_note_share_the_one_free_corner() {
+    // The data runs down the left edge and along the bottom: only the upper
+    // right corner is free, so the note goes under the legend there.
+    let mut edge: Vec<(f64, f64)> = (0..=20).map(|i| (0.0, 1.0 - i as f64 / 20.0)).collect();
+    edge.extend((1..=20).map(|i| (i as f64 / 20.0, 0.0)));
+    let mut p = wide_boxes_plot(vec![Series::line("along the edges", edge)]);
+    p.annotations.truncate(1);
+    p.y_range = Some((-0.05, 1.05));
+    p.x_range = Some((-0.05, 1.05));
+    let b = line_plot_boxes(&p).unwrap();
+    let (legend, note) = assert_apart(&b);
+    assert_eq!(b.hidden, 0, "{b:?}");
+    // Both in the upper right, the note under the legend.
+    assert!(legend.x1 > b.plot.0 / 2 && note.x1 > b.plot.0 / 2, "{b:?}");
+    assert!(note.y0 >= legend.y1 && note.y1 < b.plot.1 / 2, "{b:?}");
+}
+
 #[test]
 fn category_map_cells_and_legend() {
     let dir = scratch("category");

@@ -1,0 +1,267 @@
+//! Axis ranges and ticks: linear axes with nice steps, logarithmic axes
+//! drawn as linear axes over `log10` of the data with our own key points
+//! (exactly the powers of ten), handed to plotters as fixed key points.
+
+use plotters::coord::ranged1d::DefaultFormatting;
+use plotters::prelude::{BindKeyPoints, IntoPartialAxis, Ranged};
+
+use crate::format::{linear_labels, power_of_ten};
+use crate::sizes::text_width;
+
+/// One axis: its range and ticks in plot space (`log10` of the data on a
+/// log axis) and the tick labels.
+#[derive(Debug, Clone)]
+pub(crate) struct Axis {
+    pub lo: f64,
+    pub hi: f64,
+    pub log: bool,
+    pub ticks: Vec<f64>,
+    pub labels: Vec<String>,
+    /// Minor grid lines (log axes: 2..9 times each decade).
+    pub minor: Vec<f64>,
+}
+
+impl Axis {
+    /// A linear axis over `[lo, hi]` with about `target` ticks.
+    pub fn linear(lo: f64, hi: f64, target: usize) -> Axis {
+        let (lo, hi) = nondegenerate(lo, hi);
+        let ticks_for = |n: usize| {
+            let step = nice_step((hi - lo) / n as f64);
+            let first = (lo / step - 1e-9).ceil() as i64;
+            let last = (hi / step + 1e-9).floor() as i64;
+            let ticks: Vec<f64> = (first..=last).map(|i| i as f64 * step).collect();
+            (step, ticks)
+        };
+        // At least three labelled ticks, whatever the range.
+        let mut n = target.max(2);
+        let (mut step, mut ticks) = ticks_for(n);
+        while ticks.len() < 3 && n < 12 {
+            n += 1;
+            (step, ticks) = ticks_for(n);
+        }
+        let labels = linear_labels(&ticks, step);
+        Axis {
+            lo,
+            hi,
+            log: false,
+            ticks,
+            labels,
+            minor: Vec::new(),
+        }
+    }
+
+    /// A log axis over `[lo, hi]` given in `log10` units.
+    pub fn log(lo: f64, hi: f64, target: usize) -> Axis {
+        let (lo, hi) = nondegenerate(lo, hi);
+        let first = (lo - 1e-9).ceil() as i64;
+        let last = (hi + 1e-9).floor() as i64;
+        let count = (last - first + 1).max(0) as usize;
+        let every = count.div_ceil(target.max(2)).max(1) as i64;
+        let ticks: Vec<f64> = (first..=last)
+            .filter(|k| k.rem_euclid(every) == 0)
+            .map(|k| k as f64)
+            .collect();
+        let labels = ticks.iter().map(|&k| power_of_ten(k as i64)).collect();
+        let mut minor = Vec::new();
+        if every == 1 && count <= 8 {
+            for k in (first - 1)..=last {
+                for j in 2..=9 {
+                    let v = k as f64 + (j as f64).log10();
+                    if v > lo && v < hi {
+                        minor.push(v);
+                    }
+                }
+            }
+        }
+        Axis {
+            lo,
+            hi,
+            log: true,
+            ticks,
+            labels,
+            minor,
+        }
+    }
+
+    /// Choose a range for data values in `[min, max]` (data space), padded
+    /// by `pad` of the span, or exactly `fixed` if given.
+    pub fn auto(
+        min: f64,
+        max: f64,
+        fixed: Option<(f64, f64)>,
+        log: bool,
+        pad: f64,
+        target: usize,
+    ) -> Axis {
+        if log {
+            let (lo, hi) = match fixed {
+                Some((a, b)) if a > 0.0 && b > 0.0 => (a.log10(), b.log10()),
+                _ => log_range(min, max, pad),
+            };
+            Axis::log(lo, hi, target)
+        } else {
+            let (lo, hi) = fixed.unwrap_or_else(|| {
+                let (lo, hi) = nondegenerate(min, max);
+                let p = (hi - lo) * pad;
+                (lo - p, hi + p)
+            });
+            Axis::linear(lo, hi, target)
+        }
+    }
+
+    /// Data value to plot space; `None` if it cannot be shown.
+    pub fn to_plot(&self, v: f64) -> Option<f64> {
+        let p = if self.log {
+            if v > 0.0 {
+                v.log10()
+            } else {
+                return None;
+            }
+        } else {
+            v
+        };
+        p.is_finite().then_some(p)
+    }
+
+    pub fn span(&self) -> f64 {
+        self.hi - self.lo
+    }
+
+    /// The label of the tick nearest to `v` (for plotters' formatter).
+    pub fn label_at(&self, v: f64) -> String {
+        let tol = 1e-6 * self.span().abs();
+        self.ticks
+            .iter()
+            .position(|t| (t - v).abs() <= tol)
+            .map(|i| self.labels[i].clone())
+            .unwrap_or_default()
+    }
+
+    /// The plotters coordinate of this axis: linear over plot space, with
+    /// the ticks as fixed bold key points and the minor grid lines as light
+    /// ones.
+    ///
+    /// The outer `partial_axis` over the whole range changes nothing drawn:
+    /// in plotters 0.3.7 `WithKeyPoints` over an `f64` range lacks the value
+    /// formatter `configure_mesh` asks for (fixed after 0.3.7 by plotters
+    /// PR #653), and `PartialAxis` brings the default one, which our label
+    /// formatters replace.
+    pub fn coord(&self) -> impl Ranged<ValueType = f64, FormatOption = DefaultFormatting> {
+        (self.lo..self.hi)
+            .with_key_points(self.ticks.clone())
+            .with_light_points(self.minor.iter().copied())
+            .partial_axis(self.lo..self.hi)
+    }
+
+    /// Widest tick label in pixels.
+    pub fn max_label_width(&self, size: f64) -> i32 {
+        self.labels
+            .iter()
+            .map(|l| text_width(l, size))
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+fn nondegenerate(lo: f64, hi: f64) -> (f64, f64) {
+    let (lo, hi) = if lo.is_finite() && hi.is_finite() {
+        (lo.min(hi), lo.max(hi))
+    } else {
+        (0.0, 1.0)
+    };
+    if hi - lo > 1e-12 * lo.abs().max(hi.abs()) && hi > lo {
+        (lo, hi)
+    } else {
+        let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+        (lo - d, hi + d)
+    }
+}
+
+/// A log range (log10 units) that always holds at least two powers of ten.
+fn log_range(min: f64, max: f64, pad: f64) -> (f64, f64) {
+    if !(min > 0.0 && max > 0.0 && min.is_finite() && max.is_finite()) {
+        return (0.0, 1.0);
+    }
+    let (a, b) = (min.log10(), max.log10());
+    let p = (b - a) * pad;
+    let (lo, hi) = (a - p, b + p);
+    if hi.floor() - lo.ceil() >= 1.0 {
+        (lo, hi)
+    } else {
+        // Less than two decades inside: widen to whole decades.
+        let lo = lo.floor();
+        let hi = hi.ceil().max(lo + 1.0);
+        (lo, hi)
+    }
+}
+
+/// 1, 2, 2.5 or 5 times a power of ten, at least `raw`.
+pub(crate) fn nice_step(raw: f64) -> f64 {
+    let raw = if raw.is_finite() && raw > 0.0 {
+        raw
+    } else {
+        1.0
+    };
+    let e = raw.log10().floor();
+    let base = 10f64.powf(e);
+    let m = raw / base;
+    let nice = if m <= 1.0 + 1e-9 {
+        1.0
+    } else if m <= 2.0 + 1e-9 {
+        2.0
+    } else if m <= 2.5 + 1e-9 {
+        2.5
+    } else if m <= 5.0 + 1e-9 {
+        5.0
+    } else {
+        10.0
+    };
+    nice * base
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps() {
+        assert_eq!(nice_step(0.13), 0.2);
+        assert_eq!(nice_step(0.9), 1.0);
+        assert_eq!(nice_step(2.2), 2.5);
+        assert_eq!(nice_step(30.0), 50.0);
+        assert_eq!(nice_step(70.0), 100.0);
+    }
+
+    #[test]
+    fn linear_ticks_and_labels() {
+        let a = Axis::linear(-1.05, 6.3, 8);
+        assert_eq!(a.ticks.first(), Some(&-1.0));
+        assert_eq!(a.labels.first().map(String::as_str), Some("−1"));
+        assert!(a.labels.contains(&"6".to_string()));
+        let b = Axis::linear(0.0, 0.3, 3);
+        assert_eq!(b.labels, vec!["0.0", "0.1", "0.2", "0.3"]);
+        let d = Axis::linear(0.0, 100.0, 4);
+        assert_eq!(d.labels, vec!["0", "25", "50", "75", "100"]);
+        let f = Axis::linear(-1.6, 1.6, 3);
+        assert!(f.ticks.len() >= 3, "{:?}", f.labels);
+        let e = Axis::linear(-0.5, 0.5, 4);
+        assert_eq!(e.labels, vec!["−0.50", "−0.25", "0.00", "0.25", "0.50"]);
+        let c = Axis::linear(0.0, 5e-6, 5);
+        assert!(c.labels.iter().any(|l| l == "1×10⁻⁶"), "{:?}", c.labels);
+    }
+
+    #[test]
+    fn log_ticks_are_powers_of_ten() {
+        let a = Axis::auto(2e-7, 3e-2, None, true, 0.03, 8);
+        assert!(a.log);
+        assert!(a.labels.contains(&"10⁻⁶".to_string()), "{:?}", a.labels);
+        assert!(a.labels.iter().all(|l| l.starts_with("10")));
+        // Less than a decade of data still gets two labelled decades.
+        let b = Axis::auto(2.0, 8.0, None, true, 0.03, 8);
+        assert_eq!(b.labels, vec!["10⁰", "10¹"]);
+        assert!(!b.minor.is_empty());
+        // Many decades: labels thinned.
+        let c = Axis::auto(1e-14, 1e2, None, true, 0.0, 6);
+        assert!(c.ticks.len() <= 6, "{:?}", c.labels);
+    }
+}
