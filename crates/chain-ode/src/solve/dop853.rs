@@ -11,7 +11,9 @@
 //! 11 per rejected one.
 
 use super::adaptive::AdaptiveOptions;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+use crate::ode::{
+    all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+};
 
 /// A stage row: the nonzero `a_ij` as `(slot j, a_ij)`.
 type Row = &'static [(usize, f64)];
@@ -472,6 +474,17 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     o: &AdaptiveOptions,
     obs: &mut O,
 ) -> Outcome {
+    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
+}
+
+fn steps<S: OdeSystem, O: Observer>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &AdaptiveOptions,
+    obs: &mut O,
+) -> Outcome {
     let d = sys.dim();
     let mut stats = Stats::default();
     let mut y = y0.to_vec();
@@ -480,7 +493,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let mut rcont = vec![0.0; 8 * d];
 
     sys.rhs(t0, &y, &mut k[..d]);
-    stats.rhs_evals += 1;
     if !all_finite(&k[..d]) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -490,7 +502,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let mut h = match o.h0 {
         Some(h) => h.min(span),
         None => {
-            stats.rhs_evals += 1;
             let (f0, rest) = k.split_at_mut(d);
             initial_step(sys, t0, &y, f0, span, o, (&mut ys, &mut rest[..d]))
         }
@@ -526,7 +537,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
             combine(&mut ys, &y, h, done, row);
             sys.rhs(t + c * h, &ys, &mut rest[..d]);
         }
-        stats.rhs_evals += STAGES.len() as u64;
 
         // y1 and the error: err5^2 / sqrt(err5^2 + 0.01 err3^2), where errN
         // is the RMS over components of h |estimate N| / (atol + rtol max(|y0|, |y1|)).
@@ -549,7 +559,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         let mut lambda = 0.0;
         if finite && e <= 1.0 {
             sys.rhs(t1, &y1, &mut k[12 * d..13 * d]);
-            stats.rhs_evals += 1;
             finite = all_finite(&k[12 * d..13 * d]);
             if finite {
                 // |lambda| ~ |k13 - k12| / |y1 - Y12|: both stages at the step end (Y12 is in ys).
@@ -564,7 +573,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
                     combine(&mut ys, &y, h, done, row);
                     sys.rhs(t + c * h, &ys, &mut rest[..d]);
                 }
-                stats.rhs_evals += DENSE_STAGES.len() as u64;
                 finite = all_finite(&k[13 * d..]);
             }
         }

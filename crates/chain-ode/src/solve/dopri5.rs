@@ -3,7 +3,9 @@
 //! fourth-order dense output, and Hairer's stiffness detection.
 
 use super::adaptive::AdaptiveOptions;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+use crate::ode::{
+    all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -133,6 +135,17 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     o: &AdaptiveOptions,
     obs: &mut O,
 ) -> Outcome {
+    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
+}
+
+fn steps<S: OdeSystem, O: Observer>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &AdaptiveOptions,
+    obs: &mut O,
+) -> Outcome {
     let d = sys.dim();
     let mut stats = Stats::default();
     let mut y = y0.to_vec();
@@ -141,7 +154,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let mut rcont = vec![0.0; 5 * d];
 
     sys.rhs(t0, &y, &mut k[0]);
-    stats.rhs_evals += 1;
     if !all_finite(&k[0]) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -150,10 +162,7 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let span = t_end - t0;
     let mut h = match o.h0 {
         Some(h) => h.min(span),
-        None => {
-            stats.rhs_evals += 1;
-            initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err))
-        }
+        None => initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err)),
     };
     let mut t = t0;
     let mut fac_old: f64 = 1e-4;
@@ -221,7 +230,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
                 &[(A71, k1), (A73, k3), (A74, k4), (A75, k5), (A76, k6)],
             );
             sys.rhs(t1, &y1, k7);
-            stats.rhs_evals += 6;
             for i in 0..d {
                 err[i] = h
                     * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);

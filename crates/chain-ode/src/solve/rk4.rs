@@ -1,10 +1,24 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension.
 
-use crate::ode::{all_finite, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+use crate::ode::{
+    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+};
 
 /// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
 pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    dt: f64,
+    max_steps: u64,
+    obs: &mut O,
+) -> Outcome {
+    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, dt, max_steps, obs))
+}
+
+fn steps<S: OdeSystem, O: Observer>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -22,7 +36,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let fail = Outcome::ended;
 
     sys.rhs(t0, &y, &mut f);
-    stats.rhs_evals += 1;
     if !all_finite(&f) {
         return fail(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -55,12 +68,10 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         for i in 0..d {
             y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
         }
-        stats.rhs_evals += 3;
         if !all_finite(&y1) {
             return fail(Status::Diverged, t, Some(t1), stats, y);
         }
         sys.rhs(t1, &y1, &mut f1);
-        stats.rhs_evals += 1;
         if !all_finite(&f1) {
             return fail(Status::Diverged, t, Some(t1), stats, y);
         }
