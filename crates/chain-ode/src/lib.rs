@@ -26,7 +26,8 @@ pub use chain::{Chain, InvalidParameter};
 pub use kinematics::Vec2;
 pub use ode::{Stats, Status};
 pub use solve::{
-    bdf_crossover_gamma, solve, Method, Sample, Segment, SolveOptions, Summary, Trajectory,
+    bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
+    Trajectory,
 };
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

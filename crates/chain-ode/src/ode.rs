@@ -4,6 +4,8 @@
 //! hands every accepted step, with its continuous extension, to an
 //! [`Observer`]. Integrators never look inside the state; observers never step.
 
+use crate::solve::Segment;
+
 /// `y' = f(t, y)` on `R^dim`.
 pub trait OdeSystem {
     /// Length of the state vector.
@@ -213,6 +215,9 @@ pub struct Outcome {
     /// Set when an explicit method stopped early because the problem turned
     /// stiff (only with `stop_when_stiff`): the time it stopped.
     pub stiff_at: Option<f64>,
+    /// Which methods ran over which spans, for a method that runs others
+    /// (`auto`); empty otherwise (the registry records the one method).
+    pub segments: Vec<Segment>,
 }
 
 impl Outcome {
@@ -225,6 +230,7 @@ impl Outcome {
             stats,
             y_end: y,
             stiff_at: None,
+            segments: Vec::new(),
         }
     }
 }

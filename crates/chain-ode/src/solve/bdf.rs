@@ -29,13 +29,14 @@ use diffsol::{
 };
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
-use super::adaptive::AdaptiveOptions;
 use super::diffsol_driver::{drive, slice, slice_mut, Driven};
+use super::integrator::{Integrator, Settings};
 use super::sparse_lu::{LuLog, SparseLu};
 use crate::chain::Chain;
 use crate::dae::ChainDae;
 use crate::dynamics::Workspace;
 use crate::ode::{all_finite, Observer, Outcome, Stats, Status};
+use crate::system::ChainSystem;
 
 type Mat = FaerSparseMat<f64>;
 type Vf = FaerVec<f64>;
@@ -245,13 +246,13 @@ impl OdeEquations for DaeEquations {
 }
 
 /// Integrates the chain from `t0` (state `y0 = [phi, w, W]`) to `t_end`.
-pub(crate) fn integrate<O: Observer>(
+pub(crate) fn integrate(
     chain: &Chain,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let dae = ChainDae::new(chain);
     let (d, dim) = (dae.differential_dim(), dae.dim());
@@ -332,4 +333,30 @@ fn outcome(driven: Driven, s: &OdeSolverStatistics, eqn: &DaeEquations, start_rh
         stiffness_detections: 0,
     };
     Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
+}
+
+/// `bdf`: diffsol's BDF on the banded DAE, O(n) per step. It needs the
+/// chain itself, not only the system.
+pub(crate) struct SparseBdf;
+
+impl Integrator for SparseBdf {
+    fn name(&self) -> &'static str {
+        "bdf"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys.chain(), t0, y0, t_end, settings, obs)
+    }
 }

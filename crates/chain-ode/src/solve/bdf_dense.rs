@@ -11,9 +11,10 @@ use std::cell::{Cell, RefCell};
 use diffsol::ode_solver::OdeSolverStatistics;
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
-use super::adaptive::AdaptiveOptions;
 use super::diffsol_driver::{drive, Driven};
+use super::integrator::{Integrator, Settings};
 use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
+use crate::system::ChainSystem;
 
 type Mat = FaerMat<f64>;
 type Lu = FaerLU<f64>;
@@ -21,24 +22,24 @@ type Lu = FaerLU<f64>;
 /// Integrates from `t0` to `t_end` with diffsol's BDF on the explicit form.
 /// Every call to the system, diffsol's and the loop's own, goes through one
 /// [`Counted`]: `rhs_evals` is its count.
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     Counted::run(sys, |sys| run(sys, t0, y0, t_end, opts, obs))
 }
 
-fn run<S: OdeSystem, O: Observer>(
+fn run<S: OdeSystem>(
     sys: &mut Counted<S>,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let stats = Stats::default();
@@ -139,10 +140,37 @@ fn outcome(driven: Driven, s: &OdeSolverStatistics, jvp_calls: u64, d: usize) ->
     Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
 }
 
+/// `bdf-dense`: diffsol's BDF on the explicit form, dense LU: the O(n^3)
+/// reference for `bdf`.
+pub(crate) struct BdfDense;
+
+impl Integrator for BdfDense {
+    fn name(&self) -> &'static str {
+        "bdf-dense"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings, obs)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::ode::StepView;
+    use crate::solve::SolveOptions;
 
     type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
     type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
@@ -211,15 +239,15 @@ mod tests {
         )
     }
 
-    fn options(rtol: f64, atol: f64) -> AdaptiveOptions {
-        AdaptiveOptions {
+    fn options(rtol: f64, atol: f64) -> Settings {
+        let o = SolveOptions {
             rtol,
             atol,
-            h_min: 0.0,
+            ..Default::default()
+        };
+        Settings {
             max_steps: 1_000_000,
-            h0: None,
-            stop_when_stiff: false,
-            switch_lambda: 0.0,
+            ..Settings::of(&o)
         }
     }
 
@@ -316,7 +344,7 @@ mod tests {
         let mut rejected_seen = false;
         for max_steps in 1..200 {
             let mut sys = van_der_pol();
-            let o = AdaptiveOptions {
+            let o = Settings {
                 max_steps,
                 ..options(1e-6, 1e-8)
             };

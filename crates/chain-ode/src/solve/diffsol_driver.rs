@@ -28,7 +28,7 @@ use diffsol::{
     OdeSolverStopReason, Vector, VectorCommon,
 };
 
-use super::adaptive::AdaptiveOptions;
+use super::integrator::Settings;
 use crate::ode::{all_finite, Interpolant, Observer, Status, StepView};
 
 /// The entries of a (single-batch) faer vector.
@@ -75,13 +75,13 @@ pub(crate) struct Driven {
 /// non-finite value and is cleared here after every accepted step;
 /// `linear_failed` reports whether the last linear solve failed.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn drive<'a, Eqn, S, O>(
+pub(crate) fn drive<'a, Eqn, S>(
     solver: &mut S,
     t0: f64,
     mut y: Vec<f64>,
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
     rhs: StateRhs<'_>,
     nonfinite: &Cell<bool>,
     linear_failed: &dyn Fn() -> bool,
@@ -89,7 +89,6 @@ pub(crate) fn drive<'a, Eqn, S, O>(
 where
     Eqn: OdeEquations<T = f64, V = FaerVec<f64>, C = FaerContext> + 'a,
     S: OdeSolverMethod<'a, Eqn, Config = BdfConfig<f64>>,
-    O: Observer,
 {
     let d = y.len();
     let full = solver.state().y.len();

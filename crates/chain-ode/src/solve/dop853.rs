@@ -10,10 +10,11 @@
 //! `k14..k16` feed only the dense output: 15 evaluations per accepted step,
 //! 11 per rejected one.
 
-use super::adaptive::AdaptiveOptions;
+use super::integrator::{Integrator, Settings};
 use crate::ode::{
     all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
 };
+use crate::system::ChainSystem;
 
 /// A stage row: the nonzero `a_ij` as `(slot j, a_ij)`.
 type Row = &'static [(usize, f64)];
@@ -413,7 +414,7 @@ impl Interpolant for Dense<'_> {
 }
 
 /// RMS over components of `x / (atol + rtol max(|y0|, |y1|))`.
-fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &AdaptiveOptions) -> f64 {
+fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &Settings) -> f64 {
     let s: f64 = x
         .iter()
         .zip(y0.iter().zip(y1))
@@ -433,7 +434,7 @@ fn initial_step<S: OdeSystem>(
     y0: &[f64],
     f0: &[f64],
     span: f64,
-    o: &AdaptiveOptions,
+    o: &Settings,
     scratch: (&mut [f64], &mut [f64]),
 ) -> f64 {
     let (y1, f1) = scratch;
@@ -466,24 +467,24 @@ fn initial_step<S: OdeSystem>(
 /// contract: observers see every accepted step with `f1 = f(t1, y1)` and the
 /// seventh-order interpolant; the run ends on `t_end` or with a status, at
 /// the last finite state.
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    o: &AdaptiveOptions,
-    obs: &mut O,
+    o: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
 }
 
-fn steps<S: OdeSystem, O: Observer>(
+fn steps<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    o: &AdaptiveOptions,
-    obs: &mut O,
+    o: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let mut stats = Stats::default();
@@ -657,9 +658,35 @@ fn steps<S: OdeSystem, O: Observer>(
     Outcome::ended(Status::Ok, t, None, stats, y)
 }
 
+/// `dop853`: Dormand–Prince 8(5,3), adaptive, for tight tolerances.
+pub(crate) struct Dop853;
+
+impl Integrator for Dop853 {
+    fn name(&self) -> &'static str {
+        "dop853"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings, obs)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solve::SolveOptions;
 
     type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
 
@@ -732,27 +759,27 @@ mod tests {
             .fold(0.0, f64::max)
     }
 
-    fn options(rtol: f64, atol: f64) -> AdaptiveOptions {
-        AdaptiveOptions {
+    fn options(rtol: f64, atol: f64) -> Settings {
+        let o = SolveOptions {
             rtol,
             atol,
-            h_min: 0.0,
+            ..Default::default()
+        };
+        Settings {
             max_steps: 1_000_000,
-            h0: None,
-            stop_when_stiff: false,
-            switch_lambda: 0.0,
+            ..Settings::of(&o)
         }
     }
 
     /// Runs and checks the cost model against the toy's own count:
     /// `1 + [probe] + 11 per attempt + 4 per accepted step` (no non-finite trials).
-    fn run_clean<O: Observer>(
+    fn run_clean(
         sys: &mut Toy,
         t0: f64,
         y0: &[f64],
         t_end: f64,
-        o: &AdaptiveOptions,
-        obs: &mut O,
+        o: &Settings,
+        obs: &mut dyn Observer,
     ) -> Outcome {
         let out = integrate(sys, t0, y0, t_end, o, obs);
         let s = out.stats;
@@ -848,7 +875,7 @@ mod tests {
                 times: thetas.to_vec(),
                 ..Probe::default()
             };
-            let o = AdaptiveOptions {
+            let o = Settings {
                 h0: Some(1.0),
                 ..options(0.5, 1e3)
             };
@@ -1000,7 +1027,7 @@ mod tests {
                 times: vec![t0 + 0.5 * h],
                 ..Probe::default()
             };
-            let o = AdaptiveOptions {
+            let o = Settings {
                 h0: Some(h),
                 ..options(0.5, 1.0)
             };
@@ -1023,7 +1050,7 @@ mod tests {
     fn counters_are_exact_with_rejections() {
         // A first step far too long forces rejections.
         let mut sys = kepler();
-        let o = AdaptiveOptions {
+        let o = Settings {
             h0: Some(3.0),
             ..options(1e-9, 1e-9)
         };
@@ -1049,7 +1076,7 @@ mod tests {
         let mut rejected_seen = false;
         for max_steps in 1..200 {
             let mut sys = van_der_pol();
-            let o = AdaptiveOptions {
+            let o = Settings {
                 max_steps,
                 ..options(1e-6, 1e-8)
             };
@@ -1159,7 +1186,7 @@ mod tests {
         // Stops at the first detection if |lambda| = 1000 exceeds switch_lambda ...
         for (switch_lambda, stops) in [(990.0, true), (1010.0, false)] {
             let mut sys = relaxation();
-            let o = AdaptiveOptions {
+            let o = Settings {
                 stop_when_stiff: true,
                 switch_lambda,
                 ..o

@@ -2,10 +2,11 @@
 //! `rtol`/`atol`, a PI step-size controller, Hairer's initial step, the
 //! fourth-order dense output, and Hairer's stiffness detection.
 
-use super::adaptive::AdaptiveOptions;
+use super::integrator::{Integrator, Settings};
 use crate::ode::{
     all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
 };
+use crate::system::ChainSystem;
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -78,7 +79,7 @@ impl Interpolant for Dense<'_> {
     }
 }
 
-fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &AdaptiveOptions) -> f64 {
+fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &Settings) -> f64 {
     let s: f64 = x
         .iter()
         .zip(y0.iter().zip(y1))
@@ -97,7 +98,7 @@ fn initial_step<S: OdeSystem>(
     y0: &[f64],
     f0: &[f64],
     span: f64,
-    o: &AdaptiveOptions,
+    o: &Settings,
     scratch: (&mut [f64], &mut [f64]),
 ) -> f64 {
     let (y1, f1) = scratch;
@@ -127,24 +128,24 @@ fn initial_step<S: OdeSystem>(
 }
 
 /// Integrates from `t0` to `t_end`.
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    o: &AdaptiveOptions,
-    obs: &mut O,
+    o: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
 }
 
-fn steps<S: OdeSystem, O: Observer>(
+fn steps<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    o: &AdaptiveOptions,
-    obs: &mut O,
+    o: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let mut stats = Stats::default();
@@ -329,4 +330,29 @@ fn steps<S: OdeSystem, O: Observer>(
         }
     }
     Outcome::ended(Status::Ok, t, None, stats, y)
+}
+
+/// `dopri5`: Dormand–Prince 5(4), adaptive.
+pub(crate) struct Dopri5;
+
+impl Integrator for Dopri5 {
+    fn name(&self) -> &'static str {
+        "dopri5"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings, obs)
+    }
 }

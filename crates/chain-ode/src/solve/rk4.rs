@@ -1,31 +1,33 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension.
 
+use super::integrator::{Integrator, Settings};
 use crate::ode::{
     all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
 };
+use crate::system::ChainSystem;
 
 /// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
     dt: f64,
     max_steps: u64,
-    obs: &mut O,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     Counted::run(sys, |sys| steps(sys, t0, y0, t_end, dt, max_steps, obs))
 }
 
-fn steps<S: OdeSystem, O: Observer>(
+fn steps<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
     dt: f64,
     max_steps: u64,
-    obs: &mut O,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let mut y = y0.to_vec();
@@ -97,4 +99,29 @@ fn steps<S: OdeSystem, O: Observer>(
         k += 1;
     }
     Outcome::ended(Status::Ok, t, None, stats, y)
+}
+
+/// `rk4`: classical fixed-step RK4; `dt` sets its accuracy.
+pub(crate) struct Rk4;
+
+impl Integrator for Rk4 {
+    fn name(&self) -> &'static str {
+        "rk4"
+    }
+
+    fn adaptive(&self) -> bool {
+        false
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings.dt, settings.max_steps, obs)
+    }
 }
