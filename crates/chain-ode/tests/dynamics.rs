@@ -3,7 +3,6 @@
 use chain_ode::dense;
 use chain_ode::dynamics::{accelerations, Workspace};
 use chain_ode::kinematics::{dissipation_rate, energy, joints};
-use chain_ode::ode::OdeSystem;
 use chain_ode::{Chain, ChainSystem};
 use proptest::prelude::*;
 
