@@ -100,7 +100,6 @@ fn run<S: OdeSystem>(
             t: t_end,
             t_failed: None,
             discarded: 0,
-            own_rhs: 0,
             y,
         }
     } else {

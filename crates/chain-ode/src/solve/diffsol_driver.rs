@@ -62,8 +62,6 @@ pub(crate) struct Driven {
     pub t_failed: Option<f64>,
     /// A step diffsol accepted below the floor (0 or 1): counted as rejected.
     pub discarded: u64,
-    /// Right-hand sides evaluated by the loop itself (one per accepted step).
-    pub own_rhs: u64,
     /// The observed state at `t`.
     pub y: Vec<f64>,
 }
@@ -95,7 +93,6 @@ where
     let mut t = t0;
     let mut f1 = vec![0.0; full];
     let buf = RefCell::new(FaerVec::zeros(full, *solver.problem().context()));
-    let mut own_rhs = 0;
     let mut discarded = 0;
     macro_rules! finish {
         ($status:expr, $t:expr, $t_failed:expr) => {
@@ -104,7 +101,6 @@ where
                 t: $t,
                 t_failed: $t_failed,
                 discarded,
-                own_rhs,
                 y,
             }
         };
@@ -143,7 +139,6 @@ where
                 finish!(Status::StepSizeTooSmall, t, Some(t1));
             }
             rhs(t1, y1, &mut f1);
-            own_rhs += 1;
             if !all_finite(&f1[..d]) {
                 finish!(Status::Diverged, t, Some(t1));
             }
