@@ -1,4 +1,10 @@
 //! One way to run any method on any chain: [`solve`].
+//!
+//! Every method is one file with one [`Integrator`](integrator::Integrator)
+//! (its name, whether it is adaptive, its accuracy parameter, how it runs),
+//! listed by one line in [`registry`] next to its [`Method`] variant.
+//! `auto` is a policy over the registry (`auto.rs`). Work counters come from
+//! a [`Counted`](crate::ode::Counted) system, never from counting by hand.
 
 mod auto;
 mod bdf;
@@ -26,7 +32,8 @@ pub use integrator::Accuracy;
 use integrator::Settings;
 use observer::ChainObserver;
 
-/// An integration method.
+/// An integration method. The variant is the public handle; its name and
+/// kind come from its integrator in the registry.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
     /// Classical fixed-step Runge–Kutta 4 (`dt`).
