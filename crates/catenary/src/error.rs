@@ -2,13 +2,47 @@
 
 use std::fmt;
 
+/// The input of a catenary that an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Input {
+    /// The pinned end `P0`.
+    P0,
+    /// The other end `P1`.
+    P1,
+    /// The chain's length `L`.
+    Length,
+    /// The number of rods `n`.
+    Links,
+}
+
+impl Input {
+    /// Its name in messages: `p0`, `p1`, `length` or `links`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::P0 => "p0",
+            Self::P1 => "p1",
+            Self::Length => "length",
+            Self::Links => "links",
+        }
+    }
+}
+
+impl fmt::Display for Input {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// Error of [`Catenary::through`](crate::Catenary::through) and
-/// [`discrete_equilibrium`](crate::discrete_equilibrium). `Display` is one line
-/// that names the offending field and the accepted range.
+/// [`discrete_equilibrium`](crate::discrete_equilibrium). Each variant holds
+/// the values it is about; [`input`](Self::input) says which input is wrong
+/// and [`reason`](Self::reason) what was accepted and what was got, so that
+/// a caller can name the input its own way. `Display` is one line: the
+/// input's name (or `solver`), then the reason.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CatenaryError {
-    /// An input is NaN or infinite (`field` is `"p0"`, `"p1"` or `"length"`).
-    NonFinite { field: &'static str, value: f64 },
+    /// An input is NaN or infinite (`P0`, `P1` or the length).
+    NonFinite { input: Input, value: f64 },
     /// `length <= 0`.
     NonPositiveLength { length: f64 },
     /// `links == 0`.
@@ -28,46 +62,59 @@ pub enum CatenaryError {
     },
 }
 
-impl fmt::Display for CatenaryError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl CatenaryError {
+    /// The input the error is about; `None` when no input is wrong (a
+    /// solver did not converge).
+    pub fn input(&self) -> Option<Input> {
         match *self {
-            Self::NonFinite { field, value } => {
-                write!(f, "{field}: must be finite (got {value})")
+            Self::NonFinite { input, .. } => Some(input),
+            Self::NonPositiveLength { .. } | Self::TooShort { .. } => Some(Input::Length),
+            Self::NoLinks | Self::SingleRod { .. } => Some(Input::Links),
+            Self::Vertical { .. } => Some(Input::P1),
+            Self::NoConvergence { .. } => None,
+        }
+    }
+
+    /// What is wrong, without the input's name: what is accepted and what
+    /// was got.
+    pub fn reason(&self) -> String {
+        match *self {
+            Self::NonFinite { value, .. } => format!("must be finite (got {value})"),
+            Self::NonPositiveLength { length } => format!("must be > 0 (got {length})"),
+            Self::NoLinks => "must be >= 1 (got 0)".to_string(),
+            Self::TooShort { length, distance } if length < distance => {
+                format!("must exceed the anchor distance |P1 - P0| = {distance} (got {length})")
             }
-            Self::NonPositiveLength { length } => {
-                write!(f, "length: must be > 0 (got {length})")
-            }
-            Self::NoLinks => write!(f, "links: must be >= 1 (got 0)"),
-            Self::TooShort { length, distance } if length < distance => write!(
-                f,
-                "length: must exceed the anchor distance |P1 - P0| = {distance} (got {length})"
+            Self::TooShort { length, distance } => format!(
+                "must exceed the anchor distance |P1 - P0| = {distance} by more than 1e-12 \
+                 relative for a hanging chain (got {length}); a taut chain is straight: use \
+                 the stretched start"
             ),
-            Self::TooShort { length, distance } => write!(
-                f,
-                "length: must exceed the anchor distance |P1 - P0| = {distance} by more than \
-                 1e-12 relative for a hanging chain (got {length}); a taut chain is straight: \
-                 use the stretched start"
-            ),
-            Self::Vertical { length, distance } => write!(
-                f,
-                "p1: must not lie straight above or below p0 (x1 == x0, |y1 - y0| = {distance} \
+            Self::Vertical { length, distance } => format!(
+                "must not lie straight above or below p0 (x1 == x0, |y1 - y0| = {distance} \
                  < length = {length}): a vertical chain is an unstable equilibrium of the rod \
-                 model; use the folded start (start.kind = \"folded\")"
+                 model; use the folded start"
             ),
-            Self::SingleRod { length, distance } => write!(
-                f,
-                "links: must be >= 2 for a hanging chain; a single rod needs |P1 - P0| = length \
+            Self::SingleRod { length, distance } => format!(
+                "must be >= 2 for a hanging chain; a single rod needs |P1 - P0| = length \
                  = {length} (got |P1 - P0| = {distance})"
             ),
             Self::NoConvergence {
                 solver,
                 iterations,
                 residual,
-            } => write!(
-                f,
-                "solver: {solver} did not converge after {iterations} iterations \
-                 (residual {residual:e})"
+            } => format!(
+                "{solver} did not converge after {iterations} iterations (residual {residual:e})"
             ),
+        }
+    }
+}
+
+impl fmt::Display for CatenaryError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.input() {
+            Some(input) => write!(f, "{input}: {}", self.reason()),
+            None => write!(f, "solver: {}", self.reason()),
         }
     }
 }
@@ -77,14 +124,14 @@ impl std::error::Error for CatenaryError {}
 /// Checks shared by both constructors: finite inputs, `length > 0`,
 /// `length >= |P1 - P0|`. Returns `|P1 - P0|`.
 pub(crate) fn check_inputs(p0: [f64; 2], p1: [f64; 2], length: f64) -> Result<f64, CatenaryError> {
-    for (field, p) in [("p0", p0), ("p1", p1)] {
+    for (input, p) in [(Input::P0, p0), (Input::P1, p1)] {
         if let Some(&value) = p.iter().find(|v| !v.is_finite()) {
-            return Err(CatenaryError::NonFinite { field, value });
+            return Err(CatenaryError::NonFinite { input, value });
         }
     }
     if !length.is_finite() {
         return Err(CatenaryError::NonFinite {
-            field: "length",
+            input: Input::Length,
             value: length,
         });
     }
@@ -94,7 +141,7 @@ pub(crate) fn check_inputs(p0: [f64; 2], p1: [f64; 2], length: f64) -> Result<f6
     let distance = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
     if !distance.is_finite() {
         return Err(CatenaryError::NonFinite {
-            field: "p1",
+            input: Input::P1,
             value: distance,
         });
     }

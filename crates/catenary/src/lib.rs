@@ -15,7 +15,7 @@ mod rods;
 
 pub use continuous::Catenary;
 pub use discrete::{discrete_equilibrium, joints, DiscreteCatenary};
-pub use error::CatenaryError;
+pub use error::{CatenaryError, Input};
 
 /// A point `[x, y]` in the plane (length units, `y` up).
 pub type Point = [f64; 2];

@@ -2,7 +2,6 @@
 //! Cholesky reference side by side. `cargo bench -p chain-ode --bench rhs`.
 
 use chain_ode::dense;
-use chain_ode::ode::OdeSystem;
 use chain_ode::{Chain, ChainSystem, Start};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 

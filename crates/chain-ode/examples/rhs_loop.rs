@@ -1,5 +1,4 @@
 //! Calls the RHS in a loop, for profilers: `rhs_loop N CALLS`.
-use chain_ode::ode::OdeSystem;
 use chain_ode::{Chain, ChainSystem, Start};
 fn main() {
     let a: Vec<usize> = std::env::args()

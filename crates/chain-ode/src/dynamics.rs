@@ -64,7 +64,7 @@ pub struct Reactions<T> {
 /// Generalized damping force of rod `i` over `r`: `D_i(w)` of `physics.md`
 /// (friction in the `n - 1` joints between rods; the pivot is frictionless).
 #[inline(always)]
-pub fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
+pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
     let n = w.len();
     let mut d = T::cst(0.0);
     if i > 0 {
@@ -80,6 +80,8 @@ pub fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
 /// without allocation. Returns the pivot force and the tip acceleration.
 ///
 /// Panics if the slices' lengths differ from `chain.links` or the workspace's.
+/// `T` is `f64` outside this crate (a dual number inside it, for the exact
+/// Jacobian-vector product).
 pub fn accelerations<T: Scalar>(
     chain: &Chain,
     phi: &[T],

@@ -9,24 +9,47 @@
 //! Conventions (see `physics.md`): angles `phi_i` from the horizontal,
 //! counter-clockwise; rod 1 pinned at `P0`; `mass` is per rod; gravity along -y.
 
+//! # What is public
+//!
+//! The API is what a scene, a study or a test needs, and nothing of how the
+//! methods work inside:
+//!
+//! * running: [`solve`], [`Chain`], [`Start`] -> [`State`], [`Method`] (with
+//!   its [`Accuracy`] parameter), [`SolveOptions`] -> [`Trajectory`] with its
+//!   [`Summary`], [`Segment`]s, [`Stats`] and [`Status`];
+//!   [`bdf_crossover_gamma`], the damping rate past which `auto` runs BDF;
+//! * the physics the studies and the tests check the runs against:
+//!   [`kinematics`] (joints, tip, energies), [`analysis`] (quantities of
+//!   finished runs and closed forms), [`modes`] (the linearised hanging
+//!   chain), [`dense`] (the O(n^3) reference solve), [`dynamics`] (the O(n)
+//!   [`accelerations`](dynamics::accelerations)), [`dae`] (the banded DAE the
+//!   O(n) BDF runs on) and [`ChainSystem`] (the right-hand side `y' = f(y)`
+//!   and its Jacobian-vector product, as inherent methods);
+//! * errors with their fields: [`InvalidParameter`], [`StartError`].
+//!
+//! Everything else is internal: the interface between problems and methods
+//! (`OdeSystem`, `Observer`, the call counter), the integrators and their
+//! registry, the scalar type of the recursion (`f64` or a dual number).
+
 pub mod analysis;
-pub mod chain;
+mod chain;
 pub mod dae;
 pub mod dense;
 pub mod dynamics;
 pub mod kinematics;
 pub mod modes;
-pub mod ode;
-pub mod scalar;
-pub mod solve;
-pub mod state;
-pub mod system;
+mod ode;
+mod scalar;
+mod solve;
+mod state;
+mod system;
 
 pub use chain::{Chain, InvalidParameter};
 pub use kinematics::Vec2;
 pub use ode::{Stats, Status};
 pub use solve::{
-    bdf_crossover_gamma, solve, Method, Sample, Segment, SolveOptions, Summary, Trajectory,
+    bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
+    Trajectory,
 };
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

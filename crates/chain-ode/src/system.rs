@@ -58,18 +58,21 @@ impl ChainSystem {
         drest[n] = dissipation_rate(&self.chain, w);
         r
     }
-}
 
-impl OdeSystem for ChainSystem {
-    fn dim(&self) -> usize {
+    /// Length of the state `[phi, w, W]`: `2 n + 1`.
+    pub fn dim(&self) -> usize {
         2 * self.chain.links + 1
     }
 
-    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
+    /// `dy = f(y)`, O(n) and allocation-free (the system is autonomous: `t`
+    /// is unused).
+    pub fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_with_reactions(y, dy);
     }
 
-    fn jvp(&mut self, _t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+    /// The exact Jacobian-vector product `jv = (df/dy)(y) v`, by forward-mode
+    /// dual numbers through the same recursion.
+    pub fn jvp(&mut self, _t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
         let n = self.chain.links;
         for i in 0..n {
             self.dual_phi[i] = Dual::new(y[i], v[i]);
@@ -93,5 +96,20 @@ impl OdeSystem for ChainSystem {
             d += (w[i] - w[i - 1]) * (vw[i] - vw[i - 1]);
         }
         jv[2 * n] = 2.0 * self.chain.damping * d;
+    }
+}
+
+/// The methods see the chain through the same three functions.
+impl OdeSystem for ChainSystem {
+    fn dim(&self) -> usize {
+        ChainSystem::dim(self)
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        ChainSystem::rhs(self, t, y, dy)
+    }
+
+    fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+        ChainSystem::jvp(self, t, y, v, jv)
     }
 }

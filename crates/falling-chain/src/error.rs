@@ -5,7 +5,7 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use catenary::CatenaryError;
+use catenary::{CatenaryError, Input};
 use chain_ode::{InvalidParameter, StartError};
 
 /// Why a scene, an override, a computation's input or an output failed.
@@ -67,18 +67,21 @@ impl Error {
     }
 
     /// Maps a catenary error onto the names the caller uses for the
-    /// catenary's inputs (`p0`, `p1`, `length`, `links`; anything else, such
-    /// as a solver failure, is reported under `other`).
+    /// catenary's inputs (`p0`, `p1`, `length`, `links`; an error about no
+    /// input, such as a solver failure, is reported under `other`), and
+    /// points a vertical chain to the scene's folded start.
     pub fn from_catenary(e: &CatenaryError, names: &CatenaryNames) -> Self {
-        let text = e.to_string();
-        let (field, message) = text.split_once(": ").unwrap_or(("", text.as_str()));
-        let name = match field {
-            "p0" => names.p0,
-            "p1" => names.p1,
-            "length" => names.length,
-            "links" => names.links,
-            _ => names.other,
+        let name = match e.input() {
+            Some(Input::P0) => names.p0,
+            Some(Input::P1) => names.p1,
+            Some(Input::Length) => names.length,
+            Some(Input::Links) => names.links,
+            None => names.other,
         };
+        let mut message = e.reason();
+        if let CatenaryError::Vertical { .. } = e {
+            message.push_str(" (start.kind = \"folded\")");
+        }
         Self::field(name, message)
     }
 }
@@ -191,5 +194,41 @@ mod tests {
         let c = catenary::Catenary::through([0.0, 0.0], [5.0, 1.0], 4.0).unwrap_err();
         let e = Error::from_catenary(&c, &CatenaryNames::SCENE);
         assert!(e.to_string().starts_with("chain.length: "), "{e}");
+    }
+
+    #[test]
+    fn every_catenary_input_has_its_scene_path() {
+        let nan = f64::NAN;
+        for (p1, length, links, subject) in [
+            ([nan, 0.0], 2.0, 5, "start.p1"),
+            ([1.0, 0.0], -1.0, 5, "chain.length"),
+            ([1.0, 0.0], 2.0, 0, "chain.links"),
+            ([1.0, 0.0], 2.0, 1, "chain.links"),
+            ([0.0, -1.0], 2.0, 5, "start.p1"),
+        ] {
+            let c = catenary::discrete_equilibrium([0.0, 0.0], p1, length, links).unwrap_err();
+            let e = Error::from_catenary(&c, &CatenaryNames::SCENE);
+            assert_eq!(e.subject(), subject, "{c:?}");
+            let expect = format!("{subject}: {}", c.reason());
+            assert!(e.to_string().starts_with(&expect), "{e}");
+        }
+        // Where the folded start is chosen is the scene's business.
+        let c = catenary::discrete_equilibrium([0.0, 0.0], [0.0, -1.0], 2.0, 5).unwrap_err();
+        let e = Error::from_catenary(&c, &CatenaryNames::SCENE).to_string();
+        assert!(
+            e.ends_with("use the folded start (start.kind = \"folded\")"),
+            "{e}"
+        );
+        // An error about no input is reported under `other`.
+        let c = CatenaryError::NoConvergence {
+            solver: "Newton",
+            iterations: 3,
+            residual: 1.0,
+        };
+        let e = Error::from_catenary(&c, &CatenaryNames::SCENE);
+        assert_eq!(
+            e.to_string(),
+            "start: Newton did not converge after 3 iterations (residual 1e0)"
+        );
     }
 }

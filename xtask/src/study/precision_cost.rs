@@ -7,7 +7,6 @@ use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
 
-use chain_ode::ode::OdeSystem;
 use chain_ode::{dense, Chain, ChainSystem};
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 

@@ -6,7 +6,7 @@
 
 use std::fmt::Write as _;
 
-use chain_ode::{solve, Method, Status, Trajectory};
+use chain_ode::{solve, Accuracy, Method, Status, Trajectory};
 use falling_chain::Prepared;
 use figures::{CategoryMap, CategoryPanel, RGBColor};
 use rayon::prelude::*;
@@ -159,32 +159,17 @@ struct Cell {
     run: Result<Trajectory, String>,
 }
 
-fn param_name(m: Method) -> &'static str {
-    if m == Method::Rk4 {
-        "dt"
-    } else {
-        "rtol"
-    }
-}
-
 fn params(m: Method) -> &'static [f64] {
-    if m == Method::Rk4 {
-        &DTS
-    } else {
-        &RTOLS
+    match m.accuracy() {
+        Accuracy::Step => &DTS,
+        Accuracy::Tolerance => &RTOLS,
     }
 }
 
 fn run_cell(p: &Prepared, method: Method, param: f64) -> Result<Trajectory, String> {
-    let mut o = p.options.clone();
+    let mut o = p.options.clone().at_accuracy(method, param);
     o.output_dt = None;
     o.max_steps = MAX_STEPS;
-    if method == Method::Rk4 {
-        o.dt = param;
-    } else {
-        o.rtol = param;
-        o.atol = param * 1e-2;
-    }
     solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())
 }
 
@@ -266,7 +251,7 @@ pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
             ch.damping_rate(),
             p.options.t_end,
             c.method,
-            param_name(c.method),
+            c.method.accuracy_name(),
             c.param
         )
         .unwrap();

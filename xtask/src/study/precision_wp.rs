@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 
 use chain_ode::kinematics::tip;
-use chain_ode::{solve, Method, SolveOptions, Stats, Status, Trajectory};
+use chain_ode::{solve, Accuracy, Method, SolveOptions, Stats, Status, Trajectory};
 use falling_chain::Prepared;
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 
@@ -305,14 +305,8 @@ impl Point {
 }
 
 fn options_for(p: &Prepared, method: Method, param: f64) -> SolveOptions {
-    let mut o = p.options.clone();
+    let mut o = p.options.clone().at_accuracy(method, param);
     o.output_dt = None;
-    if method == Method::Rk4 {
-        o.dt = param;
-    } else {
-        o.rtol = param;
-        o.atol = param * 1e-2;
-    }
     o
 }
 
@@ -358,11 +352,11 @@ fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), String> {
 /// it; RK4 stops once its errors reach [`ERR_FLOOR`]; an adaptive line whose
 /// first run exceeds [`THIN_ABOVE`] s runs every third tolerance only.
 fn sweep(p: &Prepared, method: Method, reference: &Reference) -> Result<Vec<Point>, String> {
-    let rk4 = method == Method::Rk4;
-    let (name, params): (&'static str, &[f64]) = if rk4 {
-        ("dt", &RK4_DTS)
-    } else {
-        ("rtol", &RTOLS)
+    let fixed_step = !method.adaptive();
+    let name = method.accuracy_name();
+    let params: &[f64] = match method.accuracy() {
+        Accuracy::Step => &RK4_DTS,
+        Accuracy::Tolerance => &RTOLS,
     };
     let mut out = vec![];
     let mut spent = 0.0;
@@ -385,7 +379,7 @@ fn sweep(p: &Prepared, method: Method, reference: &Reference) -> Result<Vec<Poin
         }
         let predicted = match done.as_slice() {
             [] => 0.0,
-            [.., (px, pw)] if rk4 => pw * px / x,
+            [.., (px, pw)] if fixed_step => pw * px / x,
             [(_, w0)] => w0 * 1.6,
             [.., (_, w1), (_, w2)] => w2 * (w2 / w1).clamp(1.0, 4.0),
         };
@@ -407,11 +401,11 @@ fn sweep(p: &Prepared, method: Method, reference: &Reference) -> Result<Vec<Poin
             // The repeats come later (see `repeat_interleaved`); count them now.
             spent += wall * repeats_for(wall) as f64;
             pt.rerun = Some((method, o));
-            if done.is_empty() && !rk4 && t.summary.wall_seconds > THIN_ABOVE {
+            if done.is_empty() && !fixed_step && t.summary.wall_seconds > THIN_ABOVE {
                 thin = true;
             }
             done.push((x, wall));
-            if rk4 && pt.err_tip.max(pt.err_vmax) < ERR_FLOOR {
+            if fixed_step && pt.err_tip.max(pt.err_vmax) < ERR_FLOOR {
                 stop = Some(format!(
                     "a coarser dt is already at the reference's level (< {})",
                     short(ERR_FLOOR)
@@ -627,7 +621,7 @@ fn method_label(method: Method, rows: &[Point]) -> (String, Vec<&Point>) {
         .filter(|pt| pt.status != "ok" && pt.status != "not_run")
         .collect();
     let name = method.as_str().to_uppercase();
-    let param = if method == Method::Rk4 { "dt" } else { "rtol" };
+    let param = method.accuracy_name();
     let mut label = if method == Method::Auto && !ok.is_empty() && ok.iter().all(|pt| !pt.switched)
     {
         format!("{name} (never switched: = DOPRI5)")

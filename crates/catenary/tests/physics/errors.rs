@@ -1,6 +1,6 @@
 //! Each invalid input gives its own error, whose message names the field.
 
-use catenary::{discrete_equilibrium, Catenary, CatenaryError};
+use catenary::{discrete_equilibrium, Catenary, CatenaryError, Input};
 
 fn both(p0: [f64; 2], p1: [f64; 2], l: f64, n: usize) -> [CatenaryError; 2] {
     [
@@ -13,6 +13,9 @@ fn starts_with(e: &CatenaryError, field: &str) {
     let text = e.to_string();
     assert!(text.starts_with(&format!("{field}: ")), "{text}");
     assert!(!text.contains('\n'));
+    // The same, as fields: the input, and the reason after its name.
+    assert_eq!(e.input().map_or("solver", Input::as_str), field);
+    assert_eq!(text, format!("{field}: {}", e.reason()));
 }
 
 #[test]
@@ -25,7 +28,7 @@ fn non_finite_inputs_name_their_field() {
         ([0.0, 0.0], [1.0, 0.0], f64::INFINITY, "length"),
     ] {
         for e in both(p0, p1, l, 5) {
-            assert!(matches!(e, CatenaryError::NonFinite { field: f, .. } if f == field));
+            assert!(matches!(e, CatenaryError::NonFinite { input, .. } if input.as_str() == field));
             starts_with(&e, field);
         }
     }

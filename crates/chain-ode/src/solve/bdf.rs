@@ -29,13 +29,14 @@ use diffsol::{
 };
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
-use super::adaptive::AdaptiveOptions;
 use super::diffsol_driver::{drive, slice, slice_mut, Driven};
+use super::integrator::{Integrator, Settings};
 use super::sparse_lu::{LuLog, SparseLu};
 use crate::chain::Chain;
 use crate::dae::ChainDae;
 use crate::dynamics::Workspace;
 use crate::ode::{all_finite, Observer, Outcome, Stats, Status};
+use crate::system::ChainSystem;
 
 type Mat = FaerSparseMat<f64>;
 type Vf = FaerVec<f64>;
@@ -245,24 +246,29 @@ impl OdeEquations for DaeEquations {
 }
 
 /// Integrates the chain from `t0` (state `y0 = [phi, w, W]`) to `t_end`.
-pub(crate) fn integrate<O: Observer>(
+pub(crate) fn integrate(
     chain: &Chain,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let dae = ChainDae::new(chain);
     let (d, dim) = (dae.differential_dim(), dae.dim());
-    let mut stats = Stats::default();
     let y = y0.to_vec();
     let mut full = vec![0.0; dim];
     full[..d].copy_from_slice(y0);
     dae.make_consistent(&mut full, &mut Workspace::new(chain.links));
+    // Every evaluation of the DAE (this one, diffsol's, and the loop's own
+    // for the observer) goes through `eqn`, which counts it.
+    let eqn = DaeEquations::new(chain, full.clone());
     let mut f = vec![0.0; dim];
-    dae.rhs(&full, &mut f);
-    stats.rhs_evals += 1;
+    eqn.rhs_slices(&full, &mut f);
+    let stats = Stats {
+        rhs_evals: eqn.rhs_evals.get(),
+        ..Stats::default()
+    };
     if !all_finite(&full) || !all_finite(&f) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -271,7 +277,6 @@ pub(crate) fn integrate<O: Observer>(
         return Outcome::ended(Status::Ok, t0, None, stats, y);
     }
 
-    let eqn = DaeEquations::new(chain, full);
     let atol = (0..dim).map(|i| if i < d { opts.atol } else { ALGEBRAIC_ATOL });
     let mut builder = OdeBuilder::<Mat>::new().t0(t0).rtol(opts.rtol).atol(atol);
     if let Some(h0) = opts.h0 {
@@ -297,12 +302,11 @@ pub(crate) fn integrate<O: Observer>(
             t: t_end,
             t_failed: None,
             discarded: 0,
-            own_rhs: 0,
             y,
         }
     } else {
         // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
-        let mut own = |_t: f64, y: &[f64], f: &mut [f64]| eqn.dae.rhs(y, f);
+        let mut own = |_t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(y, f);
         drive(
             &mut solver,
             t0,
@@ -315,21 +319,47 @@ pub(crate) fn integrate<O: Observer>(
             &|| log.last_failed.get(),
         )
     };
-    outcome(driven, solver.get_statistics(), eqn, stats.rhs_evals)
+    outcome(driven, solver.get_statistics(), eqn)
 }
 
 /// The outcome of a run, with diffsol's counters and the exact call counts.
-fn outcome(driven: Driven, s: &OdeSolverStatistics, eqn: &DaeEquations, start_rhs: u64) -> Outcome {
+fn outcome(driven: Driven, s: &OdeSolverStatistics, eqn: &DaeEquations) -> Outcome {
     let stats = Stats {
         steps: s.number_of_steps as u64 - driven.discarded,
         rejected_steps: (s.number_of_error_test_failures + s.number_of_nonlinear_solver_fails)
             as u64
             + driven.discarded,
-        rhs_evals: start_rhs + driven.own_rhs + eqn.rhs_evals.get(),
+        rhs_evals: eqn.rhs_evals.get(),
         jacobian_evals: eqn.jacobian_evals.get(),
         // Every linear-solver setup is one sparse LU of `M - c J`.
         lu_factorizations: s.number_of_linear_solver_setups as u64,
         stiffness_detections: 0,
     };
     Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
+}
+
+/// `bdf`: diffsol's BDF on the banded DAE, O(n) per step. It needs the
+/// chain itself, not only the system.
+pub(crate) struct SparseBdf;
+
+impl Integrator for SparseBdf {
+    fn name(&self) -> &'static str {
+        "bdf"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys.chain(), t0, y0, t_end, settings, obs)
+    }
 }

@@ -11,38 +11,42 @@ use std::cell::{Cell, RefCell};
 use diffsol::ode_solver::OdeSolverStatistics;
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
-use super::adaptive::AdaptiveOptions;
 use super::diffsol_driver::{drive, Driven};
-use crate::ode::{all_finite, Observer, OdeSystem, Outcome, Stats, Status};
+use super::integrator::{Integrator, Settings};
+use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
+use crate::system::ChainSystem;
 
 type Mat = FaerMat<f64>;
 type Lu = FaerLU<f64>;
 
-/// What the wrapped system has been asked to do, counted exactly.
-#[derive(Default)]
-struct Counters {
-    rhs: Cell<u64>,
-    jvp: Cell<u64>,
-    /// A non-finite value came out of `rhs` or `jvp` since the last reset.
-    nonfinite: Cell<bool>,
-}
-
 /// Integrates from `t0` to `t_end` with diffsol's BDF on the explicit form.
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+/// Every call to the system, diffsol's and the loop's own, goes through one
+/// [`Counted`]: `rhs_evals` is its count.
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    Counted::run(sys, |sys| run(sys, t0, y0, t_end, opts, obs))
+}
+
+fn run<S: OdeSystem>(
+    sys: &mut Counted<S>,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    opts: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
-    let mut stats = Stats::default();
+    let stats = Stats::default();
     let y = y0.to_vec();
     let mut f = vec![0.0; d];
 
     sys.rhs(t0, &y, &mut f);
-    stats.rhs_evals += 1;
     if !all_finite(&y) || !all_finite(&f) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -55,19 +59,18 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     // Borrowing it allocates nothing; it is never borrowed twice, because
     // diffsol never calls back while the driver holds it.
     let sys = RefCell::new(sys);
-    let counters = Counters::default();
+    // A non-finite value came out of `rhs` or `jvp` since the last reset.
+    let nonfinite = Cell::new(false);
     let rhs = |x: &[f64], _p: &[f64], t: f64, dy: &mut [f64]| {
         sys.borrow_mut().rhs(t, x, dy);
-        counters.rhs.set(counters.rhs.get() + 1);
         if !all_finite(dy) {
-            counters.nonfinite.set(true);
+            nonfinite.set(true);
         }
     };
     let jvp = |x: &[f64], _p: &[f64], t: f64, v: &[f64], jv: &mut [f64]| {
         sys.borrow_mut().jvp(t, x, v, jv);
-        counters.jvp.set(counters.jvp.get() + 1);
         if !all_finite(jv) {
-            counters.nonfinite.set(true);
+            nonfinite.set(true);
         }
     };
     // Building the problem or the solver only fails on a programming error
@@ -97,7 +100,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
             t: t_end,
             t_failed: None,
             discarded: 0,
-            own_rhs: 0,
             y,
         }
     } else {
@@ -110,36 +112,26 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
             opts,
             obs,
             &mut own,
-            &counters.nonfinite,
+            &nonfinite,
             &|| false,
         )
     };
-    outcome(
-        driven,
-        solver.get_statistics(),
-        &counters,
-        stats.rhs_evals,
-        d,
-    )
+    let jvp_calls = sys.borrow().jvp_calls();
+    outcome(driven, solver.get_statistics(), jvp_calls, d)
 }
 
-/// The outcome of a run, with diffsol's counters and the exact call counts.
-fn outcome(
-    driven: Driven,
-    s: &OdeSolverStatistics,
-    counters: &Counters,
-    start_rhs: u64,
-    d: usize,
-) -> Outcome {
+/// The outcome of a run, with diffsol's counters and the exact JVP count
+/// (`rhs_evals` is filled in by [`Counted::run`]).
+fn outcome(driven: Driven, s: &OdeSolverStatistics, jvp_calls: u64, d: usize) -> Outcome {
     let stats = Stats {
         steps: s.number_of_steps as u64 - driven.discarded,
         rejected_steps: (s.number_of_error_test_failures + s.number_of_nonlinear_solver_fails)
             as u64
             + driven.discarded,
-        rhs_evals: start_rhs + driven.own_rhs + counters.rhs.get(),
+        rhs_evals: 0,
         // diffsol builds each dense Jacobian from exactly `d` JVPs and calls
         // the JVP for nothing else (no sensitivities here).
-        jacobian_evals: counters.jvp.get() / d as u64,
+        jacobian_evals: jvp_calls / d as u64,
         // Every linear-solver setup is one faer LU of `I - c J`.
         lu_factorizations: s.number_of_linear_solver_setups as u64,
         stiffness_detections: 0,
@@ -147,10 +139,37 @@ fn outcome(
     Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
 }
 
+/// `bdf-dense`: diffsol's BDF on the explicit form, dense LU: the O(n^3)
+/// reference for `bdf`.
+pub(crate) struct BdfDense;
+
+impl Integrator for BdfDense {
+    fn name(&self) -> &'static str {
+        "bdf-dense"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings, obs)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::ode::StepView;
+    use crate::solve::SolveOptions;
 
     type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
     type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
@@ -219,15 +238,15 @@ mod tests {
         )
     }
 
-    fn options(rtol: f64, atol: f64) -> AdaptiveOptions {
-        AdaptiveOptions {
+    fn options(rtol: f64, atol: f64) -> Settings {
+        let o = SolveOptions {
             rtol,
             atol,
-            h_min: 0.0,
+            ..Default::default()
+        };
+        Settings {
             max_steps: 1_000_000,
-            h0: None,
-            stop_when_stiff: false,
-            switch_lambda: 0.0,
+            ..Settings::of(&o)
         }
     }
 
@@ -324,7 +343,7 @@ mod tests {
         let mut rejected_seen = false;
         for max_steps in 1..200 {
             let mut sys = van_der_pol();
-            let o = AdaptiveOptions {
+            let o = Settings {
                 max_steps,
                 ..options(1e-6, 1e-8)
             };

@@ -28,7 +28,7 @@ use diffsol::{
     OdeSolverStopReason, Vector, VectorCommon,
 };
 
-use super::adaptive::AdaptiveOptions;
+use super::integrator::Settings;
 use crate::ode::{all_finite, Interpolant, Observer, Status, StepView};
 
 /// The entries of a (single-batch) faer vector.
@@ -62,8 +62,6 @@ pub(crate) struct Driven {
     pub t_failed: Option<f64>,
     /// A step diffsol accepted below the floor (0 or 1): counted as rejected.
     pub discarded: u64,
-    /// Right-hand sides evaluated by the loop itself (one per accepted step).
-    pub own_rhs: u64,
     /// The observed state at `t`.
     pub y: Vec<f64>,
 }
@@ -75,13 +73,13 @@ pub(crate) struct Driven {
 /// non-finite value and is cleared here after every accepted step;
 /// `linear_failed` reports whether the last linear solve failed.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn drive<'a, Eqn, S, O>(
+pub(crate) fn drive<'a, Eqn, S>(
     solver: &mut S,
     t0: f64,
     mut y: Vec<f64>,
     t_end: f64,
-    opts: &AdaptiveOptions,
-    obs: &mut O,
+    opts: &Settings,
+    obs: &mut dyn Observer,
     rhs: StateRhs<'_>,
     nonfinite: &Cell<bool>,
     linear_failed: &dyn Fn() -> bool,
@@ -89,14 +87,12 @@ pub(crate) fn drive<'a, Eqn, S, O>(
 where
     Eqn: OdeEquations<T = f64, V = FaerVec<f64>, C = FaerContext> + 'a,
     S: OdeSolverMethod<'a, Eqn, Config = BdfConfig<f64>>,
-    O: Observer,
 {
     let d = y.len();
     let full = solver.state().y.len();
     let mut t = t0;
     let mut f1 = vec![0.0; full];
     let buf = RefCell::new(FaerVec::zeros(full, *solver.problem().context()));
-    let mut own_rhs = 0;
     let mut discarded = 0;
     macro_rules! finish {
         ($status:expr, $t:expr, $t_failed:expr) => {
@@ -105,7 +101,6 @@ where
                 t: $t,
                 t_failed: $t_failed,
                 discarded,
-                own_rhs,
                 y,
             }
         };
@@ -144,7 +139,6 @@ where
                 finish!(Status::StepSizeTooSmall, t, Some(t1));
             }
             rhs(t1, y1, &mut f1);
-            own_rhs += 1;
             if !all_finite(&f1[..d]) {
                 finish!(Status::Diverged, t, Some(t1));
             }

@@ -10,8 +10,11 @@
 //! `k14..k16` feed only the dense output: 15 evaluations per accepted step,
 //! 11 per rejected one.
 
-use super::adaptive::AdaptiveOptions;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+use super::integrator::{Integrator, Settings};
+use crate::ode::{
+    all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+};
+use crate::system::ChainSystem;
 
 /// A stage row: the nonzero `a_ij` as `(slot j, a_ij)`.
 type Row = &'static [(usize, f64)];
@@ -411,7 +414,7 @@ impl Interpolant for Dense<'_> {
 }
 
 /// RMS over components of `x / (atol + rtol max(|y0|, |y1|))`.
-fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &AdaptiveOptions) -> f64 {
+fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &Settings) -> f64 {
     let s: f64 = x
         .iter()
         .zip(y0.iter().zip(y1))
@@ -431,7 +434,7 @@ fn initial_step<S: OdeSystem>(
     y0: &[f64],
     f0: &[f64],
     span: f64,
-    o: &AdaptiveOptions,
+    o: &Settings,
     scratch: (&mut [f64], &mut [f64]),
 ) -> f64 {
     let (y1, f1) = scratch;
@@ -464,13 +467,24 @@ fn initial_step<S: OdeSystem>(
 /// contract: observers see every accepted step with `f1 = f(t1, y1)` and the
 /// seventh-order interpolant; the run ends on `t_end` or with a status, at
 /// the last finite state.
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    o: &AdaptiveOptions,
-    obs: &mut O,
+    o: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
+}
+
+fn steps<S: OdeSystem>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let mut stats = Stats::default();
@@ -480,7 +494,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let mut rcont = vec![0.0; 8 * d];
 
     sys.rhs(t0, &y, &mut k[..d]);
-    stats.rhs_evals += 1;
     if !all_finite(&k[..d]) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -490,7 +503,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let mut h = match o.h0 {
         Some(h) => h.min(span),
         None => {
-            stats.rhs_evals += 1;
             let (f0, rest) = k.split_at_mut(d);
             initial_step(sys, t0, &y, f0, span, o, (&mut ys, &mut rest[..d]))
         }
@@ -526,7 +538,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
             combine(&mut ys, &y, h, done, row);
             sys.rhs(t + c * h, &ys, &mut rest[..d]);
         }
-        stats.rhs_evals += STAGES.len() as u64;
 
         // y1 and the error: err5^2 / sqrt(err5^2 + 0.01 err3^2), where errN
         // is the RMS over components of h |estimate N| / (atol + rtol max(|y0|, |y1|)).
@@ -549,7 +560,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         let mut lambda = 0.0;
         if finite && e <= 1.0 {
             sys.rhs(t1, &y1, &mut k[12 * d..13 * d]);
-            stats.rhs_evals += 1;
             finite = all_finite(&k[12 * d..13 * d]);
             if finite {
                 // |lambda| ~ |k13 - k12| / |y1 - Y12|: both stages at the step end (Y12 is in ys).
@@ -564,7 +574,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
                     combine(&mut ys, &y, h, done, row);
                     sys.rhs(t + c * h, &ys, &mut rest[..d]);
                 }
-                stats.rhs_evals += DENSE_STAGES.len() as u64;
                 finite = all_finite(&k[13 * d..]);
             }
         }
@@ -649,9 +658,35 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     Outcome::ended(Status::Ok, t, None, stats, y)
 }
 
+/// `dop853`: Dormand–Prince 8(5,3), adaptive, for tight tolerances.
+pub(crate) struct Dop853;
+
+impl Integrator for Dop853 {
+    fn name(&self) -> &'static str {
+        "dop853"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings, obs)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solve::SolveOptions;
 
     type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
 
@@ -724,27 +759,27 @@ mod tests {
             .fold(0.0, f64::max)
     }
 
-    fn options(rtol: f64, atol: f64) -> AdaptiveOptions {
-        AdaptiveOptions {
+    fn options(rtol: f64, atol: f64) -> Settings {
+        let o = SolveOptions {
             rtol,
             atol,
-            h_min: 0.0,
+            ..Default::default()
+        };
+        Settings {
             max_steps: 1_000_000,
-            h0: None,
-            stop_when_stiff: false,
-            switch_lambda: 0.0,
+            ..Settings::of(&o)
         }
     }
 
     /// Runs and checks the cost model against the toy's own count:
     /// `1 + [probe] + 11 per attempt + 4 per accepted step` (no non-finite trials).
-    fn run_clean<O: Observer>(
+    fn run_clean(
         sys: &mut Toy,
         t0: f64,
         y0: &[f64],
         t_end: f64,
-        o: &AdaptiveOptions,
-        obs: &mut O,
+        o: &Settings,
+        obs: &mut dyn Observer,
     ) -> Outcome {
         let out = integrate(sys, t0, y0, t_end, o, obs);
         let s = out.stats;
@@ -840,7 +875,7 @@ mod tests {
                 times: thetas.to_vec(),
                 ..Probe::default()
             };
-            let o = AdaptiveOptions {
+            let o = Settings {
                 h0: Some(1.0),
                 ..options(0.5, 1e3)
             };
@@ -992,7 +1027,7 @@ mod tests {
                 times: vec![t0 + 0.5 * h],
                 ..Probe::default()
             };
-            let o = AdaptiveOptions {
+            let o = Settings {
                 h0: Some(h),
                 ..options(0.5, 1.0)
             };
@@ -1015,7 +1050,7 @@ mod tests {
     fn counters_are_exact_with_rejections() {
         // A first step far too long forces rejections.
         let mut sys = kepler();
-        let o = AdaptiveOptions {
+        let o = Settings {
             h0: Some(3.0),
             ..options(1e-9, 1e-9)
         };
@@ -1041,7 +1076,7 @@ mod tests {
         let mut rejected_seen = false;
         for max_steps in 1..200 {
             let mut sys = van_der_pol();
-            let o = AdaptiveOptions {
+            let o = Settings {
                 max_steps,
                 ..options(1e-6, 1e-8)
             };
@@ -1151,7 +1186,7 @@ mod tests {
         // Stops at the first detection if |lambda| = 1000 exceeds switch_lambda ...
         for (switch_lambda, stops) in [(990.0, true), (1010.0, false)] {
             let mut sys = relaxation();
-            let o = AdaptiveOptions {
+            let o = Settings {
                 stop_when_stiff: true,
                 switch_lambda,
                 ..o

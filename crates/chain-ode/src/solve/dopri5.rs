@@ -2,8 +2,11 @@
 //! `rtol`/`atol`, a PI step-size controller, Hairer's initial step, the
 //! fourth-order dense output, and Hairer's stiffness detection.
 
-use super::adaptive::AdaptiveOptions;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+use super::integrator::{Integrator, Settings};
+use crate::ode::{
+    all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+};
+use crate::system::ChainSystem;
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -76,7 +79,7 @@ impl Interpolant for Dense<'_> {
     }
 }
 
-fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &AdaptiveOptions) -> f64 {
+fn rms_norm(x: &[f64], y0: &[f64], y1: &[f64], o: &Settings) -> f64 {
     let s: f64 = x
         .iter()
         .zip(y0.iter().zip(y1))
@@ -95,7 +98,7 @@ fn initial_step<S: OdeSystem>(
     y0: &[f64],
     f0: &[f64],
     span: f64,
-    o: &AdaptiveOptions,
+    o: &Settings,
     scratch: (&mut [f64], &mut [f64]),
 ) -> f64 {
     let (y1, f1) = scratch;
@@ -125,13 +128,24 @@ fn initial_step<S: OdeSystem>(
 }
 
 /// Integrates from `t0` to `t_end`.
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
-    o: &AdaptiveOptions,
-    obs: &mut O,
+    o: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
+}
+
+fn steps<S: OdeSystem>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let mut stats = Stats::default();
@@ -141,7 +155,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let mut rcont = vec![0.0; 5 * d];
 
     sys.rhs(t0, &y, &mut k[0]);
-    stats.rhs_evals += 1;
     if !all_finite(&k[0]) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -150,10 +163,7 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let span = t_end - t0;
     let mut h = match o.h0 {
         Some(h) => h.min(span),
-        None => {
-            stats.rhs_evals += 1;
-            initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err))
-        }
+        None => initial_step(sys, t0, &y, &k[0], span, o, (&mut ys, &mut err)),
     };
     let mut t = t0;
     let mut fac_old: f64 = 1e-4;
@@ -221,7 +231,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
                 &[(A71, k1), (A73, k3), (A74, k4), (A75, k5), (A76, k6)],
             );
             sys.rhs(t1, &y1, k7);
-            stats.rhs_evals += 6;
             for i in 0..d {
                 err[i] = h
                     * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
@@ -321,4 +330,29 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         }
     }
     Outcome::ended(Status::Ok, t, None, stats, y)
+}
+
+/// `dopri5`: Dormand–Prince 5(4), adaptive.
+pub(crate) struct Dopri5;
+
+impl Integrator for Dopri5 {
+    fn name(&self) -> &'static str {
+        "dopri5"
+    }
+
+    fn adaptive(&self) -> bool {
+        true
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings, obs)
+    }
 }

@@ -1,12 +1,20 @@
 //! One way to run any method on any chain: [`solve`].
+//!
+//! Every method is one file with one [`Integrator`](integrator::Integrator)
+//! (its name, whether it is adaptive, its accuracy parameter, how it runs),
+//! listed by one line in [`registry`] next to its [`Method`] variant.
+//! `auto` is a policy over the registry (`auto.rs`). Work counters come from
+//! a [`Counted`](crate::ode::Counted) system, never from counting by hand.
 
-mod adaptive;
+mod auto;
 mod bdf;
 mod bdf_dense;
 mod diffsol_driver;
 mod dop853;
 mod dopri5;
+mod integrator;
 mod observer;
+mod registry;
 mod rk4;
 mod sparse_lu;
 
@@ -16,14 +24,16 @@ use std::time::Instant;
 
 use crate::chain::{check, Chain, InvalidParameter};
 use crate::kinematics::{tip, tip_velocity, Vec2};
-use crate::ode::{Observer, Outcome};
 use crate::ode::{Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
-use adaptive::AdaptiveOptions;
+pub use auto::bdf_crossover_gamma;
+pub use integrator::Accuracy;
+use integrator::Settings;
 use observer::ChainObserver;
 
-/// An integration method.
+/// An integration method. The variant is the public handle; its name and
+/// kind come from its integrator in the registry.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
     /// Classical fixed-step Runge–Kutta 4 (`dt`).
@@ -46,26 +56,27 @@ pub enum Method {
 }
 
 impl Method {
-    /// Every method, in the order figures list them.
-    pub const ALL: [Method; 6] = [
-        Method::Rk4,
-        Method::Dopri5,
-        Method::Dop853,
-        Method::Bdf,
-        Method::BdfDense,
-        Method::Auto,
-    ];
+    /// Every method, in the order figures list them (the registry's).
+    pub const ALL: [Method; registry::REGISTRY.len()] = registry::methods();
 
     /// The name used on the command line, in scenes and in output.
     pub fn as_str(self) -> &'static str {
-        match self {
-            Self::Rk4 => "rk4",
-            Self::Dopri5 => "dopri5",
-            Self::Dop853 => "dop853",
-            Self::Bdf => "bdf",
-            Self::BdfDense => "bdf-dense",
-            Self::Auto => "auto",
-        }
+        registry::integrator(self).name()
+    }
+
+    /// True if the method adapts its step to `rtol`/`atol`.
+    pub fn adaptive(self) -> bool {
+        registry::integrator(self).adaptive()
+    }
+
+    /// The parameter that sets the method's accuracy.
+    pub fn accuracy(self) -> Accuracy {
+        registry::integrator(self).accuracy()
+    }
+
+    /// The name of that parameter: `"dt"` or `"rtol"`.
+    pub fn accuracy_name(self) -> &'static str {
+        self.accuracy().name()
     }
 }
 
@@ -78,14 +89,11 @@ impl fmt::Display for Method {
 impl FromStr for Method {
     type Err = InvalidParameter;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.as_str() == s)
-            .ok_or_else(|| InvalidParameter {
-                field: "run.method",
-                accepted: "one of rk4, dopri5, dop853, bdf, bdf-dense, auto",
-                got: s.to_string(),
-            })
+        registry::named(s).ok_or_else(|| InvalidParameter {
+            field: "run.method",
+            accepted: registry::accepted_names(),
+            got: s.to_string(),
+        })
     }
 }
 
@@ -124,6 +132,20 @@ impl Default for SolveOptions {
 }
 
 impl SolveOptions {
+    /// These options with `method`'s accuracy parameter set to `x`: `dt = x`
+    /// for a fixed-step method, `rtol = x` and `atol = x / 100` for an
+    /// adaptive one.
+    pub fn at_accuracy(mut self, method: Method, x: f64) -> Self {
+        match method.accuracy() {
+            Accuracy::Step => self.dt = x,
+            Accuracy::Tolerance => {
+                self.rtol = x;
+                self.atol = x * 1e-2;
+            }
+        }
+        self
+    }
+
     /// Checks every field; the error names the first one out of range.
     pub fn validate(&self) -> Result<(), InvalidParameter> {
         let pos = |x: f64| x.is_finite() && x > 0.0;
@@ -278,16 +300,16 @@ pub fn solve(
     let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
     let mut obs = ChainObserver::new(chain, options.output_dt);
     let clock = Instant::now();
-    let adaptive = AdaptiveOptions {
-        rtol: options.rtol,
-        atol: options.atol,
-        h_min: options.h_min,
-        max_steps: options.max_steps,
-        h0: None,
-        stop_when_stiff: false,
-        switch_lambda: 0.0,
-    };
-    let (outcome, segments) = run(&mut sys, &y0, method, options, &adaptive, &mut obs);
+    let settings = Settings::of(options);
+    let outcome = registry::run(
+        method,
+        &mut sys,
+        0.0,
+        &y0,
+        options.t_end,
+        &settings,
+        &mut obs,
+    );
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
@@ -312,124 +334,10 @@ pub fn solve(
         t_reached: outcome.t_reached,
         t_failed: outcome.t_failed,
         stats: outcome.stats,
-        segments,
+        segments: outcome.segments,
         summary,
         times: std::mem::take(&mut obs.times),
         states: std::mem::take(&mut obs.states),
         final_state: outcome.y_end,
     })
-}
-
-/// The damping rate `gamma = r / (m l^2)` (1/time) past which the O(n) BDF
-/// overtakes DOPRI5 on this chain, and from which `auto` runs BDF from the
-/// start.
-///
-/// An explicit step is held below `~3.3 / |lambda|`, and the chain has two
-/// fast rates: damping, `|lambda| ~ 48 gamma`, and its fastest undamped mode,
-/// `omega_max ~ 3.4 sqrt(g L) / l` (the hanging chain's top frequency; it
-/// grows like n). So the crossover grows with n once `omega_max` dominates.
-/// The `stiffness` study (span d = 3, t = 1, rtol 1e-6, n = 25 to 3200)
-/// measured it and fits it as `27 sqrt(g/L) + 0.12 sqrt(g L) / l`: 12 at
-/// n = 25 and 168 at n = 3200 in the report's units.
-pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
-    let (g, big_l) = (chain.gravity, chain.length);
-    27.0 * (g / big_l).sqrt() + 0.12 * (g * big_l).sqrt() / chain.rod_length()
-}
-
-/// Relative tolerance at and below which `auto`'s explicit method is DOP853
-/// rather than DOPRI5 (measured on the work-precision diagrams).
-pub const AUTO_DOP853_RTOL: f64 = 1e-8;
-
-impl Method {
-    /// The methods `auto` runs for this chain and tolerance: the explicit one
-    /// it starts with (none when the chain is past the crossover), and BDF.
-    pub fn auto_plan(chain: &Chain, rtol: f64) -> Option<Method> {
-        if chain.damping_rate() >= bdf_crossover_gamma(chain) {
-            None
-        } else if rtol <= AUTO_DOP853_RTOL {
-            Some(Method::Dop853)
-        } else {
-            Some(Method::Dopri5)
-        }
-    }
-}
-
-/// Dispatches to the method; `auto` follows [`Method::auto_plan`]: BDF from
-/// the start past the crossover, else the explicit method until its
-/// stiffness detector keeps firing with `|lambda|` past the crossover's
-/// `48 gamma`, then BDF from that state.
-fn run<O: Observer>(
-    sys: &mut ChainSystem,
-    y0: &[f64],
-    method: Method,
-    options: &SolveOptions,
-    adaptive: &AdaptiveOptions,
-    obs: &mut O,
-) -> (Outcome, Vec<Segment>) {
-    let t_end = options.t_end;
-    let segment = |method, t_start, out: &Outcome| Segment {
-        method,
-        t_start,
-        t_end: out.t_reached,
-    };
-    let single = |method, out: Outcome| {
-        let seg = vec![segment(method, 0.0, &out)];
-        (out, seg)
-    };
-    match method {
-        Method::Rk4 => single(
-            method,
-            rk4::integrate(sys, 0.0, y0, t_end, options.dt, options.max_steps, obs),
-        ),
-        Method::Dopri5 => single(
-            method,
-            dopri5::integrate(sys, 0.0, y0, t_end, adaptive, obs),
-        ),
-        Method::Dop853 => single(
-            method,
-            dop853::integrate(sys, 0.0, y0, t_end, adaptive, obs),
-        ),
-        Method::Bdf => single(
-            method,
-            bdf::integrate(sys.chain(), 0.0, y0, t_end, adaptive, obs),
-        ),
-        Method::BdfDense => single(
-            method,
-            bdf_dense::integrate(sys, 0.0, y0, t_end, adaptive, obs),
-        ),
-        Method::Auto => {
-            let chain = sys.chain().clone();
-            let Some(explicit) = Method::auto_plan(&chain, adaptive.rtol) else {
-                return single(
-                    Method::Bdf,
-                    bdf::integrate(&chain, 0.0, y0, t_end, adaptive, obs),
-                );
-            };
-            let watch = AdaptiveOptions {
-                stop_when_stiff: true,
-                switch_lambda: 48.0 * bdf_crossover_gamma(&chain),
-                ..*adaptive
-            };
-            let first = if explicit == Method::Dop853 {
-                dop853::integrate(sys, 0.0, y0, t_end, &watch, obs)
-            } else {
-                dopri5::integrate(sys, 0.0, y0, t_end, &watch, obs)
-            };
-            let mut segments = vec![segment(explicit, 0.0, &first)];
-            let Some(t_switch) = first.stiff_at.filter(|_| first.status.is_ok()) else {
-                return (first, segments);
-            };
-            let budget = AdaptiveOptions {
-                max_steps: adaptive
-                    .max_steps
-                    .saturating_sub(first.stats.steps + first.stats.rejected_steps)
-                    .max(1),
-                ..*adaptive
-            };
-            let mut second = bdf::integrate(&chain, t_switch, &first.y_end, t_end, &budget, obs);
-            segments.push(segment(Method::Bdf, t_switch, &second));
-            second.stats += first.stats;
-            (second, segments)
-        }
-    }
 }

@@ -1,17 +1,33 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension.
 
-use crate::ode::{all_finite, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView};
+use super::integrator::{Integrator, Settings};
+use crate::ode::{
+    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+};
+use crate::system::ChainSystem;
 
 /// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
-pub(crate) fn integrate<S: OdeSystem, O: Observer>(
+pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
     t_end: f64,
     dt: f64,
     max_steps: u64,
-    obs: &mut O,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, dt, max_steps, obs))
+}
+
+fn steps<S: OdeSystem>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    dt: f64,
+    max_steps: u64,
+    obs: &mut dyn Observer,
 ) -> Outcome {
     let d = sys.dim();
     let mut y = y0.to_vec();
@@ -22,7 +38,6 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
     let fail = Outcome::ended;
 
     sys.rhs(t0, &y, &mut f);
-    stats.rhs_evals += 1;
     if !all_finite(&f) {
         return fail(Status::Diverged, t0, Some(t0), stats, y);
     }
@@ -55,12 +70,10 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         for i in 0..d {
             y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
         }
-        stats.rhs_evals += 3;
         if !all_finite(&y1) {
             return fail(Status::Diverged, t, Some(t1), stats, y);
         }
         sys.rhs(t1, &y1, &mut f1);
-        stats.rhs_evals += 1;
         if !all_finite(&f1) {
             return fail(Status::Diverged, t, Some(t1), stats, y);
         }
@@ -86,4 +99,29 @@ pub(crate) fn integrate<S: OdeSystem, O: Observer>(
         k += 1;
     }
     Outcome::ended(Status::Ok, t, None, stats, y)
+}
+
+/// `rk4`: classical fixed-step RK4; `dt` sets its accuracy.
+pub(crate) struct Rk4;
+
+impl Integrator for Rk4 {
+    fn name(&self) -> &'static str {
+        "rk4"
+    }
+
+    fn adaptive(&self) -> bool {
+        false
+    }
+
+    fn integrate(
+        &self,
+        sys: &mut ChainSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        settings: &Settings,
+        obs: &mut dyn Observer,
+    ) -> Outcome {
+        integrate(sys, t0, y0, t_end, settings.dt, settings.max_steps, obs)
+    }
 }

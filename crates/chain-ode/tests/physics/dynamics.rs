@@ -3,37 +3,16 @@
 use chain_ode::dense;
 use chain_ode::dynamics::{accelerations, Workspace};
 use chain_ode::kinematics::{dissipation_rate, energy, joints};
-use chain_ode::ode::OdeSystem;
 use chain_ode::{Chain, ChainSystem};
 use proptest::prelude::*;
 
-fn chain_and_state() -> impl Strategy<Value = (Chain, Vec<f64>, Vec<f64>)> {
-    (
-        1usize..=300,
-        0.1f64..20.0,
-        0.01f64..5.0,
-        0.0f64..10.0,
-        0.0f64..0.5,
-    )
-        .prop_flat_map(|(n, length, mass, gravity, damping)| {
-            let chain = Chain::new(length, n, mass, gravity, damping).unwrap();
-            (
-                Just(chain),
-                prop::collection::vec(-7.0f64..7.0, n),
-                prop::collection::vec(-3.0f64..3.0, n),
-            )
-        })
-}
-
-fn max_abs(x: &[f64]) -> f64 {
-    x.iter().fold(0.0, |m, v| m.max(v.abs()))
-}
+use crate::{chain_and_state, max_abs};
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
-    fn joints_are_one_rod_length_apart((chain, phi, _w) in chain_and_state()) {
+    fn joints_are_one_rod_length_apart((chain, phi, _w) in chain_and_state(300)) {
         let r = joints(&chain, [0.3, -1.2], &phi);
         let l = chain.rod_length();
         for p in r.windows(2) {
@@ -43,7 +22,7 @@ proptest! {
     }
 
     #[test]
-    fn fast_solve_equals_dense_cholesky((chain, phi, w) in chain_and_state()) {
+    fn fast_solve_equals_dense_cholesky((chain, phi, w) in chain_and_state(300)) {
         let n = chain.links;
         let mut acc = vec![0.0; n];
         let mut ws = Workspace::new(n);
@@ -57,14 +36,14 @@ proptest! {
     }
 
     #[test]
-    fn kinetic_energy_equals_quadratic_form((chain, phi, w) in chain_and_state()) {
+    fn kinetic_energy_equals_quadratic_form((chain, phi, w) in chain_and_state(300)) {
         let fast = chain_ode::kinematics::kinetic_energy(&chain, &phi, &w);
         let dense = dense::kinetic_energy(&chain, &phi, &w);
         prop_assert!((fast - dense).abs() <= 1e-11 * dense.abs().max(1e-300));
     }
 
     #[test]
-    fn energy_rate_is_minus_twice_rayleigh((chain, phi, w) in chain_and_state()) {
+    fn energy_rate_is_minus_twice_rayleigh((chain, phi, w) in chain_and_state(300)) {
         // dE/dt along the exact flow, by a central difference in the flow direction.
         let n = chain.links;
         let mut sys = ChainSystem::new(&chain);
@@ -90,7 +69,7 @@ proptest! {
 
     #[test]
     fn jacobian_vector_product_matches_central_difference(
-        (chain, phi, w) in chain_and_state(),
+        (chain, phi, w) in chain_and_state(300),
         seed in prop::collection::vec(-1.0f64..1.0, 601)
     ) {
         let n = chain.links;

@@ -4,28 +4,12 @@
 
 use chain_ode::dae::ChainDae;
 use chain_ode::dynamics::{accelerations, Workspace};
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, State, Status};
+use chain_ode::{solve, Chain, Method, SolveOptions, Start, Status};
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use proptest::prelude::*;
 
-fn chain_and_state() -> impl Strategy<Value = (Chain, Vec<f64>, Vec<f64>)> {
-    (
-        1usize..=60,
-        0.1f64..20.0,
-        0.01f64..5.0,
-        0.0f64..10.0,
-        0.0f64..0.5,
-    )
-        .prop_flat_map(|(n, length, mass, gravity, damping)| {
-            let chain = Chain::new(length, n, mass, gravity, damping).unwrap();
-            (
-                Just(chain),
-                prop::collection::vec(-7.0f64..7.0, n),
-                prop::collection::vec(-3.0f64..3.0, n),
-            )
-        })
-}
+use crate::{chain_and_state, dist, max_abs, scene};
 
 /// `[phi, w, W = 0]` followed by zeros for the algebraic unknowns.
 fn packed(dae: &ChainDae, phi: &[f64], w: &[f64]) -> Vec<f64> {
@@ -33,10 +17,6 @@ fn packed(dae: &ChainDae, phi: &[f64], w: &[f64]) -> Vec<f64> {
     y[..phi.len()].copy_from_slice(phi);
     y[phi.len()..2 * phi.len()].copy_from_slice(w);
     y
-}
-
-fn max_abs(x: &[f64]) -> f64 {
-    x.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
 /// The recursion's `phi''` and pivot force (physical units).
@@ -52,7 +32,7 @@ proptest! {
     /// The recursion's `alpha` and the forces summed from it satisfy every
     /// algebraic equation of the DAE.
     #[test]
-    fn the_residual_vanishes_at_the_consistent_state((chain, phi, w) in chain_and_state()) {
+    fn the_residual_vanishes_at_the_consistent_state((chain, phi, w) in chain_and_state(60)) {
         let dae = ChainDae::new(&chain);
         let mut y = packed(&dae, &phi, &w);
         dae.make_consistent(&mut y, &mut Workspace::new(chain.links));
@@ -67,7 +47,7 @@ proptest! {
     /// Jacobian's algebraic block (one Newton step is exact: they are linear
     /// in `alpha` and `f`) reproduces the recursion's `alpha` and pivot force.
     #[test]
-    fn the_algebraic_block_reproduces_the_recursion((chain, phi, w) in chain_and_state()) {
+    fn the_algebraic_block_reproduces_the_recursion((chain, phi, w) in chain_and_state(60)) {
         let n = chain.links;
         let dae = ChainDae::new(&chain);
         let (d, dim) = (dae.differential_dim(), dae.dim());
@@ -192,16 +172,6 @@ fn the_pattern_has_at_most_thirty_entries_per_rod() {
     }
 }
 
-fn report_scene(n: usize, damping: f64, start: Start) -> (Chain, State) {
-    let chain = Chain::report(n, damping).unwrap();
-    let s = start.state(&chain).unwrap();
-    (chain, s)
-}
-
-fn tip_distance(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
 /// At rtol 1e-9 the sparse BDF agrees with the dense BDF and with DOPRI5 at
 /// 1e-12 to 1e-6 in tip position, on the report's span and folded starts.
 #[test]
@@ -209,7 +179,7 @@ fn sparse_bdf_agrees_with_dense_bdf_and_dopri5_on_report_scenes() {
     let scenes = [
         (
             "span d = 3",
-            report_scene(
+            scene(
                 50,
                 5e-4,
                 Start::Catenary {
@@ -221,7 +191,7 @@ fn sparse_bdf_agrees_with_dense_bdf_and_dopri5_on_report_scenes() {
         ),
         (
             "span d = 1",
-            report_scene(
+            scene(
                 50,
                 5e-4,
                 Start::Catenary {
@@ -233,7 +203,7 @@ fn sparse_bdf_agrees_with_dense_bdf_and_dopri5_on_report_scenes() {
         ),
         (
             "folded",
-            report_scene(
+            scene(
                 50,
                 1e-3,
                 Start::Folded {
@@ -257,8 +227,8 @@ fn sparse_bdf_agrees_with_dense_bdf_and_dopri5_on_report_scenes() {
         for tr in [&sparse, &dense, &reference] {
             assert_eq!(tr.status, Status::Ok, "{name}: {}", tr.method);
         }
-        let d_ref = tip_distance(sparse.summary.tip_end, reference.summary.tip_end);
-        let d_dense = tip_distance(sparse.summary.tip_end, dense.summary.tip_end);
+        let d_ref = dist(sparse.summary.tip_end, reference.summary.tip_end);
+        let d_dense = dist(sparse.summary.tip_end, dense.summary.tip_end);
         assert!(d_ref < 1e-6, "{name}: sparse vs DOPRI5 {d_ref:e}");
         assert!(d_dense < 1e-6, "{name}: sparse vs dense {d_dense:e}");
         // The energy balance holds to the tolerance's order (M g L = 60).

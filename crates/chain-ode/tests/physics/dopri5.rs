@@ -2,30 +2,15 @@
 
 use chain_ode::{solve, Chain, Method, SolveOptions, Start, State, Status, Trajectory};
 
-fn scene(n: usize, damping: f64, d: f64) -> (Chain, State) {
-    let chain = Chain::report(n, damping).unwrap();
-    let s = Start::Catenary {
-        p0: [0.0, 0.0],
-        p1: [d, 0.0],
-    }
-    .state(&chain)
-    .unwrap();
-    (chain, s)
-}
+use crate::{dist, folded, run_ok, span};
 
 fn run(chain: &Chain, s: &State, method: Method, opts: SolveOptions) -> Trajectory {
-    let tr = solve(chain, s, method, &opts).unwrap();
-    assert_eq!(tr.status, Status::Ok, "{method}");
-    tr
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    run_ok(chain, s, method, &opts)
 }
 
 #[test]
 fn error_falls_at_fifth_order_in_the_number_of_steps() {
-    let (chain, s) = scene(10, 0.0, 3.0);
+    let (chain, s) = span(10, 0.0, 3.0);
     let t_end = 1.5;
     // Independent reference: RK4 with dt = 1e-4 (error ~1e-15 here).
     let reference = run(
@@ -68,7 +53,7 @@ fn error_falls_at_fifth_order_in_the_number_of_steps() {
 fn agrees_with_rk4_on_two_report_scenes() {
     for (chain, s, t_end) in [
         {
-            let (c, s) = scene(25, 5e-4, 3.0);
+            let (c, s) = span(25, 5e-4, 3.0);
             (c, s, 4.157)
         },
         {
@@ -116,13 +101,7 @@ fn agrees_with_rk4_on_two_report_scenes() {
 #[test]
 fn folded_scene_completes_with_energy_balance() {
     // The report's overflowing case: n = 50 folded, r = 0.001, report t = 12.
-    let chain = Chain::report(50, 1e-3).unwrap();
-    let s = Start::Folded {
-        p0: [0.0, 0.0],
-        down: None,
-    }
-    .state(&chain)
-    .unwrap();
+    let (chain, s) = folded(50, 1e-3);
     let opts = SolveOptions {
         t_end: 4.157,
         rtol: 1e-8,
@@ -141,7 +120,7 @@ fn folded_scene_completes_with_energy_balance() {
 
 #[test]
 fn dense_output_samples_match_the_reference() {
-    let (chain, s) = scene(12, 1e-3, 3.0);
+    let (chain, s) = span(12, 1e-3, 3.0);
     let opts = |m_dt: f64| SolveOptions {
         t_end: 2.0,
         dt: m_dt,
@@ -163,7 +142,7 @@ fn dense_output_samples_match_the_reference() {
 
 #[test]
 fn failure_statuses_are_reported_with_their_time() {
-    let (chain, s) = scene(10, 0.0, 3.0);
+    let (chain, s) = span(10, 0.0, 3.0);
     let base = SolveOptions {
         t_end: 2.0,
         rtol: 1e-10,
@@ -200,7 +179,7 @@ fn failure_statuses_are_reported_with_their_time() {
 
 #[test]
 fn stiffness_detector_fires_only_where_damping_is_stiff() {
-    let (chain, s) = scene(50, 0.1, 3.0);
+    let (chain, s) = span(50, 0.1, 3.0);
     let stiff = run(
         &chain,
         &s,
@@ -213,7 +192,7 @@ fn stiffness_detector_fires_only_where_damping_is_stiff() {
         },
     );
     assert!(stiff.stats.stiffness_detections > 0);
-    let (chain, s) = scene(25, 5e-4, 3.0);
+    let (chain, s) = span(25, 5e-4, 3.0);
     let mild = run(
         &chain,
         &s,
@@ -226,4 +205,20 @@ fn stiffness_detector_fires_only_where_damping_is_stiff() {
         },
     );
     assert_eq!(mild.stats.stiffness_detections, 0);
+}
+
+#[test]
+fn six_right_hand_sides_per_attempt_and_two_at_the_start() {
+    // One at the start, one for the initial step, six per attempt (FSAL):
+    // counted by the wrapper around the system, not by the method.
+    let (chain, s) = span(10, 1e-3, 3.0);
+    let tr = run(
+        &chain,
+        &s,
+        Method::Dopri5,
+        crate::tolerances(2.0, 1e-8, 1e-10),
+    );
+    let st = tr.stats;
+    assert!(st.steps > 0);
+    assert_eq!(st.rhs_evals, 2 + 6 * (st.steps + st.rejected_steps));
 }

@@ -1,24 +1,11 @@
 //! RK4 against the conservation laws, its convergence order, and its statuses.
 
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, Status};
+use chain_ode::{solve, Chain, Method, SolveOptions, State, Status, Trajectory};
 
-fn span3(n: usize, damping: f64) -> (Chain, chain_ode::State) {
-    let chain = Chain::report(n, damping).unwrap();
-    let start = Start::Catenary {
-        p0: [0.0, 0.0],
-        p1: [3.0, 0.0],
-    };
-    let s = start.state(&chain).unwrap();
-    (chain, s)
-}
+use crate::{fixed, span3};
 
-fn rk4(chain: &Chain, s: &chain_ode::State, t_end: f64, dt: f64) -> chain_ode::Trajectory {
-    let opts = SolveOptions {
-        t_end,
-        dt,
-        ..Default::default()
-    };
-    solve(chain, s, Method::Rk4, &opts).unwrap()
+fn rk4(chain: &Chain, s: &State, t_end: f64, dt: f64) -> Trajectory {
+    solve(chain, s, Method::Rk4, &fixed(t_end, dt)).unwrap()
 }
 
 #[test]
@@ -142,4 +129,14 @@ fn samples_land_on_the_output_grid_and_the_end() {
     for (t, e) in tr.times.iter().zip(expect) {
         assert!((t - e).abs() < 1e-12);
     }
+}
+
+#[test]
+fn four_right_hand_sides_per_step_and_one_at_the_start() {
+    // Counted by the wrapper around the system, not by the method.
+    let (chain, s) = span3(10, 1e-3);
+    let tr = rk4(&chain, &s, 1.0, 0.01);
+    assert_eq!(tr.status, Status::Ok);
+    assert_eq!((tr.stats.steps, tr.stats.rejected_steps), (100, 0));
+    assert_eq!(tr.stats.rhs_evals, 1 + 4 * tr.stats.steps);
 }

@@ -1,54 +1,36 @@
 //! Every method on the same scenes: they agree at tight tolerances, `auto`
 //! agrees with both, and all complete the report's overflowing folded scene.
 
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, State, Status, Trajectory};
+use chain_ode::{solve, Accuracy, Chain, Method, SolveOptions, Start, State, Status, Trajectory};
+
+use crate::{dist, folded, run_ok, scene, span3, tolerances};
 
 fn report_scene(which: &str) -> (Chain, State, f64) {
     match which {
         // Report Fig. 7b: span d = 3, n = 50, r = 5e-4, t = 4.157.
         "span-d3" => {
-            let c = Chain::report(50, 5e-4).unwrap();
-            let s = Start::Catenary {
-                p0: [0.0, 0.0],
-                p1: [3.0, 0.0],
-            };
-            (c.clone(), s.state(&c).unwrap(), 4.157)
+            let (c, s) = span3(50, 5e-4);
+            (c, s, 4.157)
         }
         // Report Fig. 6: catenary to (5, 1), n = 25, r = 1e-3, t = 7.348.
         "catenary-fall" => {
-            let c = Chain::report(25, 1e-3).unwrap();
-            let s = Start::Catenary {
+            let start = Start::Catenary {
                 p0: [0.0, 0.0],
                 p1: [5.0, 1.0],
             };
-            (c.clone(), s.state(&c).unwrap(), 7.348)
+            let (c, s) = scene(25, 1e-3, start);
+            (c, s, 7.348)
         }
         // Report Fig. 12: folded, n = 50, r = 1e-3, t = 4.157.
         _ => {
-            let c = Chain::report(50, 1e-3).unwrap();
-            let s = Start::Folded {
-                p0: [0.0, 0.0],
-                down: None,
-            };
-            (c.clone(), s.state(&c).unwrap(), 4.157)
+            let (c, s) = folded(50, 1e-3);
+            (c, s, 4.157)
         }
     }
 }
 
 fn run(chain: &Chain, s: &State, method: Method, t_end: f64, rtol: f64) -> Trajectory {
-    let opts = SolveOptions {
-        t_end,
-        rtol,
-        atol: rtol * 1e-2,
-        ..Default::default()
-    };
-    let tr = solve(chain, s, method, &opts).unwrap();
-    assert_eq!(tr.status, Status::Ok, "{method}");
-    tr
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    run_ok(chain, s, method, &tolerances(t_end, rtol, rtol * 1e-2))
 }
 
 #[test]
@@ -160,13 +142,7 @@ fn auto_runs_bdf_only_where_it_pays() {
     // n = 400, r = 5e-4 (gamma = 11): DOPRI5's detector fires on the
     // chain's fastest undamped mode, but that mode (omega ~ 555) is below
     // the crossover: auto stays explicit.
-    let chain = Chain::report(400, 5e-4).unwrap();
-    let s = Start::Catenary {
-        p0: [0.0, 0.0],
-        p1: [3.0, 0.0],
-    }
-    .state(&chain)
-    .unwrap();
+    let (chain, s) = span3(400, 5e-4);
     let dp = run(&chain, &s, Method::Dopri5, 4.157, 1e-4);
     assert!(dp.stats.stiffness_detections > 0);
     let auto = run(&chain, &s, Method::Auto, 4.157, 1e-4);
@@ -174,15 +150,55 @@ fn auto_runs_bdf_only_where_it_pays() {
     assert_eq!(auto.stats, dp.stats);
     // ... while the stiff rope (n = 100, r = 1, gamma = 1389) runs BDF from
     // the start.
-    let chain = Chain::report(100, 1.0).unwrap();
-    let s = Start::Catenary {
-        p0: [0.0, 0.0],
-        p1: [3.0, 0.0],
-    }
-    .state(&chain)
-    .unwrap();
+    let (chain, s) = span3(100, 1.0);
     let auto = run(&chain, &s, Method::Auto, 1.0, 1e-6);
     assert_eq!(auto.segments.len(), 1);
     assert_eq!(auto.segments[0].method, Method::Bdf);
     assert_eq!(auto.segments[0].t_start, 0.0);
+}
+
+#[test]
+fn names_are_the_user_contract_and_a_bad_one_lists_them_all() {
+    let names: Vec<&str> = Method::ALL.iter().map(|m| m.as_str()).collect();
+    assert_eq!(
+        names,
+        ["rk4", "dopri5", "dop853", "bdf", "bdf-dense", "auto"]
+    );
+    for m in Method::ALL {
+        assert_eq!(m.to_string().parse::<Method>(), Ok(m));
+    }
+    let e = "rk5".parse::<Method>().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "run.method: must be one of rk4, dopri5, dop853, bdf, bdf-dense, auto (got rk5)"
+    );
+}
+
+#[test]
+fn the_accuracy_parameter_is_dt_for_rk4_and_rtol_for_the_others() {
+    let base = SolveOptions {
+        t_end: 2.0,
+        ..Default::default()
+    };
+    for m in Method::ALL {
+        let o = base.clone().at_accuracy(m, 1e-6);
+        if m == Method::Rk4 {
+            assert!(!m.adaptive());
+            assert_eq!((m.accuracy(), m.accuracy_name()), (Accuracy::Step, "dt"));
+            assert_eq!(
+                o,
+                SolveOptions {
+                    dt: 1e-6,
+                    ..base.clone()
+                }
+            );
+        } else {
+            assert!(m.adaptive(), "{m}");
+            assert_eq!(
+                (m.accuracy(), m.accuracy_name()),
+                (Accuracy::Tolerance, "rtol")
+            );
+            assert_eq!(o, tolerances(2.0, 1e-6, 1e-6 * 1e-2));
+        }
+    }
 }

@@ -1,52 +1,19 @@
 //! diffsol's BDF against RK4, the energy balance, the stiff regime, and the
 //! statuses it ends with.
 
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, Status, Trajectory};
+use chain_ode::{solve, Chain, Method, SolveOptions, State, Status, Trajectory};
 
-fn span3(n: usize, damping: f64) -> (Chain, chain_ode::State) {
-    let chain = Chain::report(n, damping).unwrap();
-    let start = Start::Catenary {
-        p0: [0.0, 0.0],
-        p1: [3.0, 0.0],
-    };
-    let s = start.state(&chain).unwrap();
-    (chain, s)
-}
+use crate::{all_finite, dist, fixed, span3, tolerances};
 
-fn run(chain: &Chain, s: &chain_ode::State, method: Method, opts: SolveOptions) -> Trajectory {
+fn run(chain: &Chain, s: &State, method: Method, opts: SolveOptions) -> Trajectory {
     solve(chain, s, method, &opts).unwrap()
-}
-
-fn bdf(rtol: f64, atol: f64, t_end: f64) -> SolveOptions {
-    SolveOptions {
-        t_end,
-        rtol,
-        atol,
-        ..Default::default()
-    }
-}
-
-fn rk4(dt: f64, t_end: f64) -> SolveOptions {
-    SolveOptions {
-        t_end,
-        dt,
-        ..Default::default()
-    }
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-fn all_finite(y: &[f64]) -> bool {
-    y.iter().all(|v| v.is_finite())
 }
 
 #[test]
 fn agrees_with_rk4_at_tight_settings() {
     let (chain, s) = span3(25, 5e-4);
-    let b = run(&chain, &s, Method::Bdf, bdf(1e-10, 1e-12, 2.0));
-    let r = run(&chain, &s, Method::Rk4, rk4(1e-3, 2.0));
+    let b = run(&chain, &s, Method::Bdf, tolerances(2.0, 1e-10, 1e-12));
+    let r = run(&chain, &s, Method::Rk4, fixed(2.0, 1e-3));
     assert_eq!(b.status, Status::Ok);
     assert_eq!(r.status, Status::Ok);
     assert_eq!(b.t_reached, 2.0);
@@ -77,8 +44,8 @@ fn agrees_with_rk4_at_tight_settings() {
 fn undamped_energy_is_conserved_to_the_tolerance() {
     let (chain, s) = span3(20, 0.0);
     let scale = chain.energy_scale();
-    let loose = run(&chain, &s, Method::Bdf, bdf(1e-6, 1e-8, 2.0));
-    let tight = run(&chain, &s, Method::Bdf, bdf(1e-9, 1e-11, 2.0));
+    let loose = run(&chain, &s, Method::Bdf, tolerances(2.0, 1e-6, 1e-8));
+    let tight = run(&chain, &s, Method::Bdf, tolerances(2.0, 1e-9, 1e-11));
     for (tr, rtol) in [(&loose, 1e-6), (&tight, 1e-9)] {
         assert_eq!(tr.status, Status::Ok);
         // Nothing is dissipated without friction, not even by rounding.
@@ -105,7 +72,7 @@ fn stiff_chain_completes_in_far_fewer_steps_than_rk4_can_take() {
     let rk4_min_steps = t_end * 48.0 * chain.damping_rate() / 2.785;
     assert!(rk4_min_steps > 1000.0);
 
-    let b = run(&chain, &s, Method::Bdf, bdf(1e-6, 1e-8, t_end));
+    let b = run(&chain, &s, Method::Bdf, tolerances(t_end, 1e-6, 1e-8));
     assert_eq!(b.status, Status::Ok);
     assert_eq!(b.t_reached, t_end);
     let attempts = (b.stats.steps + b.stats.rejected_steps) as f64;
@@ -115,12 +82,12 @@ fn stiff_chain_completes_in_far_fewer_steps_than_rk4_can_take() {
     );
 
     // RK4 at dt = 0.01, ~6x its stability limit, diverges ...
-    let unstable = run(&chain, &s, Method::Rk4, rk4(0.01, t_end));
+    let unstable = run(&chain, &s, Method::Rk4, fixed(t_end, 0.01));
     assert_eq!(unstable.status, Status::Diverged);
     assert!(unstable.t_reached < t_end);
     // ... while below the limit it agrees with BDF to BDF's tolerance
     // (rtol 1e-6 on a chain of length 6).
-    let stable = run(&chain, &s, Method::Rk4, rk4(1e-3, t_end));
+    let stable = run(&chain, &s, Method::Rk4, fixed(t_end, 1e-3));
     assert_eq!(stable.status, Status::Ok);
     let d = dist(b.summary.tip_end, stable.summary.tip_end);
     assert!(d < 1e-5, "tip differs by {d:e}");
@@ -149,7 +116,7 @@ fn auto_picks_the_side_of_the_crossover_it_is_on() {
             (4.0, 1e-10, Method::Bdf),
         ] {
             let (chain, s) = span3(n, factor * cross * m_l2);
-            let o = bdf(rtol, rtol * 1e-2, 0.5);
+            let o = tolerances(0.5, rtol, rtol * 1e-2);
             let a = run(&chain, &s, Method::Auto, o.clone());
             let alone = run(&chain, &s, expect, o);
             assert_eq!(a.status, Status::Ok);
@@ -170,7 +137,7 @@ fn the_step_budget_ends_the_run_with_max_steps() {
     let (chain, s) = span3(25, 5e-4);
     let o = SolveOptions {
         max_steps: 5,
-        ..bdf(1e-8, 1e-10, 2.0)
+        ..tolerances(2.0, 1e-8, 1e-10)
     };
     let tr = run(&chain, &s, Method::Bdf, o);
     assert_eq!(tr.status, Status::MaxSteps);
@@ -186,7 +153,7 @@ fn a_step_floor_above_the_needed_step_ends_with_step_size_too_small() {
     let (chain, s) = span3(25, 5e-4);
     let o = SolveOptions {
         h_min: 0.5,
-        ..bdf(1e-8, 1e-10, 2.0)
+        ..tolerances(2.0, 1e-8, 1e-10)
     };
     let tr = run(&chain, &s, Method::Bdf, o);
     assert_eq!(tr.status, Status::StepSizeTooSmall);
@@ -195,14 +162,14 @@ fn a_step_floor_above_the_needed_step_ends_with_step_size_too_small() {
     assert!(t_failed > tr.t_reached);
     assert!(all_finite(&tr.final_state));
     // A floor below every step the run needs changes nothing.
-    let free = run(&chain, &s, Method::Bdf, bdf(1e-8, 1e-10, 2.0));
+    let free = run(&chain, &s, Method::Bdf, tolerances(2.0, 1e-8, 1e-10));
     let floored = run(
         &chain,
         &s,
         Method::Bdf,
         SolveOptions {
             h_min: 1e-9,
-            ..bdf(1e-8, 1e-10, 2.0)
+            ..tolerances(2.0, 1e-8, 1e-10)
         },
     );
     assert_eq!(floored.status, Status::Ok);
@@ -216,8 +183,8 @@ fn output_samples_land_on_the_grid_and_match_rk4() {
         output_dt: Some(0.1),
         ..o
     };
-    let b = run(&chain, &s, Method::Bdf, out(bdf(1e-10, 1e-12, 2.0)));
-    let r = run(&chain, &s, Method::Rk4, out(rk4(1e-3, 2.0)));
+    let b = run(&chain, &s, Method::Bdf, out(tolerances(2.0, 1e-10, 1e-12)));
+    let r = run(&chain, &s, Method::Rk4, out(fixed(2.0, 1e-3)));
     assert_eq!(b.status, Status::Ok);
     assert_eq!(b.len(), 21);
     assert_eq!(r.len(), 21);

@@ -1,0 +1,109 @@
+//! The one list of methods: each [`Method`] and the [`Integrator`] that runs
+//! it. `Method::ALL`, every method's name and the "one of ..." of a bad
+//! `run.method` come from here.
+
+use std::sync::OnceLock;
+
+use super::integrator::{Integrator, Settings};
+use super::{auto, bdf, bdf_dense, dop853, dopri5, rk4, Method, Segment};
+use crate::ode::{Observer, Outcome};
+use crate::system::ChainSystem;
+
+/// Every method and its integrator, in the order figures list them.
+/// Adding a method: its file, its `Method` variant, and one line here.
+pub(crate) const REGISTRY: &[(Method, &dyn Integrator)] = &[
+    (Method::Rk4, &rk4::Rk4),
+    (Method::Dopri5, &dopri5::Dopri5),
+    (Method::Dop853, &dop853::Dop853),
+    (Method::Bdf, &bdf::SparseBdf),
+    (Method::BdfDense, &bdf_dense::BdfDense),
+    (Method::Auto, &auto::Auto),
+];
+
+/// The registered methods, in registry order (`Method::ALL`).
+pub(crate) const fn methods<const N: usize>() -> [Method; N] {
+    assert!(N == REGISTRY.len());
+    let mut all = [Method::Auto; N];
+    let mut i = 0;
+    while i < N {
+        all[i] = REGISTRY[i].0;
+        i += 1;
+    }
+    all
+}
+
+/// The integrator of `method`.
+pub(crate) fn integrator(method: Method) -> &'static dyn Integrator {
+    REGISTRY
+        .iter()
+        .find(|(m, _)| *m == method)
+        .map(|&(_, i)| i)
+        .expect("every Method variant has a line in REGISTRY")
+}
+
+/// The method named `name`, if any.
+pub(crate) fn named(name: &str) -> Option<Method> {
+    REGISTRY
+        .iter()
+        .find(|(_, i)| i.name() == name)
+        .map(|&(m, _)| m)
+}
+
+/// `"one of rk4, dopri5, ..."`: the accepted names, for error messages.
+pub(crate) fn accepted_names() -> &'static str {
+    static TEXT: OnceLock<String> = OnceLock::new();
+    TEXT.get_or_init(|| {
+        let names: Vec<&str> = REGISTRY.iter().map(|(_, i)| i.name()).collect();
+        format!("one of {}", names.join(", "))
+    })
+}
+
+/// Runs `method` from `(t0, y0)` to `t_end` and records the span it
+/// covered (a method that runs others, `auto`, records theirs instead).
+pub(crate) fn run(
+    method: Method,
+    sys: &mut ChainSystem,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    settings: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    let mut out = integrator(method).integrate(sys, t0, y0, t_end, settings, obs);
+    if out.segments.is_empty() {
+        out.segments.push(Segment {
+            method,
+            t_start: t0,
+            t_end: out.t_reached,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_round_trip() {
+        for (k, &(m, i)) in REGISTRY.iter().enumerate() {
+            assert_eq!(Method::ALL[k], m);
+            assert_eq!(m.as_str(), i.name());
+            assert_eq!(named(i.name()), Some(m));
+            assert_eq!(i.name().parse::<Method>(), Ok(m));
+        }
+        assert_eq!(
+            accepted_names(),
+            "one of rk4, dopri5, dop853, bdf, bdf-dense, auto"
+        );
+    }
+
+    #[test]
+    fn only_rk4_is_set_by_its_step() {
+        for m in Method::ALL {
+            assert_eq!(m.adaptive(), m != Method::Rk4, "{m}");
+            let name = if m == Method::Rk4 { "dt" } else { "rtol" };
+            assert_eq!(m.accuracy_name(), name, "{m}");
+        }
+    }
+}
