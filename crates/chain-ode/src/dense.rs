@@ -1,5 +1,5 @@
 //! The dense O(n^3) reference: assemble `A(phi)` and `b(phi, w)` exactly as
-//! `physics.md` prints them and solve with faer's Cholesky factorisation.
+//! `docs/model.md` states them and solve with faer's Cholesky factorisation.
 //! Tests compare the O(n) recursion against it; it is never on a hot path.
 
 use faer::linalg::solvers::Solve;

@@ -9,7 +9,7 @@
 //! lives in a [`Workspace`]. The sweeps work in rod units (`m = l = 1`, gravity
 //! `g/l`, damping `r/(m l^2)`); the returned forces are converted back.
 //!
-//! The result solves `A(phi) phi'' = b(phi, w)` of `physics.md` exactly (to
+//! The result solves `A(phi) phi'' = b(phi, w)` of `docs/model.md` exactly (to
 //! rounding); [`crate::dense`] keeps the O(n^3) Cholesky solve as the reference.
 
 use crate::chain::Chain;
@@ -61,7 +61,7 @@ pub struct Reactions<T> {
     pub tip_acceleration: [T; 2],
 }
 
-/// Generalized damping force of rod `i` over `r`: `D_i(w)` of `physics.md`
+/// Generalized damping force of rod `i` over `r`: `D_i(w)` of `docs/model.md`
 /// (friction in the `n - 1` joints between rods; the pivot is frictionless).
 #[inline(always)]
 pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {

@@ -6,7 +6,7 @@
 //! [`Summary`], its work [`Stats`] and a [`Status`]. This crate knows nothing
 //! of files, scene formats or plotting.
 //!
-//! Conventions (see `physics.md`): angles `phi_i` from the horizontal,
+//! Conventions (see `docs/model.md`): angles `phi_i` from the horizontal,
 //! counter-clockwise; rod 1 pinned at `P0`; `mass` is per rod; gravity along -y.
 
 //! # What is public

@@ -13,7 +13,7 @@
 //! The damping rate `r / (m l^2) = eta n^4 / (M L^3)` then grows like `n^4`
 //! (the grid-scale bending modes are damped that fast): large `n` is stiff.
 //! At the report's fixed per-rod `m` and `r` the model itself would change
-//! with `n` (physics.md), which is not a refinement.
+//! with `n` (docs/model.md), which is not a refinement.
 //!
 //! A folded start's `start.down` (if given) scales with `n` (rounded down);
 //! an `angles` start cannot be refined.

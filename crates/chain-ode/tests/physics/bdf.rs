@@ -65,7 +65,7 @@ fn undamped_energy_is_conserved_to_the_tolerance() {
 #[test]
 fn stiff_chain_completes_in_far_fewer_steps_than_rk4_can_take() {
     // gamma = r / (m l^2) ~ 35: the spectral radius at rest is ~48 gamma
-    // (physics.md), so RK4 (real stability interval ~2.785) needs
+    // (docs/model.md), so RK4 (real stability interval ~2.785) needs
     // dt < 2.785 / (48 gamma) ~ 1.7e-3, i.e. more than ~1200 steps to t = 2.
     let (chain, s) = span3(50, 0.1);
     let t_end = 2.0;

@@ -35,7 +35,7 @@ fn law_time_by_simpson(xi: f64) -> f64 {
 
 #[test]
 fn folded_law_times_are_the_quadrature_of_one_over_v() {
-    // physics.md's constants, in units of sqrt(L/g).
+    // docs/model.md's constants, in units of sqrt(L/g).
     for (xi, stated, tol) in [
         (0.5, 0.948_025_3, 1e-7f64),
         (0.9, 1.177_013_0, 1e-7),
@@ -47,7 +47,7 @@ fn folded_law_times_are_the_quadrature_of_one_over_v() {
         let simpson_tol = if xi < 1.0 { 1e-10 } else { 1e-6 };
         assert!(
             (by_simpson - stated).abs() < tol.max(simpson_tol),
-            "xi = {xi}: Simpson {by_simpson} vs physics.md {stated}"
+            "xi = {xi}: Simpson {by_simpson} vs docs/model.md {stated}"
         );
         // The library's Gauss-Legendre form, in other units (L = 6, g = 2).
         let lib = folded_law::time(xi * 6.0, 6.0, 2.0) / (6.0f64 / 2.0).sqrt();
