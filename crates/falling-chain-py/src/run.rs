@@ -80,7 +80,8 @@ impl Series {
 pub struct Run {
     traj: Trajectory,
     scene: Scene,
-    summary: Py<PyDict>,
+    /// The `simulate --json` line, parsed on each access (a fresh dict).
+    summary: String,
     t: Py<PyArray1<f64>>,
     phi: Py<PyArray2<f64>>,
     w: Py<PyArray2<f64>>,
@@ -92,10 +93,10 @@ pub struct Run {
 
 #[pymethods]
 impl Run {
-    /// The `simulate --json` object as a dict.
+    /// The `simulate --json` object as a dict (a new dict on each access).
     #[getter]
-    fn summary<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
-        bound(py, &self.summary)
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        json_to_dict(py, &self.summary)
     }
 
     /// Sample times, shape (samples,).
@@ -238,7 +239,7 @@ pub fn simulate(
         .map_err(value_error)?;
     let (s, n) = (series.samples, series.links);
     Ok(Run {
-        summary: json_to_dict(py, &json)?.unbind(),
+        summary: json,
         t: array1(py, series.t)?,
         phi: array2(py, series.phi, s, n)?,
         w: array2(py, series.w, s, n)?,
