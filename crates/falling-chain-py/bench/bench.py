@@ -74,7 +74,7 @@ def sweep_target(cli, repeats):
             cols = fc.sweep(scene, {"start.p1.0": SPANS}, **PRECISE)
             py.append(time.perf_counter() - t)
             t = time.perf_counter()
-            subprocess.run(cli_args, check=True)
+            subprocess.run(cli_args, check=True, capture_output=True)
             proc.append(time.perf_counter() - t)
     assert len(cols["run"]) == 120
     m_py, m_cli = statistics.median(py), statistics.median(proc)
