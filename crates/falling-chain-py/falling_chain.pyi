@@ -115,7 +115,7 @@ def simulate(
 
 def sweep(
     scene: Scene,
-    vary: Mapping[str, Union[str, Sequence[Any], npt.ArrayLike]],
+    vary: Dict[str, Union[str, Sequence[Any], npt.ArrayLike]],
     *,
     method: Optional[str] = None,
     rtol: Optional[float] = None,

@@ -11,7 +11,7 @@ from conftest import best_time, in_two_threads, require_two_free_cores, scene_pa
 def long_run():
     """Fixed-step RK4 (the same work every time), about 0.3-0.5 s alone here."""
     scene = fc.Scene.load(scene_path("span-d3")).set("chain.links", 100)
-    return lambda: fc.simulate(scene, method="rk4", dt=2e-4, t_end=4.0)
+    return lambda: fc.simulate(scene, method="rk4", dt=2e-4, t_end=5.5)
 
 
 def test_python_runs_while_a_simulation_runs():
