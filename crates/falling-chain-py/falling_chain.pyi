@@ -1,0 +1,142 @@
+"""The falling chain of n rigid rods, from the Rust core.
+
+A chain hangs in a "U" between two anchors; at t = 0 one end is released.
+Load a scene (``Scene.load("scenes/span-d3.toml")``), change it
+(``scene.set("chain.links", 100)``), run it (``simulate(scene)`` returns a
+``Run`` whose arrays are numpy), sweep a key
+(``sweep(scene, {"start.p1.0": [1, 2, 3]})``) or solve the hanging chain
+(``catenary``). Errors are ValueErrors with the CLI's one-line message
+naming the field.
+"""
+
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+__all__: List[str]
+
+_Float = npt.NDArray[np.float64]
+_Value = Union[str, bool, int, float, Sequence[Any], Mapping[str, Any], np.generic]
+
+class Scene:
+    """A scene: a chain, how it starts and how to run it (the TOML files of
+    ``scenes/``, described in ``scenes/README.md``).
+
+    Loading and ``set`` check keys and types as the CLI does; ranges are
+    checked when the scene runs, or by ``check()``. Errors are ValueErrors
+    whose message is the CLI's one line, starting with the field.
+    """
+
+    @staticmethod
+    def load(path: Union[str, os.PathLike[str]]) -> Scene:
+        """Reads a scene file. A scene without ``name`` is named after the file."""
+    @staticmethod
+    def from_toml(text: str) -> Scene:
+        """Parses a scene from TOML text. A scene without ``name`` is named "scene"."""
+    def set(self, key: str, value: _Value) -> Scene:
+        """A new scene with the value at the dotted ``key`` replaced, as
+        ``--set KEY=VALUE`` does. A ``str`` value is read as the text after
+        ``=`` in ``--set``; numbers, bools, sequences and dicts are taken as
+        they are."""
+    def to_toml(self) -> str:
+        """The scene as TOML text (with every ``set`` applied; defaults left out)."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The scene's TOML tree as a dict (defaults left out)."""
+    def check(self) -> None:
+        """Checks everything a run needs; raises ValueError naming the field."""
+    @property
+    def name(self) -> str:
+        """The scene's name."""
+    @property
+    def description(self) -> str:
+        """What the scene is (free text)."""
+    def __eq__(self, other: object) -> bool: ...
+
+class Run:
+    """A finished run: its summary and its samples as read-only float64 arrays.
+
+    A run that failed holds what it computed up to ``summary["t_reached"]``.
+    """
+
+    @property
+    def summary(self) -> Dict[str, Any]:
+        """The ``simulate --json`` object as a dict."""
+    @property
+    def t(self) -> _Float:
+        """Sample times, shape (samples,)."""
+    @property
+    def phi(self) -> _Float:
+        """Angles phi_1..phi_n from the horizontal (rad), shape (samples, n)."""
+    @property
+    def w(self) -> _Float:
+        """Angular rates w_1..w_n, shape (samples, n)."""
+    @property
+    def tip(self) -> _Float:
+        """Position of the free end, shape (samples, 2)."""
+    @property
+    def tip_velocity(self) -> _Float:
+        """Velocity of the free end, shape (samples, 2)."""
+    @property
+    def energy(self) -> _Float:
+        """Energy T + V, shape (samples,)."""
+    @property
+    def dissipated(self) -> _Float:
+        """Work dissipated by joint friction since t = 0, shape (samples,)."""
+    @property
+    def links(self) -> int:
+        """The number of rods n."""
+    @property
+    def status(self) -> str:
+        """``ok``, or how the run failed (the same as ``summary["status"]``)."""
+    @property
+    def scene(self) -> Scene:
+        """The scene that ran (with the keyword flags of ``simulate`` applied)."""
+    def joints(self, k: int) -> _Float:
+        """The joints r_0 = P0 .. r_n (the tip) at sample ``k``, shape (n + 1, 2)."""
+    def __len__(self) -> int: ...
+
+def simulate(
+    scene: Scene,
+    *,
+    method: Optional[str] = None,
+    dt: Optional[float] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    t_end: Optional[float] = None,
+    output_dt: Optional[float] = None,
+) -> Run:
+    """Runs ``scene`` (as ``falling-chain simulate SCENE --json``) and returns
+    its ``Run``. The keywords override ``run.method``, ``run.dt``,
+    ``run.rtol``, ``run.atol``, ``run.t_end`` and ``run.output_dt``. Bad
+    input raises ValueError; a failed run does not raise. Releases the GIL."""
+
+def sweep(
+    scene: Scene,
+    vary: Dict[str, Union[str, Sequence[Any], npt.ArrayLike]],
+    *,
+    method: Optional[str] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    shard: Optional[Union[str, Tuple[int, int]]] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, np.ndarray]:
+    """Runs ``scene`` once per value of the keys in ``vary`` (several keys: the
+    product), in parallel, and returns the rows of ``falling-chain sweep
+    --out`` as numpy columns named as its CSV header. A ``str`` value is
+    ``--vary`` syntax (``"0.3:5.97:120"``). Releases the GIL."""
+
+def catenary(
+    p0: Sequence[float],
+    p1: Sequence[float],
+    length: float,
+    links: Optional[int] = None,
+) -> Dict[str, Any]:
+    """The hanging chain between ``p0`` and ``p1`` (``catenary --json``): ``a``,
+    ``x0``, ``c``, ``vertex``, ``lowest_point`` and, with ``links``,
+    ``angles`` (numpy), ``joints`` (numpy), ``end_error``, ``alpha``, ``beta``."""
+
+def methods() -> List[str]:
+    """The names of the integration methods ``run.method`` accepts."""

@@ -1,0 +1,46 @@
+//! `falling_chain`, the Python module: a thin layer of PyO3 over the
+//! falling-chain crate (scenes, `--set`, `RunSummary`, sweeps, the catenary
+//! report) and chain-ode (`solve`, `kinematics`).
+//!
+//! Every Python name maps to one call of the Rust API (ARCHITECTURE.md has
+//! the table); nothing of the scene schema, the methods or the summary is
+//! repeated here. Runs and sweeps release the GIL.
+
+use pyo3::prelude::*;
+
+mod catenary;
+mod convert;
+mod run;
+mod scene;
+mod sweep;
+
+/// The names of the integration methods a scene's `run.method` accepts.
+#[pyfunction]
+fn methods() -> Vec<&'static str> {
+    chain_ode::Method::ALL.iter().map(|m| m.as_str()).collect()
+}
+
+/// The falling chain of n rigid rods, from the Rust core.
+///
+/// A chain hangs in a "U" between two anchors; at t = 0 one end is
+/// released. Load a scene (`Scene.load("scenes/span-d3.toml")`), change
+/// it (`scene.set("chain.links", 100)`), run it (`simulate(scene)` returns
+/// a `Run` whose arrays are numpy), sweep a key (`sweep(scene,
+/// {"start.p1.0": [1, 2, 3]})`) or solve the hanging chain (`catenary`).
+/// Errors are ValueErrors with the CLI's one-line message naming the field.
+#[pymodule]
+#[pyo3(name = "falling_chain")]
+fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<scene::PyScene>()?;
+    m.add_class::<run::Run>()?;
+    m.add_function(wrap_pyfunction!(run::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(catenary::catenary, m)?)?;
+    m.add_function(wrap_pyfunction!(methods, m)?)?;
+    m.add(
+        "__all__",
+        ["Scene", "Run", "simulate", "sweep", "catenary", "methods"],
+    )?;
+    Ok(())
+}

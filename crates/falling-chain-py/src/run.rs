@@ -1,0 +1,253 @@
+//! `falling_chain.simulate` and the `Run` it returns.
+
+use ::falling_chain::{Error, RunSummary, Scene};
+use chain_ode::kinematics::{energy, joints, tip, tip_velocity};
+use chain_ode::Trajectory;
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyIndexError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{array1, array2, bound, json_to_dict, points, value_error};
+use crate::scene::PyScene;
+
+/// The scene with the keyword flags of `simulate` applied, in the CLI's
+/// order (`--method`, `--dt`, `--rtol`, `--atol`, `--t-end`), then
+/// `run.output_dt`.
+pub fn with_flags(scene: &Scene, flags: &[(&str, Option<toml::Value>)]) -> Result<Scene, Error> {
+    let mut scene = scene.clone();
+    for (path, value) in flags {
+        if let Some(value) = value {
+            scene = scene.with_value(path, value.clone())?;
+        }
+    }
+    Ok(scene)
+}
+
+/// The per-sample series of a trajectory, computed as `--out`'s CSV does.
+struct Series {
+    samples: usize,
+    links: usize,
+    t: Vec<f64>,
+    phi: Vec<f64>,
+    w: Vec<f64>,
+    tip: Vec<f64>,
+    tip_velocity: Vec<f64>,
+    energy: Vec<f64>,
+    dissipated: Vec<f64>,
+}
+
+impl Series {
+    fn of(traj: &Trajectory) -> Self {
+        let (samples, n) = (traj.len(), traj.chain.links);
+        let mut s = Self {
+            samples,
+            links: n,
+            t: Vec::with_capacity(samples),
+            phi: Vec::with_capacity(samples * n),
+            w: Vec::with_capacity(samples * n),
+            tip: Vec::with_capacity(samples * 2),
+            tip_velocity: Vec::with_capacity(samples * 2),
+            energy: Vec::with_capacity(samples),
+            dissipated: Vec::with_capacity(samples),
+        };
+        for sample in traj.samples() {
+            s.t.push(sample.t);
+            s.phi.extend_from_slice(sample.angles);
+            s.w.extend_from_slice(sample.rates);
+            s.tip.extend(tip(&traj.chain, traj.anchor, sample.angles));
+            s.tip_velocity
+                .extend(tip_velocity(&traj.chain, sample.angles, sample.rates));
+            s.energy
+                .push(energy(&traj.chain, sample.angles, sample.rates));
+            s.dissipated.push(sample.dissipated);
+        }
+        s
+    }
+}
+
+/// A finished run: its summary and its samples as numpy arrays.
+///
+/// `summary` is the dict `falling-chain simulate --json` prints for the same
+/// scene and flags. The arrays are float64 and read-only, one row per
+/// recorded sample (every `run.output_dt`, and the last time reached):
+/// `t` (samples,), `phi` and `w` (samples, n) (angles from the horizontal
+/// and their rates), `tip` and `tip_velocity` (samples, 2), `energy` and
+/// `dissipated` (samples,) (the work done by joint friction so far). A run
+/// that failed (`summary["status"]` is `diverged`, `step_size_too_small`,
+/// `max_steps`, ...) holds what it computed up to `summary["t_reached"]`.
+#[pyclass(module = "falling_chain", frozen)]
+pub struct Run {
+    traj: Trajectory,
+    scene: Scene,
+    /// The `simulate --json` line, parsed on each access (a fresh dict).
+    summary: String,
+    t: Py<PyArray1<f64>>,
+    phi: Py<PyArray2<f64>>,
+    w: Py<PyArray2<f64>>,
+    tip: Py<PyArray2<f64>>,
+    tip_velocity: Py<PyArray2<f64>>,
+    energy: Py<PyArray1<f64>>,
+    dissipated: Py<PyArray1<f64>>,
+}
+
+#[pymethods]
+impl Run {
+    /// The `simulate --json` object as a dict (a new dict on each access).
+    #[getter]
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        json_to_dict(py, &self.summary)
+    }
+
+    /// Sample times, shape (samples,).
+    #[getter]
+    fn t<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        bound(py, &self.t)
+    }
+
+    /// Angles phi_1..phi_n from the horizontal (rad), shape (samples, n).
+    #[getter]
+    fn phi<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        bound(py, &self.phi)
+    }
+
+    /// Angular rates w_1..w_n, shape (samples, n).
+    #[getter]
+    fn w<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        bound(py, &self.w)
+    }
+
+    /// Position of the free end, shape (samples, 2).
+    #[getter]
+    fn tip<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        bound(py, &self.tip)
+    }
+
+    /// Velocity of the free end (exact, from phi and w), shape (samples, 2).
+    #[getter]
+    fn tip_velocity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        bound(py, &self.tip_velocity)
+    }
+
+    /// Energy T + V, shape (samples,).
+    #[getter]
+    fn energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        bound(py, &self.energy)
+    }
+
+    /// Work dissipated by joint friction since t = 0, shape (samples,).
+    #[getter]
+    fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        bound(py, &self.dissipated)
+    }
+
+    /// The number of rods n.
+    #[getter]
+    fn links(&self) -> usize {
+        self.traj.chain.links
+    }
+
+    /// `ok`, or how the run failed (the same as `summary["status"]`).
+    #[getter]
+    fn status(&self) -> &'static str {
+        self.traj.status.as_str()
+    }
+
+    /// The scene that ran (with the keyword flags of `simulate` applied).
+    #[getter]
+    fn scene(&self) -> PyScene {
+        PyScene::new(self.scene.clone())
+    }
+
+    /// The joints r_0 = P0, r_1, ..., r_n (the tip) at sample `k`, shape
+    /// (n + 1, 2). A negative `k` counts from the end, as in Python.
+    fn joints(&self, py: Python<'_>, k: isize) -> PyResult<Py<PyArray2<f64>>> {
+        let len = self.traj.len();
+        let index = if k < 0 { k + len as isize } else { k };
+        if index < 0 || index as usize >= len {
+            return Err(PyIndexError::new_err(format!(
+                "sample {k} out of range (the run has {len} samples)"
+            )));
+        }
+        let sample = self.traj.sample(index as usize);
+        points(
+            py,
+            &joints(&self.traj.chain, self.traj.anchor, sample.angles),
+        )
+    }
+
+    fn __len__(&self) -> usize {
+        self.traj.len()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Run(scene={:?}, method={:?}, links={}, status={:?}, t_reached={}, samples={})",
+            self.scene.name(),
+            self.traj.method.as_str(),
+            self.traj.chain.links,
+            self.traj.status.as_str(),
+            self.traj.t_reached,
+            self.traj.len()
+        )
+    }
+}
+
+/// Runs `scene` and returns its `Run`; the same as
+/// `falling-chain simulate SCENE [--method M] [--dt S] [--rtol R] [--atol A]
+/// [--t-end T] --json --out FILE.csv`, without files.
+///
+/// The keywords override the scene's `run.method`, `run.dt`, `run.rtol`,
+/// `run.atol`, `run.t_end` and `run.output_dt` (the spacing of the samples).
+/// Bad input raises ValueError with the CLI's one-line message naming the
+/// field. A run that fails does not raise: its `summary["status"]` says how
+/// it failed. The run releases the GIL, so Python threads run in parallel.
+#[pyfunction]
+#[pyo3(signature = (scene, *, method=None, dt=None, rtol=None, atol=None, t_end=None, output_dt=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate(
+    py: Python<'_>,
+    scene: &Bound<'_, PyScene>,
+    method: Option<String>,
+    dt: Option<f64>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    t_end: Option<f64>,
+    output_dt: Option<f64>,
+) -> PyResult<Run> {
+    let float = |x: Option<f64>| x.map(toml::Value::Float);
+    let scene = with_flags(
+        &scene.get().inner,
+        &[
+            ("run.method", method.map(toml::Value::String)),
+            ("run.dt", float(dt)),
+            ("run.rtol", float(rtol)),
+            ("run.atol", float(atol)),
+            ("run.t_end", float(t_end)),
+            ("run.output_dt", float(output_dt)),
+        ],
+    )
+    .map_err(value_error)?;
+    let prepared = scene.prepare().map_err(value_error)?;
+    let (traj, series, json) = py
+        .detach(|| -> Result<_, Error> {
+            let traj = prepared.solve()?;
+            let series = Series::of(&traj);
+            let json = RunSummary::from_trajectory(scene.name(), &traj).to_json();
+            Ok((traj, series, json))
+        })
+        .map_err(value_error)?;
+    let (s, n) = (series.samples, series.links);
+    Ok(Run {
+        summary: json,
+        t: array1(py, series.t)?,
+        phi: array2(py, series.phi, s, n)?,
+        w: array2(py, series.w, s, n)?,
+        tip: array2(py, series.tip, s, 2)?,
+        tip_velocity: array2(py, series.tip_velocity, s, 2)?,
+        energy: array1(py, series.energy)?,
+        dissipated: array1(py, series.dissipated)?,
+        traj,
+        scene,
+    })
+}

@@ -1,0 +1,235 @@
+//! `falling_chain.sweep`: the CLI's `sweep`, with numpy columns for its CSV.
+
+use ::falling_chain::sweep as core;
+use ::falling_chain::sweep::{Shard, SweepRow, Vary};
+use ::falling_chain::Error;
+use numpy::IntoPyArray;
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString};
+
+use crate::convert::{read_only, to_toml, value_error};
+use crate::run::with_flags;
+use crate::scene::PyScene;
+
+/// One key of `vary`: a `str` is the right-hand side of `--vary KEY=...`
+/// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values.
+fn vary_of(key: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Vary> {
+    let key: String = key
+        .extract()
+        .map_err(|_| PyTypeError::new_err(format!("vary: keys must be str (got {key})")))?;
+    let vary = if let Ok(spec) = values.cast::<PyString>() {
+        Vary::parse(&format!("{key}={}", spec.to_cow()?)).map_err(value_error)?
+    } else {
+        let items = values.try_iter().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "vary: the values of '{key}' must be a sequence or a str such as \"0.3:5.97:120\""
+            ))
+        })?;
+        let values = items
+            .map(|v| to_toml(&v?, &key))
+            .collect::<PyResult<Vec<_>>>()?;
+        Vary { key, values }
+    };
+    if vary.values.is_empty() {
+        return Err(value_error(Error::field(
+            "vary",
+            format!("'{}' has no values", vary.key),
+        )));
+    }
+    Ok(vary)
+}
+
+/// `None`, `"I/N"` or `(I, N)`.
+fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
+    let Some(shard) = shard else {
+        return Ok(None);
+    };
+    let spec = if let Ok(s) = shard.cast::<PyString>() {
+        s.to_cow()?.into_owned()
+    } else if let Ok((i, n)) = shard.extract::<(i64, i64)>() {
+        format!("{i}/{n}")
+    } else {
+        return Err(PyTypeError::new_err(format!(
+            "shard: expected \"I/N\" or (I, N) (got {shard})"
+        )));
+    };
+    Shard::parse(&spec).map(Some).map_err(value_error)
+}
+
+/// Splits one CSV line of ours into its cells (RFC 4180 quoting).
+fn csv_cells(line: &str) -> Vec<String> {
+    let mut cells = vec![String::new()];
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        let cell = cells.last_mut().expect("one cell");
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                cell.push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => cells.push(String::new()),
+            (c, _) => cell.push(c),
+        }
+    }
+    cells
+}
+
+/// What a summary column holds, read off the summary's JSON value.
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Int,
+    Float,
+    Text,
+}
+
+/// The kind of the CSV column `column` of a summary: its JSON field (or,
+/// for `tip_end_x`, the pair `tip_end`) says whether it is an integer, a
+/// number or text.
+fn column_kind(json: &serde_json::Value, column: &str) -> Kind {
+    let field = json.get(column).or_else(|| {
+        let base = column
+            .strip_suffix("_x")
+            .or_else(|| column.strip_suffix("_y"))?;
+        json.get(base)?.get(0)
+    });
+    match field {
+        Some(serde_json::Value::Number(x)) if x.is_f64() => Kind::Float,
+        Some(serde_json::Value::Number(_)) => Kind::Int,
+        Some(serde_json::Value::Null) => Kind::Float,
+        _ => Kind::Text,
+    }
+}
+
+/// The kind of a varied key's column from its values.
+fn value_kind(values: &[&toml::Value]) -> Kind {
+    if values.iter().all(|v| v.is_integer()) {
+        Kind::Int
+    } else if values.iter().all(|v| v.is_integer() || v.is_float()) {
+        Kind::Float
+    } else {
+        Kind::Text
+    }
+}
+
+/// A column of cells as a numpy array of its kind: int64, float64 (empty
+/// cells are NaN) or str.
+fn column<'py>(py: Python<'py>, kind: Kind, cells: Vec<String>) -> PyResult<Bound<'py, PyAny>> {
+    let bad = |c: &str| PyValueError::new_err(format!("sweep: cannot read the cell '{c}'"));
+    Ok(match kind {
+        Kind::Int => cells
+            .iter()
+            .map(|c| c.parse::<i64>().map_err(|_| bad(c)))
+            .collect::<PyResult<Vec<_>>>()?
+            .into_pyarray(py)
+            .into_any(),
+        Kind::Float => cells
+            .iter()
+            .map(|c| {
+                if c.is_empty() {
+                    Ok(f64::NAN)
+                } else {
+                    c.parse::<f64>().map_err(|_| bad(c))
+                }
+            })
+            .collect::<PyResult<Vec<_>>>()?
+            .into_pyarray(py)
+            .into_any(),
+        Kind::Text => {
+            let np = py.import("numpy")?;
+            let list = PyList::new(py, cells)?;
+            np.call_method1("array", (list, "str"))?
+        }
+    })
+}
+
+/// The rows as the columns of `sweep --out`'s CSV: the cells are those of
+/// the CSV, typed by the summary's JSON fields.
+fn columns<'py>(py: Python<'py>, vary: &[Vary], rows: &[SweepRow]) -> PyResult<Bound<'py, PyDict>> {
+    let header = csv_cells(&core::csv_header(vary));
+    let table: Vec<Vec<String>> = rows.iter().map(|r| csv_cells(&core::csv_row(r))).collect();
+    let json = rows
+        .first()
+        .map(|r| serde_json::to_value(&r.summary))
+        .transpose()
+        .map_err(|e| PyValueError::new_err(format!("sweep: {e}")))?
+        .unwrap_or(serde_json::Value::Null);
+    let out = PyDict::new(py);
+    for (i, name) in header.iter().enumerate() {
+        let kind = if i == 0 {
+            Kind::Int
+        } else if i <= vary.len() {
+            value_kind(&rows.iter().map(|r| &r.values[i - 1]).collect::<Vec<_>>())
+        } else if rows.is_empty() {
+            Kind::Float
+        } else {
+            column_kind(&json, name)
+        };
+        let cells = table.iter().map(|r| r[i].clone()).collect();
+        out.set_item(name, read_only(column(py, kind, cells)?)?)?;
+    }
+    Ok(out)
+}
+
+/// Runs `scene` once per value of the keys in `vary`, in parallel, and
+/// returns the rows of `falling-chain sweep --out` as a dict of numpy
+/// columns named as its CSV header: `run`, the varied keys, then the fields
+/// of `simulate --json` (`tip_end` as `tip_end_x`, `tip_end_y`, ...).
+///
+/// `vary` maps dotted scene keys to sequences of values (a numpy array, a
+/// list) or to a `str` in `--vary` syntax (`"0.3:5.97:120"` for 120 values
+/// from 0.3 to 5.97, `"rk4,dopri5"`); several keys give their product, the
+/// last varying fastest. `method`, `rtol` and `atol` set `run.method`,
+/// `run.rtol` and `run.atol` first. `shard` ("I/N" or (I, N)) runs only
+/// runs I, I + N, ...; `jobs` is the number of threads (default: all cores).
+/// Integer columns are int64, numbers float64 (`t_failed` is NaN where a run
+/// did not fail), text columns str. Every run's scene is checked before
+/// any runs; bad input raises ValueError naming the field. The sweep
+/// releases the GIL.
+#[pyfunction]
+#[pyo3(signature = (scene, vary, *, method=None, rtol=None, atol=None, shard=None, jobs=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn sweep<'py>(
+    py: Python<'py>,
+    scene: &Bound<'_, PyScene>,
+    vary: &Bound<'_, PyDict>,
+    method: Option<String>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    shard: Option<&Bound<'_, PyAny>>,
+    jobs: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = with_flags(
+        &scene.get().inner,
+        &[
+            ("run.method", method.map(toml::Value::String)),
+            ("run.rtol", rtol.map(toml::Value::Float)),
+            ("run.atol", atol.map(toml::Value::Float)),
+        ],
+    )
+    .map_err(value_error)?;
+    if vary.is_empty() {
+        return Err(value_error(Error::field(
+            "vary",
+            "give at least one key, e.g. {\"start.p1.0\": [1.0, 2.0, 3.0]}",
+        )));
+    }
+    let vary = vary
+        .iter()
+        .map(|(k, v)| vary_of(&k, &v))
+        .collect::<PyResult<Vec<_>>>()?;
+    let shard = shard_of(shard)?;
+    if jobs == Some(0) {
+        return Err(value_error(Error::field(
+            "jobs",
+            "must be an integer >= 1 (got 0)",
+        )));
+    }
+    let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let rows = py
+        .detach(|| core::run(&scene, &vary, shard, jobs, &|_, _| {}))
+        .map_err(value_error)?;
+    columns(py, &vary, &rows)
+}

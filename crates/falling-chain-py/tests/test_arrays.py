@@ -1,0 +1,91 @@
+"""The run's arrays: shapes, dtypes, and the very numbers of `--out`'s CSV."""
+
+import csv
+
+import numpy as np
+import pytest
+
+import falling_chain as fc
+from conftest import cli, scene_path
+
+ARRAYS = {
+    "t": lambda s, n: (s,),
+    "phi": lambda s, n: (s, n),
+    "w": lambda s, n: (s, n),
+    "tip": lambda s, n: (s, 2),
+    "tip_velocity": lambda s, n: (s, 2),
+    "energy": lambda s, n: (s,),
+    "dissipated": lambda s, n: (s,),
+}
+
+
+def test_shapes_and_dtypes(span):
+    run = fc.simulate(span, method="dopri5", output_dt=0.05)
+    samples, n = len(run), run.links
+    assert n == 50
+    assert samples == len(run.t) == 85  # 4.157 / 0.05 -> 0, 0.05, ..., 4.15, then 4.157
+    for name, shape in ARRAYS.items():
+        a = getattr(run, name)
+        assert isinstance(a, np.ndarray), name
+        assert a.dtype == np.float64, name
+        assert a.shape == shape(samples, n), name
+        assert a.flags.c_contiguous and not a.flags.writeable, name
+        assert np.isfinite(a).all(), name
+        assert getattr(run, name) is a, "the same array each time, not a copy"
+    for k in (0, 7, samples - 1, -1):
+        j = run.joints(k)
+        assert j.dtype == np.float64 and j.shape == (n + 1, 2)
+        np.testing.assert_array_equal(j[0], [0.0, 0.0])
+        np.testing.assert_allclose(j[-1], run.tip[k], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(np.hypot(*np.diff(j, axis=0).T), 6.0 / n, rtol=1e-12)
+    for k in (samples, -samples - 1):
+        with pytest.raises(IndexError):
+            run.joints(k)
+    assert np.all(np.diff(run.t) > 0) and run.t[0] == 0.0 and run.t[-1] == 4.157
+
+
+def test_the_arrays_are_the_csv(span, tmp_path):
+    out = tmp_path / "run.csv"
+    cli("simulate", scene_path("span-d3"), "--method", "dop853", "--out", out, check=0)
+    run = fc.simulate(span, method="dop853")
+    with open(out, newline="") as f:
+        rows = list(csv.reader(f))
+    header, cells = rows[0], np.array([[float(x) for x in r] for r in rows[1:]])
+    col = {name: cells[:, i] for i, name in enumerate(header)}
+    assert cells.shape == (len(run), 7 + run.links)
+    # Bit for bit: the CSV's numbers round-trip.
+    np.testing.assert_array_equal(run.t, col["t"])
+    np.testing.assert_array_equal(run.tip, np.column_stack([col["tip_x"], col["tip_y"]]))
+    np.testing.assert_array_equal(
+        run.tip_velocity, np.column_stack([col["tip_vx"], col["tip_vy"]])
+    )
+    np.testing.assert_array_equal(run.energy, col["energy"])
+    np.testing.assert_array_equal(run.dissipated, col["dissipated"])
+    np.testing.assert_array_equal(run.phi, cells[:, 7:])
+
+
+def test_rates_give_the_tip_velocity(span):
+    # w is not in the CSV: check it against the tip velocity it implies,
+    # v_tip = l sum_i w_i (-sin phi_i, cos phi_i).
+    run = fc.simulate(span, method="dopri5")
+    l = 6.0 / run.links
+    v = l * np.stack(
+        [-(run.w * np.sin(run.phi)).sum(axis=1), (run.w * np.cos(run.phi)).sum(axis=1)], axis=1
+    )
+    np.testing.assert_allclose(v, run.tip_velocity, rtol=0, atol=1e-12 * np.abs(v).max())
+    # And the energy balance the summary reports holds on the samples.
+    drift = np.abs(run.energy + run.dissipated - run.energy[0]).max()
+    assert drift <= run.summary["energy_balance_error"] * (1 + 1e-9)
+
+
+def test_a_failed_run_keeps_what_it_computed(span, tmp_path):
+    out = tmp_path / "diverged.csv"
+    cli(
+        "simulate", scene_path("span-d3"), "--set", "chain.damping=0.1",
+        "--dt", "0.01", "--t-end", "20", "--out", out, check=1,
+    )
+    run = fc.simulate(span.set("chain.damping", 0.1), dt=0.01, t_end=20.0)
+    assert run.status == "diverged"
+    csv_t = np.loadtxt(out, delimiter=",", skiprows=1, usecols=0)
+    np.testing.assert_array_equal(run.t, csv_t)
+    assert all(np.isfinite(getattr(run, name)).all() for name in ARRAYS)

@@ -1,0 +1,46 @@
+"""The notebook examples/falling-chain.ipynb runs: its code cells, in order,
+with matplotlib's Agg backend (no Jupyter needed), from examples/."""
+
+import json
+import os
+
+import pytest
+
+from conftest import ROOT
+
+NOTEBOOK = ROOT / "examples" / "falling-chain.ipynb"
+
+
+def code_cells():
+    nb = json.loads(NOTEBOOK.read_text())
+    return nb, [c for c in nb["cells"] if c["cell_type"] == "code"]
+
+
+def test_the_notebook_keeps_no_outputs():
+    _, cells = code_cells()
+    assert cells
+    for c in cells:
+        assert c["outputs"] == [] and c["execution_count"] is None
+
+
+def test_the_notebook_runs(monkeypatch, capsys):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    monkeypatch.chdir(NOTEBOOK.parent)
+    namespace = {"__name__": "__main__"}
+    _, cells = code_cells()
+    for i, cell in enumerate(cells):
+        source = "".join(cell["source"])
+        exec(compile(source, f"{NOTEBOOK.name}[{i}]", "exec"), namespace)
+    out = capsys.readouterr().out
+    assert "span-d3" in out and "at x = L/2" in out
+    # Three figures were drawn: Fig. 7b, Fig. 9, the folded chain.
+    assert len(namespace["dense"]["tip_speed_max"]) == 120
+    assert namespace["ok"].sum() >= 110
+    # The law and the chain agree within a few percent over most of the fall.
+    half = namespace["half"]
+    assert abs(namespace["speed"][half] / namespace["law"][half] - 1) < 0.05
+    plt.close("all")
