@@ -248,13 +248,7 @@ impl Make for StabilityMap {
             let p = &prepared[c.scene];
             let ch = &p.chain;
             let mgl = ch.weight() * ch.length;
-            let key = format!(
-                "{},{},{},{}",
-                SCENES[c.scene].key,
-                c.method,
-                accuracy_name(c.method),
-                exp(c.param)
-            );
+            let key = format!("{},{},{}", c.method, accuracy_name(c.method), exp(c.param));
             write!(
                 csv,
                 "{},{},{},{},{},{},{key},",
@@ -291,7 +285,13 @@ impl Make for StabilityMap {
                         ),
                     )
                     .unwrap();
-                    writeln!(timing, "{key},{}", exp(t.summary.wall_seconds)).unwrap();
+                    writeln!(
+                        timing,
+                        "{},{key},{}",
+                        SCENES[c.scene].key,
+                        exp(t.summary.wall_seconds)
+                    )
+                    .unwrap();
                 }
                 Err(why) => writeln!(csv, "not_run,,,,,,,,{},,,{}", num(mgl), text(why)).unwrap(),
             }
