@@ -343,7 +343,9 @@ pub fn readme() -> String {
          `cargo xtask figures` reads them and never rewrites them, so on an unchanged \
          checkout it leaves `git status` clean; `cargo xtask figures --timings` measures \
          them again and rewrites them (run it whole, so that every timing file comes from \
-         one machine). The figures marked *timing only* are computed only then.\n\n\
+         one machine). The figures marked *timing only* are computed only then; the \
+         work-precision diagrams choose their points by cost when timed, and otherwise run \
+         the points their timing file lists (column `plan`), untimed.\n\n\
          Animations of the report scenes (`anim/<scene>.gif`) are made from the scene runs \
          by `cargo xtask figures` (not by `--draw-only`; `--no-anim` skips them).\n\n\
          ## The report's figures\n\n\
