@@ -1,14 +1,19 @@
-//! `cargo xtask figures [--only ID...] [--no-anim]`: regenerates every figure
-//! of `../shared/figures.md` into `figures/` from the scene files, in
-//! parallel, and writes `figures/README.md`.
+//! `cargo xtask figures`: regenerates every figure of the registry
+//! (`registry.rs`, the catalogue of `docs/figures.md`) into `figures/`, its
+//! data into `figures/data/`, the animations, `figures/README.md` and
+//! `paper/paper.md`. `cargo xtask paper [--check]` fills the paper alone.
 
-mod catalog;
-mod make;
+mod ctx;
+mod data;
 mod paper;
+mod registry;
+mod report;
 mod runs;
 mod study;
+mod timing;
 
 use std::collections::BTreeSet;
+use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -17,10 +22,27 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
-use catalog::{Figure, FIGURES};
+use ctx::{write_text, Ctx};
+use registry::{Figure, Timing, FIGURES};
 
-const USAGE: &str = "usage: cargo xtask figures [--only ID...] [--no-anim] | \
-                     cargo xtask paper [--check] | cargo xtask scene-keys [--check]";
+const USAGE: &str =
+    "usage: cargo xtask figures [--only ID...] [--no-anim] [--draw-only | --timings]
+       cargo xtask paper [--check]
+
+  figures              compute every figure's data into figures/data/ (reading the
+                       committed wall times, never rewriting them), draw every figure
+                       from its data, make the animations, write figures/README.md
+                       and paper/paper.md
+  --only ID...         only these figures (and `anim` for the animations); the
+                       paper and figures/data/scenes.csv are then left as they are
+  --no-anim            no animations
+  --draw-only          draw every figure from the data in figures/data/ as it is,
+                       computing nothing (no animations: they are made from runs)
+  --timings            also measure the wall times, and rewrite the timing files
+                       (figures/data/*-timing.csv, machine-timing.csv, and with no
+                       --only run-timing.csv)
+  paper [--check]      fill paper/paper.tmpl.md from figures/data/; --check fails
+                       if paper/paper.md is stale";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -32,35 +54,37 @@ fn root() -> PathBuf {
 struct Args {
     only: Vec<String>,
     anim: bool,
+    draw_only: bool,
+    timings: bool,
 }
 
 fn parse(args: &[String]) -> Result<Args, String> {
     let mut out = Args {
         only: vec![],
         anim: true,
+        draw_only: false,
+        timings: false,
     };
     let mut in_only = false;
     for a in args {
         match a.as_str() {
             "--only" => in_only = true,
-            "--no-anim" => {
-                out.anim = false;
-                in_only = false;
-            }
+            "--no-anim" => out.anim = false,
+            "--draw-only" => out.draw_only = true,
+            "--timings" => out.timings = true,
             s if in_only && !s.starts_with("--") => out.only.push(s.to_string()),
-            s => return Err(format!("unknown argument '{s}'; {USAGE}")),
+            s => return Err(format!("unknown argument '{s}'\n{USAGE}")),
+        }
+        if a.starts_with("--") && a != "--only" {
+            in_only = false;
         }
     }
+    if out.draw_only && out.timings {
+        return Err("--draw-only measures nothing: it cannot take --timings".into());
+    }
     for id in &out.only {
-        let known = FIGURES.iter().any(|f| f.id == id)
-            || study::all().iter().any(|s| s.id == id)
-            || id == "anim";
-        if !known {
-            let ids: Vec<&str> = FIGURES
-                .iter()
-                .map(|f| f.id)
-                .chain(study::all().iter().map(|s| s.id))
-                .collect();
+        if registry::find(id).is_none() && id != "anim" {
+            let ids: Vec<&str> = FIGURES.iter().map(|f| f.id).collect();
             return Err(format!(
                 "--only: unknown figure '{id}' (known: {}, anim)",
                 ids.join(", ")
@@ -70,132 +94,205 @@ fn parse(args: &[String]) -> Result<Args, String> {
     Ok(out)
 }
 
+/// The data files `compute` wrote must be the figure's declared ones: all
+/// of them, the timing files only with `--timings`.
+fn check_written(fig: &Figure, files: &[String], timings: bool) -> Result<(), String> {
+    let data: Vec<&str> = files
+        .iter()
+        .filter_map(|f| f.strip_prefix("figures/data/"))
+        .collect();
+    for d in &data {
+        if !fig.data.contains(d) {
+            return Err(format!("wrote {d}, which the registry does not list"));
+        }
+    }
+    for d in fig.data {
+        let expected = timings || !timing::is_timing(d);
+        if expected != data.contains(d) {
+            return Err(format!(
+                "{} {d}",
+                if expected {
+                    "did not write"
+                } else {
+                    "wrote without --timings"
+                }
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Files in `figures/data/` that no figure lists (left from an older layout).
+fn strays(ctx: &Ctx) -> Result<Vec<String>, String> {
+    let known = |name: &str| {
+        ["scenes.csv", timing::MACHINE, timing::RUN].contains(&name)
+            || FIGURES.iter().any(|f| f.data.contains(&name))
+    };
+    let mut out = vec![];
+    for entry in fs::read_dir(&ctx.data).map_err(|e| e.to_string())? {
+        let name = entry.map_err(|e| e.to_string())?.file_name();
+        let name = name.to_string_lossy();
+        if name.ends_with(".csv") && !known(&name) {
+            out.push(name.into_owned());
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
 fn figures_cmd(args: Args) -> Result<(), String> {
     let clock = Instant::now();
     let root = root();
-    let out = root.join("figures");
-    let scenes_dir = root.join("scenes");
-    let anim_dir = out.join("anim");
-    let data_dir = out.join("data");
+    let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut ctx = Ctx::new(&root, jobs, args.timings);
+    let anim_dir = ctx.out.join("anim");
+    fs::create_dir_all(&ctx.data).map_err(|e| e.to_string())?;
     fs::create_dir_all(&anim_dir).map_err(|e| e.to_string())?;
-
+    let all = args.only.is_empty();
     let selected: Vec<&Figure> = FIGURES
         .iter()
-        .filter(|f| args.only.is_empty() || args.only.iter().any(|o| o == f.id))
+        .filter(|f| all || args.only.iter().any(|o| o == f.id))
         .collect();
-    let animate = args.anim && (args.only.is_empty() || args.only.iter().any(|o| o == "anim"));
-    let mut needed: BTreeSet<&'static str> = selected.iter().flat_map(|f| f.scenes()).collect();
-    let anim_scenes: Vec<&'static str> = if animate {
-        FIGURES
-            .iter()
-            .filter(|f| matches!(f.kind, catalog::Kind::Snapshots { .. }))
-            .flat_map(|f| f.scenes())
-            .collect()
-    } else {
-        vec![]
-    };
-    needed.extend(anim_scenes.iter().copied());
-    let needed: Vec<&'static str> = needed.into_iter().collect();
+    let anim_scenes: Vec<&'static str> =
+        if !args.draw_only && args.anim && (all || args.only.iter().any(|o| o == "anim")) {
+            FIGURES.iter().filter_map(|f| f.make.animation()).collect()
+        } else {
+            vec![]
+        };
+    let mut steps: Vec<(String, f64)> = vec![];
+    let mut failed: Vec<String> = vec![];
+    let mut computed: Vec<&Figure> = vec![];
 
-    let bar = ProgressBar::new((needed.len() + selected.len() + anim_scenes.len()) as u64)
-        .with_style(
-            ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} ({elapsed})")
+    if !args.draw_only {
+        // The scene runs the report's figures and the animations share.
+        let t0 = Instant::now();
+        let mut needed: BTreeSet<&'static str> =
+            selected.iter().flat_map(|f| f.make.scenes()).collect();
+        needed.extend(anim_scenes.iter().copied());
+        let needed: Vec<&'static str> = needed.into_iter().collect();
+        let bar = ProgressBar::new(needed.len() as u64).with_style(
+            ProgressStyle::with_template("scene runs {bar:40} {pos}/{len} {msg} ({elapsed})")
                 .expect("a valid template"),
         );
-    let runs = runs::run_all(&scenes_dir, &needed, &|name| {
-        bar.set_message(format!("ran {name}"));
-        bar.inc(1);
-    })?;
-    let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if args.only.is_empty() {
-        fs::create_dir_all(&data_dir).map_err(|e| e.to_string())?;
-        fs::write(data_dir.join("scenes.csv"), runs::summary_csv(&runs))
-            .map_err(|e| e.to_string())?;
-        println!("wrote figures/data/scenes.csv");
+        ctx.runs = runs::run_all(&ctx, &needed, &|name| {
+            bar.set_message(format!("ran {name}"));
+            bar.inc(1);
+        })?;
+        bar.finish_and_clear();
+        println!("ran {} scenes", needed.len());
+        if all {
+            ctx.write("scenes.csv", &runs::summary_csv(&ctx.runs))?;
+            println!("wrote figures/data/scenes.csv");
+        }
+        steps.push(("scene runs".into(), t0.elapsed().as_secs_f64()));
+
+        // The report's figures, in parallel (nothing in them is timed).
+        let t0 = Instant::now();
+        let (report, study): (Vec<&Figure>, Vec<&Figure>) =
+            selected.iter().partition(|f| f.report.is_some());
+        let results: Vec<(&Figure, Result<Vec<String>, String>)> = report
+            .par_iter()
+            .map(|&f| (f, f.make.compute(&ctx, f)))
+            .collect();
+        if !report.is_empty() {
+            steps.push(("report figures".into(), t0.elapsed().as_secs_f64()));
+        }
+        // The study's, one after another: some time their runs.
+        let mut results = results;
+        for f in study {
+            if f.timing == Timing::Only && !ctx.timings {
+                println!("{}: timing only, drawn from its committed data", f.id);
+                continue;
+            }
+            let t0 = Instant::now();
+            let r = f.make.compute(&ctx, f);
+            let secs = t0.elapsed().as_secs_f64();
+            println!("  ({} computed in {secs:.1} s)", f.id);
+            steps.push((f.id.to_string(), secs));
+            results.push((f, r));
+        }
+        for (f, r) in results {
+            match r.and_then(|files| {
+                check_written(f, &files, ctx.timings)?;
+                Ok(files)
+            }) {
+                Ok(files) => {
+                    for file in files {
+                        println!("wrote {file}");
+                    }
+                    computed.push(f);
+                }
+                Err(e) => failed.push(format!("{}: {e}", f.id)),
+            }
+        }
     }
-    let inputs = make::Inputs {
-        runs: &runs,
-        data_dir: &data_dir,
-        jobs,
-    };
-    let drawn: Vec<Result<&str, String>> = selected
-        .par_iter()
-        .map(|f| {
-            make::figure(f, &inputs, &out)?;
-            bar.set_message(format!("drew {}", f.id));
-            bar.inc(1);
-            Ok(f.id)
+
+    // Every selected figure is drawn from its data (a figure whose compute
+    // failed is not), with the animations beside them.
+    let t0 = Instant::now();
+    let to_draw: Vec<&Figure> = selected
+        .iter()
+        .copied()
+        .filter(|f| {
+            args.draw_only
+                || computed.iter().any(|c| c.id == f.id)
+                || (f.timing == Timing::Only && !ctx.timings)
         })
+        .collect();
+    let drawn: Vec<Result<Vec<String>, String>> = to_draw
+        .par_iter()
+        .map(|f| f.make.draw(&ctx, f).map_err(|e| format!("{}: {e}", f.id)))
         .chain(anim_scenes.par_iter().map(|&name| {
-            make::animation(name, &runs[name], &anim_dir)?;
-            bar.set_message(format!("animated {name}"));
-            bar.inc(1);
-            Ok(name)
+            let run = ctx.run(name)?;
+            runs::animation(name, run, &anim_dir)?;
+            Ok(vec![format!("figures/anim/{name}.gif")])
         }))
         .collect();
-    bar.finish_and_clear();
-    let mut timing = vec![(
-        "report figures and animations".to_string(),
-        clock.elapsed().as_secs_f64(),
-    )];
-    let mut failed = vec![];
-    for d in &drawn {
+    for d in drawn {
         match d {
-            Ok(_) => {}
-            Err(e) => failed.push(e.clone()),
-        }
-    }
-    for f in &selected {
-        println!("wrote figures/{0}.png, figures/{0}.svg", f.id);
-    }
-    for name in &anim_scenes {
-        println!("wrote figures/anim/{name}.gif");
-    }
-    // The study figures, one after the other: some of them time runs.
-    let ctx = study::Ctx {
-        root: root.clone(),
-        out: out.clone(),
-        data: data_dir.clone(),
-        jobs,
-    };
-    fs::create_dir_all(&ctx.data).map_err(|e| e.to_string())?;
-    for st in study::all() {
-        if !(args.only.is_empty() || args.only.iter().any(|o| o == st.id)) {
-            continue;
-        }
-        let t0 = Instant::now();
-        match (st.make)(&ctx) {
             Ok(files) => {
-                for f in files {
-                    println!("wrote {f}");
+                for file in files {
+                    println!("wrote {file}");
                 }
-                let secs = t0.elapsed().as_secs_f64();
-                println!("  ({} in {secs:.1} s)", st.id);
-                timing.push((st.id.to_string(), secs));
             }
-            Err(e) => failed.push(format!("{}: {e}", st.id)),
+            Err(e) => failed.push(e),
         }
     }
-    fs::write(out.join("README.md"), readme()).map_err(|e| e.to_string())?;
+    steps.push(("drawing and animations".into(), t0.elapsed().as_secs_f64()));
+
+    write_text(&ctx.out.join("README.md"), &registry::readme())?;
     println!("wrote figures/README.md");
-    if args.only.is_empty() {
-        // How long each step took, for the paper's reproducibility section.
-        timing.push(("all".to_string(), clock.elapsed().as_secs_f64()));
-        let mut csv = String::from("step,seconds\n");
-        for (step, secs) in &timing {
-            csv.push_str(&format!("{step},{secs:.1}\n"));
+    if all {
+        for stray in strays(&ctx)? {
+            println!("warning: figures/data/{stray} belongs to no figure (delete it?)");
         }
-        fs::write(data_dir.join("timing.csv"), csv).map_err(|e| e.to_string())?;
-        println!("wrote figures/data/timing.csv");
     }
-    if args.only.is_empty() && root.join("paper/paper.tmpl.md").exists() {
+    if ctx.timings && selected.iter().any(|f| f.timing != Timing::None) {
+        let machine = timing::machine_csv();
+        ctx.write(timing::MACHINE, &machine)?;
+        println!("wrote figures/data/{}", timing::MACHINE);
+        if all {
+            steps.push(("all".into(), clock.elapsed().as_secs_f64()));
+            let mut csv = String::from("step,seconds\n");
+            for (step, secs) in &steps {
+                writeln!(csv, "{step},{}", data::fixed(*secs, 1)).unwrap();
+            }
+            ctx.write(timing::RUN, &csv)?;
+            println!("wrote figures/data/{}", timing::RUN);
+        }
+    }
+    if all && failed.is_empty() && root.join("paper/paper.tmpl.md").exists() {
         paper::run(&root, false)?;
     }
     println!(
-        "{} report figures, {} animations from {} scene runs, and the study figures, in {:.1} s",
-        selected.len(),
+        "{} figures {} and {} animations in {:.1} s",
+        to_draw.len(),
+        if args.draw_only {
+            "drawn from their data"
+        } else {
+            "computed and drawn"
+        },
         anim_scenes.len(),
-        needed.len(),
         clock.elapsed().as_secs_f64()
     );
     if failed.is_empty() {
@@ -203,44 +300,6 @@ fn figures_cmd(args: Args) -> Result<(), String> {
     } else {
         Err(failed.join("\n"))
     }
-}
-
-/// `figures/README.md`: every figure, what it shows, where it comes from.
-fn readme() -> String {
-    let mut s = String::from(
-        "# Figures\n\nRegenerated by `cargo xtask figures` (this file too) from the scene files \
-         in `scenes/` and the model of `physics.md`. One figure alone: \
-         `cargo xtask figures --only ID`. Animations of the report scenes are in `anim/`.\n\n\
-         | id | report | what it shows | scene files | command |\n|---|---|---|---|---|\n",
-    );
-    for f in FIGURES {
-        let scenes: Vec<String> = f
-            .scenes()
-            .iter()
-            .map(|s| format!("[`{s}`](../scenes/{s}.toml)"))
-            .collect();
-        let scenes = if scenes.is_empty() {
-            "—".to_string()
-        } else {
-            scenes.join(", ")
-        };
-        s.push_str(&format!(
-            "| [{id}]({id}.png) | {} | {} | {} | `cargo xtask figures --only {id}` |\n",
-            f.report,
-            f.what,
-            scenes,
-            id = f.id
-        ));
-    }
-    s.push_str("\n## New figures\n\nTheir data are in `data/<id>*.csv`.\n\n| id | what it shows | command |\n|---|---|---|\n");
-    for st in study::all() {
-        s.push_str(&format!(
-            "| {id} | {} | `cargo xtask figures --only {id}` |\n",
-            st.what,
-            id = st.id
-        ));
-    }
-    s
 }
 
 /// `cargo xtask scene-keys [--check]`: writes the key table of

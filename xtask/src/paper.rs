@@ -2,7 +2,8 @@
 //! read from the CSVs in `figures/data/` and writes `paper/paper.md`.
 //!
 //! A placeholder is `{{FILE:FILTER:EXPR:FORMAT}}`:
-//! - `FILE`: a CSV in `figures/data/` (`scenes.csv`);
+//! - `FILE`: a CSV in `figures/data/` (`scenes.csv`); wall times only from
+//!   the timing files (`*-timing.csv`, with `machine-timing.csv`);
 //! - `FILTER`: `*`, or `col=value` conditions joined by `&`;
 //! - `EXPR`: `col` (the one matching row's cell), `min(col)`, `max(col)`,
 //!   `maxabs(col)`, `at_max(col,other)` / `at_min(col,other)` (`other` in the row where
@@ -18,28 +19,11 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
-type Table = (Vec<String>, Vec<Vec<String>>);
-
-fn read_csv(path: &Path) -> Result<Table, String> {
-    let text = fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut lines = text.lines();
-    let header: Vec<String> = lines
-        .next()
-        .ok_or_else(|| format!("{}: empty", path.display()))?
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines
-        .filter(|l| !l.is_empty())
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
-    Ok((header, rows))
-}
+use crate::ctx::write_text;
+use crate::data::Table;
 
 fn col(t: &Table, name: &str) -> Result<usize, String> {
-    t.0.iter()
-        .position(|c| c == name)
-        .ok_or_else(|| format!("no column '{name}' (columns: {})", t.0.join(", ")))
+    t.col(name)
 }
 
 fn num(s: &str) -> Result<f64, String> {
@@ -88,7 +72,7 @@ fn evaluate(
         return Err("expected FILE:FILTER:EXPR:FORMAT".into());
     };
     if !cache.contains_key(file) {
-        cache.insert(file.to_string(), read_csv(&data.join(file))?);
+        cache.insert(file.to_string(), Table::read(&data.join(file))?);
     }
     let t = &cache[file];
     let conds: Vec<(usize, &str)> = if filter == "*" {
@@ -102,14 +86,15 @@ fn evaluate(
             })
             .collect::<Result<_, String>>()?
     };
-    let rows: Vec<&Vec<String>> =
-        t.1.iter()
-            .filter(|r| {
-                conds
-                    .iter()
-                    .all(|(i, v)| r.get(*i).map(String::as_str) == Some(*v))
-            })
-            .collect();
+    let rows: Vec<&Vec<String>> = t
+        .rows
+        .iter()
+        .filter(|r| {
+            conds
+                .iter()
+                .all(|(i, v)| r.get(*i).map(String::as_str) == Some(*v))
+        })
+        .collect();
     if rows.is_empty() {
         return Err(format!("no row matches '{filter}'"));
     }
@@ -231,7 +216,7 @@ pub fn run(root: &Path, check: bool) -> Result<(), String> {
         }
         println!("paper/paper.md is current ({} bytes)", text.len());
     } else {
-        fs::write(&target, &text).map_err(|e| e.to_string())?;
+        write_text(&target, &text)?;
         println!("wrote paper/paper.md");
     }
     Ok(())

@@ -1,11 +1,17 @@
-//! The scene runs the figures need, each made once, in parallel.
+//! The scene runs the report's figures share, each made once, in parallel;
+//! the summary of them the paper quotes (`scenes.csv`); and the animations,
+//! which are made from the runs directly (they are not redrawn from data).
 
 use std::collections::BTreeMap;
+use std::fmt::Write as _;
 use std::path::Path;
 
 use chain_ode::{Trajectory, Vec2};
-use falling_chain::Scene;
+use falling_chain::{render, Scene};
 use rayon::prelude::*;
+
+use crate::ctx::Ctx;
+use crate::data::num;
 
 /// A finished scene run and what the figures need to know about it.
 pub struct SceneRun {
@@ -22,9 +28,8 @@ pub struct SceneRun {
 pub const FINE: f64 = 32.0;
 
 /// Runs one scene file of `scenes/`.
-pub fn run_scene(scenes: &Path, name: &str) -> Result<SceneRun, String> {
-    let path = scenes.join(format!("{name}.toml"));
-    let scene = Scene::load(&path).map_err(|e| e.to_string())?;
+pub fn run_scene(ctx: &Ctx, name: &str) -> Result<SceneRun, String> {
+    let scene = ctx.scene::<&str>(name, &[])?;
     let mut prepared = scene.prepare().map_err(|e| e.to_string())?;
     let snapshot_dt = prepared
         .options
@@ -52,22 +57,22 @@ pub fn run_scene(scenes: &Path, name: &str) -> Result<SceneRun, String> {
 
 /// Runs every named scene once (in parallel), calling `tick` after each.
 pub fn run_all(
-    scenes: &Path,
+    ctx: &Ctx,
     names: &[&'static str],
     tick: &(dyn Fn(&str) + Sync),
 ) -> Result<BTreeMap<&'static str, SceneRun>, String> {
     names
         .par_iter()
         .map(|&name| {
-            let r = run_scene(scenes, name)?;
+            let r = run_scene(ctx, name)?;
             tick(name);
             Ok((name, r))
         })
         .collect()
 }
 
-/// One row per scene run: what the paper quotes about the report's scenes.
-/// Deterministic (no wall times).
+/// `scenes.csv`: one row per scene run, what the paper quotes about the
+/// report's scenes (no wall times).
 pub fn summary_csv(runs: &BTreeMap<&'static str, SceneRun>) -> String {
     let mut s = String::from(
         "scene,method,links,damping,t_end,status,steps,rejected_steps,rhs_evals,\
@@ -76,26 +81,39 @@ pub fn summary_csv(runs: &BTreeMap<&'static str, SceneRun>) -> String {
     );
     for (name, r) in runs {
         let (t, m) = (&r.traj, &r.traj.summary);
-        s.push_str(&format!(
-            "{name},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        writeln!(
+            s,
+            "{name},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             t.method,
             t.chain.links,
-            t.chain.damping,
-            t.t_end,
+            num(t.chain.damping),
+            num(t.t_end),
             t.status,
             t.stats.steps,
             t.stats.rejected_steps,
             t.stats.rhs_evals,
-            m.energy_start,
-            m.energy_end,
-            m.dissipated,
-            m.energy_balance_error,
-            t.chain.energy_scale(),
-            m.tip_speed_max,
-            m.t_tip_speed_max,
-            m.tip_end[0],
-            m.tip_end[1],
-        ));
+            num(m.energy_start),
+            num(m.energy_end),
+            num(m.dissipated),
+            num(m.energy_balance_error),
+            num(t.chain.energy_scale()),
+            num(m.tip_speed_max),
+            num(m.t_tip_speed_max),
+            num(m.tip_end[0]),
+            num(m.tip_end[1]),
+        )
+        .unwrap();
     }
     s
+}
+
+/// The animation of one scene run, `<dir>/<name>.gif`: about 60 frames at
+/// 20 per second.
+pub fn animation(name: &str, run: &SceneRun, dir: &Path) -> Result<(), String> {
+    let fine = run.snapshot_dt / FINE;
+    let spacing = fine * (run.traj.t_end / fine / 60.0).round().max(1.0);
+    let title = format!("{} (t = {:.3})", name, run.traj.t_end);
+    let f = render::snapshots(&title, &run.traj, Some(spacing), Some(run.release));
+    figures::chain_animation(&f, &dir.join(format!("{name}.gif")), 20)
+        .map_err(|e| format!("anim {name}: {e}"))
 }

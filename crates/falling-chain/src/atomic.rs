@@ -1,25 +1,9 @@
 //! Files that appear whole or not at all.
 
-use std::fs::{self, File};
-use std::io::{self, BufWriter, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::io::{self, Write};
+use std::path::Path;
 
 use crate::error::Error;
-
-/// A temporary file beside the target, removed on drop unless committed.
-struct Pending {
-    temp: PathBuf,
-    committed: bool,
-}
-
-impl Drop for Pending {
-    fn drop(&mut self) {
-        if !self.committed {
-            let _ = fs::remove_file(&self.temp);
-        }
-    }
-}
 
 /// The directory `path` will be written into (`.` for a bare file name).
 fn parent_dir(path: &Path) -> &Path {
@@ -53,44 +37,21 @@ pub fn check_writable(what: &'static str, path: &Path) -> Result<(), Error> {
 
 /// Writes `path` atomically: `fill` writes into a temporary file in the same
 /// directory, which is then flushed, synced and renamed over `path`. On any
-/// error the temporary file is removed and `path` is left as it was.
+/// error the temporary file is removed and `path` is left as it was. The
+/// writer is the figures crate's ([`figures::atomic`], the project's one);
+/// this adds the error that names the output (`what`, e.g. `"--out"`).
 pub fn write_atomic<F>(what: &'static str, path: &Path, fill: F) -> Result<(), Error>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let name = path.file_name().ok_or_else(|| {
-        Error::write(
-            what,
-            path,
-            io::Error::new(io::ErrorKind::InvalidInput, "not a file name"),
-        )
-    })?;
-    let temp = parent_dir(path).join(format!(
-        ".{}.tmp-{}-{}",
-        name.to_string_lossy(),
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let fail = |e: io::Error| Error::write(what, path, e);
-    let file = File::create_new(&temp).map_err(fail)?;
-    let mut pending = Pending {
-        temp,
-        committed: false,
-    };
-    let mut w = BufWriter::new(file);
-    fill(&mut w).map_err(fail)?;
-    let file = w.into_inner().map_err(|e| fail(e.into_error()))?;
-    file.sync_all().map_err(fail)?;
-    drop(file);
-    fs::rename(&pending.temp, path).map_err(fail)?;
-    pending.committed = true;
-    Ok(())
+    figures::atomic::write_atomic(path, fill).map_err(|e| Error::write(what, path, e))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
+    use std::path::PathBuf;
 
     fn scratch(tag: &str) -> PathBuf {
         let d = std::env::temp_dir().join(format!("falling-chain-{tag}-{}", std::process::id()));

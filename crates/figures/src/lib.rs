@@ -10,14 +10,15 @@
 //!   machine;
 //! - the same input gives the same bytes (no timestamps, no hash-order
 //!   output);
-//! - files are written atomically (temporary file + rename): an error
-//!   leaves no half-written file.
+//! - files are written atomically (temporary file + rename, [`atomic`], the
+//!   project's one atomic writer): an error leaves no half-written file.
 //!
 //! Look: the 'cool' colormap (cyan -> magenta) for time with a labelled
 //! colour bar, P0 red, P1 blue, equal axis scales for chain shapes; PNGs are
 //! about 1200 x 900 px with text of at least ~20 px, readable in print.
 
 mod animation;
+pub mod atomic;
 mod category;
 mod chart;
 mod clip;

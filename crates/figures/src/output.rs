@@ -2,17 +2,14 @@
 //!
 //! A figure is drawn twice from the same code: once into an RGB buffer
 //! (encoded here as PNG) and once into an SVG string. Both are rendered in
-//! memory first; only then are the files written, each to a temporary file
-//! beside its target and renamed into place, so a failure never leaves a
-//! half-written file behind.
+//! memory first; only then are the files written, through [`crate::atomic`],
+//! so a failure never leaves a half-written file behind.
 
 use std::error::Error;
 use std::ffi::OsString;
 use std::fmt;
-use std::fs;
-use std::io::{self, Write};
+use std::io;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use plotters::coord::Shift;
 use plotters::drawing::DrawingAreaErrorKind;
@@ -198,58 +195,10 @@ fn with_suffix(stem: &Path, suffix: &str) -> PathBuf {
     PathBuf::from(s)
 }
 
-/// A temporary path beside `path`, unique within this process.
-fn temp_path(path: &Path) -> PathBuf {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let name = path
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.tmp-{}-{n}", std::process::id()))
-}
-
-/// Write every `(path, bytes)` pair, or none: all are written to temporary
-/// files first and renamed into place only when every write succeeded; if
-/// a rename fails, the targets already renamed are removed again.
+/// Write every `(path, bytes)` pair, or none (see [`crate::atomic`]).
 pub(crate) fn write_all_atomic(files: &[(&Path, &[u8])]) -> Result<(), FigureError> {
-    let mut temps: Vec<PathBuf> = Vec::with_capacity(files.len());
-    let cleanup = |temps: &[PathBuf]| {
-        for t in temps {
-            let _ = fs::remove_file(t);
-        }
-    };
-    for (path, bytes) in files {
-        let tmp = temp_path(path);
-        let written = fs::File::create(&tmp).and_then(|mut f| {
-            f.write_all(bytes)?;
-            f.sync_all()
-        });
-        if let Err(source) = written {
-            // `tmp` may exist (created, then a write failed).
-            temps.push(tmp);
-            cleanup(&temps);
-            return Err(FigureError::Io {
-                path: path.to_path_buf(),
-                source,
-            });
-        }
-        temps.push(tmp);
-    }
-    for (i, (path, _)) in files.iter().enumerate() {
-        if let Err(source) = fs::rename(&temps[i], path) {
-            cleanup(&temps[i..]);
-            // Take back the files already renamed: all or nothing.
-            for (done, _) in &files[..i] {
-                let _ = fs::remove_file(done);
-            }
-            return Err(FigureError::Io {
-                path: path.to_path_buf(),
-                source,
-            });
-        }
-    }
-    Ok(())
+    crate::atomic::write_all_atomic(files)
+        .map_err(|(path, source)| FigureError::Io { path, source })
 }
 
 #[cfg(test)]

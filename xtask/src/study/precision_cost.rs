@@ -1,7 +1,9 @@
 //! `rhs-cost`: the cost of one right-hand side against n, the O(n)
 //! recursion (a whole `ChainSystem::rhs`) against the dense reference
 //! (assemble `A` and `b`, faer's Cholesky), timed here with
-//! `std::time::Instant` over many calls, median of repeats.
+//! `std::time::Instant` over many calls, median of repeats. All of it is
+//! wall times: computed only by `--timings`, into `rhs-cost-timing.csv` and
+//! `rhs-cost-fit-timing.csv`.
 
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -10,9 +12,11 @@ use std::time::Instant;
 use chain_ode::{dense, Chain, ChainSystem};
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 
-use super::{log_slope, median, write_text, written, Ctx};
-
-const ID: &str = "rhs-cost";
+use super::log_slope;
+use crate::ctx::Ctx;
+use crate::data::{exp, fixed};
+use crate::registry::{Figure, Make};
+use crate::timing::median;
 /// Rods for the O(n) recursion.
 const FAST_N: [usize; 10] = [25, 50, 100, 200, 400, 1000, 2000, 4000, 7000, 10000];
 /// Rods for the dense solve.
@@ -55,174 +59,206 @@ fn per_call(mut f: impl FnMut()) -> (f64, usize) {
     (median(&mut times), calls)
 }
 
-pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let mut rows: Vec<(&str, usize, usize, f64)> = vec![];
-    for &n in &FAST_N {
-        let chain = Chain::report(n, 5e-4).map_err(|e| e.to_string())?;
-        let mut sys = ChainSystem::new(&chain);
-        let y = state(n);
-        let mut dy = vec![0.0; y.len()];
-        let (s, calls) = per_call(|| {
-            sys.rhs(0.0, black_box(&y), &mut dy);
-            black_box(&dy);
-        });
-        rows.push(("recursion", n, calls, s));
-    }
-    for &n in &DENSE_N {
-        let chain = Chain::report(n, 5e-4).map_err(|e| e.to_string())?;
-        let y = state(n);
-        let (phi, w) = (&y[..n], &y[n..2 * n]);
-        // The two agree (the tests check it to 1e-12); confirm the state is fair.
-        let mut sys = ChainSystem::new(&chain);
-        let mut dy = vec![0.0; y.len()];
-        sys.rhs(0.0, &y, &mut dy);
-        let acc = dense::accelerations(&chain, phi, w);
-        let scale = acc.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-        let diff = acc
-            .iter()
-            .zip(&dy[n..2 * n])
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        if diff > 1e-8 * scale.max(1.0) {
-            return Err(format!(
-                "n = {n}: the O(n) and dense accelerations differ by {diff:e}"
-            ));
-        }
-        let (s, calls) = per_call(|| {
-            black_box(dense::accelerations(&chain, black_box(phi), black_box(w)));
-        });
-        rows.push(("dense", n, calls, s));
-        let (s, calls) = per_call(|| {
-            black_box(dense::mass_matrix(black_box(phi)));
-            black_box(dense::forcing(&chain, black_box(phi), black_box(w)));
-        });
-        rows.push(("dense-assembly", n, calls, s));
-    }
+pub struct RhsCost;
 
-    let fit = |kind: &str| {
-        let pts: Vec<(f64, f64)> = rows
-            .iter()
-            .filter(|r| r.0 == kind && r.1 >= FIT_FROM)
-            .map(|r| (r.1 as f64, r.3))
-            .collect();
-        log_slope(&pts)
-    };
-    let (slope_fast, slope_dense) = (fit("recursion"), fit("dense"));
-    let slope_assembly = fit("dense-assembly");
-    // The factorisation and solve alone: the dense time less the assembly.
-    let factor: Vec<(f64, f64)> = DENSE_N
+/// `(solver, n, calls per batch, seconds per call)`.
+type Row = (String, usize, usize, f64);
+
+/// The slope of `log t` against `log n` of `kind` from [`FIT_FROM`] rods on.
+fn fit(rows: &[Row], kind: &str) -> f64 {
+    let pts: Vec<(f64, f64)> = rows
         .iter()
-        .filter(|&&n| n >= FIT_FROM)
-        .filter_map(|&n| {
-            let t = |k: &str| rows.iter().find(|r| r.0 == k && r.1 == n).map(|r| r.3);
-            Some((n as f64, t("dense")? - t("dense-assembly")?))
-        })
-        .filter(|p| p.1 > 0.0)
+        .filter(|r| r.0 == kind && r.1 >= FIT_FROM)
+        .map(|r| (r.1 as f64, r.3))
         .collect();
-    let slope_factor = if factor.len() >= 2 {
-        log_slope(&factor)
-    } else {
-        f64::NAN
-    };
+    log_slope(&pts)
+}
 
-    let mut csv = String::from("solver,n,calls_per_batch,batches,seconds_per_call\n");
-    for r in &rows {
-        writeln!(csv, "{},{},{},{REPEATS},{:e}", r.0, r.1, r.2, r.3).unwrap();
-    }
-    let mut files = vec![write_text(ctx, &ctx.data.join(format!("{ID}.csv")), &csv)?];
-    let mut fits = String::from("solver,n_from,n_to,slope\n");
-    for (kind, ns, slope) in [
-        ("recursion", &FAST_N[..], slope_fast),
-        ("dense", &DENSE_N[..], slope_dense),
-        ("dense-assembly", &DENSE_N[..], slope_assembly),
-        ("dense-minus-assembly", &DENSE_N[..], slope_factor),
-    ] {
-        let from = ns.iter().find(|&&n| n >= FIT_FROM).copied().unwrap_or(0);
-        writeln!(fits, "{kind},{from},{},{slope:.3}", ns[ns.len() - 1]).unwrap();
-    }
-    files.push(write_text(
-        ctx,
-        &ctx.data.join(format!("{ID}-fit.csv")),
-        &fits,
-    )?);
+impl Make for RhsCost {
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let mut rows: Vec<Row> = vec![];
+        for &n in &FAST_N {
+            let chain = Chain::report(n, 5e-4).map_err(|e| e.to_string())?;
+            let mut sys = ChainSystem::new(&chain);
+            let y = state(n);
+            let mut dy = vec![0.0; y.len()];
+            let (s, calls) = per_call(|| {
+                sys.rhs(0.0, black_box(&y), &mut dy);
+                black_box(&dy);
+            });
+            rows.push(("recursion".into(), n, calls, s));
+        }
+        for &n in &DENSE_N {
+            let chain = Chain::report(n, 5e-4).map_err(|e| e.to_string())?;
+            let y = state(n);
+            let (phi, w) = (&y[..n], &y[n..2 * n]);
+            // The two agree (the tests check it to 1e-12); confirm the state is fair.
+            let mut sys = ChainSystem::new(&chain);
+            let mut dy = vec![0.0; y.len()];
+            sys.rhs(0.0, &y, &mut dy);
+            let acc = dense::accelerations(&chain, phi, w);
+            let scale = acc.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+            let diff = acc
+                .iter()
+                .zip(&dy[n..2 * n])
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            if diff > 1e-8 * scale.max(1.0) {
+                return Err(format!(
+                    "n = {n}: the O(n) and dense accelerations differ by {diff:e}"
+                ));
+            }
+            let (s, calls) = per_call(|| {
+                black_box(dense::accelerations(&chain, black_box(phi), black_box(w)));
+            });
+            rows.push(("dense".into(), n, calls, s));
+            let (s, calls) = per_call(|| {
+                black_box(dense::mass_matrix(black_box(phi)));
+                black_box(dense::forcing(&chain, black_box(phi), black_box(w)));
+            });
+            rows.push(("dense-assembly".into(), n, calls, s));
+        }
 
-    // The figure: measured points, and reference slopes n and n^3 through
-    // the last measured point of each.
-    let pts = |kind: &str| -> Vec<(f64, f64)> {
-        rows.iter()
-            .filter(|r| r.0 == kind)
-            .map(|r| (r.1 as f64, r.3))
-            .collect()
-    };
-    let (fast, dense_pts, assembly) = (pts("recursion"), pts("dense"), pts("dense-assembly"));
-    // Guides through the last measured point, a factor GUIDE_OFFSET below.
-    let guide = |p: &[(f64, f64)], k: i32, ns: &[f64]| -> Vec<(f64, f64)> {
-        let (n1, t1) = p[p.len() - 1];
-        ns.iter()
-            .map(|&n| (n, t1 / GUIDE_OFFSET * (n / n1).powi(k)))
-            .collect()
-    };
-    let mut plot = LinePlot::new(
-        "Cost of one right-hand side",
-        "rods n",
-        "seconds per evaluation (median)",
-    );
-    plot.log_x = true;
-    plot.log_y = true;
-    plot.series.push(
-        Series::new(
-            format!("O(n) recursion (ChainSystem::rhs): slope {slope_fast:.2}"),
-            fast.clone(),
-            Style::LinePoints,
-        )
-        .with_color(palette(0)),
-    );
-    plot.series.push(
-        Series::new(
-            format!("dense: assemble A, b + Cholesky (faer): slope {slope_dense:.2}"),
-            dense_pts.clone(),
-            Style::LinePoints,
-        )
-        .with_color(palette(3)),
-    );
-    plot.series.push(
-        Series::new(
-            format!("dense, assembly of A and b only: slope {slope_assembly:.2}"),
-            assembly,
-            Style::LinePoints,
-        )
-        .with_color(palette(1)),
-    );
-    plot.series.push(
-        Series::new("∝ n", guide(&fast, 1, &[25.0, 10000.0]), Style::Dashed).with_color(palette(0)),
-    );
-    plot.series.push(
-        Series::new(
-            "∝ n³",
-            guide(&dense_pts, 3, &[100.0, 1000.0]),
-            Style::Dashed,
-        )
-        .with_color(palette(3)),
-    );
-    let ratio = |n: usize| {
-        let f = rows.iter().find(|r| r.0 == "recursion" && r.1 == n)?.3;
-        let d = rows.iter().find(|r| r.0 == "dense" && r.1 == n)?.3;
-        Some(d / f)
-    };
-    // Lines of text in the legend (invisible swatches), which gets room of
-    // its own above the data.
-    for line in [
-        format!("slopes fitted for n ≥ {FIT_FROM}; guides offset ×1/{GUIDE_OFFSET}"),
-        format!("dense less assembly (Cholesky + solve): slope {slope_factor:.2}"),
-        format!(
-            "dense / O(n): {:.0}× at n = 50, {:.0}× at n = 1000",
-            ratio(50).unwrap_or(f64::NAN),
-            ratio(1000).unwrap_or(f64::NAN)
-        ),
-    ] {
-        plot.series
-            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+        let slope_fast = fit(&rows, "recursion");
+        let slope_dense = fit(&rows, "dense");
+        let slope_assembly = fit(&rows, "dense-assembly");
+        // The factorisation and solve alone: the dense time less the assembly.
+        let factor: Vec<(f64, f64)> = DENSE_N
+            .iter()
+            .filter(|&&n| n >= FIT_FROM)
+            .filter_map(|&n| {
+                let t = |k: &str| rows.iter().find(|r| r.0 == k && r.1 == n).map(|r| r.3);
+                Some((n as f64, t("dense")? - t("dense-assembly")?))
+            })
+            .filter(|p| p.1 > 0.0)
+            .collect();
+        let slope_factor = if factor.len() >= 2 {
+            log_slope(&factor)
+        } else {
+            f64::NAN
+        };
+
+        let mut csv = String::from("solver,n,calls_per_batch,batches,seconds_per_call\n");
+        for r in &rows {
+            writeln!(csv, "{},{},{},{REPEATS},{}", r.0, r.1, r.2, exp(r.3)).unwrap();
+        }
+        let mut files = vec![ctx.write(&format!("{}-timing.csv", fig.id), &csv)?];
+        let mut fits = String::from("solver,n_from,n_to,slope\n");
+        for (kind, ns, slope) in [
+            ("recursion", &FAST_N[..], slope_fast),
+            ("dense", &DENSE_N[..], slope_dense),
+            ("dense-assembly", &DENSE_N[..], slope_assembly),
+            ("dense-minus-assembly", &DENSE_N[..], slope_factor),
+        ] {
+            let from = ns.iter().find(|&&n| n >= FIT_FROM).copied().unwrap_or(0);
+            writeln!(
+                fits,
+                "{kind},{from},{},{}",
+                ns[ns.len() - 1],
+                fixed(slope, 3)
+            )
+            .unwrap();
+        }
+        files.push(ctx.write(&format!("{}-fit-timing.csv", fig.id), &fits)?);
+        Ok(files)
     }
-    let out = figures::line_plot(&plot, &ctx.out.join(ID)).map_err(|e| e.to_string())?;
-    files.extend(written(ctx, &out));
-    Ok(files)
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}-timing.csv", fig.id))?;
+        let (solver, n, secs) = (t.strs("solver")?, t.nums("n")?, t.nums("seconds_per_call")?);
+        let f = ctx.read(&format!("{}-fit-timing.csv", fig.id))?;
+        let (fit_solver, fit_slope) = (f.strs("solver")?, f.nums("slope")?);
+        let slope = |kind: &str| {
+            fit_solver
+                .iter()
+                .position(|s| *s == kind)
+                .map_or(f64::NAN, |k| fit_slope[k])
+        };
+        let (slope_fast, slope_dense) = (slope("recursion"), slope("dense"));
+        let (slope_assembly, slope_factor) =
+            (slope("dense-assembly"), slope("dense-minus-assembly"));
+        let pts = |kind: &str| -> Vec<(f64, f64)> {
+            (0..t.len())
+                .filter(|&k| solver[k] == kind)
+                .map(|k| (n[k], secs[k]))
+                .collect()
+        };
+        let (fast, dense_pts, assembly) = (pts("recursion"), pts("dense"), pts("dense-assembly"));
+        if fast.is_empty() || dense_pts.is_empty() {
+            return Err(format!("{}: no recursion or dense rows", t.name));
+        }
+
+        // The figure: measured points, and reference slopes n and n^3
+        // through the last measured point of each, a factor GUIDE_OFFSET below.
+        let guide = |p: &[(f64, f64)], k: i32, ns: &[f64]| -> Vec<(f64, f64)> {
+            let (n1, t1) = p[p.len() - 1];
+            ns.iter()
+                .map(|&n| (n, t1 / GUIDE_OFFSET * (n / n1).powi(k)))
+                .collect()
+        };
+        let mut plot = LinePlot::new(
+            "Cost of one right-hand side",
+            "rods n",
+            "seconds per evaluation (median)",
+        );
+        plot.log_x = true;
+        plot.log_y = true;
+        plot.series.push(
+            Series::new(
+                format!("O(n) recursion (ChainSystem::rhs): slope {slope_fast:.2}"),
+                fast.clone(),
+                Style::LinePoints,
+            )
+            .with_color(palette(0)),
+        );
+        plot.series.push(
+            Series::new(
+                format!("dense: assemble A, b + Cholesky (faer): slope {slope_dense:.2}"),
+                dense_pts.clone(),
+                Style::LinePoints,
+            )
+            .with_color(palette(3)),
+        );
+        plot.series.push(
+            Series::new(
+                format!("dense, assembly of A and b only: slope {slope_assembly:.2}"),
+                assembly,
+                Style::LinePoints,
+            )
+            .with_color(palette(1)),
+        );
+        plot.series.push(
+            Series::new("∝ n", guide(&fast, 1, &[25.0, 10000.0]), Style::Dashed)
+                .with_color(palette(0)),
+        );
+        plot.series.push(
+            Series::new(
+                "∝ n³",
+                guide(&dense_pts, 3, &[100.0, 1000.0]),
+                Style::Dashed,
+            )
+            .with_color(palette(3)),
+        );
+        let at = |kind: &str, rods: f64| {
+            (0..t.len())
+                .find(|&k| solver[k] == kind && n[k] == rods)
+                .map(|k| secs[k])
+        };
+        let ratio = |rods: f64| Some(at("dense", rods)? / at("recursion", rods)?);
+        // Lines of text in the legend (invisible swatches), which gets room of
+        // its own above the data.
+        for line in [
+            format!("slopes fitted for n ≥ {FIT_FROM}; guides offset ×1/{GUIDE_OFFSET}"),
+            format!("dense less assembly (Cholesky + solve): slope {slope_factor:.2}"),
+            format!(
+                "dense / O(n): {:.0}× at n = 50, {:.0}× at n = 1000",
+                ratio(50.0).unwrap_or(f64::NAN),
+                ratio(1000.0).unwrap_or(f64::NAN)
+            ),
+        ] {
+            plot.series
+                .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+        }
+        let out = figures::line_plot(&plot, &ctx.stem(fig.id)).map_err(|e| e.to_string())?;
+        Ok(ctx.drawn(&out))
+    }
 }

@@ -3,17 +3,22 @@
 //! into completed / completed with an energy-balance error above 1% of
 //! `M g L` / stopped with a status. One panel per method (so that a panel's
 //! columns are all steps or all tolerances), one row per scene.
+//!
+//! The runs are untimed and run in parallel: `stability-map.csv` holds no
+//! wall time; with `--timings` each run's wall time (measured beside
+//! another run) goes to `stability-map-timing.csv`.
 
 use std::fmt::Write as _;
 
-use chain_ode::{solve, Accuracy, Method, Status, Trajectory};
+use chain_ode::{solve, Method, Status, Trajectory};
 use falling_chain::Prepared;
 use figures::{CategoryMap, CategoryPanel, RGBColor};
 use rayon::prelude::*;
 
-use super::{prepare, short, write_text, written, Ctx};
-
-const ID: &str = "stability-map";
+use super::{accuracy_name, at_accuracy};
+use crate::ctx::Ctx;
+use crate::data::{distinct, exp, num, opt, parse_num, text};
+use crate::registry::{Figure, Make};
 /// The step budget of every run (accepted and rejected steps).
 const MAX_STEPS: u64 = 200_000;
 /// The energy-balance error allowed, as a fraction of `M g L`.
@@ -98,6 +103,10 @@ impl Outcome {
         Outcome::MaxSteps,
     ];
 
+    fn parse(s: &str) -> Option<Outcome> {
+        Outcome::ALL.into_iter().find(|o| o.as_str() == s)
+    }
+
     fn of(t: &Trajectory) -> Outcome {
         match t.status {
             Status::Ok => {
@@ -131,7 +140,7 @@ impl Outcome {
             Outcome::EnergyError => "completed, energy error > 1% MgL".into(),
             Outcome::Diverged => "diverged (non-finite)".into(),
             Outcome::StepSizeTooSmall => "step size too small".into(),
-            Outcome::MaxSteps => format!("step budget ({}) used up", short(MAX_STEPS as f64)),
+            Outcome::MaxSteps => format!("step budget ({}) used up", exp(MAX_STEPS as f64)),
         }
     }
 
@@ -160,14 +169,15 @@ struct Cell {
 }
 
 fn params(m: Method) -> &'static [f64] {
-    match m.accuracy() {
-        Accuracy::Step => &DTS,
-        Accuracy::Tolerance => &RTOLS,
+    if accuracy_name(m) == "dt" {
+        &DTS
+    } else {
+        &RTOLS
     }
 }
 
 fn run_cell(p: &Prepared, method: Method, param: f64) -> Result<Trajectory, String> {
-    let mut o = p.options.clone().at_accuracy(method, param);
+    let mut o = at_accuracy(&p.options, method, param);
     o.output_dt = None;
     o.max_steps = MAX_STEPS;
     solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())
@@ -175,169 +185,196 @@ fn run_cell(p: &Prepared, method: Method, param: f64) -> Result<Trajectory, Stri
 
 /// Cell text: the energy error's power of ten for a completed run, the
 /// time it stopped otherwise.
-fn cell_text(t: &Trajectory) -> String {
-    match t.status {
-        Status::Ok => {
-            let e = relative_energy_error(t);
-            if e > 0.0 {
-                format!("{}", e.log10().floor() as i64)
-            } else {
-                "0".into()
-            }
+fn cell_text(status: &str, energy_error_rel: f64, t_reached: f64) -> String {
+    if status == Status::Ok.as_str() {
+        if energy_error_rel > 0.0 {
+            format!("{}", energy_error_rel.log10().floor() as i64)
+        } else {
+            "0".into()
         }
-        _ if t.t_reached < 0.01 => format!("t {:.4}", t.t_reached),
-        _ => format!("t {:.2}", t.t_reached),
+    } else if t_reached < 0.01 {
+        format!("t {t_reached:.4}")
+    } else {
+        format!("t {t_reached:.2}")
     }
 }
 
-pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let prepared: Vec<Prepared> = SCENES
-        .iter()
-        .map(|s| {
-            let o: Vec<String> = s.overrides.iter().map(|x| x.to_string()).collect();
-            prepare(ctx, s.scene, &o)
-        })
-        .collect::<Result<_, _>>()?;
-    let mut jobs: Vec<(usize, Method, f64)> = vec![];
-    for s in 0..SCENES.len() {
-        for m in Method::ALL {
-            for &x in params(m) {
-                jobs.push((s, m, x));
+pub struct StabilityMap;
+
+impl Make for StabilityMap {
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let prepared: Vec<Prepared> = SCENES
+            .iter()
+            .map(|s| ctx.prepare(s.scene, s.overrides))
+            .collect::<Result<_, _>>()?;
+        let mut jobs: Vec<(usize, Method, f64)> = vec![];
+        for s in 0..SCENES.len() {
+            for m in Method::ALL {
+                for &x in params(m) {
+                    jobs.push((s, m, x));
+                }
             }
         }
-    }
-    // Untimed runs: in parallel, at most `ctx.jobs` at once.
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(ctx.jobs.max(1))
-        .build()
-        .map_err(|e| e.to_string())?;
-    let cells: Vec<Cell> = pool.install(|| {
-        jobs.par_iter()
-            .map(|&(s, method, param)| {
-                let skipped = SCENES[s]
-                    .skip
-                    .filter(|(ms, below, _)| ms.contains(&method) && param < *below)
-                    .map(|(_, _, why)| why.to_string());
-                let run = match skipped {
-                    Some(why) => Err(why),
-                    None => run_cell(&prepared[s], method, param),
-                };
-                Cell {
-                    scene: s,
-                    method,
-                    param,
-                    run,
-                }
-            })
-            .collect()
-    });
+        // Untimed runs: in parallel, at most `ctx.jobs` at once (the order
+        // of `jobs` is kept).
+        let cells: Vec<Cell> = ctx.pool()?.install(|| {
+            jobs.par_iter()
+                .map(|&(s, method, param)| {
+                    let skipped = SCENES[s]
+                        .skip
+                        .filter(|(ms, below, _)| ms.contains(&method) && param < *below)
+                        .map(|(_, _, why)| why.to_string());
+                    let run = match skipped {
+                        Some(why) => Err(why),
+                        None => run_cell(&prepared[s], method, param),
+                    };
+                    Cell {
+                        scene: s,
+                        method,
+                        param,
+                        run,
+                    }
+                })
+                .collect()
+        });
 
-    // The data.
-    let mut csv = String::from(
-        "scene,links,damping,damping_rate,t_end,method,param_name,param,outcome,status,\
-         t_reached,t_failed,steps,rejected_steps,rhs_evals,energy_balance_error,energy_scale_mgl,\
-         energy_error_rel,bdf_from,wall_seconds,note\n",
-    );
-    for c in &cells {
-        let p = &prepared[c.scene];
-        let ch = &p.chain;
-        let mgl = ch.weight() * ch.length;
-        write!(
-            csv,
-            "{},{},{},{},{},{},{},{:e},",
-            SCENES[c.scene].key,
-            ch.links,
-            ch.damping,
-            ch.damping_rate(),
-            p.options.t_end,
-            c.method,
-            c.method.accuracy_name(),
-            c.param
-        )
-        .unwrap();
-        match &c.run {
-            Ok(t) => writeln!(
+        let mut csv = String::from(
+            "scene,label,links,damping,damping_rate,t_end,method,param_name,param,outcome,status,\
+             t_reached,t_failed,steps,rejected_steps,rhs_evals,energy_balance_error,\
+             energy_scale_mgl,energy_error_rel,bdf_from,note\n",
+        );
+        let mut timing = String::from("scene,method,param_name,param,wall_seconds\n");
+        for c in &cells {
+            let p = &prepared[c.scene];
+            let ch = &p.chain;
+            let mgl = ch.weight() * ch.length;
+            let key = format!("{},{},{}", c.method, accuracy_name(c.method), exp(c.param));
+            write!(
                 csv,
-                "{},{},{},{},{},{},{},{:e},{mgl},{:e},{},{},",
-                Outcome::of(t).as_str(),
-                t.status,
-                t.t_reached,
-                t.t_failed.map_or(String::new(), |x| x.to_string()),
-                t.stats.steps,
-                t.stats.rejected_steps,
-                t.stats.rhs_evals,
-                t.summary.energy_balance_error,
-                relative_energy_error(t),
-                // auto: when it switched to BDF.
-                t.segments
-                    .iter()
-                    .find(|g| g.method == Method::Bdf && c.method == Method::Auto)
-                    .map_or(String::new(), |g| g.t_start.to_string()),
-                t.summary.wall_seconds,
-            ),
-            Err(why) => writeln!(csv, "not_run,,,,,,,,{mgl},,,,{}", why.replace(',', ";")),
+                "{},{},{},{},{},{},{key},",
+                SCENES[c.scene].key,
+                text(SCENES[c.scene].label),
+                ch.links,
+                num(ch.damping),
+                num(ch.damping_rate()),
+                num(p.options.t_end),
+            )
+            .unwrap();
+            match &c.run {
+                Ok(t) => {
+                    writeln!(
+                        csv,
+                        "{},{},{},{},{},{},{},{},{},{},{},",
+                        Outcome::of(t).as_str(),
+                        t.status,
+                        num(t.t_reached),
+                        opt(t.t_failed, num),
+                        t.stats.steps,
+                        t.stats.rejected_steps,
+                        t.stats.rhs_evals,
+                        exp(t.summary.energy_balance_error),
+                        num(mgl),
+                        exp(relative_energy_error(t)),
+                        // auto: when it switched to BDF.
+                        opt(
+                            t.segments
+                                .iter()
+                                .find(|g| g.method == Method::Bdf && c.method == Method::Auto)
+                                .map(|g| g.t_start),
+                            num
+                        ),
+                    )
+                    .unwrap();
+                    writeln!(
+                        timing,
+                        "{},{key},{}",
+                        SCENES[c.scene].key,
+                        exp(t.summary.wall_seconds)
+                    )
+                    .unwrap();
+                }
+                Err(why) => writeln!(csv, "not_run,,,,,,,,{},,,{}", num(mgl), text(why)).unwrap(),
+            }
         }
-        .unwrap();
+        let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
+        if ctx.timings {
+            files.push(ctx.write(&format!("{}-timing.csv", fig.id), &timing)?);
+        }
+        Ok(files)
     }
-    let mut files = vec![write_text(ctx, &ctx.data.join(format!("{ID}.csv")), &csv)?];
 
-    // The figure: only the categories that occur.
-    let used: Vec<Outcome> = Outcome::ALL
-        .into_iter()
-        .filter(|o| {
-            cells
-                .iter()
-                .any(|c| c.run.as_ref().is_ok_and(|t| Outcome::of(t) == *o))
-        })
-        .collect();
-    let index = |o: Outcome| used.iter().position(|u| *u == o);
-    let panels: Vec<CategoryPanel> = Method::ALL
-        .into_iter()
-        .map(|m| {
-            let mut panel = CategoryPanel {
-                title: if m == Method::Rk4 {
-                    "RK4: step dt".into()
-                } else {
-                    format!("{}: rtol", m.as_str().to_uppercase())
-                },
-                row_labels: SCENES.iter().map(|s| s.label.to_string()).collect(),
-                col_labels: params(m).iter().map(|&x| short(x)).collect(),
-                ..CategoryPanel::default()
-            };
-            for s in 0..SCENES.len() {
-                let mut row = vec![];
-                let mut text = vec![];
-                for &x in params(m) {
-                    let c = cells
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let (scene, label, method) = (t.strs("scene")?, t.strs("label")?, t.strs("method")?);
+        let (param_name, param) = (t.strs("param_name")?, t.strs("param")?);
+        let (outcome, status) = (t.strs("outcome")?, t.strs("status")?);
+        let (energy, t_reached) = (t.nums("energy_error_rel")?, t.nums("t_reached")?);
+        let scenes = distinct(&scene);
+        let rows: Vec<Option<Outcome>> = outcome.iter().map(|o| Outcome::parse(o)).collect();
+        // Only the categories that occur.
+        let used: Vec<Outcome> = Outcome::ALL
+            .into_iter()
+            .filter(|o| rows.contains(&Some(*o)))
+            .collect();
+        let index = |o: Outcome| used.iter().position(|u| *u == o);
+        let panels: Vec<CategoryPanel> = distinct(&method)
+            .into_iter()
+            .map(|m| {
+                let mine: Vec<usize> = (0..t.len()).filter(|&k| method[k] == m).collect();
+                let name = m.to_uppercase();
+                let cols = distinct(&mine.iter().map(|&k| param[k]).collect::<Vec<_>>());
+                let mut panel = CategoryPanel {
+                    title: match param_name[mine[0]] {
+                        "dt" => format!("{name}: step dt"),
+                        other => format!("{name}: {other}"),
+                    },
+                    row_labels: scenes
                         .iter()
-                        .find(|c| c.scene == s && c.method == m && c.param == x)
-                        .expect("every cell was run");
-                    match &c.run {
-                        Ok(t) => {
-                            row.push(index(Outcome::of(t)));
-                            text.push(cell_text(t));
-                        }
-                        Err(_) => {
-                            row.push(None);
-                            text.push("–".into());
+                        .map(|s| {
+                            let k = scene.iter().position(|x| x == s).unwrap_or(0);
+                            label[k].replace(';', ",")
+                        })
+                        .collect(),
+                    col_labels: cols
+                        .iter()
+                        .map(|c| parse_num(c).map_or(c.to_string(), exp))
+                        .collect(),
+                    ..CategoryPanel::default()
+                };
+                for s in &scenes {
+                    let mut row = vec![];
+                    let mut cell = vec![];
+                    for c in &cols {
+                        let k = mine
+                            .iter()
+                            .copied()
+                            .find(|&k| scene[k] == *s && param[k] == *c);
+                        match k.and_then(|k| rows[k].map(|o| (k, o))) {
+                            Some((k, o)) => {
+                                row.push(index(o));
+                                cell.push(cell_text(status[k], energy[k], t_reached[k]));
+                            }
+                            None => {
+                                row.push(None);
+                                cell.push("–".into());
+                            }
                         }
                     }
+                    panel.cells.push(row);
+                    panel.cell_text.push(cell);
                 }
-                panel.cells.push(row);
-                panel.cell_text.push(text);
-            }
-            panel
-        })
-        .collect();
-    let map = CategoryMap {
-        title: "Where each method fails (each scene run to its end, step budget 2e5)",
-        x_label: "cell: the power of ten of the energy-balance error / MgL (−5: 1e-5 to 1e-4) if \
-                  completed, else the time t it stopped",
-        y_label: "scene",
-        categories: used.iter().map(|o| (o.legend(), o.color())).collect(),
-        panels,
-    };
-    let out = figures::category_map(&map, &ctx.out.join(ID)).map_err(|e| e.to_string())?;
-    files.extend(written(ctx, &out));
-    Ok(files)
+                panel
+            })
+            .collect();
+        let map = CategoryMap {
+            title: "Where each method fails (each scene run to its end, step budget 2e5)",
+            x_label: "cell: the power of ten of the energy-balance error / MgL (−5: 1e-5 to 1e-4) \
+                      if completed, else the time t it stopped",
+            y_label: "scene",
+            categories: used.iter().map(|o| (o.legend(), o.color())).collect(),
+            panels,
+        };
+        let out = figures::category_map(&map, &ctx.stem(fig.id)).map_err(|e| e.to_string())?;
+        Ok(ctx.drawn(&out))
+    }
 }

@@ -13,6 +13,9 @@
 //! Also written: the crossover `gamma` for each `n` (where the ratio first
 //! exceeds 1, interpolated in `log gamma`) beside the rule `auto` uses
 //! ([`chain_ode::bdf_crossover_gamma`]), and BDF's wall time per step.
+//!
+//! All of it is wall times: computed only by `--timings`, into
+//! `stiffness-timing.csv` and `stiffness-crossover-timing.csv`.
 
 use std::fmt::Write as _;
 
@@ -21,9 +24,10 @@ use chain_ode::{
 };
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 
-use super::{median, write_text, written, Ctx};
-
-const ID: &str = "stiffness";
+use crate::ctx::Ctx;
+use crate::data::{distinct, exp, exp_digits, fixed};
+use crate::registry::{Figure, Make};
+use crate::timing::median;
 /// Rods.
 const RODS: [usize; 8] = [25, 50, 100, 200, 400, 800, 1600, 3200];
 /// Damping rates `gamma` (1/time).
@@ -130,119 +134,141 @@ fn cell(n: usize, gamma: f64) -> Result<Cell, String> {
     })
 }
 
-/// The `gamma` at which `ratio` first exceeds 1, interpolated in log-log.
-fn crossover(row: &[&Cell]) -> Option<f64> {
+/// The `gamma` at which the ratio first exceeds 1, interpolated in log-log,
+/// from `(gamma, ratio)` in increasing `gamma`.
+fn crossover(row: &[(f64, f64)]) -> Option<f64> {
     row.windows(2).find_map(|p| {
         let (a, b) = (p[0], p[1]);
-        let (ra, rb) = (a.ratio().ln(), b.ratio().ln());
+        let (ra, rb) = (a.1.ln(), b.1.ln());
         (ra < 0.0 && rb >= 0.0).then(|| {
             let s = -ra / (rb - ra);
-            (a.gamma.ln() + s * (b.gamma.ln() - a.gamma.ln())).exp()
+            (a.0.ln() + s * (b.0.ln() - a.0.ln())).exp()
         })
     })
 }
 
-pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let mut cells = vec![];
-    for &n in &RODS {
-        for &gamma in &GAMMAS {
-            cells.push(cell(n, gamma)?);
+pub struct Stiffness;
+
+impl Make for Stiffness {
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let mut cells = vec![];
+        for &n in &RODS {
+            for &gamma in &GAMMAS {
+                cells.push(cell(n, gamma)?);
+            }
         }
-    }
 
-    let mut csv = String::from(
-        "n,gamma,r,dopri5_status,dopri5_steps,dopri5_t_reached,dopri5_wall,dopri5_extrapolated,\
-         bdf_status,bdf_steps,bdf_rejected,bdf_jacobians,bdf_lu,bdf_wall,bdf_wall_per_step,\
-         tip_difference,ratio_dopri5_over_bdf\n",
-    );
-    for c in &cells {
-        // The tip difference only where both reached t_end.
-        let tip = if c.extrapolated {
-            f64::NAN
-        } else {
-            let (a, b) = (c.explicit.summary.tip_end, c.bdf.summary.tip_end);
-            (a[0] - b[0]).hypot(a[1] - b[1])
-        };
-        writeln!(
-            csv,
-            "{},{:e},{:e},{},{},{:.6},{:.4e},{},{},{},{},{},{},{:.4e},{:.4e},{:.2e},{:.4}",
-            c.n,
-            c.gamma,
-            c.bdf.chain.damping,
-            c.explicit.status,
-            c.explicit.stats.steps,
-            c.explicit.t_reached,
-            c.explicit_wall,
-            u8::from(c.extrapolated),
-            c.bdf.status,
-            c.bdf.stats.steps,
-            c.bdf.stats.rejected_steps,
-            c.bdf.stats.jacobian_evals,
-            c.bdf.stats.lu_factorizations,
-            c.bdf_wall,
-            c.bdf_wall / c.bdf.stats.steps.max(1) as f64,
-            tip,
-            c.ratio()
-        )
-        .unwrap();
-    }
-    let mut files = vec![write_text(ctx, &ctx.data.join(format!("{ID}.csv")), &csv)?];
-
-    let rows: Vec<Vec<&Cell>> = RODS
-        .iter()
-        .map(|&n| cells.iter().filter(|c| c.n == n).collect())
-        .collect();
-    // The measured crossover beside auto's rule (`bdf_crossover_gamma`).
-    let mut cross = String::from("n,gamma_crossover,gamma_crossover_rule,rule_over_measured\n");
-    let mut crossings = vec![];
-    for (&n, row) in RODS.iter().zip(&rows) {
-        let g = crossover(row).unwrap_or(f64::NAN);
-        if g.is_finite() {
-            crossings.push(g);
+        let mut csv = String::from(
+            "n,gamma,r,dopri5_status,dopri5_steps,dopri5_t_reached,dopri5_wall,\
+             dopri5_extrapolated,bdf_status,bdf_steps,bdf_rejected,bdf_jacobians,bdf_lu,bdf_wall,\
+             bdf_wall_per_step,tip_difference,ratio_dopri5_over_bdf\n",
+        );
+        for c in &cells {
+            // The tip difference only where both reached t_end.
+            let tip = if c.extrapolated {
+                f64::NAN
+            } else {
+                let (a, b) = (c.explicit.summary.tip_end, c.bdf.summary.tip_end);
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            };
+            writeln!(
+                csv,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                c.n,
+                exp(c.gamma),
+                exp(c.bdf.chain.damping),
+                c.explicit.status,
+                c.explicit.stats.steps,
+                fixed(c.explicit.t_reached, 6),
+                exp_digits(c.explicit_wall, 4),
+                u8::from(c.extrapolated),
+                c.bdf.status,
+                c.bdf.stats.steps,
+                c.bdf.stats.rejected_steps,
+                c.bdf.stats.jacobian_evals,
+                c.bdf.stats.lu_factorizations,
+                exp_digits(c.bdf_wall, 4),
+                exp_digits(c.bdf_wall / c.bdf.stats.steps.max(1) as f64, 4),
+                exp_digits(tip, 2),
+                fixed(c.ratio(), 4)
+            )
+            .unwrap();
         }
-        let rule = bdf_crossover_gamma(&Chain::report(n, 0.0).map_err(|e| e.to_string())?);
-        writeln!(cross, "{n},{g:.4e},{rule:.4e},{:.3}", rule / g).unwrap();
-    }
-    files.push(write_text(
-        ctx,
-        &ctx.data.join(format!("{ID}-crossover.csv")),
-        &cross,
-    )?);
+        let mut files = vec![ctx.write(&format!("{}-timing.csv", fig.id), &csv)?];
 
-    let mut plot = LinePlot::new(
-        "Where BDF pays: DOPRI5 wall time over BDF's (span d = 3, t = 1, rtol 1e-6)",
-        "damping rate γ = r / (m l²)",
-        "DOPRI5 time / BDF time",
-    );
-    plot.log_x = true;
-    plot.log_y = true;
-    for (k, (n, row)) in RODS.iter().zip(&rows).enumerate() {
-        let pts = row.iter().map(|c| (c.gamma, c.ratio())).collect();
-        plot.series
-            .push(Series::new(format!("n = {n}"), pts, Style::LinePoints).with_color(palette(k)));
+        // The measured crossover beside auto's rule (`bdf_crossover_gamma`).
+        let mut cross = String::from("n,gamma_crossover,gamma_crossover_rule,rule_over_measured\n");
+        for &n in &RODS {
+            let row: Vec<&Cell> = cells.iter().filter(|c| c.n == n).collect();
+            let pts: Vec<(f64, f64)> = row.iter().map(|c| (c.gamma, c.ratio())).collect();
+            let g = crossover(&pts).unwrap_or(f64::NAN);
+            let rule = bdf_crossover_gamma(&Chain::report(n, 0.0).map_err(|e| e.to_string())?);
+            writeln!(
+                cross,
+                "{n},{},{},{}",
+                exp_digits(g, 4),
+                exp_digits(rule, 4),
+                fixed(rule / g, 3)
+            )
+            .unwrap();
+        }
+        files.push(ctx.write(&format!("{}-crossover-timing.csv", fig.id), &cross)?);
+        Ok(files)
     }
-    plot.series.push(
-        Series::new(
-            "equal cost",
-            vec![(GAMMAS[0], 1.0), (GAMMAS[GAMMAS.len() - 1], 1.0)],
-            Style::Dashed,
-        )
-        .with_color(RGBColor(0, 0, 0)),
-    );
-    if let (Some(lo), Some(hi)) = (
-        crossings.iter().copied().reduce(f64::min),
-        crossings.iter().copied().reduce(f64::max),
-    ) {
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}-timing.csv", fig.id))?;
+        let (n, gamma, ratio) = (
+            t.strs("n")?,
+            t.nums("gamma")?,
+            t.nums("ratio_dopri5_over_bdf")?,
+        );
+        let c = ctx.read(&format!("{}-crossover-timing.csv", fig.id))?;
+        let crossings: Vec<f64> = c
+            .nums("gamma_crossover")?
+            .into_iter()
+            .filter(|g| g.is_finite())
+            .collect();
+        let rods = distinct(&n);
+        let mut plot = LinePlot::new(
+            "Where BDF pays: DOPRI5 wall time over BDF's (span d = 3, t = 1, rtol 1e-6)",
+            "damping rate γ = r / (m l²)",
+            "DOPRI5 time / BDF time",
+        );
+        plot.log_x = true;
+        plot.log_y = true;
+        for (k, rods_n) in rods.iter().enumerate() {
+            let pts = (0..t.len())
+                .filter(|&j| n[j] == *rods_n)
+                .map(|j| (gamma[j], ratio[j]))
+                .collect();
+            plot.series.push(
+                Series::new(format!("n = {rods_n}"), pts, Style::LinePoints).with_color(palette(k)),
+            );
+        }
+        let (g0, g1) = gamma
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &g| {
+                (a.0.min(g), a.1.max(g))
+            });
+        plot.series.push(
+            Series::new("equal cost", vec![(g0, 1.0), (g1, 1.0)], Style::Dashed)
+                .with_color(RGBColor(0, 0, 0)),
+        );
+        if let (Some(lo), Some(hi), [first, .., last]) = (
+            crossings.iter().copied().reduce(f64::min),
+            crossings.iter().copied().reduce(f64::max),
+            &rods[..],
+        ) {
+            plot.annotations.push(format!(
+                "crossover γ from {lo:.3} to {hi:.3} (×{:.1}) over n = {first}..{last}",
+                hi / lo,
+            ));
+        }
         plot.annotations.push(format!(
-            "crossover γ from {lo:.3} to {hi:.3} (×{:.1}) over n = {}..{}",
-            hi / lo,
-            RODS[0],
-            RODS[RODS.len() - 1]
+            "DOPRI5 beyond {EXPLICIT_BUDGET} s: extrapolated from the time reached"
         ));
+        let out = figures::line_plot(&plot, &ctx.stem(fig.id)).map_err(|e| e.to_string())?;
+        Ok(ctx.drawn(&out))
     }
-    plot.annotations
-        .push("DOPRI5 beyond 0.4 s: extrapolated from the time reached".into());
-    let out = figures::line_plot(&plot, &ctx.out.join(ID)).map_err(|e| e.to_string())?;
-    files.extend(written(ctx, &out));
-    Ok(files)
 }

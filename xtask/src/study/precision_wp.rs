@@ -3,15 +3,27 @@
 //! up to it) against the wall time and against the right-hand-side
 //! evaluations of each method, relative to a reference computed far tighter
 //! than any plotted point and confirmed by two other methods.
+//!
+//! Which points a line runs is decided by their cost (see [`sweep`]), and
+//! so by wall times: `--timings` measures them and records the decision,
+//! the plan, with the wall times in `<id>-timing.csv`; without it the
+//! points of the recorded plan are run once each, untimed and in parallel,
+//! so that `<id>.csv` (steps, evaluations, errors: no wall time) is the
+//! same to the byte whenever the physics is.
 
 use std::fmt::Write as _;
 
 use chain_ode::kinematics::tip;
-use chain_ode::{solve, Accuracy, Method, SolveOptions, Stats, Status, Trajectory};
+use chain_ode::{solve, Method, SolveOptions, Stats, Status, Trajectory};
 use falling_chain::Prepared;
 use figures::{palette, LinePlot, RGBColor, Series, Style};
+use rayon::prelude::*;
 
-use super::{median, prepare, short, write_text, written, Ctx};
+use super::{accuracy_name, at_accuracy};
+use crate::ctx::Ctx;
+use crate::data::{distinct, exp, exp_digits, num, short_err, text, Table};
+use crate::registry::{Figure, Make};
+use crate::timing::median;
 
 /// The reference: DOPRI5 at these tolerances.
 const REF_RTOL: f64 = 1e-13;
@@ -42,9 +54,20 @@ const REPEATS: usize = 3;
 /// Errors below this are drawn at it (a log axis cannot show 0).
 const DRAW_FLOOR: f64 = 1e-16;
 
+/// Where a work-precision figure evaluates its errors.
+pub enum Eval {
+    /// At the scene's end.
+    End,
+    /// At the last time before two runs started [`PERTURBATION`] apart
+    /// separate (their tip distance amplified more than
+    /// [`AMPLIFICATION_MAX`] times), or at the end if they never do;
+    /// measured for the scene and for its `r = 0` variant, and written to
+    /// `<id>-divergence.csv`.
+    BeforeSeparation,
+}
+
 /// One work-precision figure.
-struct Spec {
-    id: &'static str,
+pub struct Spec {
     scene: &'static str,
     /// Shown in the title.
     label: &'static str,
@@ -52,78 +75,90 @@ struct Spec {
     check_dt: f64,
     /// Check with RK4 at `check_dt` and `check_dt / 2`, extrapolated.
     richardson: bool,
+    eval: Eval,
 }
 
-pub fn span_d3(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let spec = Spec {
-        id: "wp-span-d3",
-        scene: "span-d3",
-        label: "span d = 3 (n = 50, r = 5e-4)",
-        check_dt: 1e-4,
-        richardson: false,
-    };
-    let p = prepare(ctx, spec.scene, &[])?;
-    let t_eval = p.options.t_end;
-    study(ctx, &spec, p, t_eval, vec![])
-}
+pub const SPAN_D3: Spec = Spec {
+    scene: "span-d3",
+    label: "span d = 3 (n = 50, r = 5e-4)",
+    check_dt: 1e-4,
+    richardson: false,
+    eval: Eval::End,
+};
 
-/// The folded scene is evaluated at the last time before two runs started
-/// [`PERTURBATION`] apart separate (their tip distance amplified more than
-/// [`AMPLIFICATION_MAX`] times), or at its end if they never do; measured
-/// here for the scene and for its `r = 0` variant, and written to
-/// `wp-folded-divergence.csv`.
-pub fn folded(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let spec = Spec {
-        id: "wp-folded",
-        scene: "folded",
-        label: "folded (n = 50, r = 1e-3)",
-        check_dt: 2e-5,
-        richardson: true,
-    };
-    let p = prepare(ctx, spec.scene, &[])?;
-    let div = divergence(&p)?;
-    let undamped = divergence(&prepare(ctx, spec.scene, &["chain.damping=0".into()])?)?;
-    let mut csv = String::from("damping,t,tip_separation,amplification\n");
-    for (r, d) in [(p.chain.damping, &div), (0.0, &undamped)] {
-        for &(t, sep) in &d.curve {
-            writeln!(csv, "{r},{t},{sep:e},{:e}", sep / PERTURBATION).unwrap();
-        }
+pub const FOLDED: Spec = Spec {
+    scene: "folded",
+    label: "folded (n = 50, r = 1e-3)",
+    check_dt: 2e-5,
+    richardson: true,
+    eval: Eval::BeforeSeparation,
+};
+
+pub const STIFF_ROPE: Spec = Spec {
+    scene: "stiff-rope",
+    label: "stiff rope (n = 100, r = 1, γ = 1389)",
+    check_dt: 3e-5,
+    richardson: false,
+    eval: Eval::End,
+};
+
+impl Make for Spec {
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let mut files = vec![];
+        let p = ctx.prepare::<&str>(self.scene, &[])?;
+        let (p, t_eval) = match self.eval {
+            Eval::End => {
+                let t_eval = p.options.t_end;
+                (p, t_eval)
+            }
+            Eval::BeforeSeparation => {
+                let div = divergence(&p)?;
+                let undamped = divergence(&ctx.prepare(self.scene, &["chain.damping=0"])?)?;
+                let mut csv = String::from("damping,t,tip_separation,amplification\n");
+                for (r, d) in [(p.chain.damping, &div), (0.0, &undamped)] {
+                    for &(t, sep) in &d.curve {
+                        writeln!(
+                            csv,
+                            "{},{},{},{}",
+                            num(r),
+                            num(t),
+                            exp(sep),
+                            exp(sep / PERTURBATION)
+                        )
+                        .unwrap();
+                    }
+                }
+                files.push(ctx.write(&format!("{}-divergence.csv", fig.id), &csv)?);
+                let t_eval = div.t_eval;
+                if t_eval < div.t_whip {
+                    return Err(format!(
+                        "{}: runs separate (t = {t_eval}) before the whip (t = {:.3})",
+                        fig.id, div.t_whip
+                    ));
+                }
+                (
+                    ctx.prepare(self.scene, &[format!("run.t_end={t_eval}")])?,
+                    t_eval,
+                )
+            }
+        };
+        files.extend(study(ctx, fig, self, p, t_eval)?);
+        Ok(files)
     }
-    let path = ctx.data.join(format!("{}-divergence.csv", spec.id));
-    let mut files = vec![write_text(ctx, &path, &csv)?];
-    let t_eval = div.t_eval;
-    if t_eval < div.t_whip {
-        return Err(format!(
-            "{}: runs separate (t = {t_eval}) before the whip (t = {:.3})",
-            spec.id, div.t_whip
-        ));
-    }
-    let p = prepare(ctx, spec.scene, &[format!("run.t_end={t_eval}")])?;
-    let fmt_div = |d: &Divergence| match d.t_separate {
-        Some(t) => format!("×{} by t = {t:.2}", short_err(AMPLIFICATION_MAX)),
-        None => format!("×{:.0}", d.max_amplification),
-    };
-    let notes = vec![format!(
-        "runs {} apart: {} (r = 0: {})",
-        short(PERTURBATION),
-        fmt_div(&div),
-        fmt_div(&undamped)
-    )];
-    files.extend(study(ctx, &spec, p, t_eval, notes)?);
-    Ok(files)
-}
 
-pub fn stiff_rope(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let spec = Spec {
-        id: "wp-stiff-rope",
-        scene: "stiff-rope",
-        label: "stiff rope (n = 100, r = 1, γ = 1389)",
-        check_dt: 3e-5,
-        richardson: false,
-    };
-    let p = prepare(ctx, spec.scene, &[])?;
-    let t_eval = p.options.t_end;
-    study(ctx, &spec, p, t_eval, vec![])
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let rows = read_rows(ctx, fig)?;
+        let notes = match self.eval {
+            Eval::End => vec![],
+            Eval::BeforeSeparation => {
+                vec![divergence_note(
+                    &ctx.read(&format!("{}-divergence.csv", fig.id))?,
+                )?]
+            }
+        };
+        let out = draw(ctx, fig, self, &rows, notes)?;
+        Ok(ctx.drawn(&out))
+    }
 }
 
 /// Size of the perturbation of the initial angles in the divergence test.
@@ -137,11 +172,15 @@ struct Divergence {
     curve: Vec<(f64, f64)>,
     /// The reference run's maximum tip speed: the whip.
     t_whip: f64,
-    /// When the tips first separate (see [`AMPLIFICATION_MAX`]), if they do.
-    t_separate: Option<f64>,
-    max_amplification: f64,
     /// The last sample time before they separate, or the end.
     t_eval: f64,
+}
+
+/// When two runs' tips first separate (see [`AMPLIFICATION_MAX`]), if they
+/// do: the index into `curve` of `(t, |tip - tip'|)`.
+fn separation(curve: &[(f64, f64)]) -> Option<usize> {
+    let limit = AMPLIFICATION_MAX * PERTURBATION;
+    curve.iter().position(|c| c.1 > limit)
 }
 
 /// Two DOPRI5 runs at the reference tolerance, one from angles perturbed by
@@ -170,21 +209,44 @@ fn divergence(p: &Prepared) -> Result<Divergence, String> {
             (sa.t, (ta[0] - tb[0]).hypot(ta[1] - tb[1]))
         })
         .collect();
-    let limit = AMPLIFICATION_MAX * PERTURBATION;
-    let first = curve.iter().position(|c| c.1 > limit);
-    let t_separate = first.map(|k| curve[k].0);
-    let t_eval = match first {
+    let t_eval = match separation(&curve) {
         // Round the sample time to the 0.01 grid it sits on.
         Some(k) => (curve[k.saturating_sub(1)].0 * 100.0).round() / 100.0,
         None => p.options.t_end,
     };
     Ok(Divergence {
         t_whip: a.summary.t_tip_speed_max,
-        t_separate,
-        max_amplification: curve.iter().map(|c| c.1).fold(0.0, f64::max) / PERTURBATION,
         t_eval,
         curve,
     })
+}
+
+/// The legend line of `<id>-divergence.csv`: how far the scene's runs (its
+/// first damping) and the `r = 0` runs separate.
+fn divergence_note(t: &Table) -> Result<String, String> {
+    let (damping, time, sep) = (t.strs("damping")?, t.nums("t")?, t.nums("tip_separation")?);
+    let fmt = |r: &str| {
+        let curve: Vec<(f64, f64)> = (0..t.len())
+            .filter(|&k| damping[k] == r)
+            .map(|k| (time[k], sep[k]))
+            .collect();
+        match separation(&curve) {
+            Some(k) => format!("×{} by t = {:.2}", short_err(AMPLIFICATION_MAX), curve[k].0),
+            None => format!(
+                "×{:.0}",
+                curve.iter().map(|c| c.1).fold(0.0, f64::max) / PERTURBATION
+            ),
+        }
+    };
+    match distinct(&damping)[..] {
+        [scene, undamped] => Ok(format!(
+            "runs {} apart: {} (r = 0: {})",
+            exp(PERTURBATION),
+            fmt(scene),
+            fmt(undamped)
+        )),
+        _ => Err(format!("{}: expected two dampings", t.name)),
+    }
 }
 
 fn reference_options(t_end: f64) -> SolveOptions {
@@ -214,56 +276,100 @@ impl Reference {
     }
 }
 
+/// Whether a point of a line runs, and if not, why: the plan that
+/// `--timings` makes from wall times and records in `<id>-timing.csv`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Plan {
+    Run,
+    /// Predicted too costly (see [`MAX_RUN`], [`LINE_BUDGET`]).
+    Cost,
+    /// Thinned: the line's first run took more than [`THIN_ABOVE`].
+    Thinned,
+    /// RK4 only: a coarser step already reached [`ERR_FLOOR`].
+    Floor,
+}
+
+impl Plan {
+    fn as_str(self) -> &'static str {
+        match self {
+            Plan::Run => "run",
+            Plan::Cost => "cost",
+            Plan::Thinned => "thinned",
+            Plan::Floor => "floor",
+        }
+    }
+
+    fn parse(s: &str) -> Result<Plan, String> {
+        [Plan::Run, Plan::Cost, Plan::Thinned, Plan::Floor]
+            .into_iter()
+            .find(|p| p.as_str() == s)
+            .ok_or_else(|| format!("unknown plan '{s}'"))
+    }
+
+    /// Why the point was not run, without wall times (those are in the
+    /// timing file's note).
+    fn note(self) -> String {
+        match self {
+            Plan::Run => String::new(),
+            Plan::Cost => format!(
+                "cost: predicted above {MAX_RUN} s per run or {LINE_BUDGET} s per line when timed"
+            ),
+            Plan::Thinned => format!("thinned: a run took > {THIN_ABOVE} s when timed"),
+            Plan::Floor => format!(
+                "a coarser dt is already at the reference's level (< {})",
+                exp(ERR_FLOOR)
+            ),
+        }
+    }
+}
+
 /// One row of the CSV: a run (or a point not run) and its errors.
 struct Point {
     method: String,
     param_name: &'static str,
     param: f64,
+    plan: Plan,
     status: String,
     t_reached: f64,
     stats: Stats,
     dim: usize,
-    repeats: usize,
-    /// The median of `walls` once every repeat has run.
-    wall: f64,
-    /// Wall times of the runs so far.
-    walls: Vec<f64>,
-    /// How to run it again (completed, timed points only).
-    rerun: Option<(Method, SolveOptions)>,
     err_tip: f64,
     err_vmax: f64,
     /// For `auto`: whether it switched to BDF.
     switched: bool,
+    /// Why it failed or was not run (no wall times).
     note: String,
+    /// Wall times of the runs so far (with `--timings`).
+    walls: Vec<f64>,
+    /// The timing file's note (with wall times).
+    timing_note: String,
+    /// How to run it again (completed, timed points only).
+    rerun: Option<(Method, SolveOptions)>,
 }
 
 impl Point {
-    fn plotted(&self) -> bool {
-        self.status == Status::Ok.as_str() && self.err_tip.is_finite()
-    }
-
     /// RHS evaluations plus one per Jacobian-vector product.
     fn rhs_equiv(&self) -> u64 {
         self.stats.rhs_evals + self.stats.jacobian_evals * self.dim as u64
     }
 
-    fn not_run(method: Method, param_name: &'static str, param: f64, note: String) -> Point {
+    fn not_run(method: Method, param: f64, plan: Plan, timing_note: String) -> Point {
         Point {
             method: method.as_str().into(),
-            param_name,
+            param_name: accuracy_name(method),
             param,
+            plan,
             status: "not_run".into(),
             t_reached: f64::NAN,
             stats: Stats::default(),
             dim: 0,
-            repeats: 0,
-            wall: f64::NAN,
-            walls: vec![],
-            rerun: None,
             err_tip: f64::NAN,
             err_vmax: f64::NAN,
             switched: false,
-            note,
+            note: plan.note(),
+            walls: vec![],
+            timing_note,
+            rerun: None,
         }
     }
 
@@ -272,7 +378,6 @@ impl Point {
         param_name: &'static str,
         param: f64,
         t: &Trajectory,
-        walls: &mut [f64],
         reference: &Reference,
     ) -> Point {
         let (err_tip, err_vmax) = if t.status.is_ok() {
@@ -288,24 +393,34 @@ impl Point {
             method,
             param_name,
             param,
+            plan: Plan::Run,
             status: t.status.as_str().into(),
             t_reached: t.t_reached,
             stats: t.stats,
             dim: 2 * t.chain.links + 1,
-            repeats: walls.len(),
-            wall: median(&mut walls.to_vec()),
-            walls: walls.to_vec(),
-            rerun: None,
             err_tip,
             err_vmax,
             switched: t.segments.len() > 1,
             note,
+            walls: vec![t.summary.wall_seconds],
+            timing_note: String::new(),
+            rerun: None,
         }
     }
 }
 
+/// The accuracies a method's line runs over: RK4's steps, the others'
+/// tolerances.
+fn params(method: Method) -> &'static [f64] {
+    if accuracy_name(method) == "dt" {
+        &RK4_DTS
+    } else {
+        &RTOLS
+    }
+}
+
 fn options_for(p: &Prepared, method: Method, param: f64) -> SolveOptions {
-    let mut o = p.options.clone().at_accuracy(method, param);
+    let mut o = at_accuracy(&p.options, method, param);
     o.output_dt = None;
     o
 }
@@ -321,8 +436,7 @@ fn repeats_for(wall: f64) -> usize {
 
 /// Runs every timed point again until it has its repeats, a round over all
 /// points at a time (so that a burst of load elsewhere on the machine falls
-/// on many points once rather than on one point every time), and takes
-/// the median.
+/// on many points once rather than on one point every time).
 fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), String> {
     for _ in 1..REPEATS_CHEAP.max(REPEATS) {
         for pt in rows.iter_mut() {
@@ -336,14 +450,11 @@ fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), String> {
             pt.walls.push(t.summary.wall_seconds);
         }
     }
-    for pt in rows.iter_mut().filter(|pt| pt.rerun.is_some()) {
-        pt.repeats = pt.walls.len();
-        pt.wall = median(&mut pt.walls.clone());
-    }
     Ok(())
 }
 
-/// One method's line: RK4 over [`RK4_DTS`], the others over [`RTOLS`].
+/// One method's line, timed (`--timings`): RK4 over [`RK4_DTS`], the
+/// others over [`RTOLS`].
 ///
 /// Points are run once each, from cheap to costly (their repeats come
 /// later, see [`repeat_interleaved`]). A point whose single run is
@@ -352,64 +463,57 @@ fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), String> {
 /// it; RK4 stops once its errors reach [`ERR_FLOOR`]; an adaptive line whose
 /// first run exceeds [`THIN_ABOVE`] s runs every third tolerance only.
 fn sweep(p: &Prepared, method: Method, reference: &Reference) -> Result<Vec<Point>, String> {
-    let fixed_step = !method.adaptive();
-    let name = method.accuracy_name();
-    let params: &[f64] = match method.accuracy() {
-        Accuracy::Step => &RK4_DTS,
-        Accuracy::Tolerance => &RTOLS,
-    };
+    let rk4 = accuracy_name(method) == "dt";
     let mut out = vec![];
     let mut spent = 0.0;
     let mut done: Vec<(f64, f64)> = vec![]; // (param, single-run wall) of completed points
-    let mut stop: Option<String> = None;
+    let mut stop: Option<(Plan, String)> = None;
     let mut thin = false;
-    for (k, &x) in params.iter().enumerate() {
-        if let Some(why) = &stop {
-            out.push(Point::not_run(method, name, x, why.clone()));
+    for (k, &x) in params(method).iter().enumerate() {
+        if let Some((plan, why)) = &stop {
+            out.push(Point::not_run(method, x, *plan, why.clone()));
             continue;
         }
         if thin && k % 3 != 0 {
-            out.push(Point::not_run(
-                method,
-                name,
-                x,
-                format!("thinned: a run takes > {THIN_ABOVE} s"),
-            ));
+            out.push(Point::not_run(method, x, Plan::Thinned, String::new()));
             continue;
         }
         let predicted = match done.as_slice() {
             [] => 0.0,
-            [.., (px, pw)] if fixed_step => pw * px / x,
+            [.., (px, pw)] if rk4 => pw * px / x,
             [(_, w0)] => w0 * 1.6,
             [.., (_, w1), (_, w2)] => w2 * (w2 / w1).clamp(1.0, 4.0),
         };
         let reps = repeats_for(predicted) as f64;
         if predicted > MAX_RUN || spent + reps * predicted > LINE_BUDGET {
             let why = format!(
-                "cost: predicted {predicted:.1} s per run (limit {MAX_RUN} s per run, \
+                "cost: predicted {predicted:.1} s per run (limit {MAX_RUN} s per run; \
                  {LINE_BUDGET} s per line)"
             );
-            out.push(Point::not_run(method, name, x, why.clone()));
-            stop = Some(why);
+            out.push(Point::not_run(method, x, Plan::Cost, why.clone()));
+            stop = Some((Plan::Cost, why));
             continue;
         }
         let o = options_for(p, method, x);
         let t = solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())?;
         let wall = t.summary.wall_seconds;
-        let mut pt = Point::from_run(method.as_str().into(), name, x, &t, &mut [wall], reference);
+        let mut pt = Point::from_run(
+            method.as_str().into(),
+            accuracy_name(method),
+            x,
+            &t,
+            reference,
+        );
         if t.status.is_ok() {
             // The repeats come later (see `repeat_interleaved`); count them now.
             spent += wall * repeats_for(wall) as f64;
             pt.rerun = Some((method, o));
-            if done.is_empty() && !fixed_step && t.summary.wall_seconds > THIN_ABOVE {
+            if done.is_empty() && !rk4 && wall > THIN_ABOVE {
                 thin = true;
             }
             done.push((x, wall));
-            if fixed_step && pt.err_tip.max(pt.err_vmax) < ERR_FLOOR {
-                stop = Some(format!(
-                    "a coarser dt is already at the reference's level (< {})",
-                    short(ERR_FLOOR)
-                ));
+            if rk4 && pt.err_tip.max(pt.err_vmax) < ERR_FLOOR {
+                stop = Some((Plan::Floor, String::new()));
             }
         }
         out.push(pt);
@@ -417,28 +521,69 @@ fn sweep(p: &Prepared, method: Method, reference: &Reference) -> Result<Vec<Poin
     Ok(out)
 }
 
-/// Relative-error text, e.g. `3e-12`.
-fn short_err(e: f64) -> String {
-    if e.is_finite() && e > 0.0 {
-        let x = 10f64.powf(e.log10().floor());
-        format!("{:.0}e{}", (e / x).floor(), x.log10().round() as i64)
-    } else {
-        format!("{e}")
+/// Every line as the plan in `<id>-timing.csv` says, each point run once,
+/// untimed, in parallel.
+fn planned(
+    ctx: &Ctx,
+    fig: &Figure,
+    p: &Prepared,
+    reference: &Reference,
+) -> Result<Vec<Point>, String> {
+    let file = format!("{}-timing.csv", fig.id);
+    let t = ctx.read(&file)?;
+    let (method, param, plan) = (t.strs("method")?, t.strs("param")?, t.strs("plan")?);
+    let mut jobs = vec![];
+    for m in Method::ALL {
+        for &x in params(m) {
+            let k = (0..t.len())
+                .find(|&k| method[k] == m.as_str() && param[k] == exp(x))
+                .ok_or_else(|| {
+                    format!(
+                        "figures/data/{file} has no plan for {m} at {} {}: run \
+                         `cargo xtask figures --only {} --timings`",
+                        accuracy_name(m),
+                        exp(x),
+                        fig.id
+                    )
+                })?;
+            jobs.push((m, x, Plan::parse(plan[k])?));
+        }
     }
+    ctx.pool()?.install(|| {
+        jobs.par_iter()
+            .map(|&(m, x, plan)| {
+                if plan != Plan::Run {
+                    return Ok(Point::not_run(m, x, plan, String::new()));
+                }
+                let t = solve(&p.chain, &p.state, m, &options_for(p, m, x))
+                    .map_err(|e| e.to_string())?;
+                Ok(Point::from_run(
+                    m.as_str().into(),
+                    accuracy_name(m),
+                    x,
+                    &t,
+                    reference,
+                ))
+            })
+            .collect()
+    })
 }
 
 fn study(
     ctx: &Ctx,
+    fig: &Figure,
     spec: &Spec,
     p: Prepared,
     t_eval: f64,
-    notes: Vec<String>,
 ) -> Result<Vec<String>, String> {
-    // The reference and its two checks.
+    // The reference and its checks.
     let ref_opts = reference_options(t_eval);
-    let r = solve(&p.chain, &p.state, Method::Dopri5, &ref_opts).map_err(|e| e.to_string())?;
+    let run = |method: Method, o: &SolveOptions| -> Result<Trajectory, String> {
+        solve(&p.chain, &p.state, method, o).map_err(|e| e.to_string())
+    };
+    let r = run(Method::Dopri5, &ref_opts)?;
     if !r.status.is_ok() {
-        return Err(format!("{}: the reference run ended {}", spec.id, r.status));
+        return Err(format!("{}: the reference run ended {}", fig.id, r.status));
     }
     let reference = Reference {
         tip: r.summary.tip_end,
@@ -450,13 +595,8 @@ fn study(
         "rtol",
         REF_RTOL,
         &r,
-        &mut [r.summary.wall_seconds],
         &reference,
     )];
-    let mut agreement = vec![];
-    let run = |method: Method, o: &SolveOptions| -> Result<Trajectory, String> {
-        solve(&p.chain, &p.state, method, o).map_err(|e| e.to_string())
-    };
     // RK4 with a small step, and (where that alone is not close enough)
     // Richardson's extrapolation from it and its half: (16 y(h/2) - y(h)) / 15.
     let coarse = run(
@@ -466,17 +606,13 @@ fn study(
             ..ref_opts.clone()
         },
     )?;
-    let mut pt = Point::from_run(
+    rows.push(Point::from_run(
         "check-rk4".into(),
         "dt",
         spec.check_dt,
         &coarse,
-        &mut [coarse.summary.wall_seconds],
         &reference,
-    );
-    let mut rk4_text = format!("RK4 dt {}", short(spec.check_dt));
-    let mut rk4_err = pt.err_tip.max(pt.err_vmax);
-    rows.push(pt);
+    ));
     if spec.richardson {
         let h2 = spec.check_dt / 2.0;
         let fine = run(
@@ -486,15 +622,13 @@ fn study(
                 ..ref_opts.clone()
             },
         )?;
-        pt = Point::from_run(
+        rows.push(Point::from_run(
             "check-rk4".into(),
             "dt",
             h2,
             &fine,
-            &mut [fine.summary.wall_seconds],
             &reference,
-        );
-        rows.push(pt);
+        ));
         let x = |f: f64, c: f64| (16.0 * f - c) / 15.0;
         let (sf, sc) = (&fine.summary, &coarse.summary);
         let tip = [
@@ -502,27 +636,22 @@ fn study(
             x(sf.tip_end[1], sc.tip_end[1]),
         ];
         let vmax = x(sf.tip_speed_max, sc.tip_speed_max);
-        let err_tip =
-            (tip[0] - reference.tip[0]).hypot(tip[1] - reference.tip[1]) / reference.length;
-        let err_vmax = (vmax - reference.vmax).abs() / reference.vmax;
         rows.push(Point {
             method: "check-rk4-richardson".into(),
-            err_tip,
-            err_vmax,
+            err_tip: (tip[0] - reference.tip[0]).hypot(tip[1] - reference.tip[1])
+                / reference.length,
+            err_vmax: (vmax - reference.vmax).abs() / reference.vmax,
             note: format!(
                 "(16 y(dt/2) - y(dt)) / 15 from dt {} and {}",
-                short(spec.check_dt),
-                short(h2)
+                exp(spec.check_dt),
+                exp(h2)
             ),
             status: "ok".into(),
-            wall: coarse.summary.wall_seconds + fine.summary.wall_seconds,
-            repeats: 1,
-            ..Point::not_run(Method::Rk4, "dt", spec.check_dt, String::new())
+            plan: Plan::Run,
+            walls: vec![coarse.summary.wall_seconds + fine.summary.wall_seconds],
+            ..Point::not_run(Method::Rk4, spec.check_dt, Plan::Run, String::new())
         });
-        rk4_text = "RK4 (extrapolated)".to_string();
-        rk4_err = err_tip.max(err_vmax);
     }
-    agreement.push(format!("{rk4_text} to {}", short_err(rk4_err)));
     let bdf = run(
         Method::Bdf,
         &SolveOptions {
@@ -531,35 +660,35 @@ fn study(
             ..ref_opts.clone()
         },
     )?;
-    let pt = Point::from_run(
+    rows.push(Point::from_run(
         "check-bdf".into(),
         "rtol",
         CHECK_BDF_RTOL,
         &bdf,
-        &mut [bdf.summary.wall_seconds],
         &reference,
-    );
-    agreement.push(format!(
-        "BDF {} to {}",
-        short(CHECK_BDF_RTOL),
-        short_err(pt.err_tip.max(pt.err_vmax))
     ));
-    rows.push(pt);
 
-    // The lines.
-    for method in Method::ALL {
-        rows.extend(sweep(&p, method, &reference)?);
+    // The lines: timed, or as the timing file's plan says.
+    if ctx.timings {
+        for method in Method::ALL {
+            rows.extend(sweep(&p, method, &reference)?);
+        }
+        repeat_interleaved(&p, &mut rows)?;
+    } else {
+        rows.extend(planned(ctx, fig, &p, &reference)?);
     }
-    repeat_interleaved(&p, &mut rows)?;
 
-    let mut files = vec![write_csv(ctx, spec, t_eval, &reference, &rows)?];
-    let out = draw(ctx, spec, t_eval, &rows, &agreement, notes)?;
-    files.extend(written(ctx, &out));
+    let mut files = vec![write_csv(ctx, fig, spec, t_eval, &reference, &rows)?];
+    if ctx.timings {
+        files.push(write_timing(ctx, fig, &rows)?);
+    }
     Ok(files)
 }
 
+/// `<id>.csv`: every run's steps, evaluations and errors (no wall time).
 fn write_csv(
     ctx: &Ctx,
+    fig: &Figure,
     spec: &Spec,
     t_eval: f64,
     reference: &Reference,
@@ -567,81 +696,179 @@ fn write_csv(
 ) -> Result<String, String> {
     let mut csv = String::from(
         "scene,t_eval,method,param_name,param,status,t_reached,steps,rejected_steps,rhs_evals,\
-         jacobian_evals,lu_factorizations,rhs_equiv,repeats,wall_median,err_tip,err_vmax,\
+         jacobian_evals,lu_factorizations,rhs_equiv,switched,err_tip,err_vmax,\
          tip_ref_x,tip_ref_y,vmax_ref,note\n",
     );
     for pt in rows {
         let s = &pt.stats;
         writeln!(
             csv,
-            "{},{t_eval},{},{},{:e},{},{},{},{},{},{},{},{},{},{:e},{:e},{:e},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             spec.scene,
+            num(t_eval),
             pt.method,
             pt.param_name,
-            pt.param,
+            exp(pt.param),
             pt.status,
-            pt.t_reached,
+            num(pt.t_reached),
             s.steps,
             s.rejected_steps,
             s.rhs_evals,
             s.jacobian_evals,
             s.lu_factorizations,
             pt.rhs_equiv(),
-            pt.repeats,
-            pt.wall,
-            pt.err_tip,
-            pt.err_vmax,
-            reference.tip[0],
-            reference.tip[1],
-            reference.vmax,
-            pt.note.replace(',', ";")
+            u8::from(pt.switched),
+            exp(pt.err_tip),
+            exp(pt.err_vmax),
+            num(reference.tip[0]),
+            num(reference.tip[1]),
+            num(reference.vmax),
+            text(&pt.note)
         )
         .unwrap();
     }
-    write_text(ctx, &ctx.data.join(format!("{}.csv", spec.id)), &csv)
+    ctx.write(&format!("{}.csv", fig.id), &csv)
+}
+
+/// `<id>-timing.csv`: the plan, and the median wall time of each run.
+fn write_timing(ctx: &Ctx, fig: &Figure, rows: &[Point]) -> Result<String, String> {
+    let mut csv = String::from("method,param_name,param,plan,repeats,wall_median,note\n");
+    for pt in rows {
+        let wall = if pt.walls.is_empty() {
+            String::new()
+        } else {
+            exp_digits(median(&mut pt.walls.clone()), 3)
+        };
+        writeln!(
+            csv,
+            "{},{},{},{},{},{wall},{}",
+            pt.method,
+            pt.param_name,
+            exp(pt.param),
+            pt.plan.as_str(),
+            pt.walls.len(),
+            text(&pt.timing_note)
+        )
+        .unwrap();
+    }
+    ctx.write(&format!("{}-timing.csv", fig.id), &csv)
+}
+
+/// A row of `<id>.csv` as the drawing needs it, with its wall time from
+/// `<id>-timing.csv`.
+struct Drawn {
+    method: String,
+    param_name: String,
+    param: f64,
+    status: String,
+    switched: bool,
+    err_tip: f64,
+    err_vmax: f64,
+    rhs_equiv: f64,
+    wall: f64,
+}
+
+impl Drawn {
+    fn plotted(&self) -> bool {
+        self.status == Status::Ok.as_str() && self.err_tip.is_finite()
+    }
+    fn err(&self) -> f64 {
+        self.err_tip.max(self.err_vmax)
+    }
+}
+
+/// `<id>.csv` joined with the wall times of `<id>-timing.csv` by method and
+/// accuracy; the evaluation time.
+fn read_rows(ctx: &Ctx, fig: &Figure) -> Result<(f64, Vec<Drawn>), String> {
+    let t = ctx.read(&format!("{}.csv", fig.id))?;
+    let w = ctx.read(&format!("{}-timing.csv", fig.id))?;
+    let (wm, wp, wall) = (w.strs("method")?, w.strs("param")?, w.nums("wall_median")?);
+    let (method, param_name, param) = (t.strs("method")?, t.strs("param_name")?, t.strs("param")?);
+    let (status, switched) = (t.strs("status")?, t.strs("switched")?);
+    let (err_tip, err_vmax, rhs) = (
+        t.nums("err_tip")?,
+        t.nums("err_vmax")?,
+        t.nums("rhs_equiv")?,
+    );
+    let t_eval = t.nums("t_eval")?.first().copied().unwrap_or(f64::NAN);
+    let rows = (0..t.len())
+        .map(|k| {
+            let wall = (0..w.len())
+                .find(|&j| wm[j] == method[k] && wp[j] == param[k])
+                .map_or(f64::NAN, |j| wall[j]);
+            Ok(Drawn {
+                method: method[k].to_string(),
+                param_name: param_name[k].to_string(),
+                param: crate::data::parse_num(param[k])?,
+                status: status[k].to_string(),
+                switched: switched[k] == "1",
+                err_tip: err_tip[k],
+                err_vmax: err_vmax[k],
+                rhs_equiv: rhs[k],
+                wall,
+            })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok((t_eval, rows))
 }
 
 /// `a … b` of the parameters of `pts` (or the one, or a list of two).
-fn span(pts: &[&Point]) -> String {
+fn span(pts: &[&Drawn]) -> String {
     match pts {
         [] => String::new(),
-        [a] => short(a.param),
-        [a, b] => format!("{}, {}", short(a.param), short(b.param)),
-        [a, .., b] => format!("{} … {}", short(a.param), short(b.param)),
+        [a] => exp(a.param),
+        [a, b] => format!("{}, {}", exp(a.param), exp(b.param)),
+        [a, .., b] => format!("{} … {}", exp(a.param), exp(b.param)),
     }
 }
 
 /// The legend entry of a method's line: what ran, what failed.
-fn method_label(method: Method, rows: &[Point]) -> (String, Vec<&Point>) {
-    let mine = |pt: &&Point| pt.method == method.as_str();
-    let ok: Vec<&Point> = rows.iter().filter(mine).filter(|pt| pt.plotted()).collect();
-    let failed: Vec<&Point> = rows
+fn method_label<'a>(method: &str, rows: &'a [Drawn]) -> (String, Vec<&'a Drawn>) {
+    let mine: Vec<&Drawn> = rows.iter().filter(|pt| pt.method == method).collect();
+    let ok: Vec<&Drawn> = mine.iter().copied().filter(|pt| pt.plotted()).collect();
+    let failed: Vec<&Drawn> = mine
         .iter()
-        .filter(mine)
+        .copied()
         .filter(|pt| pt.status != "ok" && pt.status != "not_run")
         .collect();
-    let name = method.as_str().to_uppercase();
-    let param = method.accuracy_name();
-    let mut label = if method == Method::Auto && !ok.is_empty() && ok.iter().all(|pt| !pt.switched)
-    {
-        format!("{name} (never switched: = DOPRI5)")
-    } else if ok.is_empty() {
-        format!("{name}: no run completed")
-    } else {
-        format!("{name} ({param} {})", span(&ok))
-    };
+    let name = method.to_uppercase();
+    let param = mine.first().map_or("", |pt| pt.param_name.as_str());
+    let mut label =
+        if method == Method::Auto.as_str() && !ok.is_empty() && ok.iter().all(|pt| !pt.switched) {
+            format!("{name} (never switched: = DOPRI5)")
+        } else if ok.is_empty() {
+            format!("{name}: no run completed")
+        } else {
+            format!("{name} ({param} {})", span(&ok))
+        };
     if !failed.is_empty() {
         label.push_str(&format!("; fails at {}", span(&failed)));
     }
     (label, ok)
 }
 
+/// How far the checks agree with the reference, from their rows.
+fn agreement(rows: &[Drawn]) -> Result<(f64, Vec<String>), String> {
+    let find = |m: &str| rows.iter().find(|r| r.method == m);
+    let missing = |m: &str| format!("no '{m}' row");
+    let reference = find("reference-dopri5").ok_or_else(|| missing("reference-dopri5"))?;
+    let rk4 = match find("check-rk4-richardson") {
+        Some(r) => format!("RK4 (extrapolated) to {}", short_err(r.err())),
+        None => {
+            let r = find("check-rk4").ok_or_else(|| missing("check-rk4"))?;
+            format!("RK4 dt {} to {}", exp(r.param), short_err(r.err()))
+        }
+    };
+    let bdf = find("check-bdf").ok_or_else(|| missing("check-bdf"))?;
+    let bdf = format!("BDF {} to {}", exp(bdf.param), short_err(bdf.err()));
+    Ok((reference.param, vec![rk4, bdf]))
+}
+
 fn draw(
     ctx: &Ctx,
+    fig: &Figure,
     spec: &Spec,
-    t_eval: f64,
-    rows: &[Point],
-    agreement: &[String],
+    (t_eval, rows): &(f64, Vec<Drawn>),
     notes: Vec<String>,
 ) -> Result<figures::Output, String> {
     let mut left = LinePlot::new(
@@ -656,14 +883,15 @@ fn draw(
     );
     let floor = |e: f64| e.max(DRAW_FLOOR);
     for (i, method) in Method::ALL.into_iter().enumerate() {
-        let (label, pts) = method_label(method, rows);
+        let (label, pts) = method_label(method.as_str(), rows);
         let color = palette(i);
-        let wall = |pt: &Point| pt.wall;
-        let work = |pt: &Point| pt.rhs_equiv() as f64;
+        let wall = |pt: &Drawn| pt.wall;
+        let work = |pt: &Drawn| pt.rhs_equiv;
         for (plot, x, label) in [
-            (&mut left, &wall as &dyn Fn(&Point) -> f64, label.as_str()),
+            (&mut left, &wall as &dyn Fn(&Drawn) -> f64, label.as_str()),
             (&mut right, &work, ""),
         ] {
+            let pts: Vec<&&Drawn> = pts.iter().filter(|pt| x(pt).is_finite()).collect();
             let tip: Vec<(f64, f64)> = pts.iter().map(|pt| (x(pt), floor(pt.err_tip))).collect();
             let vmax: Vec<(f64, f64)> = pts.iter().map(|pt| (x(pt), floor(pt.err_vmax))).collect();
             let vstyle = if vmax.len() > 1 {
@@ -696,11 +924,12 @@ fn draw(
     right
         .series
         .push(Series::new("max tip speed |Δv_max| / v_max", vec![], Style::Dashed).with_color(key));
+    let (ref_rtol, agree) = agreement(rows)?;
     let mut text = vec![format!(
         "reference: DOPRI5 rtol {}, agrees with",
-        short(REF_RTOL)
+        exp(ref_rtol)
     )];
-    text.push(format!("  {}", agreement.join(", ")));
+    text.push(format!("  {}", agree.join(", ")));
     text.extend(notes);
     for line in text {
         right
@@ -708,6 +937,5 @@ fn draw(
             .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
     }
     let title = format!("Work-precision: {}", spec.label);
-    figures::line_plot_pair(&left, &right, &title, &ctx.out.join(spec.id))
-        .map_err(|e| e.to_string())
+    figures::line_plot_pair(&left, &right, &title, &ctx.stem(fig.id)).map_err(|e| e.to_string())
 }

@@ -10,12 +10,15 @@
 //! grows like n^4, so `auto` runs DOP853 on the coarse levels and the O(n)
 //! BDF on the fine ones.
 
+use std::fmt::Write as _;
+
 use falling_chain::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 use rayon::prelude::*;
 
-use super::{figure_files, num, pool, scene, stem, write_data};
-use crate::study::Ctx;
+use crate::ctx::Ctx;
+use crate::data::{distinct, num, text};
+use crate::registry::{Figure, Make};
 
 const ID: &str = "convergence-n";
 const SCENES: [&str; 3] = ["span-d1", "span-d3", "span-d5"];
@@ -29,9 +32,7 @@ const OUTPUT_DT: f64 = 0.01;
 const TOLS: [f64; 2] = [1e-2, 1e-3];
 
 fn run(ctx: &Ctx, name: &str, links: usize) -> Result<Level, String> {
-    let s = scene(ctx, name)?
-        .with_overrides(&[format!("run.output_dt={OUTPUT_DT}")])
-        .map_err(|e| e.to_string())?;
+    let s = ctx.scene(name, &[format!("run.output_dt={OUTPUT_DT}")])?;
     let level = run_level(&s, links, Some(METHOD), Some(RTOL)).map_err(|e| e.to_string())?;
     if !level.summary.is_ok() {
         return Err(format!(
@@ -40,8 +41,8 @@ fn run(ctx: &Ctx, name: &str, links: usize) -> Result<Level, String> {
         ));
     }
     println!(
-        "  {ID}: {name} n = {links}: vmax {:.6}, {} RHS, {:.2} s",
-        level.summary.tip_speed_max, level.summary.rhs_evals, level.summary.wall_seconds
+        "  {ID}: {name} n = {links}: vmax {:.6}, {} RHS",
+        level.summary.tip_speed_max, level.summary.rhs_evals
     );
     Ok(level)
 }
@@ -51,209 +52,217 @@ fn cell(n: Option<usize>) -> String {
     n.map_or("none".to_string(), |n| n.to_string())
 }
 
-pub fn make(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let pool = pool(ctx)?;
-    let jobs: Vec<(usize, usize)> = (0..SCENES.len())
-        .flat_map(|s| LADDER.iter().rev().map(move |&n| (s, n)))
-        .collect();
-    let first: Vec<(usize, Level)> = pool.install(|| {
-        jobs.par_iter()
-            .map(|&(s, n)| Ok((s, run(ctx, SCENES[s], n)?)))
-            .collect::<Result<Vec<_>, String>>()
-    })?;
-    let mut ladders: Vec<Vec<Level>> = vec![vec![]; SCENES.len()];
-    for (s, level) in first {
-        ladders[s].push(level);
-    }
-    for l in &mut ladders {
-        l.sort_by_key(Level::links);
-    }
-    let change = |l: &[Level]| {
-        let k = l.len();
-        (l[k - 1].summary.tip_speed_max / l[k - 2].summary.tip_speed_max - 1.0).abs()
-    };
-    let last_doubling: Vec<f64> = ladders.iter().map(|l| change(l)).collect();
-    let more: Vec<usize> = (0..SCENES.len())
-        .filter(|&s| last_doubling[s] > GO_ON)
-        .collect();
-    let extra: Vec<(usize, Level)> = pool.install(|| {
-        more.par_iter()
-            .map(|&s| Ok((s, run(ctx, SCENES[s], FINEST)?)))
-            .collect::<Result<Vec<_>, String>>()
-    })?;
-    let mut final_change = last_doubling.clone();
-    for (s, level) in extra {
-        ladders[s].push(level);
-        final_change[s] = change(&ladders[s]);
-    }
+pub struct Convergence;
 
-    // The data.
-    let mut csv = String::from(
-        "scene,links,mass,damping,bending_viscosity,damping_rate,status,tip_speed_max,\
+impl Make for Convergence {
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let pool = ctx.pool()?;
+        let jobs: Vec<(usize, usize)> = (0..SCENES.len())
+            .flat_map(|s| LADDER.iter().rev().map(move |&n| (s, n)))
+            .collect();
+        let first: Vec<(usize, Level)> = pool.install(|| {
+            jobs.par_iter()
+                .map(|&(s, n)| Ok((s, run(ctx, SCENES[s], n)?)))
+                .collect::<Result<Vec<_>, String>>()
+        })?;
+        let mut ladders: Vec<Vec<Level>> = vec![vec![]; SCENES.len()];
+        for (s, level) in first {
+            ladders[s].push(level);
+        }
+        for l in &mut ladders {
+            l.sort_by_key(Level::links);
+        }
+        let change = |l: &[Level]| {
+            let k = l.len();
+            (l[k - 1].summary.tip_speed_max / l[k - 2].summary.tip_speed_max - 1.0).abs()
+        };
+        let last_doubling: Vec<f64> = ladders.iter().map(|l| change(l)).collect();
+        let more: Vec<usize> = (0..SCENES.len())
+            .filter(|&s| last_doubling[s] > GO_ON)
+            .collect();
+        let extra: Vec<(usize, Level)> = pool.install(|| {
+            more.par_iter()
+                .map(|&s| Ok((s, run(ctx, SCENES[s], FINEST)?)))
+                .collect::<Result<Vec<_>, String>>()
+        })?;
+        let mut final_change = last_doubling.clone();
+        for (s, level) in extra {
+            ladders[s].push(level);
+            final_change[s] = change(&ladders[s]);
+        }
+
+        // The data.
+        let mut csv = String::from(
+            "scene,links,mass,damping,bending_viscosity,damping_rate,status,tip_speed_max,\
          t_tip_speed_max,tip_end_x,tip_end_y,reference_links,dev_tip_speed_max,dev_tip_end,\
          dev_tip_path,rhs_evals\n",
-    );
-    let mut summary = String::from(
-        "scene,reference_links,last_doubling_change,n_vmax_1pct,n_vmax_0.1pct,n_path_1pct,\
-         n_path_0.1pct,n_vmax_and_tip_end_1pct,n_vmax_and_tip_end_0.1pct,scaling\n",
-    );
-    let mut notes = vec![];
-    let mut short = vec![];
-    for (s, ladder) in ladders.iter().enumerate() {
-        let reference = ladder.last().expect("a ladder");
-        for l in ladder {
-            let d = Deviation::between(l, reference);
-            let c = &l.chain;
-            csv.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        );
+        let mut summary = String::from(
+            "scene,reference_links,last_doubling_change,n_vmax_1pct,n_vmax_0.1pct,n_path_1pct,\
+         n_path_0.1pct,n_vmax_and_tip_end_1pct,n_vmax_and_tip_end_0.1pct,total_mass,\
+         bending_viscosity,scaling\n",
+        );
+        for (s, ladder) in ladders.iter().enumerate() {
+            let reference = ladder.last().expect("a ladder");
+            for l in ladder {
+                let d = Deviation::between(l, reference);
+                let c = &l.chain;
+                writeln!(
+                    csv,
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    SCENES[s],
+                    c.links,
+                    num(c.mass),
+                    num(c.damping),
+                    num(c.damping * c.rod_length()),
+                    num(c.damping_rate()),
+                    l.summary.status,
+                    num(l.summary.tip_speed_max),
+                    num(l.summary.t_tip_speed_max),
+                    num(l.summary.tip_end[0]),
+                    num(l.summary.tip_end[1]),
+                    reference.links(),
+                    num(d.tip_speed_max),
+                    num(d.tip_end),
+                    num(d.tip_path),
+                    l.summary.rhs_evals
+                )
+                .unwrap();
+            }
+            let at = |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol);
+            let path = |tol: f64| smallest_adequate(ladder, |d| d.tip_path < tol);
+            let both =
+                |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol && d.tip_end < tol);
+            // The continuum held fixed: the scene's own chain.
+            let base = ctx
+                .scene::<&str>(SCENES[s], &[])?
+                .chain()
+                .map_err(|e| e.to_string())?;
+            writeln!(
+                summary,
+                "{},{},{},{},{},{},{},{},{},{},{},{}",
                 SCENES[s],
-                c.links,
-                num(c.mass),
-                num(c.damping),
-                num(c.damping * c.rod_length()),
-                num(c.damping_rate()),
-                l.summary.status,
-                num(l.summary.tip_speed_max),
-                num(l.summary.t_tip_speed_max),
-                num(l.summary.tip_end[0]),
-                num(l.summary.tip_end[1]),
                 reference.links(),
-                num(d.tip_speed_max),
-                num(d.tip_end),
-                num(d.tip_path),
-                l.summary.rhs_evals
+                num(final_change[s]),
+                cell(at(TOLS[0])),
+                cell(at(TOLS[1])),
+                cell(path(TOLS[0])),
+                cell(path(TOLS[1])),
+                cell(both(TOLS[0])),
+                cell(both(TOLS[1])),
+                num(base.total_mass()),
+                num(base.damping * base.rod_length()),
+                text(SCALING)
+            )
+            .unwrap();
+            println!(
+                "  {ID}: {}: n = {} (1%), {} (0.1%); path: {}, {}",
+                SCENES[s],
+                cell(at(TOLS[0])),
+                cell(at(TOLS[1])),
+                cell(path(TOLS[0])),
+                cell(path(TOLS[1])),
+            );
+        }
+        Ok(vec![
+            ctx.write(&format!("{}.csv", fig.id), &csv)?,
+            ctx.write(&format!("{}-summary.csv", fig.id), &summary)?,
+        ])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let (scene, links, vmax) = (t.strs("scene")?, t.nums("links")?, t.nums("tip_speed_max")?);
+        let reference = t.nums("reference_links")?;
+        let (dev_v, dev_path) = (t.nums("dev_tip_speed_max")?, t.nums("dev_tip_path")?);
+        let sm = ctx.read(&format!("{}-summary.csv", fig.id))?;
+        let (sm_scene, n1, n01) = (
+            sm.strs("scene")?,
+            sm.strs("n_vmax_1pct")?,
+            sm.strs("n_vmax_0.1pct")?,
+        );
+        let (mass, eta) = (sm.nums("total_mass")?, sm.nums("bending_viscosity")?);
+        let scenes = distinct(&scene);
+        let ladder = |s: &str| -> Vec<usize> { (0..t.len()).filter(|&k| scene[k] == s).collect() };
+        let longest = scenes
+            .iter()
+            .map(|s| ladder(s))
+            .max_by_key(Vec::len)
+            .unwrap_or_default();
+        let x_label = format!(
+            "n (rods: {})",
+            longest
+                .iter()
+                .map(|&k| links[k].to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        let mut left = LinePlot::new("maximum tip speed", &x_label, "max tip speed |v|");
+        left.log_x = true;
+        let mut right = LinePlot::new(
+            "deviation from the finest n",
+            &x_label,
+            "relative deviation",
+        );
+        right.log_x = true;
+        right.log_y = true;
+        let gray = RGBColor(120, 120, 120);
+        let top = vmax.iter().copied().fold(0.0, f64::max);
+        for (s, name) in scenes.iter().enumerate() {
+            let rows = ladder(name);
+            left.series.push(
+                Series::new(
+                    *name,
+                    rows.iter().map(|&k| (links[k], vmax[k])).collect(),
+                    Style::LinePoints,
+                )
+                .with_color(palette(s)),
+            );
+            let below: Vec<usize> = rows
+                .into_iter()
+                .filter(|&k| links[k] != reference[k])
+                .collect();
+            right.series.push(
+                Series::new(
+                    format!("{name}: max tip speed"),
+                    below.iter().map(|&k| (links[k], dev_v[k])).collect(),
+                    Style::LinePoints,
+                )
+                .with_color(palette(s)),
+            );
+            right.series.push(
+                Series::new(
+                    format!("{name}: tip path / L"),
+                    below.iter().map(|&k| (links[k], dev_path[k])).collect(),
+                    Style::Dashed,
+                )
+                .with_color(palette(s)),
+            );
+        }
+        for (tol, label) in [(TOLS[0], "1% and 0.1%"), (TOLS[1], "")] {
+            right.series.push(
+                Series::new(label, vec![(20.0, tol), (4000.0, tol)], Style::Dashed)
+                    .with_color(gray),
+            );
+        }
+        right.x_range = Some((20.0, 4000.0));
+        left.x_range = Some((20.0, 4000.0));
+        left.annotations = vec!["n for max tip speed within 1% / 0.1%:".to_string()];
+        for k in 0..sm.len() {
+            left.annotations
+                .push(format!("{}: {} / {}", sm_scene[k], n1[k], n01[k]));
+        }
+        if !sm.is_empty() {
+            left.annotations.push(format!(
+                "m = M/n, r = eta n/L: M = {}, eta = {:.1e}",
+                mass[0], eta[0]
             ));
         }
-        let at = |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol);
-        let path = |tol: f64| smallest_adequate(ladder, |d| d.tip_path < tol);
-        let both =
-            |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol && d.tip_end < tol);
-        summary.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},\"{}\"\n",
-            SCENES[s],
-            reference.links(),
-            num(final_change[s]),
-            cell(at(TOLS[0])),
-            cell(at(TOLS[1])),
-            cell(path(TOLS[0])),
-            cell(path(TOLS[1])),
-            cell(both(TOLS[0])),
-            cell(both(TOLS[1])),
-            SCALING
-        ));
-        short.push(format!(
-            "{}: {} / {}",
-            SCENES[s],
-            cell(at(TOLS[0])),
-            cell(at(TOLS[1]))
-        ));
-        notes.push(format!(
-            "{}: n = {} (1%), {} (0.1%); path: {}, {}",
-            SCENES[s],
-            cell(at(TOLS[0])),
-            cell(at(TOLS[1])),
-            cell(path(TOLS[0])),
-            cell(path(TOLS[1])),
-        ));
+        left.y_range = Some((0.0, 1.9 * top));
+        right.y_range = Some((1e-5, 1e3));
+        let title = "Convergence in n at fixed total mass and bending viscosity (auto, rtol 1e-9)";
+        let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(fig.id))
+            .map_err(|e| format!("{}: {e}", fig.id))?;
+        Ok(ctx.drawn(&out))
     }
-    let mut files = vec![
-        write_data(ctx, &format!("{ID}.csv"), &csv)?,
-        write_data(ctx, &format!("{ID}-summary.csv"), &summary)?,
-    ];
-
-    // The figure, from the data above.
-    let x_label = format!(
-        "n (rods: {})",
-        ladders
-            .iter()
-            .max_by_key(|l| l.len())
-            .expect("a ladder")
-            .iter()
-            .map(|l| l.links().to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
-    let mut left = LinePlot::new("maximum tip speed", &x_label, "max tip speed |v|");
-    left.log_x = true;
-    let mut right = LinePlot::new(
-        "deviation from the finest n",
-        &x_label,
-        "relative deviation",
-    );
-    right.log_x = true;
-    right.log_y = true;
-    let gray = RGBColor(120, 120, 120);
-    let top = ladders
-        .iter()
-        .flatten()
-        .map(|l| l.summary.tip_speed_max)
-        .fold(0.0, f64::max);
-    for (s, ladder) in ladders.iter().enumerate() {
-        let reference = ladder.last().expect("a ladder");
-        left.series.push(
-            Series::new(
-                SCENES[s],
-                ladder
-                    .iter()
-                    .map(|l| (l.links() as f64, l.summary.tip_speed_max))
-                    .collect(),
-                Style::LinePoints,
-            )
-            .with_color(palette(s)),
-        );
-        let below = &ladder[..ladder.len() - 1];
-        let dev: Vec<Deviation> = below
-            .iter()
-            .map(|l| Deviation::between(l, reference))
-            .collect();
-        right.series.push(
-            Series::new(
-                format!("{}: max tip speed", SCENES[s]),
-                below
-                    .iter()
-                    .zip(&dev)
-                    .map(|(l, d)| (l.links() as f64, d.tip_speed_max))
-                    .collect(),
-                Style::LinePoints,
-            )
-            .with_color(palette(s)),
-        );
-        right.series.push(
-            Series::new(
-                format!("{}: tip path / L", SCENES[s]),
-                below
-                    .iter()
-                    .zip(&dev)
-                    .map(|(l, d)| (l.links() as f64, d.tip_path))
-                    .collect(),
-                Style::Dashed,
-            )
-            .with_color(palette(s)),
-        );
-    }
-    for (tol, label) in [(TOLS[0], "1% and 0.1%"), (TOLS[1], "")] {
-        right.series.push(
-            Series::new(label, vec![(20.0, tol), (4000.0, tol)], Style::Dashed).with_color(gray),
-        );
-    }
-    right.x_range = Some((20.0, 4000.0));
-    left.x_range = Some((20.0, 4000.0));
-    left.annotations = vec!["n for max tip speed within 1% / 0.1%:".to_string()];
-    left.annotations.extend(short);
-    let base = scene(ctx, SCENES[0])?.chain().map_err(|e| e.to_string())?;
-    left.annotations.push(format!(
-        "m = M/n, r = eta n/L: M = {}, eta = {:.1e}",
-        base.total_mass(),
-        base.damping * base.rod_length()
-    ));
-    left.y_range = Some((0.0, 1.9 * top));
-    right.y_range = Some((1e-5, 1e3));
-    let title = "Convergence in n at fixed total mass and bending viscosity (auto, rtol 1e-9)";
-    figures::line_plot_pair(&left, &right, title, &stem(ctx, ID))
-        .map_err(|e| format!("{ID}: {e}"))?;
-    for n in &notes {
-        println!("  {ID}: {n}");
-    }
-    files.extend(figure_files(ID));
-    Ok(files)
 }

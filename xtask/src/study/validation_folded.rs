@@ -10,6 +10,7 @@
 //! offset of about `sqrt(2 l / g)`. Both are `O(1/n)` apart; the data carry
 //! both, the figures use the first.
 
+use std::fmt::Write as _;
 use std::sync::OnceLock;
 
 use chain_ode::analysis::{first_time_below, folded_law, pivot_forces, refined, tip_track};
@@ -17,8 +18,14 @@ use chain_ode::{solve, Method, SolveOptions, Start, Trajectory, Vec2};
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 use rayon::prelude::*;
 
-use super::{figure_files, num, pool, scene, short, stem, write_data};
-use crate::study::Ctx;
+use crate::ctx::Ctx;
+use crate::data::{distinct, fixed, num, opt};
+use crate::registry::{Figure, Make};
+
+/// A long per-sample cell: six decimals (quantities of order one).
+fn short(x: f64) -> String {
+    fixed(x, 6)
+}
 
 const LINKS: [usize; 4] = [50, 100, 200, 400];
 const XIS: [f64; 2] = [0.5, 0.9];
@@ -55,13 +62,11 @@ static FOLDED: OnceLock<Result<Vec<FoldedRun>, String>> = OnceLock::new();
 fn folded_runs(ctx: &Ctx) -> Result<&'static [FoldedRun], String> {
     FOLDED
         .get_or_init(|| {
-            let base = scene(ctx, "folded")?
-                .with_overrides(&["chain.damping=0"])
-                .map_err(|e| e.to_string())?;
+            let base = ctx.scene("folded", &["chain.damping=0"])?;
             let chain = base.chain().map_err(|e| e.to_string())?;
             let p0 = base.start().anchor();
             let tau = (chain.length / chain.gravity).sqrt();
-            pool(ctx)?
+            ctx.pool()?
                 .install(|| {
                     LINKS
                         .par_iter()
@@ -94,11 +99,10 @@ fn folded_runs(ctx: &Ctx) -> Result<&'static [FoldedRun], String> {
                                 .position(|(t, _, v)| *t > 0.5 * tau && v[1] >= 0.0)
                                 .unwrap_or(track.len());
                             println!(
-                                "  folded n = {n}: vmax {:.4} at t = {:.4}, {} steps, {:.2} s",
+                                "  folded n = {n}: vmax {:.4} at t = {:.4}, {} steps",
                                 traj.summary.tip_speed_max,
                                 traj.summary.t_tip_speed_max,
                                 traj.stats.steps,
-                                traj.summary.wall_seconds
                             );
                             Ok(FoldedRun { traj, track, fall })
                         })
@@ -122,168 +126,211 @@ fn speed_at(curve: &[(f64, f64, f64)], x: f64) -> Option<f64> {
     })
 }
 
-pub fn make_folded(ctx: &Ctx) -> Result<Vec<String>, String> {
-    const ID: &str = "folded-vs-analytic";
-    let runs = folded_runs(ctx)?;
-    let (length, g) = (runs[0].length(), runs[0].gravity());
-    let vs = (g * length).sqrt();
-    let tau = (length / g).sqrt();
+/// Points of the law's curves: `xi` from 0 to [`LAW_TO`].
+const LAW_POINTS: usize = 2000;
+const LAW_TO: f64 = 0.9999;
 
-    let mut curve_csv = String::from("links,t,x_over_L,v_over_sqrt_gL,v_law_over_sqrt_gL\n");
-    let mut times_csv = String::from(
-        "links,xi,t_from_start_height,t_from_pivot_height,t_law,rel_from_start_height,\
-         rel_from_pivot_height,speed_rel_at_xi,max_speed_rel_from_0.05L_to_xi\n",
-    );
-    let mut left = LinePlot::new(
-        "tip speed against fall distance",
-        "x / L (fall of the free end from its start)",
-        "|v| / sqrt(g L)",
-    );
-    let mut right = LinePlot::new(
-        "time to fall x: chain against the law",
-        "n (rods)",
-        "t(x) / t_law(x) - 1  (%)",
-    );
-    let mut rel: Vec<Vec<(f64, f64, f64)>> = vec![vec![]; XIS.len()];
-    let mut notes = vec![];
-    for (i, run) in runs.iter().enumerate() {
-        let n = run.traj.chain.links;
-        let curve = run.fall_curve();
-        for &(t, x, v) in &curve {
-            let law = if x < length {
-                short(folded_law::speed(x.max(0.0), length, g) / vs)
-            } else {
-                String::new()
-            };
-            curve_csv.push_str(&format!(
-                "{n},{},{},{},{law}\n",
-                short(t),
-                short(x / length),
-                short(v / vs)
-            ));
-        }
-        left.series.push(
-            Series::line(
-                format!("n = {n}"),
-                curve
-                    .iter()
-                    .map(|&(_, x, v)| (x / length, v / vs))
-                    .collect(),
-            )
-            .with_color(palette(i)),
+pub struct FoldedVsAnalytic;
+
+impl Make for FoldedVsAnalytic {
+    /// `folded-vs-analytic.csv` (the fall of each n), `-times.csv` (times to
+    /// L/2 and 0.9 L against the law) and `-law.csv` (the law's and free
+    /// fall's speed against `xi`).
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
+        let runs = folded_runs(ctx)?;
+        let (length, g) = (runs[0].length(), runs[0].gravity());
+        let vs = (g * length).sqrt();
+        let tau = (length / g).sqrt();
+
+        let mut curve_csv = String::from("links,t,x_over_L,v_over_sqrt_gL,v_law_over_sqrt_gL\n");
+        let mut times_csv = String::from(
+            "links,xi,t_from_start_height,t_from_pivot_height,t_law,rel_from_start_height,\
+             rel_from_pivot_height,speed_rel_at_xi,max_speed_rel_from_0.05L_to_xi,\
+             t_law_over_sqrt_L_over_g\n",
         );
-        let y0 = run.track[0].1[1];
-        for (k, &xi) in XIS.iter().enumerate() {
-            let x = xi * length;
-            let from_start = first_time_below(&run.track, y0 - x)
-                .ok_or_else(|| format!("{ID}: n = {n} never fell {xi} L"))?;
-            let from_pivot = first_time_below(&run.track, run.traj.anchor[1] - x)
-                .ok_or_else(|| format!("{ID}: n = {n} never fell below {xi} L"))?;
-            let law = folded_law::time(x, length, g);
-            let speed = speed_at(&curve, x).unwrap_or(f64::NAN);
-            let law_v = folded_law::speed(x, length, g);
-            let worst = curve
-                .iter()
-                .filter(|c| c.1 >= 0.05 * length && c.1 <= x)
-                .map(|c| (c.2 / folded_law::speed(c.1, length, g) - 1.0).abs())
-                .fold(0.0, f64::max);
-            times_csv.push_str(&format!(
-                "{n},{xi},{},{},{},{},{},{},{}\n",
-                num(from_start),
-                num(from_pivot),
-                num(law),
-                num(from_start / law - 1.0),
-                num(from_pivot / law - 1.0),
-                num(speed / law_v - 1.0),
-                num(worst)
-            ));
-            rel[k].push((n as f64, from_start / law - 1.0, from_pivot / law - 1.0));
-            if xi == 0.5 {
-                notes.push(format!(
-                    "n = {n}: t(L/2) {:+.3}%, |v/v_law - 1| <= {:.2}% to L/2",
-                    100.0 * (from_start / law - 1.0),
-                    100.0 * worst
-                ));
+        for run in runs {
+            let n = run.traj.chain.links;
+            let curve = run.fall_curve();
+            for &(t, x, v) in &curve {
+                let law = if x < length {
+                    short(folded_law::speed(x.max(0.0), length, g) / vs)
+                } else {
+                    String::new()
+                };
+                writeln!(
+                    curve_csv,
+                    "{n},{},{},{},{law}",
+                    short(t),
+                    short(x / length),
+                    short(v / vs)
+                )
+                .unwrap();
+            }
+            let y0 = run.track[0].1[1];
+            for &xi in &XIS {
+                let x = xi * length;
+                let from_start = first_time_below(&run.track, y0 - x)
+                    .ok_or_else(|| format!("{id}: n = {n} never fell {xi} L"))?;
+                let from_pivot = first_time_below(&run.track, run.traj.anchor[1] - x)
+                    .ok_or_else(|| format!("{id}: n = {n} never fell below {xi} L"))?;
+                let law = folded_law::time(x, length, g);
+                let speed = speed_at(&curve, x).unwrap_or(f64::NAN);
+                let law_v = folded_law::speed(x, length, g);
+                let worst = curve
+                    .iter()
+                    .filter(|c| c.1 >= 0.05 * length && c.1 <= x)
+                    .map(|c| (c.2 / folded_law::speed(c.1, length, g) - 1.0).abs())
+                    .fold(0.0, f64::max);
+                writeln!(
+                    times_csv,
+                    "{n},{xi},{},{},{},{},{},{},{},{}",
+                    num(from_start),
+                    num(from_pivot),
+                    num(law),
+                    num(from_start / law - 1.0),
+                    num(from_pivot / law - 1.0),
+                    num(speed / law_v - 1.0),
+                    num(worst),
+                    num(law / tau)
+                )
+                .unwrap();
+                if xi == 0.5 {
+                    println!(
+                        "  {id}: n = {n}: t(L/2) {:+.3}%, |v/v_law - 1| <= {:.2}% to L/2",
+                        100.0 * (from_start / law - 1.0),
+                        100.0 * worst
+                    );
+                }
             }
         }
-    }
-    let black = RGBColor(0, 0, 0);
-    let gray = RGBColor(120, 120, 120);
-    let law_curve: Vec<(f64, f64)> = (0..=2000)
-        .map(|k| {
-            let xi = 0.9999 * k as f64 / 2000.0;
-            (xi, folded_law::speed(xi * length, length, g) / vs)
-        })
-        .collect();
-    left.series.push(
-        Series::new("law: v^2 = g x (2L - x)/(L - x)", law_curve, Style::Dashed).with_color(black),
-    );
-    left.series.push(
-        Series::new(
-            "free fall: v^2 = 2 g x",
-            (0..=100)
-                .map(|k| {
-                    let xi = k as f64 / 100.0;
-                    (xi, folded_law::free_fall_speed(xi * length, g) / vs)
-                })
-                .collect(),
-            Style::Dashed,
-        )
-        .with_color(gray),
-    );
-    let top = runs
-        .iter()
-        .flat_map(|r| r.fall_curve())
-        .map(|c| c.2 / vs)
-        .fold(0.0, f64::max);
-    left.y_range = Some((0.0, 1.05 * top));
-    left.x_range = Some((0.0, 1.0));
-    for (k, &xi) in XIS.iter().enumerate() {
-        let label = if xi == 0.5 { "L/2" } else { "0.9 L" };
-        right.series.push(
-            Series::new(
-                format!("{label}, x from the free end's start"),
-                rel[k].iter().map(|r| (r.0, 100.0 * r.1)).collect(),
-                Style::LinePoints,
+        let mut law_csv = String::from("xi,v_law_over_sqrt_gL,v_free_fall_over_sqrt_gL\n");
+        for k in 0..=LAW_POINTS {
+            let xi = LAW_TO * k as f64 / LAW_POINTS as f64;
+            writeln!(
+                law_csv,
+                "{},{},{}",
+                short(xi),
+                short(folded_law::speed(xi * length, length, g) / vs),
+                short(folded_law::free_fall_speed(xi * length, g) / vs)
             )
-            .with_color(palette(k)),
+            .unwrap();
+        }
+        Ok(vec![
+            ctx.write(&format!("{id}.csv"), &curve_csv)?,
+            ctx.write(&format!("{id}-times.csv"), &times_csv)?,
+            ctx.write(&format!("{id}-law.csv"), &law_csv)?,
+        ])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
+        let c = ctx.read(&format!("{id}.csv"))?;
+        let (links, x, v) = (
+            c.strs("links")?,
+            c.nums("x_over_L")?,
+            c.nums("v_over_sqrt_gL")?,
         );
-        right.series.push(
+        let tm = ctx.read(&format!("{id}-times.csv"))?;
+        let (t_links, t_xi) = (tm.nums("links")?, tm.strs("xi")?);
+        let (rel_start, rel_pivot) = (
+            tm.nums("rel_from_start_height")?,
+            tm.nums("rel_from_pivot_height")?,
+        );
+        let t_law = tm.nums("t_law_over_sqrt_L_over_g")?;
+        let law = ctx.read(&format!("{id}-law.csv"))?;
+        let (law_xi, law_v, free_v) = (
+            law.nums("xi")?,
+            law.nums("v_law_over_sqrt_gL")?,
+            law.nums("v_free_fall_over_sqrt_gL")?,
+        );
+
+        let mut left = LinePlot::new(
+            "tip speed against fall distance",
+            "x / L (fall of the free end from its start)",
+            "|v| / sqrt(g L)",
+        );
+        let mut right = LinePlot::new(
+            "time to fall x: chain against the law",
+            "n (rods)",
+            "t(x) / t_law(x) - 1  (%)",
+        );
+        for (i, n) in distinct(&links).into_iter().enumerate() {
+            left.series.push(
+                Series::line(
+                    format!("n = {n}"),
+                    (0..c.len())
+                        .filter(|&k| links[k] == n)
+                        .map(|k| (x[k], v[k]))
+                        .collect(),
+                )
+                .with_color(palette(i)),
+            );
+        }
+        let black = RGBColor(0, 0, 0);
+        let gray = RGBColor(120, 120, 120);
+        let pairs = |ys: &[f64]| law_xi.iter().copied().zip(ys.iter().copied()).collect();
+        left.series.push(
             Series::new(
-                format!("{label}, x from the pivot's height"),
-                rel[k].iter().map(|r| (r.0, 100.0 * r.2)).collect(),
+                "law: v^2 = g x (2L - x)/(L - x)",
+                pairs(&law_v),
                 Style::Dashed,
             )
-            .with_color(palette(k)),
+            .with_color(black),
         );
+        left.series.push(
+            Series::new("free fall: v^2 = 2 g x", pairs(&free_v), Style::Dashed).with_color(gray),
+        );
+        let top = v.iter().copied().fold(0.0, f64::max);
+        left.y_range = Some((0.0, 1.05 * top));
+        left.x_range = Some((0.0, 1.0));
+        let mut title_law = vec![];
+        for (k, xi) in distinct(&t_xi).into_iter().enumerate() {
+            let rows: Vec<usize> = (0..tm.len()).filter(|&j| t_xi[j] == xi).collect();
+            title_law.push(t_law[rows[0]]);
+            let label = if xi == "0.5" { "L/2" } else { "0.9 L" };
+            right.series.push(
+                Series::new(
+                    format!("{label}, x from the free end's start"),
+                    rows.iter()
+                        .map(|&j| (t_links[j], 100.0 * rel_start[j]))
+                        .collect(),
+                    Style::LinePoints,
+                )
+                .with_color(palette(k)),
+            );
+            right.series.push(
+                Series::new(
+                    format!("{label}, x from the pivot's height"),
+                    rows.iter()
+                        .map(|&j| (t_links[j], 100.0 * rel_pivot[j]))
+                        .collect(),
+                    Style::Dashed,
+                )
+                .with_color(palette(k)),
+            );
+        }
+        right.series.push(
+            Series::new("+-0.5%", vec![(0.0, 0.5), (420.0, 0.5)], Style::Dashed).with_color(gray),
+        );
+        right.series.push(
+            Series::new("", vec![(0.0, -0.5), (420.0, -0.5)], Style::Dashed).with_color(gray),
+        );
+        right
+            .series
+            .push(Series::new("", vec![(0.0, 0.0), (420.0, 0.0)], Style::Line).with_color(black));
+        right.x_range = Some((0.0, 420.0));
+        right.y_range = Some((-2.0, 4.0));
+        let [half, most] = title_law[..] else {
+            return Err(format!("{id}-times.csv: expected two fall distances"));
+        };
+        let title = format!(
+            "Folded chain, r = 0: the law's t(L/2) = {half:.4} sqrt(L/g), t(0.9 L) = {most:.4} sqrt(L/g)"
+        );
+        let out = figures::line_plot_pair(&left, &right, &title, &ctx.stem(id))
+            .map_err(|e| format!("{id}: {e}"))?;
+        Ok(ctx.drawn(&out))
     }
-    right.series.push(
-        Series::new("+-0.5%", vec![(0.0, 0.5), (420.0, 0.5)], Style::Dashed).with_color(gray),
-    );
-    right
-        .series
-        .push(Series::new("", vec![(0.0, -0.5), (420.0, -0.5)], Style::Dashed).with_color(gray));
-    right
-        .series
-        .push(Series::new("", vec![(0.0, 0.0), (420.0, 0.0)], Style::Line).with_color(black));
-    right.x_range = Some((0.0, 420.0));
-    right.y_range = Some((-2.0, 4.0));
-    let mut files = vec![
-        write_data(ctx, &format!("{ID}.csv"), &curve_csv)?,
-        write_data(ctx, &format!("{ID}-times.csv"), &times_csv)?,
-    ];
-    let title = format!(
-        "Folded chain, r = 0: the law's t(L/2) = {:.4} sqrt(L/g), t(0.9 L) = {:.4} sqrt(L/g)",
-        folded_law::time(0.5 * length, length, g) / tau,
-        folded_law::time(0.9 * length, length, g) / tau
-    );
-    figures::line_plot_pair(&left, &right, &title, &stem(ctx, ID))
-        .map_err(|e| format!("{ID}: {e}"))?;
-    for n in &notes {
-        println!("  {ID}: {n}");
-    }
-    files.extend(figure_files(ID));
-    Ok(files)
 }
 
 /// Width (time units) of the centred window of the running mean of the
@@ -319,234 +366,282 @@ fn running_mean(pts: &[(f64, f64)]) -> Vec<Option<f64>> {
         .collect()
 }
 
-pub fn make_support(ctx: &Ctx) -> Result<Vec<String>, String> {
-    const ID: &str = "support-force";
-    let runs = folded_runs(ctx)?;
-    // The catenary scene for comparison, as the scene runs it (adaptive).
-    let span = scene(ctx, "span-d3")?
-        .with_overrides(&[
-            "run.method=\"dopri5\"",
-            "run.rtol=1e-9",
-            "run.atol=1e-11",
-            "run.output_dt=0.002",
-        ])
-        .map_err(|e| e.to_string())?;
-    let span_traj = span
-        .prepare()
-        .and_then(|p| p.solve())
-        .map_err(|e| e.to_string())?;
-    if !span_traj.status.is_ok() {
-        return Err(format!("{ID}: span-d3 status {}", span_traj.status));
-    }
+/// Points of the law's curve of the support force: `xi` from 0 to 0.97.
+const FORCE_LAW_POINTS: usize = 1000;
+const FORCE_LAW_TO: f64 = 0.97;
 
-    // Columns: the pivot's force on rod 1 (= minus the chain's pull on P0),
-    // its running mean, the law's value and running mean at the measured xi,
-    // and the chain's vertical momentum from the force's impulse,
-    // P_y(t) = integral (F_y - M g) dt, against the law's -rho v (L - x)/2.
-    let mut csv = String::from(
-        "scene,links,t,xi,pivot_force_x_over_Mg,pivot_force_y_over_Mg,\
-         running_mean_y_over_Mg,law_over_Mg,law_running_mean_over_Mg,\
-         momentum_y_over_M_sqrt_gL,law_momentum_y_over_M_sqrt_gL\n",
-    );
-    let mut left = LinePlot::new(
-        "folded chain, r = 0",
-        "xi = x / L (fall of the free end from its start)",
-        "pull on P0, downward / (M g)",
-    );
-    let mut right = LinePlot::new("against time", "t", "pull on P0 / (M g)");
-    let light = RGBColor(190, 190, 190);
-    let mut momentum_notes = vec![];
-    let mut printed = vec![];
-    for (i, run) in runs.iter().enumerate() {
-        let chain = &run.traj.chain;
-        let (weight, length, g) = (chain.weight(), chain.length, chain.gravity);
-        let vs = (g * length).sqrt();
-        let forces = &pivot_forces(&run.traj)[..run.fall];
-        let y0 = run.track[0].1[1];
-        let xi: Vec<f64> = run.track[..run.fall]
-            .iter()
-            .map(|p| (y0 - p.1[1]) / length)
-            .collect();
-        let fy: Vec<(f64, f64)> = forces.iter().map(|(t, f)| (*t, f[1] / weight)).collect();
-        let law: Vec<(f64, f64)> = fy
-            .iter()
-            .zip(&xi)
-            .map(|(p, &x)| (p.0, folded_law::support_force(x)))
-            .collect();
-        let mean = running_mean(&fy);
-        let law_mean = running_mean(&law);
-        let (mut impulse, mut worst_mean, mut worst_p): (f64, f64, f64) = (0.0, 0.0, 0.0);
-        let mut pts = vec![];
-        for k in 0..fy.len() {
-            if k > 0 {
-                impulse += 0.5 * (fy[k].0 - fy[k - 1].0) * (fy[k].1 + fy[k - 1].1 - 2.0);
+pub struct SupportForce;
+
+impl Make for SupportForce {
+    /// `support-force.csv`: the pivot force at every sample of the folded
+    /// falls and of the span d = 3 scene; `support-force-law.csv`: the law.
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
+        let runs = folded_runs(ctx)?;
+        // The catenary scene for comparison, as the scene runs it (adaptive).
+        let span = ctx.scene(
+            "span-d3",
+            &[
+                "run.method=\"dopri5\"",
+                "run.rtol=1e-9",
+                "run.atol=1e-11",
+                "run.output_dt=0.002",
+            ],
+        )?;
+        let span_traj = span
+            .prepare()
+            .and_then(|p| p.solve())
+            .map_err(|e| e.to_string())?;
+        if !span_traj.status.is_ok() {
+            return Err(format!("{id}: span-d3 status {}", span_traj.status));
+        }
+
+        // Columns: the pivot's force on rod 1 (= minus the chain's pull on
+        // P0), its running mean, the law's value and running mean at the
+        // measured xi, and the chain's vertical momentum from the force's
+        // impulse, P_y(t) = integral (F_y - M g) dt, against the law's
+        // -rho v (L - x)/2.
+        let mut csv = String::from(
+            "scene,links,t,xi,pivot_force_x_over_Mg,pivot_force_y_over_Mg,\
+             running_mean_y_over_Mg,law_over_Mg,law_running_mean_over_Mg,\
+             momentum_y_over_M_sqrt_gL,law_momentum_y_over_M_sqrt_gL\n",
+        );
+        for run in runs {
+            let chain = &run.traj.chain;
+            let (weight, length, g) = (chain.weight(), chain.length, chain.gravity);
+            let vs = (g * length).sqrt();
+            let forces = &pivot_forces(&run.traj)[..run.fall];
+            let y0 = run.track[0].1[1];
+            let xi: Vec<f64> = run.track[..run.fall]
+                .iter()
+                .map(|p| (y0 - p.1[1]) / length)
+                .collect();
+            let fy: Vec<(f64, f64)> = forces.iter().map(|(t, f)| (*t, f[1] / weight)).collect();
+            let law: Vec<(f64, f64)> = fy
+                .iter()
+                .zip(&xi)
+                .map(|(p, &x)| (p.0, folded_law::support_force(x)))
+                .collect();
+            let mean = running_mean(&fy);
+            let law_mean = running_mean(&law);
+            let (mut impulse, mut worst_mean, mut worst_p): (f64, f64, f64) = (0.0, 0.0, 0.0);
+            for k in 0..fy.len() {
+                if k > 0 {
+                    impulse += 0.5 * (fy[k].0 - fy[k - 1].0) * (fy[k].1 + fy[k - 1].1 - 2.0);
+                }
+                // Momentum over M sqrt(g L): g * impulse (in units of M g) / sqrt(g L).
+                let p = impulse * g / vs;
+                let law_p = -0.5
+                    * folded_law::speed((xi[k] * length).clamp(0.0, 0.999_999 * length), length, g)
+                    / vs
+                    * (1.0 - xi[k]);
+                writeln!(
+                    csv,
+                    "folded,{},{},{},{},{},{},{},{},{},{}",
+                    chain.links,
+                    short(fy[k].0),
+                    short(xi[k]),
+                    short(forces[k].1[0] / weight),
+                    short(fy[k].1),
+                    opt(mean[k], short),
+                    short(law[k].1),
+                    opt(law_mean[k], short),
+                    short(p),
+                    short(law_p)
+                )
+                .unwrap();
+                if let (Some(m), Some(lm)) = (mean[k], law_mean[k]) {
+                    if (0.05..=0.75).contains(&xi[k]) {
+                        worst_mean = worst_mean.max((m / lm - 1.0).abs());
+                    }
+                }
+                if xi[k] <= 0.75 {
+                    worst_p = worst_p.max((p - law_p).abs());
+                }
             }
-            // Momentum over M sqrt(g L): g * impulse(in units of M g) / sqrt(g L).
-            let p = impulse * g / vs;
-            let law_p = -0.5
-                * folded_law::speed((xi[k] * length).clamp(0.0, 0.999_999 * length), length, g)
-                / vs
-                * (1.0 - xi[k]);
-            let cell = |x: Option<f64>| x.map_or(String::new(), short);
-            csv.push_str(&format!(
-                "folded,{},{},{},{},{},{},{},{},{},{}\n",
+            // The momentum from the impulse against the law's at xi = 0.5.
+            let half = xi.iter().position(|&x| x >= 0.5).unwrap_or(xi.len() - 1);
+            let p_half = impulse_at(&fy, half) * g / vs;
+            let law_half =
+                -0.5 * folded_law::speed(xi[half] * length, length, g) / vs * (1.0 - xi[half]);
+            let (lo, hi) = fy
+                .iter()
+                .zip(&xi)
+                .filter(|(_, &x)| (0.4..=0.6).contains(&x))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, (p, _)| {
+                    (a.0.min(p.1), a.1.max(p.1))
+                });
+            println!(
+                "  {id}: n = {}: running mean within {:.1}% of the law's for 0.05 <= xi <= 0.75; \
+                 momentum from the impulse at xi = 0.5: {:+.2}% of the law's, within {:.4} \
+                 M sqrt(g L) of it to xi = 0.75; raw force in [{lo:.2}, {hi:.2}] M g for \
+                 0.4 <= xi <= 0.6",
                 chain.links,
-                short(fy[k].0),
-                short(xi[k]),
-                short(forces[k].1[0] / weight),
-                short(fy[k].1),
-                cell(mean[k]),
-                short(law[k].1),
-                cell(law_mean[k]),
-                short(p),
-                short(law_p)
-            ));
-            if let (Some(m), Some(lm)) = (mean[k], law_mean[k]) {
-                if (0.05..=0.75).contains(&xi[k]) {
-                    worst_mean = worst_mean.max((m / lm - 1.0).abs());
-                }
-                if xi[k] <= 0.95 {
-                    pts.push((xi[k], m));
-                }
-            }
-            if xi[k] <= 0.75 {
-                worst_p = worst_p.max((p - law_p).abs());
-            }
-        }
-        // The momentum from the impulse against the law's at xi = 0.5.
-        let half = xi.iter().position(|&x| x >= 0.5).unwrap_or(xi.len() - 1);
-        let p_half = impulse_at(&fy, half) * g / vs;
-        let law_half =
-            -0.5 * folded_law::speed(xi[half] * length, length, g) / vs * (1.0 - xi[half]);
-        momentum_notes.push(format!(
-            "{:+.1}% (n = {})",
-            100.0 * (p_half / law_half - 1.0),
-            chain.links
-        ));
-        let (lo, hi) = fy
-            .iter()
-            .zip(&xi)
-            .filter(|(_, &x)| (0.4..=0.6).contains(&x))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, (p, _)| {
-                (a.0.min(p.1), a.1.max(p.1))
-            });
-        printed.push(format!(
-            "n = {}: running mean within {:.1}% of the law's for 0.05 <= xi <= 0.75; \
-             momentum from the impulse at xi = 0.5: {:+.2}% of the law's, within {:.4} \
-             M sqrt(g L) of it to xi = 0.75; raw force in [{lo:.2}, {hi:.2}] M g for \
-             0.4 <= xi <= 0.6",
-            chain.links,
-            100.0 * worst_mean,
-            100.0 * (p_half / law_half - 1.0),
-            worst_p,
-        ));
-        if chain.links == 100 {
-            // The raw force of one n, to show the clicks the means smooth.
-            left.series.insert(
-                0,
-                Series::line(
-                    "n = 100, raw",
-                    fy.iter()
-                        .zip(&xi)
-                        .filter(|(_, &x)| x <= 0.85)
-                        .map(|(p, &x)| (x, p.1))
-                        .collect(),
-                )
-                .with_color(light),
+                100.0 * worst_mean,
+                100.0 * (p_half / law_half - 1.0),
+                worst_p,
             );
         }
-        if SHOWN.contains(&chain.links) {
-            left.series.push(
-                Series::line(format!("n = {}, mean", chain.links), pts).with_color(palette(i)),
-            );
+        let chain = &span_traj.chain;
+        let weight = chain.weight();
+        let forces = pivot_forces(&span_traj);
+        for (t, f) in &forces {
+            writeln!(
+                csv,
+                "span-d3,{},{},,{},{},,,,,",
+                chain.links,
+                short(*t),
+                short(f[0] / weight),
+                short(f[1] / weight)
+            )
+            .unwrap();
         }
-        if i + 1 == runs.len() {
-            right.series.push(
-                Series::line(
-                    format!("folded, n = {} (mean)", chain.links),
-                    fy.iter()
-                        .zip(&mean)
-                        .zip(&xi)
-                        .filter(|(_, &x)| x <= 0.95)
-                        .filter_map(|((p, m), _)| m.map(|m| (p.0, m)))
-                        .collect(),
-                )
-                .with_color(palette(i)),
-            );
+        println!(
+            "  {id}: span-d3 at t = 0+: pull ({:.4}, {:.4}) M g",
+            -forces[0].1[0] / weight,
+            forces[0].1[1] / weight
+        );
+        let mut law_csv = String::from("xi,law_over_Mg\n");
+        for k in 0..=FORCE_LAW_POINTS {
+            let xi = FORCE_LAW_TO * k as f64 / FORCE_LAW_POINTS as f64;
+            writeln!(
+                law_csv,
+                "{},{}",
+                short(xi),
+                short(folded_law::support_force(xi))
+            )
+            .unwrap();
         }
+        Ok(vec![
+            ctx.write(&format!("{id}.csv"), &csv)?,
+            ctx.write(&format!("{id}-law.csv"), &law_csv)?,
+        ])
     }
-    let black = RGBColor(0, 0, 0);
-    left.series.push(
-        Series::new(
-            "law",
-            (0..=1000)
-                .map(|k| {
-                    let xi = 0.97 * k as f64 / 1000.0;
-                    (xi, folded_law::support_force(xi))
-                })
-                .collect(),
-            Style::Dashed,
-        )
-        .with_color(black),
-    );
-    left.x_range = Some((0.0, 1.0));
-    left.y_range = Some((0.0, 8.0));
-    left.annotations = vec![
-        format!("mean: over {WINDOW} time units"),
-        "momentum at xi = 0.5".to_string(),
-        "against the law's:".to_string(),
-    ];
-    left.annotations.extend(momentum_notes);
 
-    let chain = &span_traj.chain;
-    let weight = chain.weight();
-    let forces = pivot_forces(&span_traj);
-    for (t, f) in &forces {
-        csv.push_str(&format!(
-            "span-d3,{},{},,{},{},,,,,\n",
-            chain.links,
-            short(*t),
-            short(f[0] / weight),
-            short(f[1] / weight)
-        ));
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
+        let d = ctx.read(&format!("{id}.csv"))?;
+        let (scene, links, t, xi) = (
+            d.strs("scene")?,
+            d.strs("links")?,
+            d.nums("t")?,
+            d.nums("xi")?,
+        );
+        let (fx, fy) = (
+            d.nums("pivot_force_x_over_Mg")?,
+            d.nums("pivot_force_y_over_Mg")?,
+        );
+        let (mean, law_mean) = (
+            d.nums("running_mean_y_over_Mg")?,
+            d.nums("law_running_mean_over_Mg")?,
+        );
+        let (p, law_p) = (
+            d.nums("momentum_y_over_M_sqrt_gL")?,
+            d.nums("law_momentum_y_over_M_sqrt_gL")?,
+        );
+        let law = ctx.read(&format!("{id}-law.csv"))?;
+        let (law_xi, law_f) = (law.nums("xi")?, law.nums("law_over_Mg")?);
+
+        let mut left = LinePlot::new(
+            "folded chain, r = 0",
+            "xi = x / L (fall of the free end from its start)",
+            "pull on P0, downward / (M g)",
+        );
+        let mut right = LinePlot::new("against time", "t", "pull on P0 / (M g)");
+        let light = RGBColor(190, 190, 190);
+        let mut momentum_notes = vec![];
+        let folded: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "folded").collect();
+        let ns = distinct(&folded.iter().map(|&k| links[k]).collect::<Vec<_>>());
+        for (i, n) in ns.iter().enumerate() {
+            let rows: Vec<usize> = folded.iter().copied().filter(|&k| links[k] == *n).collect();
+            // The momentum from the impulse against the law's at xi = 0.5.
+            if let Some(&h) = rows.iter().find(|&&k| xi[k] >= 0.5).or(rows.last()) {
+                momentum_notes.push(format!(
+                    "{:+.1}% (n = {n})",
+                    100.0 * (p[h] / law_p[h] - 1.0)
+                ));
+            }
+            if *n == "100" {
+                // The raw force of one n, to show the clicks the means smooth.
+                left.series.insert(
+                    0,
+                    Series::line(
+                        "n = 100, raw",
+                        rows.iter()
+                            .filter(|&&k| xi[k] <= 0.85)
+                            .map(|&k| (xi[k], fy[k]))
+                            .collect(),
+                    )
+                    .with_color(light),
+                );
+            }
+            let averaged: Vec<usize> = rows
+                .iter()
+                .copied()
+                .filter(|&k| mean[k].is_finite() && law_mean[k].is_finite() && xi[k] <= 0.95)
+                .collect();
+            if SHOWN.iter().any(|s| s.to_string() == *n) {
+                left.series.push(
+                    Series::line(
+                        format!("n = {n}, mean"),
+                        averaged.iter().map(|&k| (xi[k], mean[k])).collect(),
+                    )
+                    .with_color(palette(i)),
+                );
+            }
+            if i + 1 == ns.len() {
+                right.series.push(
+                    Series::line(
+                        format!("folded, n = {n} (mean)"),
+                        averaged.iter().map(|&k| (t[k], mean[k])).collect(),
+                    )
+                    .with_color(palette(i)),
+                );
+            }
+        }
+        let black = RGBColor(0, 0, 0);
+        left.series.push(
+            Series::new(
+                "law",
+                law_xi.iter().copied().zip(law_f.iter().copied()).collect(),
+                Style::Dashed,
+            )
+            .with_color(black),
+        );
+        left.x_range = Some((0.0, 1.0));
+        left.y_range = Some((0.0, 8.0));
+        left.annotations = vec![
+            format!("mean: over {WINDOW} time units"),
+            "momentum at xi = 0.5".to_string(),
+            "against the law's:".to_string(),
+        ];
+        left.annotations.extend(momentum_notes);
+
+        let span: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "span-d3").collect();
+        right.series.push(
+            Series::line(
+                "span-d3: vertical",
+                span.iter().map(|&k| (t[k], fy[k])).collect(),
+            )
+            .with_color(palette(5)),
+        );
+        right.series.push(
+            Series::new(
+                "span-d3: horizontal",
+                span.iter().map(|&k| (t[k], -fx[k])).collect(),
+                Style::Dashed,
+            )
+            .with_color(palette(5)),
+        );
+        let peak = span
+            .iter()
+            .map(|&k| (t[k], fx[k].hypot(fy[k])))
+            .fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+        right.annotations = vec![format!("span-d3: peak |F| = {:.2} M g", peak.1)];
+        right.y_range = Some((-0.2, 6.5));
+        let title = "Force on the pivot P0 from the O(n) recursion, in units of the weight M g";
+        let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(id))
+            .map_err(|e| format!("{id}: {e}"))?;
+        Ok(ctx.drawn(&out))
     }
-    right.series.push(
-        Series::line(
-            "span-d3: vertical",
-            forces.iter().map(|(t, f)| (*t, f[1] / weight)).collect(),
-        )
-        .with_color(palette(5)),
-    );
-    right.series.push(
-        Series::new(
-            "span-d3: horizontal",
-            forces.iter().map(|(t, f)| (*t, -f[0] / weight)).collect(),
-            Style::Dashed,
-        )
-        .with_color(palette(5)),
-    );
-    let peak = forces
-        .iter()
-        .map(|(t, f)| (*t, f[0].hypot(f[1]) / weight))
-        .fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
-    right.annotations = vec![format!("span-d3: peak |F| = {:.2} M g", peak.1)];
-    right.y_range = Some((-0.2, 6.5));
-    printed.push(format!(
-        "span-d3: peak |F| = {:.3} M g at t = {:.4}",
-        peak.1, peak.0
-    ));
-    printed.push(format!(
-        "span-d3 at t = 0+: pull ({:.4}, {:.4}) M g",
-        -forces[0].1[0] / weight,
-        forces[0].1[1] / weight
-    ));
-    let mut files = vec![write_data(ctx, &format!("{ID}.csv"), &csv)?];
-    let title = "Force on the pivot P0 from the O(n) recursion, in units of the weight M g";
-    figures::line_plot_pair(&left, &right, title, &stem(ctx, ID))
-        .map_err(|e| format!("{ID}: {e}"))?;
-    for n in printed.iter().chain(&right.annotations) {
-        println!("  {ID}: {n}");
-    }
-    files.extend(figure_files(ID));
-    Ok(files)
 }

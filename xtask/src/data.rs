@@ -1,0 +1,199 @@
+//! `figures/data/`: the CSV files every figure is drawn from and the paper
+//! quotes. Reading them ([`Table`]), and the one set of number formats they
+//! are written in.
+//!
+//! The CSV dialect is plain: a header line, then one line per row, cells
+//! separated by commas, no quoting (a text cell never holds a comma, see
+//! [`text`]). An empty cell is a missing number (read as NaN).
+//!
+//! Formats: every number of the deterministic data is [`num`] (shortest text
+//! that reads back to the same `f64`, so a figure drawn from the file is
+//! the figure drawn from the computation) or [`exp`] (the same in exponent
+//! form, for steps, tolerances and errors: `1e-3`), except long per-sample
+//! tables, which are [`fixed`] to a few decimals to stay small. Timing
+//! files use [`fixed`] and [`exp_digits`]: more digits than the noise would
+//! be false precision.
+
+use std::fs;
+use std::path::Path;
+
+/// `x` in the shortest text that reads back to `x`: `0.0005`, `4.157`, `NaN`.
+pub fn num(x: f64) -> String {
+    format!("{x}")
+}
+
+/// `x` in the shortest exponent text that reads back to `x`: `1e-3`, `2.5e-5`.
+pub fn exp(x: f64) -> String {
+    format!("{x:e}")
+}
+
+/// `x` with `decimals` decimals.
+pub fn fixed(x: f64, decimals: usize) -> String {
+    format!("{x:.decimals$}")
+}
+
+/// `x` in exponent form with `digits` decimals: `1.23e-5`.
+pub fn exp_digits(x: f64, digits: usize) -> String {
+    format!("{x:.digits$e}")
+}
+
+/// An optional number: empty when absent.
+pub fn opt(x: Option<f64>, f: fn(f64) -> String) -> String {
+    x.map_or_else(String::new, f)
+}
+
+/// A text cell: commas (the separator) become semicolons.
+pub fn text(s: &str) -> String {
+    s.replace(',', ";")
+}
+
+/// A short relative-error text for legends, e.g. `3e-12` (the leading digit
+/// rounded down).
+pub fn short_err(e: f64) -> String {
+    if e.is_finite() && e > 0.0 {
+        let x = 10f64.powf(e.log10().floor());
+        format!("{:.0}e{}", (e / x).floor(), x.log10().round() as i64)
+    } else {
+        format!("{e}")
+    }
+}
+
+/// A CSV file read whole: the header and the rows, as text.
+#[derive(Debug, Clone)]
+pub struct Table {
+    /// The file name, for messages.
+    pub name: String,
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    /// Reads `path`.
+    pub fn read(path: &Path) -> Result<Table, String> {
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into(),
+        );
+        let text = fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        Table::parse(&name, &text)
+    }
+
+    /// Parses the text of a CSV file called `name`.
+    pub fn parse(name: &str, text: &str) -> Result<Table, String> {
+        let mut lines = text.lines();
+        let header: Vec<String> = lines
+            .next()
+            .ok_or_else(|| format!("{name}: empty"))?
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        let rows: Vec<Vec<String>> = lines
+            .filter(|l| !l.is_empty())
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect();
+        if let Some(k) = rows.iter().position(|r| r.len() != header.len()) {
+            return Err(format!(
+                "{name}: row {} has {} cells, the header {}",
+                k + 2,
+                rows[k].len(),
+                header.len()
+            ));
+        }
+        Ok(Table {
+            name: name.to_string(),
+            header,
+            rows,
+        })
+    }
+
+    /// The index of column `name`.
+    pub fn col(&self, name: &str) -> Result<usize, String> {
+        self.header.iter().position(|c| c == name).ok_or_else(|| {
+            format!(
+                "{}: no column '{name}' (columns: {})",
+                self.name,
+                self.header.join(", ")
+            )
+        })
+    }
+
+    /// Column `name` as text.
+    pub fn strs(&self, name: &str) -> Result<Vec<&str>, String> {
+        let c = self.col(name)?;
+        Ok(self.rows.iter().map(|r| r[c].as_str()).collect())
+    }
+
+    /// Column `name` as numbers (an empty cell is NaN).
+    pub fn nums(&self, name: &str) -> Result<Vec<f64>, String> {
+        let c = self.col(name)?;
+        self.rows
+            .iter()
+            .enumerate()
+            .map(|(k, r)| {
+                parse_num(&r[c]).map_err(|e| format!("{}: row {}: {e}", self.name, k + 2))
+            })
+            .collect()
+    }
+
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// Whether it has no row.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+}
+
+/// A number cell (empty: NaN).
+pub fn parse_num(s: &str) -> Result<f64, String> {
+    if s.is_empty() {
+        return Ok(f64::NAN);
+    }
+    s.parse::<f64>()
+        .map_err(|_| format!("'{s}' is not a number"))
+}
+
+/// The distinct values of `column`, in the order they first appear.
+pub fn distinct<'a>(column: &[&'a str]) -> Vec<&'a str> {
+    let mut out: Vec<&str> = vec![];
+    for &v in column {
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_back_exactly() {
+        for x in [0.1, 1.0 / 3.0, 4.157, 1e-13, 6.02e23, -0.0005] {
+            assert_eq!(parse_num(&num(x)).unwrap(), x);
+            assert_eq!(parse_num(&exp(x)).unwrap(), x);
+        }
+        assert!(parse_num("").unwrap().is_nan());
+        assert!(parse_num(&num(f64::NAN)).unwrap().is_nan());
+        assert_eq!(exp(1e-3), "1e-3");
+        assert_eq!(exp(5e-4), "5e-4");
+        assert_eq!(exp(0.02), "2e-2");
+        assert_eq!(short_err(3.7e-12), "3e-12");
+        assert_eq!(fixed(0.1234567, 6), "0.123457");
+    }
+
+    #[test]
+    fn tables_by_column() {
+        let t = Table::parse("t.csv", "a,b\nx,1.5\ny,\n").unwrap();
+        assert_eq!(t.strs("a").unwrap(), vec!["x", "y"]);
+        let b = t.nums("b").unwrap();
+        assert_eq!(b[0], 1.5);
+        assert!(b[1].is_nan());
+        assert!(t.col("c").unwrap_err().contains("no column 'c'"));
+        assert!(Table::parse("u.csv", "a,b\n1\n").is_err());
+        assert_eq!(distinct(&["p", "q", "p"]), vec!["p", "q"]);
+    }
+}

@@ -1,0 +1,422 @@
+//! Every figure, one entry each: the one place to add a figure.
+//!
+//! An entry names the figure (`figures/<id>.png` and `.svg`), says in one
+//! line what it shows (for `figures/README.md`), lists the data files it
+//! writes in `figures/data/`, and gives a [`Make`]: `compute` runs what it
+//! needs and writes those files, `draw` reads only those files and draws.
+//! So `cargo xtask figures --draw-only` redraws every figure from the
+//! committed data, and `cargo xtask figures` is `compute` then `draw`.
+
+use crate::ctx::Ctx;
+use crate::report::{
+    Catenaries, LinspaceSlice, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan,
+};
+use crate::study;
+use crate::timing;
+
+/// How a figure makes its data and draws itself.
+pub trait Make: Sync {
+    /// The scene files of `scenes/` it runs through the shared scene runs
+    /// ([`Ctx::run`]), made once before any figure is computed.
+    fn scenes(&self) -> Vec<&'static str> {
+        Vec::new()
+    }
+    /// The scene animated to `figures/anim/<scene>.gif` beside the figure,
+    /// if any (animations are made from the runs, not from data).
+    fn animation(&self) -> Option<&'static str> {
+        None
+    }
+    /// Runs what the figure needs and writes its data files; returns the
+    /// files written (relative to the workspace root). Without `--timings`
+    /// it writes no timing file.
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String>;
+    /// Draws `figures/<id>.png` and `.svg` from the figure's data files
+    /// only; returns the files written.
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String>;
+}
+
+/// Whether a figure measures wall times.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Timing {
+    /// No wall times: its data reproduce to the byte.
+    None,
+    /// Reproducible data in `<id>*.csv`, wall times beside them in
+    /// `<id>*-timing.csv`, rewritten only by `--timings`.
+    Alongside,
+    /// Nothing but wall times: computed only by `--timings`; otherwise
+    /// drawn from the committed timing files.
+    Only,
+}
+
+/// One figure.
+pub struct Figure {
+    pub id: &'static str,
+    /// The report's figure it reproduces (`Fig. 7a`), if any.
+    pub report: Option<&'static str>,
+    /// One line: what it shows.
+    pub what: &'static str,
+    /// Its data files in `figures/data/` (timing files end in `-timing.csv`).
+    pub data: &'static [&'static str],
+    pub timing: Timing,
+    pub make: &'static dyn Make,
+}
+
+impl Figure {
+    /// The title prefix: `Fig. 7a` for a report figure, else the id.
+    pub fn label(&self) -> &'static str {
+        self.report.unwrap_or(self.id)
+    }
+}
+
+const SPANS: &[&str] = &["span-d1", "span-d3", "span-d5", "span-d6"];
+const HEIGHTS: &[&str] = &["height-hm2", "height-h0", "height-h2", "height-h4"];
+
+/// A report figure of chain snapshots of one scene.
+macro_rules! snapshots {
+    ($id:literal, $report:literal, $title:literal, $what:literal, $scene:literal) => {
+        Figure {
+            id: $id,
+            report: Some($report),
+            what: $what,
+            data: &[concat!($id, ".csv")],
+            timing: Timing::None,
+            make: &Snapshots {
+                title: $title,
+                scene: $scene,
+                x_range: None,
+            },
+        }
+    };
+}
+
+/// Every figure: the report's (fig01 .. fig12, `docs/figures.md`), then the
+/// study's, in the order of `docs/figures.md`.
+pub static FIGURES: &[Figure] = &[
+    Figure {
+        id: "fig01-sketch",
+        report: Some("Fig. 1"),
+        what: "schematic: P0, P1, L, d, h, g, the released end",
+        data: &[],
+        timing: Timing::None,
+        make: &Sketch,
+    },
+    Figure {
+        id: "fig02-catenaries",
+        report: Some("Fig. 2"),
+        what: "continuous catenaries from P0 (0,0) to P1 (5,1), L = 6 .. 12, coloured by L, lowest points marked",
+        data: &["fig02-catenaries.csv"],
+        timing: Timing::None,
+        make: &Catenaries {
+            title: "catenaries from (0,0) to (5,1)",
+            p1: [5.0, 1.0],
+            lengths: (6.0, 12.0, 13),
+        },
+    },
+    snapshots!("fig03-horizontal-undamped", "Fig. 3", "horizontal start, n = 25, r = 0", "n = 25 stretched horizontal chain, r = 0, t = 4.899", "horizontal-undamped"),
+    snapshots!("fig04-horizontal-damped", "Fig. 4", "horizontal start, n = 25, r = 0.001", "n = 25 stretched horizontal chain, r = 0.001, t = 4.899", "horizontal-damped"),
+    snapshots!("fig05-horizontal-settling", "Fig. 5", "horizontal start, r = 0.001, to t = 19.6", "as fig04 to t = 19.60: the chain settles to hanging", "horizontal-settling"),
+    snapshots!("fig06-catenary-fall", "Fig. 6", "catenary to (5,1), n = 25, r = 0.001", "n = 25 discrete catenary to P1 (5,1), r = 0.001, t = 7.348", "catenary-fall"),
+    snapshots!("fig07a-span-d1", "Fig. 7a", "span d = 1, n = 50", "n = 50, P1 = (1, 0), r = 0.0005, t = 4.157", "span-d1"),
+    snapshots!("fig07b-span-d3", "Fig. 7b", "span d = 3, n = 50", "n = 50, P1 = (3, 0), r = 0.0005, t = 4.157", "span-d3"),
+    snapshots!("fig07c-span-d5", "Fig. 7c", "span d = 5, n = 50", "n = 50, P1 = (5, 0), r = 0.0005, t = 4.157", "span-d5"),
+    snapshots!("fig07d-span-d6", "Fig. 7d", "span d = 6 (stretched), n = 50", "n = 50, P1 = (6, 0) (stretched), r = 0.0005, t = 4.157", "span-d6"),
+    Figure {
+        id: "fig08a-span-tip-speed",
+        report: Some("Fig. 8a"),
+        what: "tip speed against time for the four spans d = 1, 3, 5, 6",
+        data: &["fig08a-span-tip-speed.csv", "fig08a-span-tip-speed-scenes.csv"],
+        timing: Timing::None,
+        make: &TipSpeed {
+            title: "tip speed, spans d = 1, 3, 5, 6",
+            scenes: SPANS,
+        },
+    },
+    Figure {
+        id: "fig08b-span-tip-velocity",
+        report: Some("Fig. 8b"),
+        what: "tip velocity v_y against v_x for the four spans",
+        data: &["fig08b-span-tip-velocity.csv", "fig08b-span-tip-velocity-scenes.csv"],
+        timing: Timing::None,
+        make: &TipVelocity {
+            title: "tip velocity, spans d = 1, 3, 5, 6",
+            scenes: SPANS,
+        },
+    },
+    Figure {
+        id: "fig09-vmax-vs-span",
+        report: Some("Fig. 9"),
+        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): the report's 14 spans and a dense sweep",
+        data: &["fig09-vmax-vs-span.csv"],
+        timing: Timing::None,
+        make: &VmaxVsSpan {
+            title: "maximum tip speed against span d",
+            scene: "span-d3",
+            stretched: "span-d6",
+            report_spans: LinspaceSlice {
+                start: 0.0,
+                stop: 6.0,
+                num: 20,
+                from: 5,
+                to: 19,
+            },
+            dense: (0.3, 5.97, 120),
+        },
+    },
+    snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),
+    snapshots!("fig10b-height-h0", "Fig. 10b", "P1 = (3, 0), n = 50", "n = 50, P1 = (3, 0), r = 0.0005, t = 5.196", "height-h0"),
+    snapshots!("fig10c-height-h2", "Fig. 10c", "P1 = (3, 2), n = 50", "n = 50, P1 = (3, 2), r = 0.0005, t = 5.196", "height-h2"),
+    snapshots!("fig10d-height-h4", "Fig. 10d", "P1 = (3, 4), n = 50", "n = 50, P1 = (3, 4), r = 0.0005, t = 5.196", "height-h4"),
+    Figure {
+        id: "fig11a-height-tip-speed",
+        report: Some("Fig. 11a"),
+        what: "tip speed against time for the four heights h = -2, 0, 2, 4",
+        data: &["fig11a-height-tip-speed.csv", "fig11a-height-tip-speed-scenes.csv"],
+        timing: Timing::None,
+        make: &TipSpeed {
+            title: "tip speed, heights h = -2, 0, 2, 4",
+            scenes: HEIGHTS,
+        },
+    },
+    Figure {
+        id: "fig11b-height-tip-velocity",
+        report: Some("Fig. 11b"),
+        what: "tip velocity v_y against v_x for the four heights",
+        data: &["fig11b-height-tip-velocity.csv", "fig11b-height-tip-velocity-scenes.csv"],
+        timing: Timing::None,
+        make: &TipVelocity {
+            title: "tip velocity, heights h = -2, 0, 2, 4",
+            scenes: HEIGHTS,
+        },
+    },
+    Figure {
+        id: "fig12-folded",
+        report: Some("Fig. 12"),
+        what: "n = 50 folded chain (25 down, 1 across, 24 up), r = 0.001, t = 4.157",
+        data: &["fig12-folded.csv"],
+        timing: Timing::None,
+        make: &Snapshots {
+            title: "folded chain, n = 50, r = 0.001",
+            scene: "folded",
+            x_range: Some((-0.25, 0.25)),
+        },
+    },
+    // The study's figures.
+    Figure {
+        id: "wp-span-d3",
+        report: None,
+        what: "work-precision of the span d = 3 scene: tip position and maximum tip speed error \
+               vs wall time and vs RHS evaluations, RK4 over dt, the adaptive methods over rtol, \
+               against a DOPRI5 rtol 1e-13 reference checked by RK4 and BDF",
+        data: &["wp-span-d3.csv", "wp-span-d3-timing.csv"],
+        timing: Timing::Alongside,
+        make: &study::precision_wp::SPAN_D3,
+    },
+    Figure {
+        id: "wp-folded",
+        report: None,
+        what: "work-precision of the folded scene (r = 0.001), evaluated at the last time before \
+               two runs 1e-10 apart separate 1000-fold: its end, as they never do (its r = 0 \
+               variant does after the whip; `data/wp-folded-divergence.csv`)",
+        data: &["wp-folded.csv", "wp-folded-divergence.csv", "wp-folded-timing.csv"],
+        timing: Timing::Alongside,
+        make: &study::precision_wp::FOLDED,
+    },
+    Figure {
+        id: "wp-stiff-rope",
+        report: None,
+        what: "work-precision of the stiff rope (n = 100, r = 1): explicit methods held at their \
+               stability limit, BDF not",
+        data: &["wp-stiff-rope.csv", "wp-stiff-rope-timing.csv"],
+        timing: Timing::Alongside,
+        make: &study::precision_wp::STIFF_ROPE,
+    },
+    Figure {
+        id: "stability-map",
+        report: None,
+        what: "where each method fails: method x dt / rtol x scene -> completed, energy-balance \
+               error above 1% of M g L, diverged, step size too small, step budget exhausted",
+        data: &["stability-map.csv", "stability-map-timing.csv"],
+        timing: Timing::Alongside,
+        make: &study::precision_map::StabilityMap,
+    },
+    Figure {
+        id: "stiffness",
+        report: None,
+        what: "where BDF pays: DOPRI5's wall time over the O(n) BDF's against the damping rate \
+               gamma for n = 25 to 3200 (span d = 3, t = 1, rtol 1e-6), and the crossover gamma \
+               for each n",
+        data: &["stiffness-timing.csv", "stiffness-crossover-timing.csv"],
+        timing: Timing::Only,
+        make: &study::precision_stiffness::Stiffness,
+    },
+    Figure {
+        id: "rhs-cost",
+        report: None,
+        what: "cost of one right-hand side vs n: the O(n) recursion against the dense Cholesky \
+               solve, measured slopes against n and n^3",
+        data: &["rhs-cost-timing.csv", "rhs-cost-fit-timing.csv"],
+        timing: Timing::Only,
+        make: &study::precision_cost::RhsCost,
+    },
+    Figure {
+        id: "convergence-n",
+        report: None,
+        what: "max tip speed and tip path vs n (25 .. 1600, and 3200 where the last doubling \
+               still mattered) for the span scenes at fixed total mass and bending viscosity: \
+               the n each scene needs for 1% and 0.1%",
+        data: &["convergence-n.csv", "convergence-n-summary.csv"],
+        timing: Timing::None,
+        make: &study::validation_convergence::Convergence,
+    },
+    Figure {
+        id: "folded-vs-analytic",
+        report: None,
+        what: "folded chain, r = 0, n = 50 .. 400: tip speed vs fall distance against \
+               v^2 = g x (2L - x)/(L - x) and free fall; times to L/2 and 0.9 L against the law",
+        data: &[
+            "folded-vs-analytic.csv",
+            "folded-vs-analytic-times.csv",
+            "folded-vs-analytic-law.csv",
+        ],
+        timing: Timing::None,
+        make: &study::validation_folded::FoldedVsAnalytic,
+    },
+    Figure {
+        id: "energy-budget",
+        report: None,
+        what: "E(t), the dissipated work W(t) and E + W for r = 0 and r > 0 (span d = 3)",
+        data: &["energy-budget.csv"],
+        timing: Timing::None,
+        make: &study::validation_energy::EnergyBudget,
+    },
+    Figure {
+        id: "normal-modes",
+        report: None,
+        what: "lowest five frequencies of the linearised hanging chain vs n against \
+               (j_0k / 2) sqrt(g/L), with the fitted convergence order",
+        data: &["normal-modes.csv", "normal-modes-fit.csv"],
+        timing: Timing::None,
+        make: &study::validation_modes::NormalModes,
+    },
+    Figure {
+        id: "support-force",
+        report: None,
+        what: "force on the pivot P0 in units of M g during the fall: folded (r = 0) against \
+               the law (M g / 4)(2 + 2 xi - 3 xi^2)/(1 - xi), and the span d = 3 scene",
+        data: &["support-force.csv", "support-force-law.csv"],
+        timing: Timing::None,
+        make: &study::validation_folded::SupportForce,
+    },
+];
+
+/// The figure called `id`.
+pub fn find(id: &str) -> Option<&'static Figure> {
+    FIGURES.iter().find(|f| f.id == id)
+}
+
+/// The data files of `fig`, in a README cell: timing files in italics.
+fn data_cell(fig: &Figure) -> String {
+    if fig.data.is_empty() {
+        return "—".into();
+    }
+    fig.data
+        .iter()
+        .map(|f| {
+            if timing::is_timing(f) {
+                format!("*[`{f}`](data/{f})*")
+            } else {
+                format!("[`{f}`](data/{f})")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `figures/README.md`: every figure, what it shows, where it comes from.
+pub fn readme() -> String {
+    let mut s = String::from(
+        "# Figures\n\n\
+         Written by `cargo xtask figures` (this file too, from the figure registry \
+         `xtask/src/registry.rs`) from the scene files in `scenes/` and the model of \
+         `docs/model.md`; the catalogue is `docs/figures.md`. Every figure has its data in \
+         `data/`: `cargo xtask figures` computes the data and draws each figure from it; \
+         `cargo xtask figures --draw-only` redraws every figure from the data as committed, \
+         without running anything. One figure alone: `cargo xtask figures --only ID` \
+         (with `--draw-only` too).\n\n\
+         **Wall times** are kept apart, in the files whose names end in `-timing.csv` \
+         (in italics below), with `data/machine-timing.csv` (the machine, its CPU and \
+         cores, the date and the Rust compiler they were measured with) and \
+         `data/run-timing.csv` (how long each step of the last full timed run took). \
+         `cargo xtask figures` reads them and never rewrites them, so on an unchanged \
+         checkout it leaves `git status` clean; `cargo xtask figures --timings` measures \
+         them again and rewrites them (run it whole, so that every timing file comes from \
+         one machine). The figures marked *timing only* are computed only then; the \
+         work-precision diagrams choose their points by cost when timed, and otherwise run \
+         the points their timing file lists (column `plan`), untimed.\n\n\
+         Animations of the report scenes (`anim/<scene>.gif`) are made from the scene runs \
+         by `cargo xtask figures` (not by `--draw-only`; `--no-anim` skips them).\n\n\
+         ## The report's figures\n\n\
+         | id | report | what it shows | scene files | data |\n|---|---|---|---|---|\n",
+    );
+    for f in FIGURES.iter().filter(|f| f.report.is_some()) {
+        let scenes: Vec<String> = f
+            .make
+            .scenes()
+            .iter()
+            .map(|s| format!("[`{s}`](../scenes/{s}.toml)"))
+            .collect();
+        let scenes = if scenes.is_empty() {
+            "—".to_string()
+        } else {
+            scenes.join(", ")
+        };
+        s.push_str(&format!(
+            "| [{id}]({id}.png) | {} | {} | {} | {} |\n",
+            f.report.unwrap_or_default(),
+            f.what,
+            scenes,
+            data_cell(f),
+            id = f.id
+        ));
+    }
+    s.push_str(
+        "\nThe report's scene runs are summarised in [`data/scenes.csv`](data/scenes.csv).\n\n\
+         ## The study's figures\n\n| id | what it shows | data |\n|---|---|---|\n",
+    );
+    for f in FIGURES.iter().filter(|f| f.report.is_none()) {
+        let note = match f.timing {
+            Timing::Only => " (*timing only*)",
+            _ => "",
+        };
+        s.push_str(&format!(
+            "| [{id}]({id}.png) | {}{note} | {} |\n",
+            f.what,
+            data_cell(f),
+            id = f.id
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_figure_once_and_its_files_named_after_it() {
+        for (k, f) in FIGURES.iter().enumerate() {
+            assert!(FIGURES[..k].iter().all(|g| g.id != f.id), "{} twice", f.id);
+            for d in f.data {
+                assert!(d.starts_with(f.id) && d.ends_with(".csv"), "{}: {d}", f.id);
+            }
+            let timed = f.data.iter().filter(|d| timing::is_timing(d)).count();
+            match f.timing {
+                Timing::None => assert_eq!(timed, 0, "{}", f.id),
+                Timing::Alongside => assert!(timed > 0 && timed < f.data.len(), "{}", f.id),
+                Timing::Only => assert_eq!(timed, f.data.len(), "{}", f.id),
+            }
+        }
+        assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 20);
+        assert_eq!(FIGURES.len(), 31);
+    }
+}

@@ -1,0 +1,454 @@
+//! The kinds of the report's figures (fig01 .. fig12). Each kind is a
+//! [`Make`] with its parameters, so a figure of the report is one entry of
+//! the registry, never a copy of code: `compute` takes the shared scene
+//! runs to `figures/data/<id>*.csv`, `draw` draws from those files.
+
+use std::fmt::Write as _;
+
+use catenary::Catenary;
+use falling_chain::render;
+use falling_chain::sweep::{self, Vary};
+use figures::{ChainSnapshots, LinePlot, Series, Style};
+
+use crate::ctx::Ctx;
+use crate::data::{distinct, fixed, num, Table};
+use crate::registry::{Figure, Make};
+
+fn title(fig: &Figure, title: &str) -> String {
+    format!("{}: {title}", fig.label())
+}
+
+fn drawn(
+    ctx: &Ctx,
+    fig: &Figure,
+    out: Result<figures::Output, figures::FigureError>,
+) -> Result<Vec<String>, String> {
+    out.map(|o| ctx.drawn(&o))
+        .map_err(|e| format!("{}: {e}", fig.id))
+}
+
+/// The schematic of the problem (no data).
+pub struct Sketch;
+
+impl Make for Sketch {
+    fn compute(&self, _: &Ctx, _: &Figure) -> Result<Vec<String>, String> {
+        Ok(vec![])
+    }
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        drawn(ctx, fig, figures::sketch(&ctx.stem(fig.id)))
+    }
+}
+
+/// Continuous catenaries from P0 = (0, 0) to `p1` for a range of lengths.
+pub struct Catenaries {
+    pub title: &'static str,
+    pub p1: [f64; 2],
+    /// `(first, last, count)` lengths.
+    pub lengths: (f64, f64, usize),
+}
+
+impl Make for Catenaries {
+    /// `<id>.csv`: `kind,length,x,y`, kind `p1`, `curve` (201 points per
+    /// length) or `lowest`.
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let (l0, l1, count) = self.lengths;
+        let p1 = self.p1;
+        let mut csv = format!("kind,length,x,y\np1,,{},{}\n", num(p1[0]), num(p1[1]));
+        for k in 0..count {
+            let length = l0 + (l1 - l0) * k as f64 / (count - 1) as f64;
+            let c = Catenary::through([0.0, 0.0], p1, length).map_err(|e| e.to_string())?;
+            for i in 0..=200 {
+                let x = p1[0] * i as f64 / 200.0;
+                writeln!(
+                    csv,
+                    "curve,{},{},{}",
+                    num(length),
+                    fixed(x, 6),
+                    fixed(c.y(x), 6)
+                )
+                .unwrap();
+            }
+            let low = c.lowest_point();
+            writeln!(
+                csv,
+                "lowest,{},{},{}",
+                num(length),
+                num(low[0]),
+                num(low[1])
+            )
+            .unwrap();
+        }
+        Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let (kind, length, x, y) = (
+            t.strs("kind")?,
+            t.nums("length")?,
+            t.nums("x")?,
+            t.nums("y")?,
+        );
+        let mut p1 = None;
+        let mut curves: Vec<(f64, Vec<(f64, f64)>)> = vec![];
+        let mut lows = vec![];
+        for k in 0..t.len() {
+            match kind[k] {
+                "p1" => p1 = Some([x[k], y[k]]),
+                "lowest" => lows.push((x[k], y[k])),
+                _ => match curves.last_mut() {
+                    Some((l, pts)) if *l == length[k] => pts.push((x[k], y[k])),
+                    _ => curves.push((length[k], vec![(x[k], y[k])])),
+                },
+            }
+        }
+        let title = title(fig, self.title);
+        let mut f = figures::ColoredCurves::new(&title, curves, [0.0, 0.0]);
+        f.p1 = p1;
+        f.markers = lows;
+        f.markers_label = "lowest point";
+        f.colorbar_label = "L";
+        drawn(ctx, fig, figures::colored_curves(&f, &ctx.stem(fig.id)))
+    }
+}
+
+/// Chain snapshots of one scene, coloured by time.
+pub struct Snapshots {
+    pub title: &'static str,
+    pub scene: &'static str,
+    /// A fixed x range (and unequal scales), for a narrow chain.
+    pub x_range: Option<(f64, f64)>,
+}
+
+impl Make for Snapshots {
+    fn scenes(&self) -> Vec<&'static str> {
+        vec![self.scene]
+    }
+
+    fn animation(&self) -> Option<&'static str> {
+        Some(self.scene)
+    }
+
+    /// `<id>.csv`: `point,t,x,y`: the pivot `P0` and the release point `P1`,
+    /// then joints `0..=n` of each snapshot (the scene's `output_dt` apart).
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let run = ctx.run(self.scene)?;
+        let (p0, p1) = (run.traj.anchor, run.release);
+        let mut csv = format!(
+            "point,t,x,y\nP0,,{},{}\nP1,,{},{}\n",
+            num(p0[0]),
+            num(p0[1]),
+            num(p1[0]),
+            num(p1[1])
+        );
+        for (t, joints) in render::frames(&run.traj, Some(run.snapshot_dt)) {
+            for (i, p) in joints.iter().enumerate() {
+                writeln!(csv, "{i},{},{},{}", num(t), fixed(p[0], 6), fixed(p[1], 6)).unwrap();
+            }
+        }
+        Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let (point, time, x, y) = (t.strs("point")?, t.nums("t")?, t.nums("x")?, t.nums("y")?);
+        let (mut p0, mut p1) = ([0.0, 0.0], None);
+        let mut frames: Vec<(f64, Vec<[f64; 2]>)> = vec![];
+        for k in 0..t.len() {
+            match point[k] {
+                "P0" => p0 = [x[k], y[k]],
+                "P1" => p1 = Some([x[k], y[k]]),
+                "0" => frames.push((time[k], vec![[x[k], y[k]]])),
+                _ => frames
+                    .last_mut()
+                    .ok_or_else(|| format!("{}: a joint before joint 0", t.name))?
+                    .1
+                    .push([x[k], y[k]]),
+            }
+        }
+        let title = title(fig, self.title);
+        let mut f = ChainSnapshots::new(&title, frames, p0);
+        f.p1 = p1;
+        if let Some(xr) = self.x_range {
+            f.x_range = Some(xr);
+            f.equal_aspect = false;
+        }
+        drawn(ctx, fig, figures::chain_snapshots(&f, &ctx.stem(fig.id)))
+    }
+}
+
+/// `<id>-scenes.csv`: `scene,p1_x,p1_y,t_tip_speed_max,tip_speed_max`, one
+/// row per scene (the legend order).
+fn scenes_csv(ctx: &Ctx, fig: &Figure, scenes: &[&str]) -> Result<String, String> {
+    let mut csv = String::from("scene,p1_x,p1_y,t_tip_speed_max,tip_speed_max\n");
+    for s in scenes {
+        let run = ctx.run(s)?;
+        let sm = &run.traj.summary;
+        writeln!(
+            csv,
+            "{},{},{},{},{}",
+            run.scene.name(),
+            num(run.release[0]),
+            num(run.release[1]),
+            num(sm.t_tip_speed_max),
+            num(sm.tip_speed_max)
+        )
+        .unwrap();
+    }
+    ctx.write(&format!("{}-scenes.csv", fig.id), &csv)
+}
+
+/// The legend entry of a scene: its name and where it was released.
+fn scene_label(scene: &str, p1: (f64, f64)) -> String {
+    format!("{scene} (P1 = ({:.3}, {:.3}))", p1.0, p1.1).replace(".000", "")
+}
+
+/// A scene of a tip figure: (name, legend label, (t_max, v_max)).
+type SceneRow = (String, String, (f64, f64));
+
+/// The scenes of `<id>-scenes.csv`.
+fn read_scenes(ctx: &Ctx, fig: &Figure) -> Result<Vec<SceneRow>, String> {
+    let t = ctx.read(&format!("{}-scenes.csv", fig.id))?;
+    let (name, x, y) = (t.strs("scene")?, t.nums("p1_x")?, t.nums("p1_y")?);
+    let (tm, vm) = (t.nums("t_tip_speed_max")?, t.nums("tip_speed_max")?);
+    Ok((0..t.len())
+        .map(|k| {
+            (
+                name[k].to_string(),
+                scene_label(name[k], (x[k], y[k])),
+                (tm[k], vm[k]),
+            )
+        })
+        .collect())
+}
+
+/// The samples of column pair `(a, b)` of `t` for each scene in `scenes`.
+fn per_scene(
+    t: &Table,
+    scenes: &[SceneRow],
+    a: &str,
+    b: &str,
+) -> Result<Vec<Vec<(f64, f64)>>, String> {
+    let (scene, a, b) = (t.strs("scene")?, t.nums(a)?, t.nums(b)?);
+    let names = distinct(&scene);
+    if names.len() != scenes.len() || names.iter().zip(scenes).any(|(n, s)| *n != s.0) {
+        return Err(format!("{}: its scenes differ from the legend's", t.name));
+    }
+    Ok(names
+        .iter()
+        .map(|n| {
+            (0..t.len())
+                .filter(|&k| scene[k] == *n)
+                .map(|k| (a[k], b[k]))
+                .collect()
+        })
+        .collect())
+}
+
+/// Tip speed against time, one line per scene.
+pub struct TipSpeed {
+    pub title: &'static str,
+    pub scenes: &'static [&'static str],
+}
+
+impl Make for TipSpeed {
+    fn scenes(&self) -> Vec<&'static str> {
+        self.scenes.to_vec()
+    }
+
+    /// `<id>.csv`: `scene,t,tip_speed` at every sample (32 per snapshot
+    /// spacing), and `<id>-scenes.csv` (the continuous maxima).
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let mut csv = String::from("scene,t,tip_speed\n");
+        for s in self.scenes {
+            let run = ctx.run(s)?;
+            for (t, v) in render::tip_speed(&run.traj) {
+                writeln!(csv, "{},{},{}", run.scene.name(), fixed(t, 6), fixed(v, 6)).unwrap();
+            }
+        }
+        Ok(vec![
+            ctx.write(&format!("{}.csv", fig.id), &csv)?,
+            scenes_csv(ctx, fig, self.scenes)?,
+        ])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let scenes = read_scenes(ctx, fig)?;
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let lines = per_scene(&t, &scenes, "t", "tip_speed")?;
+        let title = title(fig, self.title);
+        let mut p = LinePlot::new(&title, "t", "tip speed |v|");
+        for (s, pts) in scenes.iter().zip(lines) {
+            p.series.push(Series::line(s.1.clone(), pts));
+        }
+        // The continuous maxima, located between steps.
+        p.series.push(
+            Series::new(
+                "maximum (continuous)",
+                scenes.iter().map(|s| s.2).collect(),
+                Style::Points,
+            )
+            .with_color(figures::RGBColor(0, 0, 0)),
+        );
+        drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
+    }
+}
+
+/// Tip velocity `v_y` against `v_x`, one line per scene.
+pub struct TipVelocity {
+    pub title: &'static str,
+    pub scenes: &'static [&'static str],
+}
+
+impl Make for TipVelocity {
+    fn scenes(&self) -> Vec<&'static str> {
+        self.scenes.to_vec()
+    }
+
+    /// `<id>.csv`: `scene,v_x,v_y` at every sample, and `<id>-scenes.csv`.
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let mut csv = String::from("scene,v_x,v_y\n");
+        for s in self.scenes {
+            let run = ctx.run(s)?;
+            for (vx, vy) in render::tip_velocity_path(&run.traj) {
+                writeln!(
+                    csv,
+                    "{},{},{}",
+                    run.scene.name(),
+                    fixed(vx, 6),
+                    fixed(vy, 6)
+                )
+                .unwrap();
+            }
+        }
+        Ok(vec![
+            ctx.write(&format!("{}.csv", fig.id), &csv)?,
+            scenes_csv(ctx, fig, self.scenes)?,
+        ])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let scenes = read_scenes(ctx, fig)?;
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let lines = per_scene(&t, &scenes, "v_x", "v_y")?;
+        let title = title(fig, self.title);
+        let mut p = LinePlot::new(&title, "v_x", "v_y");
+        p.equal_aspect = true;
+        for (s, pts) in scenes.iter().zip(lines) {
+            p.series.push(Series::line(s.1.clone(), pts));
+        }
+        drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
+    }
+}
+
+/// Maximum tip speed against the span d: the report's spans as points and a
+/// dense sweep as a line (catenary starts), plus the stretched d = L.
+pub struct VmaxVsSpan {
+    pub title: &'static str,
+    /// The scene the spans are varied from.
+    pub scene: &'static str,
+    /// The stretched scene (d = L).
+    pub stretched: &'static str,
+    /// The report's spans.
+    pub report_spans: LinspaceSlice,
+    /// `linspace(a, b, n)`.
+    pub dense: (f64, f64, usize),
+}
+
+/// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
+/// values from `start` to `stop` (both included), of which those at the
+/// indices `from..to` are kept.
+#[derive(Clone, Copy, Debug)]
+pub struct LinspaceSlice {
+    pub start: f64,
+    pub stop: f64,
+    pub num: usize,
+    pub from: usize,
+    pub to: usize,
+}
+
+/// `n` points from `a` to `b`.
+fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+        .collect()
+}
+
+impl Make for VmaxVsSpan {
+    fn scenes(&self) -> Vec<&'static str> {
+        vec![self.scene, self.stretched]
+    }
+
+    /// `<id>.csv`: `set,d,tip_speed_max,t_tip_speed_max,status` for the
+    /// sets `report`, `dense` and `stretched`.
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let spans = self.report_spans;
+        let report: Vec<f64> =
+            linspace(spans.start, spans.stop, spans.num)[spans.from..spans.to].to_vec();
+        let dense = linspace(self.dense.0, self.dense.1, self.dense.2);
+        // Adaptive DOPRI5 for every span: RK4 at the report's dt diverges near d = 1.
+        let base = ctx.run(self.scene)?;
+        let base = base
+            .scene
+            .with_overrides(&["run.method=dopri5", "run.rtol=1e-8", "run.atol=1e-10"])
+            .map_err(|e| e.to_string())?;
+        let mut csv = String::from("set,d,tip_speed_max,t_tip_speed_max,status\n");
+        for (set, spans) in [("report", &report), ("dense", &dense)] {
+            let vary = [Vary::floats("start.p1.0", spans)];
+            let rows =
+                sweep::run(&base, &vary, None, ctx.jobs, &|_, _| {}).map_err(|e| e.to_string())?;
+            for (r, &d) in rows.iter().zip(spans.iter()) {
+                let s = &r.summary;
+                writeln!(
+                    csv,
+                    "{set},{},{},{},{}",
+                    num(d),
+                    num(s.tip_speed_max),
+                    num(s.t_tip_speed_max),
+                    s.status
+                )
+                .unwrap();
+            }
+        }
+        let full = ctx.run(self.stretched)?;
+        let s = &full.traj.summary;
+        writeln!(
+            csv,
+            "stretched,{},{},{},{}",
+            num(full.release[0] - full.traj.anchor[0]),
+            num(s.tip_speed_max),
+            num(s.t_tip_speed_max),
+            full.traj.status
+        )
+        .unwrap();
+        Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let t = ctx.read(&format!("{}.csv", fig.id))?;
+        let (set, d, v, status) = (
+            t.strs("set")?,
+            t.nums("d")?,
+            t.nums("tip_speed_max")?,
+            t.strs("status")?,
+        );
+        let ok = |which: &str| -> Vec<(f64, f64)> {
+            (0..t.len())
+                .filter(|&k| set[k] == which && status[k] == "ok")
+                .map(|k| (d[k], v[k]))
+                .collect()
+        };
+        let dense_count = set.iter().filter(|s| **s == "dense").count();
+        let title = title(fig, self.title);
+        let mut p = LinePlot::new(&title, "span d", "maximum tip speed");
+        p.series.push(Series::line(
+            format!("{dense_count} spans (DOPRI5, rtol 1e-8)"),
+            ok("dense"),
+        ));
+        p.series
+            .push(Series::points("the report's 14 spans", ok("report")));
+        p.series
+            .push(Series::points("stretched, d = L", ok("stretched")));
+        drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
+    }
+}
