@@ -146,7 +146,7 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "fig09-vmax-vs-span",
         report: Some("Fig. 9"),
-        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): the report's 14 spans and a dense sweep",
+        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): this model at the report's 14 spans, a dense sweep, the same at n = 200 with the continuum fixed, and the whip switch",
         data: &["fig09-vmax-vs-span.csv"],
         timing: Timing::None,
         make: &VmaxVsSpan {
@@ -161,6 +161,7 @@ pub static FIGURES: &[Figure] = &[
                 to: 19,
             },
             dense: (0.3, 5.97, 120),
+            refined: (200, 0.25, 5.95, 39),
         },
     },
     snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),
@@ -232,6 +233,17 @@ pub static FIGURES: &[Figure] = &[
         make: &study::precision_wp::STIFF_ROPE,
     },
     Figure {
+        id: "wp-matched",
+        report: None,
+        what: "speed-ups at matched accuracy, from the three work-precision diagrams: for \
+               dop853/dopri5, bdf/dopri5, bdf/bdf-dense and explicit-best/bdf, each method's \
+               wall time at errors 1e-4 .. 1e-12 (max(err_tip, err_vmax)), log-log \
+               interpolated between its bracketing runs, and their ratio",
+        data: &["wp-matched-timing.csv"],
+        timing: Timing::Only,
+        make: &study::precision_matched::MatchedTiming,
+    },
+    Figure {
         id: "stability-map",
         report: None,
         what: "where each method fails: method x dt / rtol x scene -> completed, energy-balance \
@@ -281,6 +293,16 @@ pub static FIGURES: &[Figure] = &[
         ],
         timing: Timing::None,
         make: &study::validation_folded::FoldedVsAnalytic,
+    },
+    Figure {
+        id: "folded-tip-acceleration",
+        report: None,
+        what: "why the tip beats g: the folded chain's (r = 0, n = 100 and 400) downward tip \
+               acceleration against x/L, from the dynamics at each sample, against the law \
+               a = g [1 + xi (2 - xi)/(2 (1 - xi)^2)] and free fall",
+        data: &["folded-tip-acceleration.csv", "folded-tip-acceleration-at.csv"],
+        timing: Timing::None,
+        make: &study::validation_folded::FoldedTipAcceleration,
     },
     Figure {
         id: "energy-budget",
@@ -418,6 +440,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 32);
+        assert_eq!(FIGURES.len(), 34);
     }
 }
