@@ -360,10 +360,13 @@ pub struct VmaxVsSpan {
     pub refined: (usize, f64, f64, usize),
 }
 
+/// A span's `(d, tip_speed_max, t_tip_speed_max)`.
+type SpanMax = (f64, f64, f64);
+
 /// The largest jump of `t_tip_speed_max` between neighbouring spans of
 /// `rows` (`(d, v, t)`, sorted by `d`) at spans above `from`: where the
 /// maximum switches from one whip event to another. Returns the two rows.
-fn whip_switch(rows: &[(f64, f64, f64)], from: f64) -> Option<((f64, f64, f64), (f64, f64, f64))> {
+fn whip_switch(rows: &[SpanMax], from: f64) -> Option<(SpanMax, SpanMax)> {
     rows.windows(2)
         .filter(|w| w[0].0 >= from && w[0].2.is_finite() && w[1].2.is_finite())
         .max_by(|a, b| (a[1].2 - a[0].2).abs().total_cmp(&(b[1].2 - b[0].2).abs()))
@@ -501,7 +504,7 @@ impl Make for VmaxVsSpan {
             table.strs("status")?,
         );
         for (which, suffix) in [("dense", String::new()), (set.as_str(), format!("-{set}"))] {
-            let mut pts: Vec<(f64, f64, f64)> = (0..table.len())
+            let mut pts: Vec<SpanMax> = (0..table.len())
                 .filter(|&k| tset[k] == which && tst[k] == "ok")
                 .map(|k| (td[k], tv[k], tt[k]))
                 .collect();
