@@ -115,6 +115,7 @@ pub static FIGURES: &[Figure] = &[
     snapshots!("fig03-horizontal-undamped", "Fig. 3", "horizontal start, n = 25, r = 0", "n = 25 stretched horizontal chain, r = 0, t = 4.899", "horizontal-undamped"),
     snapshots!("fig04-horizontal-damped", "Fig. 4", "horizontal start, n = 25, r = 0.001", "n = 25 stretched horizontal chain, r = 0.001, t = 4.899", "horizontal-damped"),
     snapshots!("fig05-horizontal-settling", "Fig. 5", "horizontal start, r = 0.001, to t = 19.6", "as fig04 to t = 19.60: the chain settles to hanging", "horizontal-settling"),
+    snapshots!("fig05b-horizontal-settling-report-damping", "Fig. 5b", "as Fig. 5 at the report's effective damping r = 0.00204", "as fig05 at r = 0.001/sqrt(0.24) = 0.00204, the damping the report's code effectively used (erratum 3); DOPRI5, rtol 1e-8: still not settled at t = 19.60", "horizontal-settling-report-damping"),
     snapshots!("fig06-catenary-fall", "Fig. 6", "catenary to (5,1), n = 25, r = 0.001", "n = 25 discrete catenary to P1 (5,1), r = 0.001, t = 7.348", "catenary-fall"),
     snapshots!("fig07a-span-d1", "Fig. 7a", "span d = 1, n = 50", "n = 50, P1 = (1, 0), r = 0.0005, t = 4.157", "span-d1"),
     snapshots!("fig07b-span-d3", "Fig. 7b", "span d = 3, n = 50", "n = 50, P1 = (3, 0), r = 0.0005, t = 4.157", "span-d3"),
@@ -145,7 +146,7 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "fig09-vmax-vs-span",
         report: Some("Fig. 9"),
-        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): the report's 14 spans and a dense sweep",
+        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): this model at the report's 14 spans, a dense sweep, the same at n = 200 with the continuum fixed, and the whip switch",
         data: &["fig09-vmax-vs-span.csv"],
         timing: Timing::None,
         make: &VmaxVsSpan {
@@ -160,6 +161,7 @@ pub static FIGURES: &[Figure] = &[
                 to: 19,
             },
             dense: (0.3, 5.97, 120),
+            refined: (200, 0.25, 5.95, 39),
         },
     },
     snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),
@@ -231,6 +233,17 @@ pub static FIGURES: &[Figure] = &[
         make: &study::precision_wp::STIFF_ROPE,
     },
     Figure {
+        id: "wp-matched",
+        report: None,
+        what: "speed-ups at matched accuracy, from the three work-precision diagrams: for \
+               dop853/dopri5, bdf/dopri5, bdf/bdf-dense and explicit-best/bdf, each method's \
+               wall time at errors 1e-4 .. 1e-12 (max(err_tip, err_vmax)), log-log \
+               interpolated between its bracketing runs, and their ratio",
+        data: &["wp-matched-timing.csv"],
+        timing: Timing::Only,
+        make: &study::precision_matched::MatchedTiming,
+    },
+    Figure {
         id: "stability-map",
         report: None,
         what: "where each method fails: method x dt / rtol x scene -> completed, energy-balance \
@@ -280,6 +293,16 @@ pub static FIGURES: &[Figure] = &[
         ],
         timing: Timing::None,
         make: &study::validation_folded::FoldedVsAnalytic,
+    },
+    Figure {
+        id: "folded-tip-acceleration",
+        report: None,
+        what: "why the tip beats g: the folded chain's (r = 0, n = 100 and 400) downward tip \
+               acceleration against x/L, from the dynamics at each sample, against the law \
+               a = g [1 + xi (2 - xi)/(2 (1 - xi)^2)] and free fall",
+        data: &["folded-tip-acceleration.csv", "folded-tip-acceleration-at.csv"],
+        timing: Timing::None,
+        make: &study::validation_folded::FoldedTipAcceleration,
     },
     Figure {
         id: "energy-budget",
@@ -416,7 +439,7 @@ mod tests {
                 Timing::Only => assert_eq!(timed, f.data.len(), "{}", f.id),
             }
         }
-        assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 20);
-        assert_eq!(FIGURES.len(), 31);
+        assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
+        assert_eq!(FIGURES.len(), 34);
     }
 }

@@ -6,6 +6,7 @@
 use std::fmt::Write as _;
 
 use catenary::Catenary;
+use falling_chain::converge;
 use falling_chain::render;
 use falling_chain::sweep::{self, Vary};
 use figures::{ChainSnapshots, LinePlot, Series, Style};
@@ -353,7 +354,28 @@ pub struct VmaxVsSpan {
     pub report_spans: LinspaceSlice,
     /// `linspace(a, b, n)`.
     pub dense: (f64, f64, usize),
+    /// The refined curve: `(links, linspace(a, b, count))`, the continuum
+    /// held fixed as `falling-chain converge` holds it (`m = M/n`,
+    /// `r = eta n / L`), method `auto` at rtol 1e-8.
+    pub refined: (usize, f64, f64, usize),
 }
+
+/// A span's `(d, tip_speed_max, t_tip_speed_max)`.
+type SpanMax = (f64, f64, f64);
+
+/// The largest jump of `t_tip_speed_max` between neighbouring spans of
+/// `rows` (`(d, v, t)`, sorted by `d`) at spans above `from`: where the
+/// maximum switches from one whip event to another. Returns the two rows.
+fn whip_switch(rows: &[SpanMax], from: f64) -> Option<(SpanMax, SpanMax)> {
+    rows.windows(2)
+        .filter(|w| w[0].0 >= from && w[0].2.is_finite() && w[1].2.is_finite())
+        .max_by(|a, b| (a[1].2 - a[0].2).abs().total_cmp(&(b[1].2 - b[0].2).abs()))
+        .map(|w| (w[0], w[1]))
+}
+
+/// Spans above which [`whip_switch`] looks for the switch (the curve's
+/// minimum near `d = 5.3`; below it the maximum's time moves smoothly).
+const SWITCH_FROM: f64 = 4.0;
 
 /// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
 /// values from `start` to `stop` (both included), of which those at the
@@ -380,7 +402,11 @@ impl Make for VmaxVsSpan {
     }
 
     /// `<id>.csv`: `set,d,tip_speed_max,t_tip_speed_max,status` for the
-    /// sets `report`, `dense` and `stretched`.
+    /// sets `report` (this model at the report's 14 spans, n = 50), `dense`
+    /// (n = 50), `stretched` (n = 50, d = L), `n200` and `stretched-n200`
+    /// (the refined chain), and `switch-before` / `switch-after` (and
+    /// `-n200`): the two neighbouring spans of the dense curve between
+    /// which the time of the maximum jumps (the whip switch).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let spans = self.report_spans;
         let report: Vec<f64> =
@@ -412,15 +438,90 @@ impl Make for VmaxVsSpan {
         }
         let full = ctx.run(self.stretched)?;
         let s = &full.traj.summary;
+        let span_full = full.release[0] - full.traj.anchor[0];
         writeln!(
             csv,
             "stretched,{},{},{},{}",
-            num(full.release[0] - full.traj.anchor[0]),
+            num(span_full),
             num(s.tip_speed_max),
             num(s.t_tip_speed_max),
             full.traj.status
         )
         .unwrap();
+        // The refined chain: the n = 50 scene at `links` rods with the
+        // continuum fixed, over fewer spans, and its stretched chain.
+        let (links, a, b, count) = self.refined;
+        let refine = |scene: &falling_chain::Scene| {
+            converge::refined_scene(scene, links)
+                .and_then(|s| {
+                    s.with_overrides(&["run.method=auto", "run.rtol=1e-8", "run.atol=1e-10"])
+                })
+                .map_err(|e| e.to_string())
+        };
+        let fine_spans = linspace(a, b, count);
+        let fine = refine(&base)?;
+        let rows = sweep::run(
+            &fine,
+            &[Vary::floats("start.p1.0", &fine_spans)],
+            None,
+            ctx.jobs,
+            &|_, _| {},
+        )
+        .map_err(|e| e.to_string())?;
+        let set = format!("n{links}");
+        for (r, &d) in rows.iter().zip(fine_spans.iter()) {
+            let s = &r.summary;
+            writeln!(
+                csv,
+                "{set},{},{},{},{}",
+                num(d),
+                num(s.tip_speed_max),
+                num(s.t_tip_speed_max),
+                s.status
+            )
+            .unwrap();
+        }
+        let stretched = refine(&full.scene)?;
+        let mut prepared = stretched.prepare().map_err(|e| e.to_string())?;
+        prepared.options.output_dt = None;
+        let traj = prepared.solve().map_err(|e| e.to_string())?;
+        writeln!(
+            csv,
+            "stretched-{set},{},{},{},{}",
+            num(span_full),
+            num(traj.summary.tip_speed_max),
+            num(traj.summary.t_tip_speed_max),
+            traj.status
+        )
+        .unwrap();
+        // The whip switch of each curve, from the data just written.
+        let table = crate::data::Table::parse("fig09", &csv)?;
+        let (tset, td, tv, tt, tst) = (
+            table.strs("set")?,
+            table.nums("d")?,
+            table.nums("tip_speed_max")?,
+            table.nums("t_tip_speed_max")?,
+            table.strs("status")?,
+        );
+        for (which, suffix) in [("dense", String::new()), (set.as_str(), format!("-{set}"))] {
+            let mut pts: Vec<SpanMax> = (0..table.len())
+                .filter(|&k| tset[k] == which && tst[k] == "ok")
+                .map(|k| (td[k], tv[k], tt[k]))
+                .collect();
+            pts.sort_by(|x, y| x.0.total_cmp(&y.0));
+            if let Some((lo, hi)) = whip_switch(&pts, SWITCH_FROM) {
+                for (name, p) in [("switch-before", lo), ("switch-after", hi)] {
+                    writeln!(
+                        csv,
+                        "{name}{suffix},{},{},{},ok",
+                        num(p.0),
+                        num(p.1),
+                        num(p.2)
+                    )
+                    .unwrap();
+                }
+            }
+        }
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
@@ -439,16 +540,60 @@ impl Make for VmaxVsSpan {
                 .collect()
         };
         let dense_count = set.iter().filter(|s| **s == "dense").count();
+        let (links, ..) = self.refined;
+        let fine = format!("n{links}");
+        let fine_count = set.iter().filter(|s| **s == fine).count();
         let title = title(fig, self.title);
         let mut p = LinePlot::new(&title, "span d", "maximum tip speed");
+        p.x_tick_step = Some(0.5);
         p.series.push(Series::line(
-            format!("{dense_count} spans (DOPRI5, rtol 1e-8)"),
+            format!("n = 50: {dense_count} spans (DOPRI5, rtol 1e-8)"),
             ok("dense"),
         ));
+        p.series.push(Series::new(
+            format!("n = {links}, continuum fixed: {fine_count} spans (auto, rtol 1e-8)"),
+            ok(&fine),
+            Style::LinePoints,
+        ));
+        p.series.push(Series::points(
+            "this model at the report's 14 spans (n = 50)",
+            ok("report"),
+        ));
+        let mut full = ok("stretched");
+        full.extend(ok(&format!("stretched-{fine}")));
         p.series
-            .push(Series::points("the report's 14 spans", ok("report")));
-        p.series
-            .push(Series::points("stretched, d = L", ok("stretched")));
+            .push(Series::points("stretched, d = L (n = 50, n = 200)", full));
+        // The whip switch of the n = 50 curve: a dashed line between the two
+        // spans where the time of the maximum jumps.
+        let before = ok("switch-before");
+        let after = ok("switch-after");
+        if let (Some(a), Some(b)) = (before.first(), after.first()) {
+            let (lo, hi) = v
+                .iter()
+                .copied()
+                .filter(|x| x.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                    (l.min(x), h.max(x))
+                });
+            let at = 0.5 * (a.0 + b.0);
+            let times = |k: &str| {
+                (0..t.len())
+                    .find(|&i| set[i] == k)
+                    .map(|i| t.nums("t_tip_speed_max").map(|c| c[i]))
+            };
+            let (ta, tb) = match (times("switch-before"), times("switch-after")) {
+                (Some(a), Some(b)) => (a?, b?),
+                _ => (f64::NAN, f64::NAN),
+            };
+            p.series.push(
+                Series::new(
+                    format!("whip switch, d = {at:.2}: t of max {ta:.2} -> {tb:.2}"),
+                    vec![(at, lo), (at, hi)],
+                    Style::Dashed,
+                )
+                .with_color(figures::RGBColor(90, 90, 90)),
+            );
+        }
         drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
     }
 }

@@ -110,6 +110,9 @@ fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, La
         let (pw, _) = layout.plot_size(size);
         let tx = (pw as f64 / (170.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
         let mut x = Axis::auto(x0, x1, p.x_range, p.log_x, pad, tx);
+        if let (Some(step), false) = (p.x_tick_step, p.log_x) {
+            x = Axis::linear_step(x.lo, x.hi, step);
+        }
         if p.equal_aspect && !p.log_x && !p.log_y {
             let (bx, by) = ((x.lo, x.hi), (y.lo, y.hi));
             for _ in 0..2 {

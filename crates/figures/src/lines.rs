@@ -75,6 +75,9 @@ pub struct LinePlot<'a> {
     pub y_range: Option<(f64, f64)>,
     /// Lines of text in a box in a free corner (e.g. a fitted order).
     pub annotations: Vec<String>,
+    /// A fixed step between x ticks (linear axes only); `None` chooses one
+    /// by the plot's width.
+    pub x_tick_step: Option<f64>,
 }
 
 impl<'a> LinePlot<'a> {
@@ -90,6 +93,7 @@ impl<'a> LinePlot<'a> {
             x_range: None,
             y_range: None,
             annotations: Vec::new(),
+            x_tick_step: None,
         }
     }
 }

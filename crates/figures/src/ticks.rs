@@ -50,6 +50,27 @@ impl Axis {
         }
     }
 
+    /// A linear axis over `[lo, hi]` with ticks every `step` (at least
+    /// the ends' nice ticks when `step` would give fewer than two).
+    pub fn linear_step(lo: f64, hi: f64, step: f64) -> Axis {
+        let (lo, hi) = nondegenerate(lo, hi);
+        if !(step.is_finite() && step > 0.0) || (hi - lo) / step < 2.0 || (hi - lo) / step > 60.0 {
+            return Axis::linear(lo, hi, 6);
+        }
+        let first = (lo / step - 1e-9).ceil() as i64;
+        let last = (hi / step + 1e-9).floor() as i64;
+        let ticks: Vec<f64> = (first..=last).map(|i| i as f64 * step).collect();
+        let labels = linear_labels(&ticks, step);
+        Axis {
+            lo,
+            hi,
+            log: false,
+            ticks,
+            labels,
+            minor: Vec::new(),
+        }
+    }
+
     /// A log axis over `[lo, hi]` given in `log10` units.
     pub fn log(lo: f64, hi: f64, target: usize) -> Axis {
         let (lo, hi) = nondegenerate(lo, hi);

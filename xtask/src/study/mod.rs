@@ -10,6 +10,7 @@
 
 pub mod precision_cost;
 pub mod precision_map;
+pub mod precision_matched;
 pub mod precision_stiffness;
 pub mod precision_wp;
 pub mod validation_convergence;

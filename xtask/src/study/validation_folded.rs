@@ -14,6 +14,7 @@ use std::fmt::Write as _;
 use std::sync::OnceLock;
 
 use chain_ode::analysis::{first_time_below, folded_law, pivot_forces, refined, tip_track};
+use chain_ode::dynamics::{accelerations, Workspace};
 use chain_ode::{solve, Method, SolveOptions, Start, Trajectory, Vec2};
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 use rayon::prelude::*;
@@ -643,5 +644,169 @@ impl Make for SupportForce {
         let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(id))
             .map_err(|e| format!("{id}: {e}"))?;
         Ok(ctx.drawn(&out))
+    }
+}
+
+/// The rods of the tip-acceleration figure (two of the folded runs).
+const ACCEL_LINKS: [usize; 2] = [100, 400];
+/// Fall distances at which `-at.csv` compares the tip with the law.
+const ACCEL_XIS: [f64; 5] = [0.25, 0.5, 0.75, 0.9, 0.95];
+/// Half-width in `xi` of the window `-at.csv` averages over (the discrete
+/// tip's acceleration oscillates as each rod rounds the fold).
+const ACCEL_WINDOW: f64 = 0.02;
+
+/// The law's tip acceleration over `g`: `1 + xi (2 - xi) / (2 (1 - xi)^2)`,
+/// the derivative along the fall of `v^2 = g x (2L - x)/(L - x)`
+/// (`a = (1/2) d(v^2)/dx`): free fall plus the pull of the tension at the
+/// fold on the falling arm.
+fn accel_law(xi: f64) -> f64 {
+    1.0 + xi * (2.0 - xi) / (2.0 * (1.0 - xi) * (1.0 - xi))
+}
+
+/// Why the tip beats `g`: the simulated tip's downward acceleration in the
+/// folded fall (r = 0) against the law and free fall.
+pub struct FoldedTipAcceleration;
+
+impl Make for FoldedTipAcceleration {
+    /// `folded-tip-acceleration.csv`: `links,t,xi,accel_over_g,law_over_g`
+    /// at every output sample of the fall (`xi = x/L`, `x` from the free
+    /// end's start height; `accel_over_g` = the tip's downward acceleration
+    /// over `g`, evaluated by `chain_ode::dynamics::accelerations` at the
+    /// sample's state, not differenced). `-at.csv`:
+    /// `links,xi,accel_over_g,law_over_g,rel_to_law` at a few `xi`, linear
+    /// in `xi` between samples, then `accel_mean_over_g,law_mean_over_g,
+    /// rel_mean_to_law`: the means over `|x/L - xi| <= 0.02` (the tip
+    /// velocity's change over that time, and the law's mean there).
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
+        let runs = folded_runs(ctx)?;
+        let mut csv = String::from("links,t,xi,accel_over_g,law_over_g\n");
+        let mut at = String::from(
+            "links,xi,accel_over_g,law_over_g,rel_to_law,\
+             accel_mean_over_g,law_mean_over_g,rel_mean_to_law\n",
+        );
+        for run in runs
+            .iter()
+            .filter(|r| ACCEL_LINKS.contains(&r.traj.chain.links))
+        {
+            let chain = &run.traj.chain;
+            let n = chain.links;
+            let (length, g) = (run.length(), run.gravity());
+            let mut ws = Workspace::new(n);
+            let mut acc = vec![0.0; n];
+            let y0 = run.track[0].1[1];
+            let mut curve = vec![];
+            for k in 0..run.fall {
+                let s = run.traj.sample(k);
+                let r = accelerations(chain, s.angles, s.rates, &mut acc, &mut ws);
+                let xi = (y0 - run.track[k].1[1]) / length;
+                let a = -r.tip_acceleration[1] / g;
+                curve.push((xi, a, s.t, run.track[k].2[1]));
+                writeln!(
+                    csv,
+                    "{n},{},{},{},{}",
+                    fixed(s.t, 4),
+                    short(xi),
+                    short(a),
+                    short(accel_law(xi))
+                )
+                .unwrap();
+            }
+            for xi in ACCEL_XIS {
+                let a = curve.windows(2).find_map(|w| {
+                    let (p, q) = (w[0], w[1]);
+                    (p.0 <= xi && xi <= q.0 && q.0 > p.0)
+                        .then(|| p.1 + (q.1 - p.1) * (xi - p.0) / (q.0 - p.0))
+                });
+                let law = accel_law(xi);
+                // The mean over the samples within ACCEL_WINDOW of xi: the
+                // exact tip velocity's change over the time between them,
+                // against the law's mean over the same samples (equal times).
+                let near: Vec<&(f64, f64, f64, f64)> = curve
+                    .iter()
+                    .filter(|c| (c.0 - xi).abs() <= ACCEL_WINDOW)
+                    .collect();
+                let (mean, law_mean) = match (near.first(), near.last()) {
+                    (Some(p), Some(q)) if q.2 > p.2 => (
+                        Some(-(q.3 - p.3) / (q.2 - p.2) / g),
+                        Some(near.iter().map(|c| accel_law(c.0)).sum::<f64>() / near.len() as f64),
+                    ),
+                    _ => (None, None),
+                };
+                writeln!(
+                    at,
+                    "{n},{},{},{},{},{},{},{}",
+                    num(xi),
+                    opt(a, num),
+                    num(law),
+                    opt(a.map(|a| a / law - 1.0), num),
+                    opt(mean, num),
+                    opt(law_mean, num),
+                    opt(mean.zip(law_mean).map(|(m, l)| m / l - 1.0), num)
+                )
+                .unwrap();
+            }
+        }
+        Ok(vec![
+            ctx.write(&format!("{id}.csv"), &csv)?,
+            ctx.write(&format!("{id}-at.csv"), &at)?,
+        ])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
+        let c = ctx.read(&format!("{id}.csv"))?;
+        let (links, xi, a, law) = (
+            c.strs("links")?,
+            c.nums("xi")?,
+            c.nums("accel_over_g")?,
+            c.nums("law_over_g")?,
+        );
+        let mut p = LinePlot::new(
+            "folded chain, r = 0: why the tip beats g",
+            "x / L (fall of the free end from its start)",
+            "downward tip acceleration / g",
+        );
+        p.log_y = true;
+        p.x_range = Some((0.0, 1.0));
+        p.y_range = Some((0.5, 200.0));
+        let names = distinct(&links);
+        for (i, n) in names.iter().enumerate() {
+            p.series.push(
+                Series::line(
+                    format!("n = {n} (from the dynamics at each sample)"),
+                    (0..c.len())
+                        .filter(|&k| links[k] == *n && a[k] > 0.0)
+                        .map(|k| (xi[k], a[k]))
+                        .collect(),
+                )
+                .with_color(palette(i)),
+            );
+        }
+        // The law at the finest run's samples.
+        let finest = names.last().copied().unwrap_or_default();
+        let law_pts: Vec<(f64, f64)> = (0..c.len())
+            .filter(|&k| links[k] == finest)
+            .map(|k| (xi[k], law[k]))
+            .collect();
+        p.series.push(
+            Series::new(
+                "law: a = g [1 + xi (2 - xi) / (2 (1 - xi)^2)]",
+                law_pts,
+                Style::Dashed,
+            )
+            .with_color(RGBColor(0, 0, 0)),
+        );
+        p.series.push(
+            Series::new(
+                "free fall: a = g",
+                vec![(0.0, 1.0), (1.0, 1.0)],
+                Style::Dashed,
+            )
+            .with_color(RGBColor(120, 120, 120)),
+        );
+        figures::line_plot(&p, &ctx.stem(id))
+            .map(|o| ctx.drawn(&o))
+            .map_err(|e| format!("{id}: {e}"))
     }
 }
