@@ -83,7 +83,8 @@ macro_rules! snapshots {
             make: &Snapshots {
                 title: $title,
                 scene: $scene,
-                x_range: None,
+                every: 1,
+                p1_label: None,
             },
         }
     };
@@ -199,7 +200,8 @@ pub static FIGURES: &[Figure] = &[
         make: &Snapshots {
             title: "folded chain, n = 50, r = 0.001",
             scene: "folded",
-            x_range: Some((-0.25, 0.25)),
+            every: 6,
+            p1_label: Some("free end at t = 0"),
         },
     },
     // The study's figures.

@@ -117,8 +117,12 @@ impl Make for Catenaries {
 pub struct Snapshots {
     pub title: &'static str,
     pub scene: &'static str,
-    /// A fixed x range (and unequal scales), for a narrow chain.
-    pub x_range: Option<(f64, f64)>,
+    /// Draw every `every`-th snapshot (1: all) and always the last, so that
+    /// the snapshots of a narrow chain stay apart.
+    pub every: usize,
+    /// The legend's name of `P1` when it is not the anchor the report calls
+    /// P₁ (for the folded chain: where the free end starts).
+    pub p1_label: Option<&'static str>,
 }
 
 impl Make for Snapshots {
@@ -168,11 +172,18 @@ impl Make for Snapshots {
             }
         }
         let title = title(fig, self.title);
+        let every = self.every.max(1);
+        let last = frames.len().saturating_sub(1);
+        let frames = frames
+            .into_iter()
+            .enumerate()
+            .filter(|(k, _)| k % every == 0 || *k == last)
+            .map(|(_, f)| f)
+            .collect();
         let mut f = ChainSnapshots::new(&title, frames, p0);
         f.p1 = p1;
-        if let Some(xr) = self.x_range {
-            f.x_range = Some(xr);
-            f.equal_aspect = false;
+        if let Some(label) = self.p1_label {
+            f.p1_label = label;
         }
         drawn(ctx, fig, figures::chain_snapshots(&f, &ctx.stem(fig.id)))
     }

@@ -170,7 +170,7 @@ impl Geometry {
 pub(crate) fn legend_lines(spec: &Spec) -> Vec<String> {
     let mut v = vec!["P₀".to_string()];
     if spec.p1.is_some() {
-        v.push("P₁".into());
+        v.push(spec.p1_label.to_string());
     }
     if !spec.markers_label.is_empty() && !spec.markers.is_empty() {
         v.push(spec.markers_label.to_string());

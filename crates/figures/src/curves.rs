@@ -68,6 +68,7 @@ pub fn colored_curves(fig: &ColoredCurves, stem: &Path) -> Result<Output, Figure
         markers_label: fig.markers_label,
         p0: (fig.p0[0], fig.p0[1]),
         p1: fig.p1.map(|p| (p[0], p[1])),
+        p1_label: "P₁",
         cbar_label: fig.colorbar_label,
         x_label: fig.x_label,
         y_label: fig.y_label,
@@ -87,6 +88,8 @@ pub(crate) struct Spec<'a> {
     pub markers_label: &'a str,
     pub p0: (f64, f64),
     pub p1: Option<(f64, f64)>,
+    /// Legend name of `p1`.
+    pub p1_label: &'a str,
     pub cbar_label: &'a str,
     pub x_label: &'a str,
     pub y_label: &'a str,
@@ -267,7 +270,10 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
             .map(|&q| Circle::new(q, mr, BLACK.filled())),
     )?;
     let pr = sizes.px(9.0);
-    let anchors = [(Some(spec.p0), P0_RED, "P₀"), (spec.p1, P1_BLUE, "P₁")];
+    let anchors = [
+        (Some(spec.p0), P0_RED, "P₀"),
+        (spec.p1, P1_BLUE, spec.p1_label),
+    ];
     for (p, color, name) in anchors {
         let Some(p) = p else { continue };
         if inside(&p) {

@@ -22,6 +22,8 @@ pub struct ChainSnapshots<'a> {
     pub equal_aspect: bool,
     /// Label of the colour bar (default "t").
     pub colorbar_label: &'a str,
+    /// Legend name of `p1` (default "P₁").
+    pub p1_label: &'a str,
 }
 
 impl<'a> ChainSnapshots<'a> {
@@ -36,6 +38,7 @@ impl<'a> ChainSnapshots<'a> {
             y_range: None,
             equal_aspect: true,
             colorbar_label: "t",
+            p1_label: "P₁",
         }
     }
 
@@ -51,6 +54,7 @@ impl<'a> ChainSnapshots<'a> {
             markers_label: "",
             p0: (self.p0[0], self.p0[1]),
             p1: self.p1.map(|p| (p[0], p[1])),
+            p1_label: self.p1_label,
             cbar_label: self.colorbar_label,
             x_label: "x",
             y_label: "y",

@@ -16,7 +16,7 @@ use std::fmt::Write as _;
 use chain_ode::kinematics::tip;
 use chain_ode::{solve, Method, SolveOptions, Stats, Status, Trajectory};
 use falling_chain::Prepared;
-use figures::{palette, LinePlot, RGBColor, Series, Style};
+use figures::{palette, LinePlot, Series, Style};
 use rayon::prelude::*;
 
 use super::{accuracy_name, at_accuracy};
@@ -835,7 +835,7 @@ fn method_label<'a>(method: &str, rows: &'a [Drawn]) -> (String, Vec<&'a Drawn>)
     let param = mine.first().map_or("", |pt| pt.param_name.as_str());
     let mut label =
         if method == Method::Auto.as_str() && !ok.is_empty() && ok.iter().all(|pt| !pt.switched) {
-            format!("{name} (never switched: = DOPRI5)")
+            format!("{name} (dashed, on top; one method per run)")
         } else if ok.is_empty() {
             format!("{name}: no run completed")
         } else {
@@ -845,6 +845,41 @@ fn method_label<'a>(method: &str, rows: &'a [Drawn]) -> (String, Vec<&'a Drawn>)
         label.push_str(&format!("; fails at {}", span(&failed)));
     }
     (label, ok)
+}
+
+/// Which explicit method each of auto's points is (same parameter, same
+/// errors and work): lines "AUTO = DOPRI5 at 1e-3 … 1e-6," and
+/// "  = DOP853 at 1e-7 … 1e-12".
+fn same_as(auto: &[&Drawn], rows: &[Drawn]) -> Vec<String> {
+    let twin = |pt: &Drawn| {
+        rows.iter()
+            .find(|r| {
+                r.method != pt.method
+                    && Method::ALL.iter().any(|m| m.as_str() == r.method)
+                    && r.param == pt.param
+                    && r.err_tip == pt.err_tip
+                    && r.err_vmax == pt.err_vmax
+                    && r.rhs_equiv == pt.rhs_equiv
+            })
+            .map_or("?".to_string(), |r| r.method.to_uppercase())
+    };
+    let mut groups: Vec<(String, Vec<&Drawn>)> = vec![];
+    for &pt in auto {
+        let m = twin(pt);
+        match groups.last_mut() {
+            Some((g, v)) if *g == m => v.push(pt),
+            _ => groups.push((m, vec![pt])),
+        }
+    }
+    groups
+        .iter()
+        .enumerate()
+        .map(|(k, (m, v))| {
+            let head = if k == 0 { "AUTO" } else { "   " };
+            let tail = if k + 1 < groups.len() { "," } else { "" };
+            format!("{head} = {m} at {}{tail}", span(v))
+        })
+        .collect()
 }
 
 /// How far the checks agree with the reference, from their rows.
@@ -871,71 +906,75 @@ fn draw(
     (t_eval, rows): &(f64, Vec<Drawn>),
     notes: Vec<String>,
 ) -> Result<figures::Output, String> {
-    let mut left = LinePlot::new(
-        "error vs wall time",
-        "wall time (s, median)",
-        "relative error",
-    );
+    // The error the paper uses: the larger of the two relative errors.
+    let y_label = "max(|Δr_tip| / L, |Δv_max| / v_max)";
+    let mut left = LinePlot::new("error vs wall time", "wall time (s, median)", y_label);
     let mut right = LinePlot::new(
         "error vs work",
         "RHS evaluations (+ one per JVP of BDF)",
-        "relative error",
+        y_label,
     );
     let floor = |e: f64| e.max(DRAW_FLOOR);
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     for (i, method) in Method::ALL.into_iter().enumerate() {
         let (label, pts) = method_label(method.as_str(), rows);
         let color = palette(i);
+        // auto runs one of the explicit methods: drawn dashed and on top
+        // (last), so that the curve it coincides with shows through.
+        let style = if method == Method::Auto {
+            Style::Dashed
+        } else {
+            Style::LinePoints
+        };
         let wall = |pt: &Drawn| pt.wall;
         let work = |pt: &Drawn| pt.rhs_equiv;
         for (plot, x, label) in [
             (&mut left, &wall as &dyn Fn(&Drawn) -> f64, label.as_str()),
             (&mut right, &work, ""),
         ] {
-            let pts: Vec<&&Drawn> = pts.iter().filter(|pt| x(pt).is_finite()).collect();
-            let tip: Vec<(f64, f64)> = pts.iter().map(|pt| (x(pt), floor(pt.err_tip))).collect();
-            let vmax: Vec<(f64, f64)> = pts.iter().map(|pt| (x(pt), floor(pt.err_vmax))).collect();
-            let vstyle = if vmax.len() > 1 {
-                Style::Dashed
-            } else {
-                Style::Points
-            };
+            let pts: Vec<(f64, f64)> = pts
+                .iter()
+                .filter(|pt| x(pt).is_finite())
+                .map(|pt| (x(pt), floor(pt.err())))
+                .collect();
+            for p in &pts {
+                lo = lo.min(p.1);
+                hi = hi.max(p.1);
+            }
             plot.series
-                .push(Series::new(label, tip, Style::LinePoints).with_color(color));
-            plot.series
-                .push(Series::new("", vmax, vstyle).with_color(color));
+                .push(Series::new(label, pts, style).with_color(color));
         }
     }
+    // Fitted to the data, with a third of a decade to spare below and
+    // room above for the legend and the note (one line each about 4% of
+    // the height).
+    let margin = 10f64.powf(1.0 / 3.0);
+    let lines = 8.0;
     for plot in [&mut left, &mut right] {
         plot.log_x = true;
         plot.log_y = true;
+        if lo.is_finite() && hi > 0.0 {
+            let (a, b) = ((lo / margin).log10(), (hi * margin).log10());
+            let top = b + (b - a) * lines * 0.05 / (1.0 - lines * 0.05);
+            plot.y_range = Some((10f64.powf(a), 10f64.powf(top)));
+        }
     }
-    // The key to the two line styles (series without points), then lines
-    // of text (invisible swatches): the legend, unlike a note box, gets room
-    // of its own above the data.
-    let key = palette(7);
-    right.series.push(
-        Series::new(
-            format!("tip position |Δr| / L at t = {t_eval}"),
-            vec![],
-            Style::LinePoints,
-        )
-        .with_color(key),
-    );
-    right
-        .series
-        .push(Series::new("max tip speed |Δv_max| / v_max", vec![], Style::Dashed).with_color(key));
     let (ref_rtol, agree) = agreement(rows)?;
     let mut text = vec![format!(
         "reference: DOPRI5 rtol {}, agrees with",
         exp(ref_rtol)
     )];
     text.push(format!("  {}", agree.join(", ")));
-    text.extend(notes);
-    for line in text {
-        right
-            .series
-            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+    text.push(format!("tip position error Δr_tip at t = {t_eval}"));
+    let (_, auto) = method_label(Method::Auto.as_str(), rows);
+    if !auto.is_empty() && auto.iter().all(|pt| !pt.switched) {
+        text.extend(same_as(&auto, rows));
     }
-    let title = format!("Work-precision: {}", spec.label);
+    text.extend(notes);
+    right.annotations = text;
+    let title = format!(
+        "Work-precision: {}; error: larger of tip position, max tip speed errors",
+        spec.label
+    );
     figures::line_plot_pair(&left, &right, &title, &ctx.stem(fig.id)).map_err(|e| e.to_string())
 }

@@ -200,7 +200,7 @@ impl Make for Convergence {
         let mut left = LinePlot::new("maximum tip speed", &x_label, "max tip speed |v|");
         left.log_x = true;
         let mut right = LinePlot::new(
-            "deviation from the finest n",
+            "relative deviation from the reference n",
             &x_label,
             "relative deviation",
         );
@@ -208,8 +208,10 @@ impl Make for Convergence {
         right.log_y = true;
         let gray = RGBColor(120, 120, 120);
         let top = vmax.iter().copied().fold(0.0, f64::max);
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
         for (s, name) in scenes.iter().enumerate() {
             let rows = ladder(name);
+            let reference_n = rows.first().map_or(0.0, |&k| reference[k]);
             left.series.push(
                 Series::new(
                     *name,
@@ -222,9 +224,17 @@ impl Make for Convergence {
                 .into_iter()
                 .filter(|&k| links[k] != reference[k])
                 .collect();
+            for &k in &below {
+                for v in [dev_v[k], dev_path[k]] {
+                    if v > 0.0 && v.is_finite() {
+                        lo = lo.min(v);
+                        hi = hi.max(v);
+                    }
+                }
+            }
             right.series.push(
                 Series::new(
-                    format!("{name}: max tip speed"),
+                    format!("{name}: max tip speed (reference: n = {reference_n})"),
                     below.iter().map(|&k| (links[k], dev_v[k])).collect(),
                     Style::LinePoints,
                 )
@@ -258,8 +268,13 @@ impl Make for Convergence {
                 mass[0], eta[0]
             ));
         }
-        left.y_range = Some((0.0, 1.9 * top));
-        right.y_range = Some((1e-5, 1e3));
+        // Room above the data for the boxes; on the right, half a decade
+        // below the smallest deviation and room above for the legend.
+        left.y_range = Some((0.0, 1.75 * top));
+        if lo.is_finite() {
+            let (a, b) = ((lo / 10f64.sqrt()).log10().floor(), (hi * 3.0).log10());
+            right.y_range = Some((10f64.powf(a), 10f64.powf(b + 0.75 * (b - a))));
+        }
         let title = "Convergence in n at fixed total mass and bending viscosity (auto, rtol 1e-9)";
         let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(fig.id))
             .map_err(|e| format!("{}: {e}", fig.id))?;

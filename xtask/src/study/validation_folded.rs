@@ -544,11 +544,11 @@ impl Make for SupportForce {
         let (law_xi, law_f) = (law.nums("xi")?, law.nums("law_over_Mg")?);
 
         let mut left = LinePlot::new(
-            "folded chain, r = 0",
-            "xi = x / L (fall of the free end from its start)",
-            "pull on P0, downward / (M g)",
+            "folded chain, r = 0: vertical pull against ξ",
+            "ξ = x / L (fall x of the free end from its start, chain length L)",
+            "vertical pull on P₀, downward / (M g)",
         );
-        let mut right = LinePlot::new("against time", "t", "pull on P0 / (M g)");
+        let mut right = LinePlot::new("against time t", "t", "pull on P₀ / (M g)");
         let light = RGBColor(190, 190, 190);
         let mut momentum_notes = vec![];
         let folded: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "folded").collect();
@@ -568,10 +568,7 @@ impl Make for SupportForce {
                     0,
                     Series::line(
                         "n = 100, raw",
-                        rows.iter()
-                            .filter(|&&k| xi[k] <= 0.85)
-                            .map(|&k| (xi[k], fy[k]))
-                            .collect(),
+                        rows.iter().map(|&k| (xi[k], fy[k])).collect(),
                     )
                     .with_color(light),
                 );
@@ -603,17 +600,19 @@ impl Make for SupportForce {
         let black = RGBColor(0, 0, 0);
         left.series.push(
             Series::new(
-                "law",
+                format!("law (drawn to ξ = {FORCE_LAW_TO}; → ∞ as ξ → 1)"),
                 law_xi.iter().copied().zip(law_f.iter().copied()).collect(),
                 Style::Dashed,
             )
             .with_color(black),
         );
+        // A log axis: the raw pulses (up to some 300 M g near the end of the
+        // fall) and the law's rise stay in the frame.
         left.x_range = Some((0.0, 1.0));
-        left.y_range = Some((0.0, 8.0));
+        left.log_y = true;
         left.annotations = vec![
             format!("mean: over {WINDOW} time units"),
-            "momentum at xi = 0.5".to_string(),
+            "momentum at ξ = 0.5".to_string(),
             "against the law's:".to_string(),
         ];
         left.annotations.extend(momentum_notes);
@@ -634,13 +633,16 @@ impl Make for SupportForce {
             )
             .with_color(palette(5)),
         );
-        let peak = span
-            .iter()
-            .map(|&k| (t[k], fx[k].hypot(fy[k])))
-            .fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
-        right.annotations = vec![format!("span-d3: peak |F| = {:.2} M g", peak.1)];
+        let peak = |f: &dyn Fn(usize) -> f64| span.iter().map(|&k| f(k)).fold(0.0, f64::max);
+        right.annotations = vec![
+            format!("span-d3: peak vertical pull {:.2} M g", peak(&|k| fy[k])),
+            format!(
+                "(peak magnitude |F| {:.2} M g)",
+                peak(&|k| fx[k].hypot(fy[k]))
+            ),
+        ];
         right.y_range = Some((-0.2, 6.5));
-        let title = "Force on the pivot P0 from the O(n) recursion, in units of the weight M g";
+        let title = "Force F on the pivot P₀ (O(n) recursion) / weight M g of the chain (mass M)";
         let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(id))
             .map_err(|e| format!("{id}: {e}"))?;
         Ok(ctx.drawn(&out))
