@@ -84,6 +84,13 @@ const SCENES: [MapScene; 5] = [
     },
 ];
 
+/// A legend line that is not an outcome: the mark of `auto`'s cells (the
+/// figures crate adds the line for cells not run).
+const AUTO_MARK_LEGEND: [(&str, RGBColor); 1] = [(
+    "B in an AUTO cell: auto ran BDF (from the start, or from when its detector fired)",
+    RGBColor(255, 255, 255),
+)];
+
 /// The categories, in legend order.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Outcome {
@@ -144,13 +151,14 @@ impl Outcome {
         }
     }
 
+    /// Okabe & Ito's colour-blind-safe palette.
     fn color(self) -> RGBColor {
         match self {
-            Outcome::Completed => RGBColor(116, 196, 118),
-            Outcome::EnergyError => RGBColor(253, 174, 97),
-            Outcome::Diverged => RGBColor(215, 48, 39),
-            Outcome::StepSizeTooSmall => RGBColor(117, 107, 177),
-            Outcome::MaxSteps => RGBColor(90, 90, 90),
+            Outcome::Completed => RGBColor(0, 158, 115),
+            Outcome::EnergyError => RGBColor(230, 159, 0),
+            Outcome::Diverged => RGBColor(213, 94, 0),
+            Outcome::StepSizeTooSmall => RGBColor(204, 121, 167),
+            Outcome::MaxSteps => RGBColor(0, 114, 178),
         }
     }
 }
@@ -309,6 +317,8 @@ impl Make for StabilityMap {
         let (param_name, param) = (t.strs("param_name")?, t.strs("param")?);
         let (outcome, status) = (t.strs("outcome")?, t.strs("status")?);
         let (energy, t_reached) = (t.nums("energy_error_rel")?, t.nums("t_reached")?);
+        // auto: the time it ran BDF from (empty when it stayed explicit).
+        let bdf_from = t.strs("bdf_from")?;
         let scenes = distinct(&scene);
         let rows: Vec<Option<Outcome>> = outcome.iter().map(|o| Outcome::parse(o)).collect();
         // Only the categories that occur.
@@ -352,7 +362,12 @@ impl Make for StabilityMap {
                         match k.and_then(|k| rows[k].map(|o| (k, o))) {
                             Some((k, o)) => {
                                 row.push(index(o));
-                                cell.push(cell_text(status[k], energy[k], t_reached[k]));
+                                let text = cell_text(status[k], energy[k], t_reached[k]);
+                                cell.push(if bdf_from[k].is_empty() {
+                                    text
+                                } else {
+                                    format!("B {text}")
+                                });
                             }
                             None => {
                                 row.push(None);
@@ -371,7 +386,11 @@ impl Make for StabilityMap {
             x_label: "cell: the power of ten of the energy-balance error / MgL (−5: 1e-5 to 1e-4) \
                       if completed, else the time t it stopped",
             y_label: "scene",
-            categories: used.iter().map(|o| (o.legend(), o.color())).collect(),
+            categories: used
+                .iter()
+                .map(|o| (o.legend(), o.color()))
+                .chain(AUTO_MARK_LEGEND.iter().map(|&(l, c)| (l.to_string(), c)))
+                .collect(),
             panels,
         };
         let out = figures::category_map(&map, &ctx.stem(fig.id)).map_err(|e| e.to_string())?;
