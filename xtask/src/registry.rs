@@ -115,7 +115,7 @@ pub static FIGURES: &[Figure] = &[
     },
     snapshots!("fig03-horizontal-undamped", "Fig. 3", "horizontal start, n = 25, r = 0", "n = 25 stretched horizontal chain, r = 0, t = 4.899", "horizontal-undamped"),
     snapshots!("fig04-horizontal-damped", "Fig. 4", "horizontal start, n = 25, r = 0.001", "n = 25 stretched horizontal chain, r = 0.001, t = 4.899", "horizontal-damped"),
-    snapshots!("fig05-horizontal-settling", "Fig. 5", "horizontal start, r = 0.001, to t = 19.6", "as fig04 to t = 19.60: the chain settles to hanging", "horizontal-settling"),
+    snapshots!("fig05-horizontal-settling", "Fig. 5", "horizontal start, r = 0.001, to t = 19.6", "as fig04 to t = 19.60: at this r the chain does not settle (the report's did)", "horizontal-settling"),
     snapshots!("fig05b-horizontal-settling-report-damping", "Fig. 5b", "as Fig. 5 at the report's effective damping r = 0.00204", "as fig05 at r = 0.001/sqrt(0.24) = 0.00204, the damping the report's code effectively used (erratum 3); DOPRI5, rtol 1e-8: still not settled at t = 19.60", "horizontal-settling-report-damping"),
     snapshots!("fig06-catenary-fall", "Fig. 6", "catenary to (5,1), n = 25, r = 0.001", "n = 25 discrete catenary to P1 (5,1), r = 0.001, t = 7.348", "catenary-fall"),
     snapshots!("fig07a-span-d1", "Fig. 7a", "span d = 1, n = 50", "n = 50, P1 = (1, 0), r = 0.0005, t = 4.157", "span-d1"),
