@@ -17,6 +17,7 @@ mod observer;
 mod registry;
 mod rk4;
 mod sparse_lu;
+mod step_size;
 
 use std::fmt;
 use std::str::FromStr;
