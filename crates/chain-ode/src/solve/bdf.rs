@@ -21,7 +21,6 @@
 use std::cell::Cell;
 use std::rc::Rc;
 
-use diffsol::ode_solver::OdeSolverStatistics;
 use diffsol::{
     Bdf, BdfState, ConstantOp, FaerContext, FaerSparseMat, FaerVec, LinearOp, Matrix, NonLinearOp,
     NonLinearOpJacobian, OdeBuilder, OdeEquations, OdeEquationsRef, OdeSolverMethod,
@@ -319,23 +318,11 @@ pub(crate) fn integrate(
             &|| log.last_failed.get(),
         )
     };
-    outcome(driven, solver.get_statistics(), eqn)
-}
-
-/// The outcome of a run, with diffsol's counters and the exact call counts.
-fn outcome(driven: Driven, s: &OdeSolverStatistics, eqn: &DaeEquations) -> Outcome {
-    let stats = Stats {
-        steps: s.number_of_steps as u64 - driven.discarded,
-        rejected_steps: (s.number_of_error_test_failures + s.number_of_nonlinear_solver_fails)
-            as u64
-            + driven.discarded,
-        rhs_evals: eqn.rhs_evals.get(),
-        jacobian_evals: eqn.jacobian_evals.get(),
-        // Every linear-solver setup is one sparse LU of `M - c J`.
-        lu_factorizations: s.number_of_linear_solver_setups as u64,
-        stiffness_detections: 0,
-    };
-    Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
+    driven.outcome(
+        solver.get_statistics(),
+        eqn.rhs_evals.get(),
+        eqn.jacobian_evals.get(),
+    )
 }
 
 /// `bdf`: diffsol's BDF on the banded DAE, O(n) per step. It needs the

@@ -8,7 +8,6 @@
 
 use std::cell::{Cell, RefCell};
 
-use diffsol::ode_solver::OdeSolverStatistics;
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
 use super::diffsol_driver::{drive, Driven};
@@ -117,26 +116,9 @@ fn run<S: OdeSystem>(
         )
     };
     let jvp_calls = sys.borrow().jvp_calls();
-    outcome(driven, solver.get_statistics(), jvp_calls, d)
-}
-
-/// The outcome of a run, with diffsol's counters and the exact JVP count
-/// (`rhs_evals` is filled in by [`Counted::run`]).
-fn outcome(driven: Driven, s: &OdeSolverStatistics, jvp_calls: u64, d: usize) -> Outcome {
-    let stats = Stats {
-        steps: s.number_of_steps as u64 - driven.discarded,
-        rejected_steps: (s.number_of_error_test_failures + s.number_of_nonlinear_solver_fails)
-            as u64
-            + driven.discarded,
-        rhs_evals: 0,
-        // diffsol builds each dense Jacobian from exactly `d` JVPs and calls
-        // the JVP for nothing else (no sensitivities here).
-        jacobian_evals: jvp_calls / d as u64,
-        // Every linear-solver setup is one faer LU of `I - c J`.
-        lu_factorizations: s.number_of_linear_solver_setups as u64,
-        stiffness_detections: 0,
-    };
-    Outcome::ended(driven.status, driven.t, driven.t_failed, stats, driven.y)
+    // diffsol builds each dense Jacobian from exactly `d` JVPs and calls the
+    // JVP for nothing else; `rhs_evals` is filled in by [`Counted::run`].
+    driven.outcome(solver.get_statistics(), 0, jvp_calls / d as u64)
 }
 
 /// `bdf-dense`: diffsol's BDF on the explicit form, dense LU: the O(n^3)

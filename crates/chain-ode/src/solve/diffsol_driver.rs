@@ -52,6 +52,30 @@ impl Interpolant for Dense<'_> {
     }
 }
 
+impl Driven {
+    /// The run's outcome: steps and rejections from diffsol's statistics
+    /// (a step accepted below the floor counts as rejected), one LU per
+    /// linear-solver setup, and the call counts the caller made exactly.
+    pub(crate) fn outcome(
+        self,
+        s: &diffsol::ode_solver::OdeSolverStatistics,
+        rhs_evals: u64,
+        jacobian_evals: u64,
+    ) -> crate::ode::Outcome {
+        let stats = crate::ode::Stats {
+            steps: s.number_of_steps as u64 - self.discarded,
+            rejected_steps: (s.number_of_error_test_failures + s.number_of_nonlinear_solver_fails)
+                as u64
+                + self.discarded,
+            rhs_evals,
+            jacobian_evals,
+            lu_factorizations: s.number_of_linear_solver_setups as u64,
+            stiffness_detections: 0,
+        };
+        crate::ode::Outcome::ended(self.status, self.t, self.t_failed, stats, self.y)
+    }
+}
+
 /// `rhs(t, y, f)` at an accepted state (full unknowns in and out).
 pub(crate) type StateRhs<'a> = &'a mut dyn FnMut(f64, &[f64], &mut [f64]);
 
