@@ -11,8 +11,12 @@ use crate::{chain_and_state, max_abs};
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
+    /// In angle coordinates every rod has length `l` by construction: no
+    /// run can change it. The one place it could still go wrong is
+    /// `joints`, which every figure, CSV and animation draws from; this is
+    /// the crate's one test of it (the design's "constant rod length").
     #[test]
-    fn joints_are_one_rod_length_apart((chain, phi, _w) in chain_and_state(300)) {
+    fn rod_length_is_exact_by_construction((chain, phi, _w) in chain_and_state(300)) {
         let r = joints(&chain, [0.3, -1.2], &phi);
         let l = chain.rod_length();
         for p in r.windows(2) {
