@@ -435,18 +435,24 @@ t_end = 4
                 &["[nan, 0, 0, 0]", "[]", "[1, 2]", "1"],
             ),
             (schema::Type::Text, &["nonesuch", "1"]),
+            (schema::Type::OneOf(&[]), &["nonesuch", "1"]),
         ];
         let names = crate::CatenaryNames::SCENE;
         for k in schema::KEYS {
             for kind in kinds_taking(k) {
                 let values = bad
                     .iter()
-                    .find(|(t, _)| *t == k.ty)
+                    .find(|(t, _)| std::mem::discriminant(t) == std::mem::discriminant(&k.ty))
                     .map_or(&[][..], |b| b.1);
+                // Some bad values are in range for some keys (0 for a
+                // damping); every key must reject at least one of them, so
+                // the check below never passes for want of an error.
+                let mut rejected = 0;
                 for text in values {
                     let mut tree = base(kind);
                     overrides::apply(&mut tree, &[format!("{}={text}", k.path)]).unwrap();
                     if let Err(e) = Scene::from_tree(tree).and_then(|s| s.prepare()) {
+                        rejected += 1;
                         let subject = e.subject();
                         assert!(
                             schema::key(subject).is_some() || subject == names.other,
@@ -455,6 +461,7 @@ t_end = 4
                         );
                     }
                 }
+                assert!(rejected > 0, "{} ({kind:?}): no bad value rejected", k.path);
             }
         }
         for name in [names.p0, names.p1, names.length, names.links] {

@@ -57,9 +57,13 @@ fn undamped_energy_is_conserved_to_the_tolerance() {
             tr.summary.energy_balance_error
         );
     }
-    // Three decades tighter: the error follows the tolerance down.
+    // Three decades tighter: the error follows the tolerance down, in
+    // proportion.
     let ratio = loose.summary.energy_balance_error / tight.summary.energy_balance_error;
-    assert!(ratio > 30.0, "ratio {ratio}");
+    // Tolerance proportionality: 1000 for an error proportional to rtol;
+    // measured 774 (3.9e-6 and 5.1e-9, scale 24). A method whose error
+    // fell like rtol^(1/2) would give 32.
+    assert!((300.0..=3000.0).contains(&ratio), "ratio {ratio}");
 }
 
 #[test]

@@ -46,7 +46,9 @@ fn error_falls_at_fifth_order_in_the_number_of_steps() {
     let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
     let slope = sxy / sxx;
-    assert!((-6.0..=-4.0).contains(&slope), "slope {slope}");
+    // Measured -5.57 over 18 to 100 steps; -5 for a fifth-order method with
+    // a fixed step. A fourth-order pair would give about -4 and fail.
+    assert!((-6.0..=-5.0).contains(&slope), "slope {slope}");
 }
 
 #[test]
@@ -101,21 +103,24 @@ fn agrees_with_rk4_on_two_report_scenes() {
 #[test]
 fn folded_scene_completes_with_energy_balance() {
     // The report's overflowing case: n = 50 folded, r = 0.001, report t = 12.
+    // (RK4 at the report scenes' dt diverging here is a documented claim,
+    // tested on the shipped scene in tests/cli.)
     let (chain, s) = folded(50, 1e-3);
+    let rtol = 1e-8;
     let opts = SolveOptions {
         t_end: 4.157,
-        rtol: 1e-8,
+        rtol,
         atol: 1e-10,
         ..Default::default()
     };
-    let tr = run(&chain, &s, Method::Dopri5, opts.clone());
-    assert!(tr.summary.energy_balance_error < 1e-6 * chain.weight() * chain.length);
-    // RK4 at the report's dt either completes or says how it failed.
-    let rk = solve(&chain, &s, Method::Rk4, &SolveOptions { dt: 0.01, ..opts }).unwrap();
-    if !rk.status.is_ok() {
-        assert_eq!(rk.status, Status::Diverged);
-        assert!(rk.final_state.iter().all(|v| v.is_finite()));
-    }
+    let tr = run(&chain, &s, Method::Dopri5, opts);
+    // Measured 8.8e-8 = 0.15 rtol * energy_scale through the whip.
+    let bound = rtol * chain.energy_scale();
+    assert!(
+        tr.summary.energy_balance_error < bound,
+        "{:e}",
+        tr.summary.energy_balance_error
+    );
 }
 
 #[test]

@@ -22,8 +22,9 @@ fn undamped_energy_error_falls_like_dt_to_the_fourth() {
         .collect();
     for w in errs.windows(2) {
         let order = (w[0] / w[1]).log2();
+        // Measured 4.05 and 4.03; a third-order method gives 3 and fails.
         assert!(
-            (3.5..=4.5).contains(&order),
+            (3.7..=4.3).contains(&order),
             "order {order}, errors {errs:?}"
         );
     }
@@ -44,12 +45,16 @@ fn damped_energy_balance_holds_and_energy_never_rises() {
             "{:e}",
             tr.summary.energy_balance_error
         );
-        // ... and E never rises by more than that error.
-        assert!(tr.summary.max_energy_rise <= tr.summary.energy_balance_error);
+        // ... and, with friction, E falls at every step: what rises is
+        // rounding (measured 0).
+        assert!(tr.summary.max_energy_rise <= 1e-12 * scale);
     }
     // The balance error is the method's: it shrinks at fourth order.
     let ratio = coarse.summary.energy_balance_error / fine.summary.energy_balance_error;
-    assert!(ratio > 8.0, "ratio {ratio}");
+    // Measured order 4.04 (errors 4.1e-6 and 2.5e-7); a third-order
+    // method gives 3 and fails.
+    let order = ratio.log2();
+    assert!((3.7..=4.3).contains(&order), "order {order}");
 }
 
 #[test]
@@ -103,15 +108,30 @@ fn tip_speed_maximum_is_continuous_not_sampled() {
     // step-to-step change of the speed near its peak.
     assert!((vc - vf).abs() < 5e-6 * vf, "{vc} vs {vf}");
     assert!((coarse.summary.t_tip_speed_max - fine.summary.t_tip_speed_max).abs() < 1e-4);
-    // The maximum over the output samples alone is lower.
-    let sampled = coarse
-        .samples()
-        .map(|s| {
-            let v = chain_ode::kinematics::tip_velocity(&chain, s.angles, s.rates);
-            v[0].hypot(v[1])
-        })
-        .fold(0.0, f64::max);
-    assert!(sampled <= vc * (1.0 + 1e-12));
+    // The maximum over the output samples alone (every 0.25) misses the
+    // peak; over samples every 1e-4 (the dense output) it comes within the
+    // parabola's miss, (0.5e-4)^2 |v''| / 2, below the continuous maximum.
+    let sampled_max = |tr: &Trajectory| {
+        tr.samples()
+            .map(|s| {
+                let v = chain_ode::kinematics::tip_velocity(&chain, s.angles, s.rates);
+                v[0].hypot(v[1])
+            })
+            .fold(0.0, f64::max)
+    };
+    let sparse = sampled_max(&coarse);
+    let fine_samples = SolveOptions {
+        output_dt: Some(1e-4),
+        ..opts(0.005)
+    };
+    let dense = sampled_max(&solve(&chain, &s, Method::Rk4, &fine_samples).unwrap());
+    // Measured: 3.7e-3 below with samples every 0.25, 4.3e-9 below with
+    // samples every 1e-4.
+    assert!(sparse < vc * (1.0 - 1e-3), "{sparse} vs {vc}");
+    assert!(
+        dense <= vc * (1.0 + 1e-12) && dense > vc * (1.0 - 2e-8),
+        "{dense} vs {vc}"
+    );
 }
 
 #[test]

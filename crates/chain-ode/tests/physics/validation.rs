@@ -60,10 +60,24 @@ fn folded_law_times_are_the_quadrature_of_one_over_v() {
     let (x, h) = (2.0, 1e-5);
     let dtdx = (folded_law::time(x + h, 6.0, 1.0) - folded_law::time(x - h, 6.0, 1.0)) / (2.0 * h);
     assert!((dtdx * folded_law::speed(x, 6.0, 1.0) - 1.0).abs() < 1e-8);
-    // The support force: half the weight at release, the whole weight
-    // plus the snap's tension as xi -> 1.
-    assert!((folded_law::support_force(0.0) - 0.5).abs() < 1e-15);
-    assert!(folded_law::support_force(0.99) > 20.0);
+    // The support force from the momentum balance of the whole chain,
+    // derived here independently of the library's form: the moving side,
+    // of length (L - x)/2, carries momentum p = lambda (L - x) v / 2, and
+    // F = M g - dp/dt = M g - lambda ((L - x) a - v^2) / 2, with
+    // v^2 = g x (2L - x) / (L - x) (energy conservation) and
+    // a = d(v^2/2)/dx = g (1 + x (2L - x) / (2 (L - x)^2)).
+    // In units of M g, with xi = x / L:
+    // F = (1 + xi) / 2 + xi (2 - xi) / (4 (1 - xi)): half the weight at
+    // release, growing like 1 / (4 (1 - xi)) at the snap (25.99 at 0.99).
+    for xi in [0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 0.999] {
+        let balance = (1.0 + xi) / 2.0 + xi * (2.0 - xi) / (4.0 * (1.0 - xi));
+        let lib = folded_law::support_force(xi);
+        assert!(
+            (lib - balance).abs() <= 1e-13 * balance,
+            "xi = {xi}: {lib} vs {balance}"
+        );
+    }
+    assert_eq!(folded_law::support_force(0.0), 0.5);
 }
 
 /// The first times the free end of a folded chain (n rods, r = 0) has fallen
