@@ -140,3 +140,35 @@ fn converge_rejects_a_bad_tol_or_links_in_one_line_naming_it() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--tol"));
 }
+
+#[test]
+fn converge_with_a_failed_run_exits_1_with_no_answer_and_every_level_reported() {
+    // The refinement keeps eta = r l and M, so gamma = r/(m l^2) grows like
+    // n^4: 0.17 at n = 50, 44.4 at n = 200, where the spectral radius near
+    // 48 gamma = 2133 is far past RK4's 2.785 / dt = 278 at dt = 0.01.
+    let out = run(&[
+        "converge",
+        &scene("span-d3"),
+        "--tol",
+        "0.01",
+        "--method",
+        "rk4",
+        "--links",
+        "25,50,200",
+        "--set",
+        "run.t_end=0.5",
+        "--json",
+        "--jobs",
+        "2",
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let v = json(&out);
+    let status: Vec<&str> = v["levels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["status"].as_str().unwrap())
+        .collect();
+    assert_eq!(status, ["ok", "ok", "diverged"]);
+    assert!(v["adequate_links"].is_null(), "no answer: {v}");
+}

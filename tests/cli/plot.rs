@@ -67,3 +67,41 @@ fn plot_and_animate_write_the_format_asked_for_or_nothing() {
     }
     assert!(!Path::new("x.gif").exists() && !Path::new("x.jpg").exists());
 }
+
+#[test]
+fn plot_and_animate_of_a_failed_run_exit_1_and_still_draw_it() {
+    // gamma = 34.7 (chain.damping = 0.1): RK4 at dt = 0.01 diverges within
+    // the first steps (see the sweep and simulate tests); what it computed
+    // up to there is drawn.
+    let dir = scratch("plot-failed");
+    let png = dir.join("failed.png");
+    let gif = dir.join("failed.gif");
+    let span = scene("span-d3");
+    for (args, file) in [
+        (vec!["plot", "-o", png.to_str().unwrap()], &png),
+        (
+            vec!["animate", "-o", gif.to_str().unwrap(), "--seconds", "0.5"],
+            &gif,
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend([
+            span.as_str(),
+            "--set",
+            "chain.damping=0.1",
+            "--set",
+            "run.t_end=1",
+        ]);
+        let out = run(&all);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));
+        assert!(
+            stderr(&out).contains("status diverged"),
+            "{args:?}: {}",
+            stderr(&out)
+        );
+        let bytes = fs::read(file).unwrap();
+        assert!(bytes.starts_with(b"\x89PNG") || bytes.starts_with(b"GIF89a"));
+    }
+    assert_eq!(names_in(&dir), ["failed.gif", "failed.png"]);
+    fs::remove_dir_all(&dir).unwrap();
+}

@@ -141,7 +141,9 @@ impl Interpolant for Hermite<'_> {
 pub enum Status {
     /// Reached `t_end`.
     Ok,
-    /// A non-finite value appeared; the run stopped at the last finite state.
+    /// A non-finite value appeared; the run stopped at the last finite state
+    /// (or, with every state finite, a summary value such as the energy was
+    /// not: see `solve`).
     Diverged,
     /// The adaptive step fell below the minimum.
     StepSizeTooSmall,

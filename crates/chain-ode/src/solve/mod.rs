@@ -207,6 +207,29 @@ pub struct Summary {
     pub wall_seconds: f64,
 }
 
+impl Summary {
+    /// True if every field is finite. `solve` never reports a run as `ok`
+    /// when this is false: such a run ends `diverged`.
+    pub fn all_finite(&self) -> bool {
+        [
+            self.energy_start,
+            self.energy_end,
+            self.dissipated,
+            self.energy_balance_error,
+            self.max_energy_rise,
+            self.tip_end[0],
+            self.tip_end[1],
+            self.tip_velocity_end[0],
+            self.tip_velocity_end[1],
+            self.tip_speed_max,
+            self.t_tip_speed_max,
+            self.wall_seconds,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
+    }
+}
+
 /// The time span over which one method ran (several for `auto`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Segment {
@@ -280,8 +303,12 @@ impl Trajectory {
 
 /// Runs `method` on `chain` from `start` over `[0, options.t_end]`.
 ///
-/// Never panics on a failing run and never returns a NaN: a run that hits a
-/// non-finite value stops with `Status::Diverged` at the last finite state.
+/// Never panics on a failing run and never returns a NaN in its state: a run
+/// that hits a non-finite value stops with `Status::Diverged` at the last
+/// finite state. A run whose every state is finite but whose summary is not
+/// (an energy that overflows, say) also ends `Status::Diverged`, with
+/// `t_failed` the first time a non-finite value was recorded: a NaN or an
+/// infinity in the summary never comes with `Status::Ok`.
 pub fn solve(
     chain: &Chain,
     start: &State,
@@ -326,14 +353,23 @@ pub fn solve(
         t_tip_speed_max: obs.t_tip_speed_max,
         wall_seconds,
     };
+    // A non-finite value in the summary (an energy that overflowed, a NaN
+    // from the observer) is a run that went wrong, even when every state
+    // stayed finite: it must not pass as `ok`.
+    let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
+        let t = obs.t_nonfinite.unwrap_or(outcome.t_reached);
+        (Status::Diverged, Some(t))
+    } else {
+        (outcome.status, outcome.t_failed)
+    };
     Ok(Trajectory {
         chain: chain.clone(),
         anchor: start.anchor,
         method,
-        status: outcome.status,
+        status,
         t_end: options.t_end,
         t_reached: outcome.t_reached,
-        t_failed: outcome.t_failed,
+        t_failed,
         stats: outcome.stats,
         segments: outcome.segments,
         summary,

@@ -40,6 +40,15 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     }
 }
 
+/// The larger of `a` and `b`, or NaN if either is NaN.
+fn max_nan(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
 /// Records a chain run.
 pub(crate) struct ChainObserver {
     chain: Chain,
@@ -55,6 +64,9 @@ pub(crate) struct ChainObserver {
     pub max_energy_rise: f64,
     pub tip_speed_max: f64,
     pub t_tip_speed_max: f64,
+    /// The first time a recorded quantity (energy, balance, tip speed) was
+    /// not finite, if one was: the run then ends `diverged` (see `solve`).
+    pub t_nonfinite: Option<f64>,
     /// `d|v|^2/dt` at the last step's end.
     slope: f64,
     started: bool,
@@ -78,9 +90,17 @@ impl ChainObserver {
             max_energy_rise: 0.0,
             tip_speed_max: 0.0,
             t_tip_speed_max: 0.0,
+            t_nonfinite: None,
             slope: 0.0,
             started: false,
             buf: vec![0.0; dim],
+        }
+    }
+
+    /// Notes `t` as the first time something recorded was not finite.
+    fn check_finite(&mut self, t: f64, values: &[f64]) {
+        if self.t_nonfinite.is_none() && !values.iter().all(|v| v.is_finite()) {
+            self.t_nonfinite = Some(t);
         }
     }
 
@@ -126,7 +146,7 @@ impl ChainObserver {
             }
         }
         let (t, v) = if fc > fd { (c, fc) } else { (d, fd) };
-        if v > self.tip_speed_max {
+        if v > self.tip_speed_max || v.is_nan() {
             self.tip_speed_max = v;
             self.t_tip_speed_max = t;
         }
@@ -147,6 +167,7 @@ impl Observer for ChainObserver {
         self.energy_end = m.energy;
         self.tip_speed_max = m.tip_velocity[0].hypot(m.tip_velocity[1]);
         self.t_tip_speed_max = t0;
+        self.check_finite(t0, &[m.energy, self.tip_speed_max]);
         self.slope = 2.0
             * (m.tip_velocity[0] * m.tip_acceleration[0]
                 + m.tip_velocity[1] * m.tip_acceleration[1]);
@@ -160,10 +181,12 @@ impl Observer for ChainObserver {
         let n = self.chain.links;
         let m = metrics(&self.chain, step.y1, step.f1);
         let dissipated = step.y1[2 * n];
-        self.energy_balance_error = self
-            .energy_balance_error
-            .max((m.energy + dissipated - self.energy_start).abs());
-        self.max_energy_rise = self.max_energy_rise.max(m.energy - self.energy_end);
+        // NaN-propagating maxima: `f64::max` would drop a NaN and hide it.
+        self.energy_balance_error = max_nan(
+            self.energy_balance_error,
+            (m.energy + dissipated - self.energy_start).abs(),
+        );
+        self.max_energy_rise = max_nan(self.max_energy_rise, m.energy - self.energy_end);
         self.energy_end = m.energy;
 
         let speed = m.tip_velocity[0].hypot(m.tip_velocity[1]);
@@ -173,11 +196,20 @@ impl Observer for ChainObserver {
         if self.slope > 0.0 && slope < 0.0 {
             self.refine_max(step);
         }
-        if speed > self.tip_speed_max {
+        if speed > self.tip_speed_max || speed.is_nan() {
             self.tip_speed_max = speed;
             self.t_tip_speed_max = step.t1;
         }
         self.slope = slope;
+        self.check_finite(
+            step.t1,
+            &[
+                m.energy,
+                self.energy_balance_error,
+                self.max_energy_rise,
+                self.tip_speed_max,
+            ],
+        );
 
         if let Some(dt) = self.output_dt {
             loop {

@@ -7,6 +7,7 @@ mod bdf;
 mod dae;
 mod dopri5;
 mod dynamics;
+mod failures;
 mod methods;
 mod modes;
 mod rk4;
