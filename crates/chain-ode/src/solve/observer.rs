@@ -2,7 +2,7 @@
 //! and the continuous maximum of the tip speed. One O(n) pass per step.
 
 use crate::chain::Chain;
-use crate::kinematics::{tip_velocity, Vec2};
+use crate::kinematics::{energy, tip_velocity, Vec2};
 use crate::ode::{Observer, StepView};
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
@@ -111,6 +111,19 @@ impl ChainObserver {
 
     /// Records the final state if the last sample is not already it.
     pub fn finish(&mut self, t: f64, y: &[f64]) {
+        if !self.started {
+            // The method stopped before its first right-hand side was finite:
+            // the energies and the speed are the start's, from the state
+            // alone (not the zeros the observer was made with).
+            let n = self.chain.links;
+            let (phi, w) = (&y[..n], &y[n..2 * n]);
+            self.energy_start = energy(&self.chain, phi, w);
+            self.energy_end = self.energy_start;
+            let v = tip_velocity(&self.chain, phi, w);
+            self.tip_speed_max = v[0].hypot(v[1]);
+            self.t_tip_speed_max = t;
+            self.check_finite(t, &[self.energy_start, self.tip_speed_max]);
+        }
         if self.output_dt.is_some() && self.times.last().is_none_or(|&tl| tl < t) {
             self.record(t, y);
         }

@@ -277,3 +277,31 @@ fn a_complete_run_has_a_finite_summary_whose_balance_bounds_every_sample() {
         assert!(bound < 1e-3 * chain.energy_scale(), "{method}: {bound}");
     }
 }
+
+#[test]
+fn a_start_whose_first_derivative_overflows_reports_the_start_not_zeros() {
+    // Rates of 1e154: the accelerations (~w^2 / l) overflow, so no method
+    // takes a step. The summary still describes the start: its energy
+    // (~1e309, infinite in f64) and its finite tip speed (6e154), not the
+    // zeros of an observer that never started.
+    let (chain, _) = span3(10, 0.0);
+    let s = Start::Angles {
+        p0: [0.0, 0.0],
+        angles: vec![-0.5; 10],
+        rates: Some(vec![1e154; 10]),
+    }
+    .state(&chain)
+    .unwrap();
+    let e0 = energy(&chain, &s.angles, &s.rates);
+    assert_eq!(e0, f64::INFINITY);
+    for method in [Method::Rk4, Method::Dopri5, Method::Bdf] {
+        let tr = solve(&chain, &s, method, &tolerances(1.0, 1e-6, 1e-8)).unwrap();
+        assert_eq!(tr.status, Status::Diverged, "{method}");
+        assert_eq!((tr.t_reached, tr.t_failed), (0.0, Some(0.0)), "{method}");
+        assert_eq!(tr.summary.energy_start, e0, "{method}");
+        assert_eq!(tr.summary.energy_end, e0, "{method}");
+        let v = chain_ode::kinematics::tip_velocity(&chain, &s.angles, &s.rates);
+        assert!(v[0].hypot(v[1]) > 1e154);
+        assert_eq!(tr.summary.tip_speed_max, v[0].hypot(v[1]), "{method}");
+    }
+}
