@@ -276,11 +276,9 @@ mod tests {
             &options(1e-8, 1e-10),
             &mut Quiet,
         );
-        assert!(
-            matches!(out.status, Status::Diverged | Status::StepSizeTooSmall),
-            "{:?}",
-            out.status
-        );
+        // Never `diverged`: y stays finite (~1e12) while the step shrinks
+        // to the floor; see known_solutions::a_blow_up_ends_step_size_too_small_just_before_the_pole.
+        assert_eq!(out.status, Status::StepSizeTooSmall);
         assert!(out.t_reached < 1.0);
         assert!(out.t_failed.is_some_and(|t| t >= out.t_reached));
         assert!(all_finite(&out.y_end));

@@ -1093,11 +1093,9 @@ mod tests {
             &mut Quiet,
         );
         eprintln!("blow-up: {out:?}");
-        assert!(
-            matches!(out.status, Status::Diverged | Status::StepSizeTooSmall),
-            "{:?}",
-            out.status
-        );
+        // Never `diverged`: y stays finite (~1e12) while the step shrinks
+        // to the floor; see known_solutions::a_blow_up_ends_step_size_too_small_just_before_the_pole.
+        assert_eq!(out.status, Status::StepSizeTooSmall);
         assert_eq!(out.stats.rhs_evals, sys.rhs_calls);
         // The numerical pole lags the exact one by ~1e-9 here (DOP853's
         // error has that sign on this problem), so allow the tolerance.

@@ -6,10 +6,10 @@
 
 use super::integrator::Settings;
 use super::test_problems::{
-    arenstorf, max_diff, one_step, options, slope, van_der_pol, Known, Probe, Quiet, Toy, FORCED,
-    GAUSSIAN,
+    arenstorf, blow_up, max_diff, one_step, options, slope, van_der_pol, Known, KnownDae, Probe,
+    Quiet, Toy, BLOW_UP_DAE, FORCED, FORCED_DAE, GAUSSIAN, GAUSSIAN_DAE, VAN_DER_POL_DAE,
 };
-use super::{bdf_dense, dop853, dopri5, rk4, Method};
+use super::{bdf, bdf_dense, dop853, dopri5, rk4, Method};
 use crate::ode::{Observer, OdeSystem, Outcome, Status, StepView};
 
 /// Runs `method` (one that steps an [`OdeSystem`]) from `(t0, y0)` to
@@ -32,6 +32,11 @@ fn run(
     };
     assert_eq!(out.stats.rhs_evals, sys.rhs_calls, "{method}");
     out
+}
+
+/// Runs the sparse BDF on `p` from its exact (consistent) state at `t0`.
+fn run_dae(p: &KnownDae, t0: f64, t_end: f64, o: &Settings, obs: &mut dyn Observer) -> Outcome {
+    bdf::integrate_dae(*p, t0, (p.exact)(t0), t_end, o, obs)
 }
 
 /// One step of exactly `h` from the exact state at `t0`: the step's error at
@@ -422,6 +427,33 @@ fn dense_output_follows_the_exact_solution_between_steps() {
             );
         }
     }
+    // The sparse BDF on the same problems written as index-1 DAEs, at
+    // 1e-8: measured worst 17 tol (Gaussian) and 27 tol (forced), the
+    // global error (the nodes are as far off); 4x margin.
+    for p in [&GAUSSIAN_DAE, &FORCED_DAE] {
+        let tol = 1e-8;
+        let mut obs = DenseCheck::new(p.exact);
+        let out = run_dae(p, 0.0, 10.0, &options(tol, tol), &mut obs);
+        assert_eq!(out.status, Status::Ok);
+        assert_eq!(obs.steps, out.stats.steps);
+        eprintln!(
+            "bdf on {}: {} steps, inside {:.2e} ({:.2} tol), nodes {:.2e}, ends {:.2e}",
+            p.name,
+            obs.steps,
+            obs.inside,
+            obs.inside / tol,
+            obs.nodes,
+            obs.ends
+        );
+        assert!(
+            obs.inside < 100.0 * tol,
+            "bdf on {}: inside {:e}",
+            p.name,
+            obs.inside
+        );
+        // Measured at most 2.3e-15.
+        assert!(obs.ends < 1e-12, "bdf on {}: ends {:e}", p.name, obs.ends);
+    }
 }
 
 #[test]
@@ -498,4 +530,136 @@ fn van_der_pol_agrees_with_a_tight_reference() {
         );
         assert!(e < bound, "{method}: error {e:e}");
     }
+    // The sparse BDF on Van der Pol as an index-1 DAE: measured 7.1e-7 at
+    // 1e-8 (bdf-dense: 5.6e-7 on the ODE). Bound ~5x.
+    let out = run_dae(
+        &VAN_DER_POL_DAE,
+        0.0,
+        20.0,
+        &options(1e-8, 1e-8),
+        &mut Quiet,
+    );
+    assert_eq!(out.status, Status::Ok);
+    let e = max_diff(&out.y_end, &reference);
+    eprintln!("bdf vdp 1e-8: {} steps, error {e:.2e}", out.stats.steps);
+    assert!(e < 4e-6, "bdf: error {e:e}");
+}
+
+#[test]
+fn the_sparse_bdf_error_falls_with_the_tolerance() {
+    // BDF's error is not proportional to the tolerance (variable order,
+    // and the error test is local): the worst error over the steps falls by
+    // 159x (Gaussian) and 737x (forced) from 1e-5 to 1e-8, and by 352x and
+    // 935x from 1e-8 to 1e-11. A method that stopped converging would fall
+    // by ~1; the band is 2.5x beyond the measured extremes.
+    for p in [&GAUSSIAN_DAE, &FORCED_DAE] {
+        let worst = |tol: f64| {
+            let mut obs = DenseCheck::new(p.exact);
+            let out = run_dae(p, 0.0, 10.0, &options(tol, tol), &mut obs);
+            assert_eq!(out.status, Status::Ok);
+            obs.nodes
+        };
+        let (e5, e8, e11) = (worst(1e-5), worst(1e-8), worst(1e-11));
+        eprintln!(
+            "bdf on {}: 1e-5 {e5:.2e}, 1e-8 {e8:.2e}, 1e-11 {e11:.2e}: ratios {:.0}, {:.0}",
+            p.name,
+            e5 / e8,
+            e8 / e11
+        );
+        for r in [e5 / e8, e8 / e11] {
+            assert!((60.0..=2500.0).contains(&r), "bdf on {}: ratio {r}", p.name);
+        }
+    }
+}
+
+#[test]
+fn a_blow_up_ends_step_size_too_small_just_before_the_pole() {
+    // y' = y^2, y(0) = 1 to t = 2: y = 1 / (1 - t). Every adaptive method
+    // ends `step_size_too_small`, never `diverged`: the step, held to a
+    // relative error by rtol, shrinks like the distance to the (numerical)
+    // pole, and reaches the rounding floor 1e-14 while y is ~1e12, far
+    // from overflowing; no non-finite value ever appears. The numerical
+    // pole t_reached + 1 / y_end is where the run stopped to ~1e-12, and
+    // is the exact pole to the accuracy of the run: measured |t_pole - 1|
+    // 2.9e-7 (bdf), 2.7e-7 (bdf-dense), 5.2e-10 (dopri5), 1.2e-9 (dop853).
+    let o = options(1e-8, 1e-10);
+    let runs = [
+        (
+            Method::Bdf,
+            run_dae(&BLOW_UP_DAE, 0.0, 2.0, &o, &mut Quiet),
+            1e-6,
+        ),
+        (
+            Method::BdfDense,
+            run(
+                Method::BdfDense,
+                &mut blow_up(),
+                0.0,
+                &[1.0],
+                2.0,
+                &o,
+                &mut Quiet,
+            ),
+            1e-6,
+        ),
+        (
+            Method::Dopri5,
+            run(
+                Method::Dopri5,
+                &mut blow_up(),
+                0.0,
+                &[1.0],
+                2.0,
+                &o,
+                &mut Quiet,
+            ),
+            5e-9,
+        ),
+        (
+            Method::Dop853,
+            run(
+                Method::Dop853,
+                &mut blow_up(),
+                0.0,
+                &[1.0],
+                2.0,
+                &o,
+                &mut Quiet,
+            ),
+            5e-9,
+        ),
+    ];
+    for (method, out, bound) in runs {
+        eprintln!("{method} blow-up: {out:?}");
+        assert_eq!(out.status, Status::StepSizeTooSmall, "{method}");
+        let t_failed = out.t_failed.expect("a failed run has t_failed");
+        // The step that failed was below the floor 1e-14 max(1, t).
+        assert!(
+            t_failed > out.t_reached && t_failed - out.t_reached < 2e-14,
+            "{method}: {out:?}"
+        );
+        let y = out.y_end[0];
+        // Measured 9e11 to 2.4e13.
+        assert!(y.is_finite() && y > 1e11, "{method}: {out:?}");
+        let t_pole = out.t_reached + 1.0 / y;
+        assert!(t_pole - out.t_reached < 1e-11, "{method}: {out:?}");
+        assert!((t_pole - 1.0).abs() < bound, "{method}: pole at {t_pole}");
+    }
+    // RK4 has no floor: its fixed steps run into the pole and overflow.
+    let o = Settings { dt: 0.01, ..o };
+    let out = run(
+        Method::Rk4,
+        &mut blow_up(),
+        0.0,
+        &[1.0],
+        2.0,
+        &o,
+        &mut Quiet,
+    );
+    eprintln!("rk4 blow-up: {out:?}");
+    // Its solution has no pole at 1 exactly: measured overflow in the step
+    // from 1.01 to 1.02, y = 1e13 at 1.01. Within 3 steps of the pole.
+    assert_eq!(out.status, Status::Diverged);
+    assert!((out.t_reached - 1.0).abs() < 0.03, "{out:?}");
+    assert!(out.y_end[0].is_finite() && out.y_end[0] > 1e6, "{out:?}");
 }

@@ -1,8 +1,10 @@
 //! What the integrators' tests share: a system made of closures with exact
-//! call counters ([`Toy`]), problems with known solutions, observers that
+//! call counters ([`Toy`]), problems with known solutions (as ODEs, and as
+//! index-1 DAEs for the sparse BDF), observers that
 //! record or probe a run, and the least-squares slope behind every order
 //! measurement.
 
+use super::bdf::SemiExplicitDae;
 use super::integrator::Settings;
 use super::SolveOptions;
 use crate::ode::{Observer, OdeSystem, StepView};
@@ -199,3 +201,123 @@ impl Observer for Probe {
         }
     }
 }
+
+/// Where a [`KnownDae`] writes its Jacobian's entries: `(row, column, value)`.
+type Emit<'a> = &'a mut dyn FnMut(usize, usize, f64);
+
+/// A semi-explicit index-1 DAE for the sparse BDF, with its consistent start
+/// at `t0` and (where known) its exact solution.
+#[derive(Clone, Copy)]
+pub(crate) struct KnownDae {
+    pub name: &'static str,
+    /// Number of unknowns.
+    pub dim: usize,
+    /// Number of differential unknowns (the first ones).
+    pub differential_dim: usize,
+    pub rhs: fn(f64, &[f64], &mut [f64]),
+    /// The Jacobian's entries, always the same ones in the same order.
+    pub jacobian: fn(f64, &[f64], Emit<'_>),
+    /// Every unknown at `t`, consistent.
+    pub exact: fn(f64) -> Vec<f64>,
+}
+
+impl SemiExplicitDae for KnownDae {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn differential_dim(&self) -> usize {
+        self.differential_dim
+    }
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        (self.rhs)(t, y, out)
+    }
+    fn jacobian_entries(&self, t: f64, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
+        (self.jacobian)(t, y, &mut emit)
+    }
+}
+
+/// `y' = z`, `0 = z + 2 t y`: [`GAUSSIAN`] with its derivative as an
+/// algebraic unknown.
+pub(crate) const GAUSSIAN_DAE: KnownDae = KnownDae {
+    name: "y' = z, 0 = z + 2ty",
+    dim: 2,
+    differential_dim: 1,
+    rhs: |t, y, out| {
+        out[0] = y[1];
+        out[1] = y[1] + 2.0 * t * y[0];
+    },
+    jacobian: |t, _y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 0, 2.0 * t);
+        emit(1, 1, 1.0);
+    },
+    exact: |t| {
+        let y = (-t * t).exp();
+        vec![y, -2.0 * t * y]
+    },
+};
+
+/// `x' = v`, `v' = a`, `0 = a + x - cos 2t`: [`FORCED`] with the
+/// acceleration as an algebraic unknown.
+pub(crate) const FORCED_DAE: KnownDae = KnownDae {
+    name: "x' = v, v' = a, 0 = a + x - cos 2t",
+    dim: 3,
+    differential_dim: 2,
+    rhs: |t, y, out| {
+        out[0] = y[1];
+        out[1] = y[2];
+        out[2] = y[2] + y[0] - (2.0 * t).cos();
+    },
+    jacobian: |_t, _y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 2, 1.0);
+        emit(2, 0, 1.0);
+        emit(2, 2, 1.0);
+    },
+    exact: |t| {
+        let xv = (FORCED.exact)(t);
+        let a = -xv[0] + (2.0 * t).cos();
+        vec![xv[0], xv[1], a]
+    },
+};
+
+/// Van der Pol as `x' = v`, `v' = a`, `0 = a - (mu (1 - x^2) v - x)` with
+/// `mu = 10` (no closed form: `exact` only gives the start `(2, 0)`).
+pub(crate) const VAN_DER_POL_DAE: KnownDae = KnownDae {
+    name: "van der Pol, mu = 10, as a DAE",
+    dim: 3,
+    differential_dim: 2,
+    rhs: |_t, y, out| {
+        out[0] = y[1];
+        out[1] = y[2];
+        out[2] = y[2] - (10.0 * (1.0 - y[0] * y[0]) * y[1] - y[0]);
+    },
+    jacobian: |_t, y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 2, 1.0);
+        emit(2, 0, 20.0 * y[0] * y[1] + 1.0);
+        emit(2, 1, -10.0 * (1.0 - y[0] * y[0]));
+        emit(2, 2, 1.0);
+    },
+    exact: |_t| vec![2.0, 0.0, -2.0],
+};
+
+/// `y' = z`, `0 = z - y^2`, `y(0) = 1`: [`blow_up`] as a DAE, `y = 1 / (1 - t)`.
+pub(crate) const BLOW_UP_DAE: KnownDae = KnownDae {
+    name: "y' = z, 0 = z - y^2",
+    dim: 2,
+    differential_dim: 1,
+    rhs: |_t, y, out| {
+        out[0] = y[1];
+        out[1] = y[1] - y[0] * y[0];
+    },
+    jacobian: |_t, y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 0, -2.0 * y[0]);
+        emit(1, 1, 1.0);
+    },
+    exact: |t| {
+        let y = 1.0 / (1.0 - t);
+        vec![y, y * y]
+    },
+};
