@@ -17,6 +17,10 @@
 //! Newton convergence test: they are functions of `phi, w` fixed by linear
 //! equations, and they jump at a whip by orders of magnitude. Step sizes
 //! are set by `phi`, `w` and `W` only, as for the explicit methods.
+//!
+//! The step loop runs any [`SemiExplicitDae`] ([`integrate_dae`]): the chain
+//! ([`ChainDae`], autonomous) through [`integrate`], and the tests' DAEs
+//! with known solutions, non-autonomous ones among them.
 
 use std::cell::Cell;
 use std::rc::Rc;
@@ -44,14 +48,48 @@ type Vf = FaerVec<f64>;
 /// never weigh in the error norm (their values are below 1e8 in every scene).
 pub(crate) const ALGEBRAIC_ATOL: f64 = 1e10;
 
+/// A semi-explicit DAE `M y' = f(t, y)` with the constant mass matrix
+/// `M = diag(1 (differential_dim), 0 (the rest))`: the differential unknowns
+/// come first, then the algebraic ones. The sparse BDF runs any of them;
+/// it must be of index 1 (the algebraic block of the Jacobian nonsingular).
+pub(crate) trait SemiExplicitDae {
+    /// Number of unknowns.
+    fn dim(&self) -> usize;
+    /// Number of differential unknowns: the first rows and columns.
+    fn differential_dim(&self) -> usize;
+    /// `out = f(t, y)`: the derivatives of the differential unknowns, then
+    /// the residuals of the algebraic equations.
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]);
+    /// Entries of `df/dy` at `(t, y)` as `emit(row, column, value)`. The
+    /// entries and their order must not depend on `t` or `y`: the pattern
+    /// is built once, from the start.
+    fn jacobian_entries(&self, t: f64, y: &[f64], emit: impl FnMut(usize, usize, f64));
+}
+
+/// The chain is autonomous: `t` is ignored.
+impl SemiExplicitDae for ChainDae {
+    fn dim(&self) -> usize {
+        ChainDae::dim(self)
+    }
+    fn differential_dim(&self) -> usize {
+        ChainDae::differential_dim(self)
+    }
+    fn rhs(&self, _t: f64, y: &[f64], out: &mut [f64]) {
+        ChainDae::rhs(self, y, out)
+    }
+    fn jacobian_entries(&self, _t: f64, y: &[f64], emit: impl FnMut(usize, usize, f64)) {
+        ChainDae::jacobian_entries(self, y, emit)
+    }
+}
+
 /// The DAE as diffsol's `OdeEquations`, with exact call counters.
-struct DaeEquations {
-    dae: ChainDae,
+struct DaeEquations<D> {
+    dae: D,
     ctx: FaerContext,
     /// The consistent start.
     y0: Vec<f64>,
     jacobian_pattern: SymbolicSparseColMat<usize>,
-    /// CSC position of each entry of [`ChainDae::jacobian_entries`], in its order.
+    /// CSC position of each entry of [`SemiExplicitDae::jacobian_entries`], in its order.
     jacobian_slots: Vec<usize>,
     mass_pattern: SymbolicSparseColMat<usize>,
     rhs_evals: Cell<u64>,
@@ -79,12 +117,11 @@ fn pattern(dim: usize, entries: &[(usize, usize)]) -> (SymbolicSparseColMat<usiz
     (sym, slots)
 }
 
-impl DaeEquations {
-    fn new(chain: &Chain, y0: Vec<f64>) -> Self {
-        let dae = ChainDae::new(chain);
+impl<D: SemiExplicitDae> DaeEquations<D> {
+    fn new(dae: D, t0: f64, y0: Vec<f64>) -> Self {
         let dim = dae.dim();
-        let mut entries = Vec::with_capacity(32 * chain.links);
-        dae.jacobian_entries(&y0, |r, c, _| entries.push((r, c)));
+        let mut entries = Vec::with_capacity(7 * dim);
+        dae.jacobian_entries(t0, &y0, |r, c, _| entries.push((r, c)));
         let (jacobian_pattern, jacobian_slots) = pattern(dim, &entries);
         let diagonal: Vec<_> = (0..dae.differential_dim()).map(|i| (i, i)).collect();
         let (mass_pattern, _) = pattern(dim, &diagonal);
@@ -103,8 +140,8 @@ impl DaeEquations {
     }
 
     /// Right-hand side on slices, counted and checked.
-    fn rhs_slices(&self, y: &[f64], out: &mut [f64]) {
-        self.dae.rhs(y, out);
+    fn rhs_slices(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        self.dae.rhs(t, y, out);
         self.rhs_evals.set(self.rhs_evals.get() + 1);
         if !all_finite(out) {
             self.nonfinite.set(true);
@@ -112,16 +149,16 @@ impl DaeEquations {
     }
 }
 
-/// The right-hand side `f(y)` and its Jacobian.
-struct DaeRhs<'a>(&'a DaeEquations);
+/// The right-hand side `f(t, y)` and its Jacobian.
+struct DaeRhs<'a, D>(&'a DaeEquations<D>);
 /// The constant mass matrix.
-struct DaeMass<'a>(&'a DaeEquations);
+struct DaeMass<'a, D>(&'a DaeEquations<D>);
 /// The consistent start.
-struct DaeInit<'a>(&'a DaeEquations);
+struct DaeInit<'a, D>(&'a DaeEquations<D>);
 
 macro_rules! dae_op {
     ($($name:ident),*) => {$(
-        impl Op for $name<'_> {
+        impl<D: SemiExplicitDae> Op for $name<'_, D> {
             type T = f64;
             type V = Vf;
             type M = Mat;
@@ -143,7 +180,7 @@ macro_rules! dae_op {
 }
 dae_op!(DaeRhs, DaeMass, DaeInit);
 
-impl Op for DaeEquations {
+impl<D: SemiExplicitDae> Op for DaeEquations<D> {
     type T = f64;
     type V = Vf;
     type M = Mat;
@@ -162,26 +199,26 @@ impl Op for DaeEquations {
     }
 }
 
-impl NonLinearOp for DaeRhs<'_> {
-    fn call_inplace(&self, x: &Vf, _t: f64, y: &mut Vf) {
-        self.0.rhs_slices(slice(x), slice_mut(y));
+impl<D: SemiExplicitDae> NonLinearOp for DaeRhs<'_, D> {
+    fn call_inplace(&self, x: &Vf, t: f64, y: &mut Vf) {
+        self.0.rhs_slices(t, slice(x), slice_mut(y));
     }
 }
 
-impl NonLinearOpJacobian for DaeRhs<'_> {
-    fn jac_mul_inplace(&self, x: &Vf, _t: f64, v: &Vf, y: &mut Vf) {
+impl<D: SemiExplicitDae> NonLinearOpJacobian for DaeRhs<'_, D> {
+    fn jac_mul_inplace(&self, x: &Vf, t: f64, v: &Vf, y: &mut Vf) {
         let (v, out) = (slice(v), slice_mut(y));
         out.fill(0.0);
         self.0
             .dae
-            .jacobian_entries(slice(x), |r, c, j| out[r] += j * v[c]);
+            .jacobian_entries(t, slice(x), |r, c, j| out[r] += j * v[c]);
     }
 
-    fn jacobian_inplace(&self, x: &Vf, _t: f64, y: &mut Mat) {
+    fn jacobian_inplace(&self, x: &Vf, t: f64, y: &mut Mat) {
         let slots = &self.0.jacobian_slots;
         let values = y.inner_mut()[0].val_mut();
         let mut k = 0;
-        self.0.dae.jacobian_entries(slice(x), |_, _, j| {
+        self.0.dae.jacobian_entries(t, slice(x), |_, _, j| {
             values[slots[k]] = j;
             k += 1;
         });
@@ -193,7 +230,7 @@ impl NonLinearOpJacobian for DaeRhs<'_> {
     }
 }
 
-impl LinearOp for DaeMass<'_> {
+impl<D: SemiExplicitDae> LinearOp for DaeMass<'_, D> {
     fn gemv_inplace(&self, x: &Vf, _t: f64, beta: f64, y: &mut Vf) {
         let nd = self.0.dae.differential_dim();
         let (x, y) = (slice(x), slice_mut(y));
@@ -215,29 +252,29 @@ impl LinearOp for DaeMass<'_> {
     }
 }
 
-impl ConstantOp for DaeInit<'_> {
+impl<D: SemiExplicitDae> ConstantOp for DaeInit<'_, D> {
     fn call_inplace(&self, _t: f64, y: &mut Vf) {
         slice_mut(y).copy_from_slice(&self.0.y0);
     }
 }
 
-impl<'a> OdeEquationsRef<'a> for DaeEquations {
-    type Mass = DaeMass<'a>;
-    type Rhs = DaeRhs<'a>;
+impl<'a, D: SemiExplicitDae> OdeEquationsRef<'a> for DaeEquations<D> {
+    type Mass = DaeMass<'a, D>;
+    type Rhs = DaeRhs<'a, D>;
     type Root = ParameterisedOp<'a, UnitCallable<Mat>>;
-    type Init = DaeInit<'a>;
+    type Init = DaeInit<'a, D>;
     type Out = ParameterisedOp<'a, UnitCallable<Mat>>;
     type Reset = ParameterisedOp<'a, UnitCallable<Mat>>;
 }
 
-impl OdeEquations for DaeEquations {
-    fn rhs(&self) -> DaeRhs<'_> {
+impl<D: SemiExplicitDae> OdeEquations for DaeEquations<D> {
+    fn rhs(&self) -> DaeRhs<'_, D> {
         DaeRhs(self)
     }
-    fn mass(&self) -> Option<DaeMass<'_>> {
+    fn mass(&self) -> Option<DaeMass<'_, D>> {
         Some(DaeMass(self))
     }
-    fn init(&self) -> DaeInit<'_> {
+    fn init(&self) -> DaeInit<'_, D> {
         DaeInit(self)
     }
     fn set_params(&mut self, _p: &Vf) {}
@@ -255,20 +292,34 @@ pub(crate) fn integrate(
 ) -> Outcome {
     let dae = ChainDae::new(chain);
     let (d, dim) = (dae.differential_dim(), dae.dim());
-    let y = y0.to_vec();
     let mut full = vec![0.0; dim];
     full[..d].copy_from_slice(y0);
     dae.make_consistent(&mut full, &mut Workspace::new(chain.links));
-    // Every evaluation of the DAE (this one, diffsol's, and the loop's own
-    // for the observer) goes through `eqn`, which counts it.
-    let eqn = DaeEquations::new(chain, full.clone());
+    integrate_dae(dae, t0, full, t_end, opts, obs)
+}
+
+/// Integrates `dae` from `(t0, y0)` to `t_end`; `y0` holds every unknown,
+/// consistent (the algebraic equations hold at `t0`). Observers and the
+/// outcome see the differential unknowns only. Every evaluation of the DAE
+/// (diffsol's, and the loop's own for the observer) is counted.
+pub(crate) fn integrate_dae<D: SemiExplicitDae>(
+    dae: D,
+    t0: f64,
+    y0: Vec<f64>,
+    t_end: f64,
+    opts: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    let (d, dim) = (dae.differential_dim(), dae.dim());
+    let y = y0[..d].to_vec();
+    let eqn = DaeEquations::new(dae, t0, y0);
     let mut f = vec![0.0; dim];
-    eqn.rhs_slices(&full, &mut f);
+    eqn.rhs_slices(t0, &eqn.y0, &mut f);
     let stats = Stats {
         rhs_evals: eqn.rhs_evals.get(),
         ..Stats::default()
     };
-    if !all_finite(&full) || !all_finite(&f) {
+    if !all_finite(&eqn.y0) || !all_finite(&f) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
     obs.start(t0, &y, &f[..d]);
@@ -305,7 +356,7 @@ pub(crate) fn integrate(
         }
     } else {
         // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
-        let mut own = |_t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(y, f);
+        let mut own = |t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(t, y, f);
         drive(
             &mut solver,
             t0,

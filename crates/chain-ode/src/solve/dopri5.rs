@@ -80,6 +80,69 @@ impl Interpolant for Dense<'_> {
     }
 }
 
+/// One attempt of a step of `h` from `(t, y)` to `t1` (`t + h`, or `t_end`
+/// exactly on the last step), with `k[0] = f(t, y)`: the stages `k[1..7]`
+/// (`k[6] = f(t1, y1)`, FSAL), the fifth-order `y1`, the
+/// sixth stage's state in `ys` (for the stiffness test), and the error
+/// estimate `err = y1 - y1_hat` against the embedded fourth-order solution.
+/// The step loop's own arithmetic; the tests call it to see `err`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn attempt<S: OdeSystem>(
+    sys: &mut S,
+    t: f64,
+    t1: f64,
+    h: f64,
+    y: &[f64],
+    k: &mut [Vec<f64>],
+    ys: &mut [f64],
+    y1: &mut [f64],
+    err: &mut [f64],
+) {
+    let d = y.len();
+    let stage = |ys: &mut [f64], y: &[f64], terms: &[(f64, &[f64])]| {
+        for i in 0..ys.len() {
+            let mut s = 0.0;
+            for (a, ki) in terms {
+                s += a * ki[i];
+            }
+            ys[i] = y[i] + h * s;
+        }
+    };
+    let (k1, rest) = k.split_at_mut(1);
+    let k1 = &k1[0];
+    let (k2, rest) = rest.split_at_mut(1);
+    let (k3, rest) = rest.split_at_mut(1);
+    let (k4, rest) = rest.split_at_mut(1);
+    let (k5, rest) = rest.split_at_mut(1);
+    let (k6, k7) = rest.split_at_mut(1);
+    let (k2, k3, k4, k5, k6, k7) = (
+        &mut k2[0], &mut k3[0], &mut k4[0], &mut k5[0], &mut k6[0], &mut k7[0],
+    );
+    stage(ys, y, &[(A21, k1)]);
+    sys.rhs(t + C2 * h, ys, k2);
+    stage(ys, y, &[(A31, k1), (A32, k2)]);
+    sys.rhs(t + C3 * h, ys, k3);
+    stage(ys, y, &[(A41, k1), (A42, k2), (A43, k3)]);
+    sys.rhs(t + C4 * h, ys, k4);
+    stage(ys, y, &[(A51, k1), (A52, k2), (A53, k3), (A54, k4)]);
+    sys.rhs(t + C5 * h, ys, k5);
+    stage(
+        ys,
+        y,
+        &[(A61, k1), (A62, k2), (A63, k3), (A64, k4), (A65, k5)],
+    );
+    sys.rhs(t1, ys, k6);
+    stage(
+        y1,
+        y,
+        &[(A71, k1), (A73, k3), (A74, k4), (A75, k5), (A76, k6)],
+    );
+    sys.rhs(t1, y1, k7);
+    for i in 0..d {
+        err[i] = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+    }
+}
+
 /// Integrates from `t0` to `t_end`.
 pub(crate) fn integrate<S: OdeSystem>(
     sys: &mut S,
@@ -144,51 +207,7 @@ fn steps<S: OdeSystem>(
             h = t_end - t;
         }
 
-        let stage = |ys: &mut [f64], y: &[f64], terms: &[(f64, &[f64])]| {
-            for i in 0..ys.len() {
-                let mut s = 0.0;
-                for (a, ki) in terms {
-                    s += a * ki[i];
-                }
-                ys[i] = y[i] + h * s;
-            }
-        };
-        {
-            let (k1, rest) = k.split_at_mut(1);
-            let k1 = &k1[0];
-            let (k2, rest) = rest.split_at_mut(1);
-            let (k3, rest) = rest.split_at_mut(1);
-            let (k4, rest) = rest.split_at_mut(1);
-            let (k5, rest) = rest.split_at_mut(1);
-            let (k6, k7) = rest.split_at_mut(1);
-            let (k2, k3, k4, k5, k6, k7) = (
-                &mut k2[0], &mut k3[0], &mut k4[0], &mut k5[0], &mut k6[0], &mut k7[0],
-            );
-            stage(&mut ys, &y, &[(A21, k1)]);
-            sys.rhs(t + C2 * h, &ys, k2);
-            stage(&mut ys, &y, &[(A31, k1), (A32, k2)]);
-            sys.rhs(t + C3 * h, &ys, k3);
-            stage(&mut ys, &y, &[(A41, k1), (A42, k2), (A43, k3)]);
-            sys.rhs(t + C4 * h, &ys, k4);
-            stage(&mut ys, &y, &[(A51, k1), (A52, k2), (A53, k3), (A54, k4)]);
-            sys.rhs(t + C5 * h, &ys, k5);
-            stage(
-                &mut ys,
-                &y,
-                &[(A61, k1), (A62, k2), (A63, k3), (A64, k4), (A65, k5)],
-            );
-            sys.rhs(t1, &ys, k6);
-            stage(
-                &mut y1,
-                &y,
-                &[(A71, k1), (A73, k3), (A74, k4), (A75, k5), (A76, k6)],
-            );
-            sys.rhs(t1, &y1, k7);
-            for i in 0..d {
-                err[i] = h
-                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
-            }
-        }
+        attempt(sys, t, t1, h, &y, &mut k, &mut ys, &mut y1, &mut err);
         let e = rms_norm(&err, &y, &y1, o);
 
         if !e.is_finite() || !all_finite(&y1) || !all_finite(&k[6]) {

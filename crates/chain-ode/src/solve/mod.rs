@@ -13,11 +13,15 @@ mod diffsol_driver;
 mod dop853;
 mod dopri5;
 mod integrator;
+#[cfg(test)]
+mod known_solutions;
 mod observer;
 mod registry;
 mod rk4;
 mod sparse_lu;
 mod step_size;
+#[cfg(test)]
+mod test_problems;
 
 use std::fmt;
 use std::str::FromStr;

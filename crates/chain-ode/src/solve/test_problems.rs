@@ -1,0 +1,323 @@
+//! What the integrators' tests share: a system made of closures with exact
+//! call counters ([`Toy`]), problems with known solutions (as ODEs, and as
+//! index-1 DAEs for the sparse BDF), observers that
+//! record or probe a run, and the least-squares slope behind every order
+//! measurement.
+
+use super::bdf::SemiExplicitDae;
+use super::integrator::Settings;
+use super::SolveOptions;
+use crate::ode::{Observer, OdeSystem, StepView};
+
+type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
+type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
+
+/// A small system given by closures, counting its own calls.
+pub(crate) struct Toy {
+    dim: usize,
+    f: Rhs,
+    j: Option<Jvp>,
+    pub rhs_calls: u64,
+    pub jvp_calls: u64,
+}
+
+impl OdeSystem for Toy {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.rhs_calls += 1;
+        (self.f)(t, y, dy)
+    }
+    fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+        self.jvp_calls += 1;
+        let j = self.j.as_ref().expect("this toy has no Jacobian");
+        j(t, y, v, jv)
+    }
+}
+
+/// `y' = f(t, y)` on `R^dim`, without a Jacobian (explicit methods only).
+pub(crate) fn toy(dim: usize, f: impl Fn(f64, &[f64], &mut [f64]) + 'static) -> Toy {
+    Toy {
+        dim,
+        f: Box::new(f),
+        j: None,
+        rhs_calls: 0,
+        jvp_calls: 0,
+    }
+}
+
+impl Toy {
+    /// The same system with its Jacobian-vector product `jv = (df/dy) v`.
+    pub fn with_jvp(mut self, j: impl Fn(f64, &[f64], &[f64], &mut [f64]) + 'static) -> Self {
+        self.j = Some(Box::new(j));
+        self
+    }
+}
+
+/// A problem with its exact solution `y(t)`.
+pub(crate) struct Known {
+    pub name: &'static str,
+    pub system: fn() -> Toy,
+    pub exact: fn(f64) -> Vec<f64>,
+}
+
+/// `y' = -2 t y`: `y = exp(-t^2)`. Non-autonomous, so the nodes `c_i` matter.
+pub(crate) const GAUSSIAN: Known = Known {
+    name: "y' = -2ty",
+    system: || {
+        toy(1, |t, y, dy| dy[0] = -2.0 * t * y[0]).with_jvp(|t, _y, v, jv| jv[0] = -2.0 * t * v[0])
+    },
+    exact: |t| vec![(-t * t).exp()],
+};
+
+/// `x'' + x = cos 2t`, `x(0) = 1`, `x'(0) = 0`: `x = (4 cos t - cos 2t) / 3`.
+/// `y = [x, x']`; non-autonomous, with an oscillation of its own.
+pub(crate) const FORCED: Known = Known {
+    name: "x'' + x = cos 2t",
+    system: || {
+        toy(2, |t, y, dy| {
+            dy[0] = y[1];
+            dy[1] = -y[0] + (2.0 * t).cos();
+        })
+        .with_jvp(|_t, _y, v, jv| {
+            jv[0] = v[1];
+            jv[1] = -v[0];
+        })
+    },
+    exact: |t| {
+        vec![
+            (4.0 * t.cos() - (2.0 * t).cos()) / 3.0,
+            (-4.0 * t.sin() + 2.0 * (2.0 * t).sin()) / 3.0,
+        ]
+    },
+};
+
+/// Arenstorf's orbit (Hairer, Norsett & Wanner I, II.0): a satellite of the
+/// Earth-Moon system in rotating coordinates, `y = [x1, x2, x1', x2']`.
+pub(crate) mod arenstorf {
+    use super::{toy, Toy};
+
+    /// The Moon's share of the mass.
+    pub const MU: f64 = 0.012277471;
+    /// The period of the orbit from [`Y0`].
+    pub const PERIOD: f64 = 17.065_216_560_157_96;
+    /// The periodic orbit's start.
+    pub const Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.001_585_106_379_082_5];
+
+    pub fn system() -> Toy {
+        toy(4, |_t, y, dy| {
+            let mu1 = 1.0 - MU;
+            let d1 = ((y[0] + MU).powi(2) + y[1] * y[1]).powf(1.5);
+            let d2 = ((y[0] - mu1).powi(2) + y[1] * y[1]).powf(1.5);
+            dy[0] = y[2];
+            dy[1] = y[3];
+            dy[2] = y[0] + 2.0 * y[3] - mu1 * (y[0] + MU) / d1 - MU * (y[0] - mu1) / d2;
+            dy[3] = y[1] - 2.0 * y[2] - mu1 * y[1] / d1 - MU * y[1] / d2;
+        })
+    }
+}
+
+/// Van der Pol's oscillator `x'' = mu (1 - x^2) x' - x`, `y = [x, x']`.
+pub(crate) fn van_der_pol(mu: f64) -> Toy {
+    toy(2, move |_t, y, dy| {
+        dy[0] = y[1];
+        dy[1] = mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+    })
+    .with_jvp(move |_t, y, v, jv| {
+        jv[0] = v[1];
+        jv[1] = (-2.0 * mu * y[0] * y[1] - 1.0) * v[0] + mu * (1.0 - y[0] * y[0]) * v[1];
+    })
+}
+
+/// `y' = y^2`, `y(0) = 1`: `y = 1 / (1 - t)` leaves every bound at `t = 1`.
+pub(crate) fn blow_up() -> Toy {
+    toy(1, |_t, y, dy| dy[0] = y[0] * y[0]).with_jvp(|_t, y, v, jv| jv[0] = 2.0 * y[0] * v[0])
+}
+
+/// Settings of an adaptive run with these tolerances and a budget of 10^6.
+pub(crate) fn options(rtol: f64, atol: f64) -> Settings {
+    let o = SolveOptions {
+        rtol,
+        atol,
+        ..Default::default()
+    };
+    Settings {
+        max_steps: 1_000_000,
+        ..Settings::of(&o)
+    }
+}
+
+/// Settings for one step of exactly `h` that is accepted whatever its error.
+pub(crate) fn one_step(h: f64) -> Settings {
+    Settings {
+        h0: Some(h),
+        ..options(0.5, 1e6)
+    }
+}
+
+/// `max_i |a_i - b_i|`.
+pub(crate) fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Least-squares slope of `log y` against `log x`.
+pub(crate) fn slope(xy: &[(f64, f64)]) -> f64 {
+    let n = xy.len() as f64;
+    let (lx, ly): (Vec<f64>, Vec<f64>) = xy.iter().map(|(x, y)| (x.ln(), y.ln())).unzip();
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = lx.iter().map(|x| (x - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// Records nothing.
+pub(crate) struct Quiet;
+
+impl Observer for Quiet {
+    fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
+    fn step(&mut self, _: &StepView<'_>) {}
+}
+
+/// Evaluates every step's interpolant at the given times inside it.
+#[derive(Default)]
+pub(crate) struct Probe {
+    pub times: Vec<f64>,
+    pub values: Vec<(f64, Vec<f64>)>,
+}
+
+impl Observer for Probe {
+    fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
+    fn step(&mut self, s: &StepView<'_>) {
+        for &t in &self.times {
+            if s.t0 <= t && t <= s.t1 {
+                let mut out = vec![0.0; s.y0.len()];
+                s.interpolant.eval(t, &mut out);
+                self.values.push((t, out));
+            }
+        }
+    }
+}
+
+/// Where a [`KnownDae`] writes its Jacobian's entries: `(row, column, value)`.
+type Emit<'a> = &'a mut dyn FnMut(usize, usize, f64);
+
+/// A semi-explicit index-1 DAE for the sparse BDF, with its consistent start
+/// at `t0` and (where known) its exact solution.
+#[derive(Clone, Copy)]
+pub(crate) struct KnownDae {
+    pub name: &'static str,
+    /// Number of unknowns.
+    pub dim: usize,
+    /// Number of differential unknowns (the first ones).
+    pub differential_dim: usize,
+    pub rhs: fn(f64, &[f64], &mut [f64]),
+    /// The Jacobian's entries, always the same ones in the same order.
+    pub jacobian: fn(f64, &[f64], Emit<'_>),
+    /// Every unknown at `t`, consistent.
+    pub exact: fn(f64) -> Vec<f64>,
+}
+
+impl SemiExplicitDae for KnownDae {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn differential_dim(&self) -> usize {
+        self.differential_dim
+    }
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        (self.rhs)(t, y, out)
+    }
+    fn jacobian_entries(&self, t: f64, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
+        (self.jacobian)(t, y, &mut emit)
+    }
+}
+
+/// `y' = z`, `0 = z + 2 t y`: [`GAUSSIAN`] with its derivative as an
+/// algebraic unknown.
+pub(crate) const GAUSSIAN_DAE: KnownDae = KnownDae {
+    name: "y' = z, 0 = z + 2ty",
+    dim: 2,
+    differential_dim: 1,
+    rhs: |t, y, out| {
+        out[0] = y[1];
+        out[1] = y[1] + 2.0 * t * y[0];
+    },
+    jacobian: |t, _y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 0, 2.0 * t);
+        emit(1, 1, 1.0);
+    },
+    exact: |t| {
+        let y = (-t * t).exp();
+        vec![y, -2.0 * t * y]
+    },
+};
+
+/// `x' = v`, `v' = a`, `0 = a + x - cos 2t`: [`FORCED`] with the
+/// acceleration as an algebraic unknown.
+pub(crate) const FORCED_DAE: KnownDae = KnownDae {
+    name: "x' = v, v' = a, 0 = a + x - cos 2t",
+    dim: 3,
+    differential_dim: 2,
+    rhs: |t, y, out| {
+        out[0] = y[1];
+        out[1] = y[2];
+        out[2] = y[2] + y[0] - (2.0 * t).cos();
+    },
+    jacobian: |_t, _y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 2, 1.0);
+        emit(2, 0, 1.0);
+        emit(2, 2, 1.0);
+    },
+    exact: |t| {
+        let xv = (FORCED.exact)(t);
+        let a = -xv[0] + (2.0 * t).cos();
+        vec![xv[0], xv[1], a]
+    },
+};
+
+/// Van der Pol as `x' = v`, `v' = a`, `0 = a - (mu (1 - x^2) v - x)` with
+/// `mu = 10` (no closed form: `exact` only gives the start `(2, 0)`).
+pub(crate) const VAN_DER_POL_DAE: KnownDae = KnownDae {
+    name: "van der Pol, mu = 10, as a DAE",
+    dim: 3,
+    differential_dim: 2,
+    rhs: |_t, y, out| {
+        out[0] = y[1];
+        out[1] = y[2];
+        out[2] = y[2] - (10.0 * (1.0 - y[0] * y[0]) * y[1] - y[0]);
+    },
+    jacobian: |_t, y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 2, 1.0);
+        emit(2, 0, 20.0 * y[0] * y[1] + 1.0);
+        emit(2, 1, -10.0 * (1.0 - y[0] * y[0]));
+        emit(2, 2, 1.0);
+    },
+    exact: |_t| vec![2.0, 0.0, -2.0],
+};
+
+/// `y' = z`, `0 = z - y^2`, `y(0) = 1`: [`blow_up`] as a DAE, `y = 1 / (1 - t)`.
+pub(crate) const BLOW_UP_DAE: KnownDae = KnownDae {
+    name: "y' = z, 0 = z - y^2",
+    dim: 2,
+    differential_dim: 1,
+    rhs: |_t, y, out| {
+        out[0] = y[1];
+        out[1] = y[1] - y[0] * y[0];
+    },
+    jacobian: |_t, y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 0, -2.0 * y[0]);
+        emit(1, 1, 1.0);
+    },
+    exact: |t| {
+        let y = 1.0 / (1.0 - t);
+        vec![y, y * y]
+    },
+};
