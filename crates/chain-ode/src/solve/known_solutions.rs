@@ -6,8 +6,9 @@
 
 use super::integrator::Settings;
 use super::test_problems::{
-    arenstorf, blow_up, max_diff, one_step, options, slope, van_der_pol, Known, KnownDae, Probe,
-    Quiet, Toy, BLOW_UP_DAE, FORCED, FORCED_DAE, GAUSSIAN, GAUSSIAN_DAE, VAN_DER_POL_DAE,
+    arenstorf, blow_up, domain_exit, max_diff, one_step, options, slope, van_der_pol, Known,
+    KnownDae, Probe, Quiet, Toy, BLOW_UP_DAE, DOMAIN_EXIT_DAE, FORCED, FORCED_DAE, GAUSSIAN,
+    GAUSSIAN_DAE, VAN_DER_POL_DAE,
 };
 use super::{bdf, bdf_dense, dop853, dopri5, rk4, Method};
 use crate::ode::{Observer, OdeSystem, Outcome, Status, StepView};
@@ -662,4 +663,79 @@ fn a_blow_up_ends_step_size_too_small_just_before_the_pole() {
     assert_eq!(out.status, Status::Diverged);
     assert!((out.t_reached - 1.0).abs() < 0.03, "{out:?}");
     assert!(out.y_end[0].is_finite() && out.y_end[0] > 1e6, "{out:?}");
+}
+
+#[test]
+fn leaving_the_domain_of_f_mid_run_ends_diverged_where_it_left() {
+    // Not a non-finite start: every value is finite until the solution
+    // y = t reaches 1 at t = 1; every step past it meets a NaN, is cut,
+    // and the cuts reach the floor. The status says a non-finite value
+    // appeared, and the run keeps its last finite state, just short of 1.
+    let o = options(1e-8, 1e-10);
+    let runs = [
+        (
+            Method::Bdf,
+            run_dae(&DOMAIN_EXIT_DAE, 0.0, 2.0, &o, &mut Quiet),
+        ),
+        (
+            Method::BdfDense,
+            run(
+                Method::BdfDense,
+                &mut domain_exit(),
+                0.0,
+                &[0.0],
+                2.0,
+                &o,
+                &mut Quiet,
+            ),
+        ),
+        (
+            Method::Dopri5,
+            run(
+                Method::Dopri5,
+                &mut domain_exit(),
+                0.0,
+                &[0.0],
+                2.0,
+                &o,
+                &mut Quiet,
+            ),
+        ),
+        (
+            Method::Dop853,
+            run(
+                Method::Dop853,
+                &mut domain_exit(),
+                0.0,
+                &[0.0],
+                2.0,
+                &o,
+                &mut Quiet,
+            ),
+        ),
+    ];
+    for (method, out) in runs {
+        eprintln!("{method} domain exit: {out:?}");
+        assert_eq!(out.status, Status::Diverged, "{method}: {out:?}");
+        assert!(
+            out.y_end[0].is_finite() && out.y_end[0] <= 1.0,
+            "{method}: {out:?}"
+        );
+        // Measured: stopped 1.2e-14 (dopri5) to 4.9e-15 (bdf) before t = 1,
+        // on the exact solution y = t to rounding, after 41 to 115 steps.
+        assert!(
+            1.0 - out.t_reached < 1e-12,
+            "{method}: stopped at {}",
+            out.t_reached
+        );
+        assert!(
+            (out.y_end[0] - out.t_reached).abs() < 1e-12,
+            "{method}: {out:?}"
+        );
+        assert!(out.stats.steps > 10, "{method}: {out:?}");
+        assert!(
+            out.t_failed.is_some_and(|t| t > out.t_reached),
+            "{method}: {out:?}"
+        );
+    }
 }

@@ -321,3 +321,28 @@ pub(crate) const BLOW_UP_DAE: KnownDae = KnownDae {
         vec![y, y * y]
     },
 };
+
+/// `y' = 1` while `y <= 1`, not finite past it (as `sqrt(1 - y)` is not):
+/// the exact solution `y = t` leaves the domain of `f` at `t = 1`.
+pub(crate) fn domain_exit() -> Toy {
+    let f = |y: f64| 1.0 + 0.0 * (1.0 - y).sqrt();
+    toy(1, move |_t, y, dy| dy[0] = f(y[0]))
+        .with_jvp(|_t, y, v, jv| jv[0] = if y[0] <= 1.0 { 0.0 } else { f64::NAN } * v[0])
+}
+
+/// [`domain_exit`] as `y' = z`, `0 = z - 1 - 0 sqrt(1 - y)`.
+pub(crate) const DOMAIN_EXIT_DAE: KnownDae = KnownDae {
+    name: "y' = z, 0 = z - 1 - 0 sqrt(1 - y)",
+    dim: 2,
+    differential_dim: 1,
+    rhs: |_t, y, out| {
+        out[0] = y[1];
+        out[1] = y[1] - 1.0 - 0.0 * (1.0 - y[0]).sqrt();
+    },
+    jacobian: |_t, y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 0, if y[0] <= 1.0 { 0.0 } else { f64::NAN });
+        emit(1, 1, 1.0);
+    },
+    exact: |t| vec![t, 1.0],
+};
