@@ -328,3 +328,92 @@ impl Integrator for Dopri5 {
         integrate(sys, t0, y0, t_end, settings, obs)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The embedded fourth-order weights as Dormand and Prince published
+    /// them (1980; Hairer, Nørsett & Wanner, Table II.5.2): an independent
+    /// source for `E = b - b_hat`. The order conditions alone cannot pin
+    /// `E`: any multiple of it is the difference to another valid
+    /// fourth-order embedding.
+    const B_HAT: [f64; 7] = [
+        5179.0 / 57600.0,
+        0.0,
+        7571.0 / 16695.0,
+        393.0 / 640.0,
+        -92097.0 / 339200.0,
+        187.0 / 2100.0,
+        1.0 / 40.0,
+    ];
+
+    #[test]
+    fn the_tableau_meets_its_order_conditions_and_the_published_embedding() {
+        let c = [0.0, C2, C3, C4, C5, 1.0, 1.0];
+        let a: [&[f64]; 7] = [
+            &[],
+            &[A21],
+            &[A31, A32],
+            &[A41, A42, A43],
+            &[A51, A52, A53, A54],
+            &[A61, A62, A63, A64, A65],
+            &[A71, 0.0, A73, A74, A75, A76],
+        ];
+        // Each row sums to its node (a wrong c_i fails here too).
+        for (i, row) in a.iter().enumerate() {
+            let sum: f64 = row.iter().sum();
+            assert!(
+                (sum - c[i]).abs() < 1e-15,
+                "row {}: {sum} vs {}",
+                i + 1,
+                c[i]
+            );
+        }
+        let b = [A71, 0.0, A73, A74, A75, A76, 0.0];
+        // sum_i w_i g_i for stage values g.
+        let dot = |w: &[f64], g: &[f64]| -> f64 { w.iter().zip(g).map(|(x, y)| x * y).sum() };
+        // (A g)_i: the stage combination of g.
+        let apply = |g: &[f64]| -> Vec<f64> { a.iter().map(|row| dot(row, g)).collect() };
+        let cq = |q: i32| -> Vec<f64> { c.iter().map(|x| x.powi(q)).collect() };
+        let times =
+            |u: &[f64], v: &[f64]| -> Vec<f64> { u.iter().zip(v).map(|(x, y)| x * y).collect() };
+        // Order conditions up to four for both weight sets, and the
+        // quadrature one of order five for b only.
+        let b_hat: Vec<f64> = b
+            .iter()
+            .zip(&[E1, 0.0, E3, E4, E5, E6, E7])
+            .map(|(b, e)| b - e)
+            .collect();
+        for (name, w) in [("b", &b[..]), ("b_hat", &b_hat[..])] {
+            let conditions = [
+                (dot(w, &cq(0)), 1.0),
+                (dot(w, &cq(1)), 1.0 / 2.0),
+                (dot(w, &cq(2)), 1.0 / 3.0),
+                (dot(w, &apply(&cq(1))), 1.0 / 6.0),
+                (dot(w, &cq(3)), 1.0 / 4.0),
+                (dot(w, &times(&cq(1), &apply(&cq(1)))), 1.0 / 8.0),
+                (dot(w, &apply(&cq(2))), 1.0 / 12.0),
+                (dot(w, &apply(&apply(&cq(1)))), 1.0 / 24.0),
+            ];
+            for (k, (got, want)) in conditions.into_iter().enumerate() {
+                assert!(
+                    (got - want).abs() < 1e-14,
+                    "{name}, condition {k}: {got} vs {want}"
+                );
+            }
+        }
+        assert!((dot(&b, &cq(4)) - 0.2).abs() < 1e-14);
+        assert!(
+            (dot(&b_hat, &cq(4)) - 0.2).abs() > 1e-4,
+            "b_hat is only fourth order"
+        );
+        for (i, (got, want)) in b_hat.iter().zip(B_HAT).enumerate() {
+            assert!(
+                (got - want).abs() < 1e-15,
+                "b_hat_{}: {got} vs {want}",
+                i + 1
+            );
+        }
+    }
+}
