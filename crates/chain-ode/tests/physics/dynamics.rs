@@ -18,10 +18,17 @@ proptest! {
     #[test]
     fn rod_length_is_exact_by_construction((chain, phi, _w) in chain_and_state(300)) {
         let r = joints(&chain, [0.3, -1.2], &phi);
-        let l = chain.rod_length();
-        for p in r.windows(2) {
-            let d = (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]);
-            prop_assert!((d - l).abs() <= 1e-12 * chain.length, "{} vs {}", d, l);
+        prop_assert_eq!(r.len(), chain.links + 1);
+        prop_assert_eq!(r[0], [0.3, -1.2]);
+        // Every rod as long as the others, and together as long as the
+        // chain (which a wrong `rod_length` shared by both sides would not
+        // be), each pointing along its angle from the horizontal.
+        let l = chain.length / chain.links as f64;
+        for (p, angle) in r.windows(2).zip(&phi) {
+            let (dx, dy) = (p[1][0] - p[0][0], p[1][1] - p[0][1]);
+            prop_assert!((dx.hypot(dy) - l).abs() <= 1e-12 * chain.length);
+            prop_assert!((dx - l * angle.cos()).abs() <= 1e-12 * chain.length);
+            prop_assert!((dy - l * angle.sin()).abs() <= 1e-12 * chain.length);
         }
     }
 
