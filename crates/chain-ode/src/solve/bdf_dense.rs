@@ -150,65 +150,15 @@ impl Integrator for BdfDense {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::StepView;
-    use crate::solve::test_problems::{blow_up, options, toy, van_der_pol, Quiet, Toy};
-
-    /// `x'' = -x`: `y = [x, v]`.
-    fn oscillator() -> Toy {
-        toy(2, |_t, y, dy| {
-            dy[0] = y[1];
-            dy[1] = -y[0];
-        })
-        .with_jvp(|_t, _y, v, jv| {
-            jv[0] = v[1];
-            jv[1] = -v[0];
-        })
-    }
-
-    /// Checks the oscillator's steps against `x = cos(t), v = -sin(t)`.
-    #[derive(Default)]
-    struct Exact {
-        starts: u32,
-        steps: u32,
-        t_last: f64,
-        worst_dense: f64,
-        worst_ends: f64,
-    }
-
-    impl Observer for Exact {
-        fn start(&mut self, t0: f64, _y0: &[f64], _f0: &[f64]) {
-            self.starts += 1;
-            self.t_last = t0;
-        }
-        fn step(&mut self, s: &StepView<'_>) {
-            assert_eq!(s.t0, self.t_last, "steps are contiguous");
-            assert!(s.t1 > s.t0);
-            self.t_last = s.t1;
-            self.steps += 1;
-            let mut out = [0.0; 2];
-            // The dense output passes through both ends of the step ...
-            for (t, y) in [(s.t0, s.y0), (s.t1, s.y1)] {
-                s.interpolant.eval(t, &mut out);
-                let e = (out[0] - y[0]).abs().max((out[1] - y[1]).abs());
-                self.worst_ends = self.worst_ends.max(e);
-            }
-            // ... and follows the solution in between.
-            for k in 1..4 {
-                let t = s.t0 + (s.t1 - s.t0) * k as f64 / 4.0;
-                s.interpolant.eval(t, &mut out);
-                let e = (out[0] - t.cos()).abs().max((out[1] + t.sin()).abs());
-                self.worst_dense = self.worst_dense.max(e);
-            }
-            // f1 is f(t1, y1).
-            assert_eq!(s.f1, &[s.y1[1], -s.y1[0]]);
-        }
-    }
+    use crate::solve::test_problems::{
+        blow_up, options, van_der_pol, ExactCheck, Quiet, OSCILLATOR,
+    };
 
     #[test]
     fn oscillator_matches_the_exact_solution_with_dense_output() {
         for t0 in [0.0, 1.5] {
-            let mut sys = oscillator();
-            let mut obs = Exact::default();
+            let mut sys = (OSCILLATOR.system)();
+            let mut obs = ExactCheck::new(OSCILLATOR.exact).with_rhs(|_t, y| vec![y[1], -y[0]]);
             let y0 = [f64::cos(t0), -f64::sin(t0)];
             let t_end = 10.0;
             let out = integrate(&mut sys, t0, &y0, t_end, &options(1e-10, 1e-12), &mut obs);
@@ -217,11 +167,11 @@ mod tests {
             assert_eq!(out.t_failed, None);
             assert_eq!(obs.starts, 1);
             assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
-            assert_eq!(obs.steps as u64, out.stats.steps);
+            assert_eq!(obs.steps, out.stats.steps);
             let e = (out.y_end[0] - t_end.cos()).abs() + (out.y_end[1] + t_end.sin()).abs();
             assert!(e < 1e-7, "end error {e:e}");
-            assert!(obs.worst_dense < 1e-7, "dense error {:e}", obs.worst_dense);
-            assert!(obs.worst_ends < 1e-12, "ends {:e}", obs.worst_ends);
+            assert!(obs.inside < 1e-7, "dense error {:e}", obs.inside);
+            assert!(obs.ends < 1e-12, "ends {:e}", obs.ends);
         }
     }
 
@@ -290,7 +240,7 @@ mod tests {
 
     #[test]
     fn a_non_finite_start_is_diverged() {
-        let mut sys = oscillator();
+        let mut sys = (OSCILLATOR.system)();
         let out = integrate(
             &mut sys,
             0.0,

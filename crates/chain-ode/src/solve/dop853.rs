@@ -719,16 +719,9 @@ impl Integrator for Dop853 {
 mod tests {
     use super::*;
     use crate::solve::test_problems::{
-        blow_up, max_diff, options, slope, toy, van_der_pol, Probe, Quiet, Toy,
+        blow_up, max_diff, options, slope, toy, van_der_pol, ExactCheck, Probe, Quiet, Toy,
+        OSCILLATOR,
     };
-
-    /// `x'' = -x`: `y = [x, v]`.
-    fn oscillator() -> Toy {
-        toy(2, |_t, y, dy| {
-            dy[0] = y[1];
-            dy[1] = -y[0];
-        })
-    }
 
     /// Eccentricity of the Kepler test orbit (`a = 1`, `mu = 1`, period `2 pi`).
     const ECC: f64 = 0.5;
@@ -862,49 +855,11 @@ mod tests {
         }
     }
 
-    /// Checks the oscillator's steps against `x = cos(t), v = -sin(t)`.
-    #[derive(Default)]
-    struct Exact {
-        starts: u32,
-        steps: u32,
-        t_last: f64,
-        worst_dense: f64,
-        worst_ends: f64,
-    }
-
-    impl Observer for Exact {
-        fn start(&mut self, t0: f64, _y0: &[f64], _f0: &[f64]) {
-            self.starts += 1;
-            self.t_last = t0;
-        }
-        fn step(&mut self, s: &StepView<'_>) {
-            assert_eq!(s.t0, self.t_last, "steps are contiguous");
-            assert!(s.t1 > s.t0);
-            self.t_last = s.t1;
-            self.steps += 1;
-            let mut out = [0.0; 2];
-            // The dense output passes through both ends of the step ...
-            for (t, y) in [(s.t0, s.y0), (s.t1, s.y1)] {
-                s.interpolant.eval(t, &mut out);
-                self.worst_ends = self.worst_ends.max(max_diff(&out, y));
-            }
-            // ... and follows the solution in between.
-            for k in 1..8 {
-                let t = s.t0 + (s.t1 - s.t0) * k as f64 / 8.0;
-                s.interpolant.eval(t, &mut out);
-                let e = max_diff(&out, &[t.cos(), -t.sin()]);
-                self.worst_dense = self.worst_dense.max(e);
-            }
-            // f1 is f(t1, y1).
-            assert_eq!(s.f1, &[s.y1[1], -s.y1[0]]);
-        }
-    }
-
     #[test]
     fn oscillator_matches_the_exact_solution_with_dense_output() {
         for t0 in [0.0, 1.5] {
-            let mut sys = oscillator();
-            let mut obs = Exact::default();
+            let mut sys = (OSCILLATOR.system)();
+            let mut obs = ExactCheck::new(OSCILLATOR.exact).with_rhs(|_t, y| vec![y[1], -y[0]]);
             let y0 = [f64::cos(t0), -f64::sin(t0)];
             let t_end = 10.0;
             let o = options(1e-12, 1e-14);
@@ -915,15 +870,15 @@ mod tests {
             assert_eq!(out.stiff_at, None);
             assert_eq!(obs.starts, 1);
             assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
-            assert_eq!(obs.steps as u64, out.stats.steps);
+            assert_eq!(obs.steps, out.stats.steps);
             let e = max_diff(&out.y_end, &[t_end.cos(), -t_end.sin()]);
             eprintln!(
                 "oscillator t0 = {t0}: {} steps, end error {e:.1e}, dense {:.1e}, ends {:.1e}",
-                out.stats.steps, obs.worst_dense, obs.worst_ends
+                out.stats.steps, obs.inside, obs.ends
             );
             assert!(e < 1e-10, "end error {e:e}");
-            assert!(obs.worst_dense < 1e-10, "dense error {:e}", obs.worst_dense);
-            assert!(obs.worst_ends < 1e-12, "ends {:e}", obs.worst_ends);
+            assert!(obs.inside < 1e-10, "dense error {:e}", obs.inside);
+            assert!(obs.ends < 1e-12, "ends {:e}", obs.ends);
         }
     }
 
@@ -1110,7 +1065,7 @@ mod tests {
 
     #[test]
     fn a_non_finite_start_is_diverged() {
-        let mut sys = oscillator();
+        let mut sys = (OSCILLATOR.system)();
         let out = integrate(
             &mut sys,
             0.0,

@@ -6,12 +6,12 @@
 
 use super::integrator::Settings;
 use super::test_problems::{
-    arenstorf, blow_up, domain_exit, max_diff, one_step, options, slope, van_der_pol, Known,
-    KnownDae, Probe, Quiet, Toy, BLOW_UP_DAE, DOMAIN_EXIT_DAE, FORCED, FORCED_DAE, GAUSSIAN,
+    arenstorf, blow_up, domain_exit, max_diff, one_step, options, slope, van_der_pol, ExactCheck,
+    Known, KnownDae, Probe, Quiet, Toy, BLOW_UP_DAE, DOMAIN_EXIT_DAE, FORCED, FORCED_DAE, GAUSSIAN,
     GAUSSIAN_DAE, VAN_DER_POL_DAE,
 };
 use super::{bdf, bdf_dense, dop853, dopri5, rk4, Method};
-use crate::ode::{Observer, OdeSystem, Outcome, Status, StepView};
+use crate::ode::{Observer, OdeSystem, Outcome, Status};
 
 /// Runs `method` (one that steps an [`OdeSystem`]) from `(t0, y0)` to
 /// `t_end`: RK4 with the step `o.dt`, the others with their tolerances.
@@ -322,49 +322,6 @@ fn global_errors_fall_at_each_order() {
     }
 }
 
-/// Checks every step's interpolant against the exact solution: at the step's
-/// ends (where it must reproduce the method's own values) and inside.
-struct DenseCheck {
-    exact: fn(f64) -> Vec<f64>,
-    steps: u64,
-    /// Largest error of the interpolant strictly inside a step.
-    inside: f64,
-    /// Largest error of the method's own values at step ends.
-    nodes: f64,
-    /// Largest gap between the interpolant at a step's ends and the step's values.
-    ends: f64,
-}
-
-impl DenseCheck {
-    fn new(exact: fn(f64) -> Vec<f64>) -> Self {
-        Self {
-            exact,
-            steps: 0,
-            inside: 0.0,
-            nodes: 0.0,
-            ends: 0.0,
-        }
-    }
-}
-
-impl Observer for DenseCheck {
-    fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
-    fn step(&mut self, s: &StepView<'_>) {
-        self.steps += 1;
-        let mut out = vec![0.0; s.y1.len()];
-        for (t, y) in [(s.t0, s.y0), (s.t1, s.y1)] {
-            s.interpolant.eval(t, &mut out);
-            self.ends = self.ends.max(max_diff(&out, y));
-        }
-        self.nodes = self.nodes.max(max_diff(s.y1, &(self.exact)(s.t1)));
-        for k in 1..8 {
-            let t = s.t0 + (s.t1 - s.t0) * k as f64 / 8.0;
-            s.interpolant.eval(t, &mut out);
-            self.inside = self.inside.max(max_diff(&out, &(self.exact)(t)));
-        }
-    }
-}
-
 #[test]
 fn dense_output_follows_the_exact_solution_between_steps() {
     // (method, dt or tol, bound on the interpolant's worst error inside a
@@ -386,7 +343,7 @@ fn dense_output_follows_the_exact_solution_between_steps() {
                 dt: acc,
                 ..options(acc, acc)
             };
-            let mut obs = DenseCheck::new(p.exact);
+            let mut obs = ExactCheck::new(p.exact);
             let out = run(
                 method,
                 &mut (p.system)(),
@@ -433,7 +390,7 @@ fn dense_output_follows_the_exact_solution_between_steps() {
     // global error (the nodes are as far off); 4x margin.
     for p in [&GAUSSIAN_DAE, &FORCED_DAE] {
         let tol = 1e-8;
-        let mut obs = DenseCheck::new(p.exact);
+        let mut obs = ExactCheck::new(p.exact);
         let out = run_dae(p, 0.0, 10.0, &options(tol, tol), &mut obs);
         assert_eq!(out.status, Status::Ok);
         assert_eq!(obs.steps, out.stats.steps);
@@ -555,7 +512,7 @@ fn the_sparse_bdf_error_falls_with_the_tolerance() {
     // by ~1; the band is 2.5x beyond the measured extremes.
     for p in [&GAUSSIAN_DAE, &FORCED_DAE] {
         let worst = |tol: f64| {
-            let mut obs = DenseCheck::new(p.exact);
+            let mut obs = ExactCheck::new(p.exact);
             let out = run_dae(p, 0.0, 10.0, &options(tol, tol), &mut obs);
             assert_eq!(out.status, Status::Ok);
             obs.nodes

@@ -62,6 +62,22 @@ pub(crate) struct Known {
     pub exact: fn(f64) -> Vec<f64>,
 }
 
+/// `x'' = -x`: `y = [x, v] = [cos t, -sin t]` (autonomous).
+pub(crate) const OSCILLATOR: Known = Known {
+    name: "x'' = -x",
+    system: || {
+        toy(2, |_t, y, dy| {
+            dy[0] = y[1];
+            dy[1] = -y[0];
+        })
+        .with_jvp(|_t, _y, v, jv| {
+            jv[0] = v[1];
+            jv[1] = -v[0];
+        })
+    },
+    exact: |t| vec![t.cos(), -t.sin()],
+};
+
 /// `y' = -2 t y`: `y = exp(-t^2)`. Non-autonomous, so the nodes `c_i` matter.
 pub(crate) const GAUSSIAN: Known = Known {
     name: "y' = -2ty",
@@ -346,3 +362,72 @@ pub(crate) const DOMAIN_EXIT_DAE: KnownDae = KnownDae {
     },
     exact: |t| vec![t, 1.0],
 };
+
+/// `f(t, y)` as a value, for checking what a method reports as `f1`.
+type RhsOf = fn(f64, &[f64]) -> Vec<f64>;
+
+/// Checks a run step by step against the exact solution: the steps are
+/// contiguous and forward, the interpolant passes through each step's ends
+/// and follows the solution at 7 interior points, and (if given) `f1` is
+/// `f(t1, y1)`.
+pub(crate) struct ExactCheck {
+    exact: fn(f64) -> Vec<f64>,
+    rhs: Option<RhsOf>,
+    pub starts: u32,
+    pub steps: u64,
+    pub t_last: f64,
+    /// Largest error of the interpolant strictly inside a step.
+    pub inside: f64,
+    /// Largest error of the method's own values at step ends.
+    pub nodes: f64,
+    /// Largest gap between the interpolant at a step's ends and the step's values.
+    pub ends: f64,
+}
+
+impl ExactCheck {
+    pub fn new(exact: fn(f64) -> Vec<f64>) -> Self {
+        Self {
+            exact,
+            rhs: None,
+            starts: 0,
+            steps: 0,
+            t_last: f64::NAN,
+            inside: 0.0,
+            nodes: 0.0,
+            ends: 0.0,
+        }
+    }
+
+    /// Also checks every step's `f1` against `rhs(t1, y1)`, exactly.
+    pub fn with_rhs(mut self, rhs: RhsOf) -> Self {
+        self.rhs = Some(rhs);
+        self
+    }
+}
+
+impl Observer for ExactCheck {
+    fn start(&mut self, t0: f64, _: &[f64], _: &[f64]) {
+        self.starts += 1;
+        self.t_last = t0;
+    }
+    fn step(&mut self, s: &StepView<'_>) {
+        assert_eq!(s.t0, self.t_last, "steps are contiguous");
+        assert!(s.t1 > s.t0);
+        self.t_last = s.t1;
+        self.steps += 1;
+        let mut out = vec![0.0; s.y1.len()];
+        for (t, y) in [(s.t0, s.y0), (s.t1, s.y1)] {
+            s.interpolant.eval(t, &mut out);
+            self.ends = self.ends.max(max_diff(&out, y));
+        }
+        self.nodes = self.nodes.max(max_diff(s.y1, &(self.exact)(s.t1)));
+        for k in 1..8 {
+            let t = s.t0 + (s.t1 - s.t0) * k as f64 / 8.0;
+            s.interpolant.eval(t, &mut out);
+            self.inside = self.inside.max(max_diff(&out, &(self.exact)(t)));
+        }
+        if let Some(rhs) = self.rhs {
+            assert_eq!(s.f1, &rhs(s.t1, s.y1)[..], "f1 is f(t1, y1)");
+        }
+    }
+}
