@@ -40,6 +40,25 @@ fn run_dae(p: &KnownDae, t0: f64, t_end: f64, o: &Settings, obs: &mut dyn Observ
     bdf::integrate_dae(*p, t0, (p.exact)(t0), t_end, o, obs)
 }
 
+/// Every adaptive method from `(t0, y0)` to `t_end`, quietly: the sparse BDF
+/// on `dae` (started from its `exact(t0)`), the others on `system()`.
+fn every_adaptive(
+    system: fn() -> Toy,
+    dae: &KnownDae,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+) -> [(Method, Outcome); 4] {
+    let explicit = |m| (m, run(m, &mut system(), t0, y0, t_end, o, &mut Quiet));
+    [
+        (Method::Bdf, run_dae(dae, t0, t_end, o, &mut Quiet)),
+        explicit(Method::BdfDense),
+        explicit(Method::Dopri5),
+        explicit(Method::Dop853),
+    ]
+}
+
 /// One step of exactly `h` from the exact state at `t0`: the step's error at
 /// `t0 + h` and the largest error of its interpolant at `thetas`.
 fn one_step_errors(method: Method, p: &Known, t0: f64, h: f64, thetas: &[f64]) -> (f64, f64) {
@@ -541,53 +560,12 @@ fn a_blow_up_ends_step_size_too_small_just_before_the_pole() {
     // is the exact pole to the accuracy of the run: measured |t_pole - 1|
     // 2.9e-7 (bdf), 2.7e-7 (bdf-dense), 5.2e-10 (dopri5), 1.2e-9 (dop853).
     let o = options(1e-8, 1e-10);
-    let runs = [
-        (
-            Method::Bdf,
-            run_dae(&BLOW_UP_DAE, 0.0, 2.0, &o, &mut Quiet),
-            1e-6,
-        ),
-        (
-            Method::BdfDense,
-            run(
-                Method::BdfDense,
-                &mut blow_up(),
-                0.0,
-                &[1.0],
-                2.0,
-                &o,
-                &mut Quiet,
-            ),
-            1e-6,
-        ),
-        (
-            Method::Dopri5,
-            run(
-                Method::Dopri5,
-                &mut blow_up(),
-                0.0,
-                &[1.0],
-                2.0,
-                &o,
-                &mut Quiet,
-            ),
-            5e-9,
-        ),
-        (
-            Method::Dop853,
-            run(
-                Method::Dop853,
-                &mut blow_up(),
-                0.0,
-                &[1.0],
-                2.0,
-                &o,
-                &mut Quiet,
-            ),
-            5e-9,
-        ),
-    ];
-    for (method, out, bound) in runs {
+    let runs = every_adaptive(blow_up, &BLOW_UP_DAE, 0.0, &[1.0], 2.0, &o);
+    for (method, out) in runs {
+        let bound = match method {
+            Method::Bdf | Method::BdfDense => 1e-6,
+            _ => 5e-9,
+        };
         eprintln!("{method} blow-up: {out:?}");
         assert_eq!(out.status, Status::StepSizeTooSmall, "{method}");
         let t_failed = out.t_failed.expect("a failed run has t_failed");
@@ -629,48 +607,7 @@ fn leaving_the_domain_of_f_mid_run_ends_diverged_where_it_left() {
     // and the cuts reach the floor. The status says a non-finite value
     // appeared, and the run keeps its last finite state, just short of 1.
     let o = options(1e-8, 1e-10);
-    let runs = [
-        (
-            Method::Bdf,
-            run_dae(&DOMAIN_EXIT_DAE, 0.0, 2.0, &o, &mut Quiet),
-        ),
-        (
-            Method::BdfDense,
-            run(
-                Method::BdfDense,
-                &mut domain_exit(),
-                0.0,
-                &[0.0],
-                2.0,
-                &o,
-                &mut Quiet,
-            ),
-        ),
-        (
-            Method::Dopri5,
-            run(
-                Method::Dopri5,
-                &mut domain_exit(),
-                0.0,
-                &[0.0],
-                2.0,
-                &o,
-                &mut Quiet,
-            ),
-        ),
-        (
-            Method::Dop853,
-            run(
-                Method::Dop853,
-                &mut domain_exit(),
-                0.0,
-                &[0.0],
-                2.0,
-                &o,
-                &mut Quiet,
-            ),
-        ),
-    ];
+    let runs = every_adaptive(domain_exit, &DOMAIN_EXIT_DAE, 0.0, &[0.0], 2.0, &o);
     for (method, out) in runs {
         eprintln!("{method} domain exit: {out:?}");
         assert_eq!(out.status, Status::Diverged, "{method}: {out:?}");
