@@ -280,25 +280,19 @@ fn missing_scene_error_names_the_path() {
 
 #[test]
 fn a_diverging_run_exits_1_and_still_writes_what_it_computed() {
-    let dir = scratch("diverged");
-    let out = dir.join("diverged.csv");
     // gamma = r / (m l^2) = 0.1 / (0.2 * 0.12^2) = 34.7: a spectral radius
     // near 48 gamma is far beyond RK4's stability limit 2.8 / dt at dt = 0.01.
-    let o = run(&[
-        "simulate",
-        &scene("span-d3"),
+    let span = scene("span-d3");
+    let args = [
+        &span,
         "--set",
         "chain.damping=0.1",
         "--dt",
         "0.01",
         "--t-end",
         "20",
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v = json(&o);
+    ];
+    let (v, _) = failing_run("diverged", &args);
     assert_eq!(v["status"], "diverged");
     let t_reached = num(&v, "t_reached");
     assert!(t_reached < 20.0, "{t_reached}");
@@ -306,9 +300,23 @@ fn a_diverging_run_exits_1_and_still_writes_what_it_computed() {
     for key in CONTRACT_KEYS {
         assert!(v.get(key).is_some(), "missing '{key}' in {v}");
     }
+}
 
-    let text = fs::read_to_string(&out).unwrap();
-    let rows: Vec<Vec<f64>> = text
+/// Runs `simulate --json --out` on a run that must fail: checks exit 1, that
+/// the CSV is the only file written, that it holds finite states only and
+/// ends at `t_reached`; returns the summary and the CSV's rows.
+fn failing_run(name: &str, args: &[&str]) -> (serde_json::Value, Vec<Vec<f64>>) {
+    let dir = scratch(name);
+    let file = format!("{name}.csv");
+    let out = dir.join(&file);
+    let mut all = vec!["simulate"];
+    all.extend_from_slice(args);
+    all.extend(["--json", "--out", out.to_str().unwrap()]);
+    let o = run(&all);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json(&o);
+    let rows: Vec<Vec<f64>> = fs::read_to_string(&out)
+        .unwrap()
         .lines()
         .skip(1)
         .map(|l| l.split(',').map(|x| x.parse::<f64>().unwrap()).collect())
@@ -318,33 +326,22 @@ fn a_diverging_run_exits_1_and_still_writes_what_it_computed() {
         rows.iter().flatten().all(|x| x.is_finite()),
         "only finite states"
     );
-    let last_t = rows.last().unwrap()[0];
+    let (last_t, t_reached) = (rows.last().unwrap()[0], num(&v, "t_reached"));
     assert!(
         (last_t - t_reached).abs() < 1e-12,
         "{last_t} vs {t_reached}"
     );
-    assert_eq!(names_in(&dir), ["diverged.csv"]);
+    assert_eq!(names_in(&dir), [file]);
     fs::remove_dir_all(&dir).unwrap();
-}
-
-/// The rows of a CSV written by `--out`, parsed as numbers.
-fn csv_rows(path: &Path) -> Vec<Vec<f64>> {
-    fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|x| x.parse::<f64>().unwrap()).collect())
-        .collect()
+    (v, rows)
 }
 
 #[test]
 fn a_step_budget_exits_1_and_still_writes_what_it_computed() {
-    let dir = scratch("max-steps");
-    let out = dir.join("cut.csv");
     // RK4 at dt = 0.01 with a budget of 30 steps gets to t = 0.3.
-    let o = run(&[
-        "simulate",
-        &scene("span-d3"),
+    let span = scene("span-d3");
+    let args = [
+        &span,
         "--method",
         "rk4",
         "--dt",
@@ -353,38 +350,27 @@ fn a_step_budget_exits_1_and_still_writes_what_it_computed() {
         "run.max_steps=30",
         "--set",
         "run.output_dt=0.05",
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v = json(&o);
+    ];
+    let (v, rows) = failing_run("max-steps", &args);
     assert_eq!(v["status"], "max_steps");
     assert_eq!(v["steps"], 30);
     let t_reached = num(&v, "t_reached");
     assert!((t_reached - 0.3).abs() < 1e-12, "{t_reached}");
-    let rows = csv_rows(&out);
     let times: Vec<f64> = rows.iter().map(|r| r[0]).collect();
     assert_eq!(times.len(), 7, "samples at 0, 0.05, .., 0.3: {times:?}");
-    assert!((times[6] - t_reached).abs() < 1e-12);
-    assert!(rows.iter().flatten().all(|x| x.is_finite()));
     // The last row is the summary's end.
     let tip = pair(&v, "tip_end");
     assert!((rows[6][1] - tip[0]).abs() < 1e-12 && (rows[6][2] - tip[1]).abs() < 1e-12);
-    assert_eq!(names_in(&dir), ["cut.csv"]);
-    fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn a_step_floor_the_folded_whip_needs_exits_1_and_still_writes_what_it_computed() {
-    let dir = scratch("h-min");
-    let out = dir.join("floor.csv");
     // The folded chain's free end speeds up without bound as it nears the
     // bottom (v^2 = g x (2L - x)/(L - x)); DOPRI5 at rtol 1e-4 takes steps
     // above 3e-3 until the whip, then needs shorter ones.
-    let o = run(&[
-        "simulate",
-        &scene("folded"),
+    let folded = scene("folded");
+    let args = [
+        &folded,
         "--method",
         "dopri5",
         "--rtol",
@@ -393,12 +379,8 @@ fn a_step_floor_the_folded_whip_needs_exits_1_and_still_writes_what_it_computed(
         "1e-6",
         "--set",
         "run.h_min=3e-3",
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v = json(&o);
+    ];
+    let (v, _) = failing_run("h-min", &args);
     assert_eq!(v["status"], "step_size_too_small");
     let (t_reached, t_failed) = (num(&v, "t_reached"), num(&v, "t_failed"));
     assert!(t_failed > t_reached && t_failed - t_reached < 3e-3);
@@ -412,11 +394,6 @@ fn a_step_floor_the_folded_whip_needs_exits_1_and_still_writes_what_it_computed(
         law(0.85),
         law(1.0)
     );
-    let rows = csv_rows(&out);
-    assert!(rows.iter().flatten().all(|x| x.is_finite()));
-    assert!((rows.last().unwrap()[0] - t_reached).abs() < 1e-12);
-    assert_eq!(names_in(&dir), ["floor.csv"]);
-    fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
