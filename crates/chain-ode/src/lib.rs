@@ -46,7 +46,7 @@ mod system;
 
 pub use chain::{Chain, InvalidParameter};
 pub use kinematics::Vec2;
-pub use ode::{Stats, Status};
+pub use ode::{Cancel, Stats, Status};
 pub use solve::{
     bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
     Trajectory,

@@ -152,6 +152,13 @@ pub enum Status {
     /// An implicit method's Newton matrix could not be factorised, even
     /// after the step was cut.
     LinearSolveFailed,
+    /// The run reached `t_end` with every value finite, but its energy
+    /// balance error `max |E + W - E(0)|` exceeds the chain's energy scale
+    /// (`Chain::energy_scale`): the numbers are not a solution of the model.
+    Inaccurate,
+    /// The run was stopped from outside (a [`Cancel`] was set: Ctrl-C in
+    /// Python, a signal in the CLI) at the last accepted step.
+    Interrupted,
 }
 
 impl Status {
@@ -163,6 +170,8 @@ impl Status {
             Self::StepSizeTooSmall => "step_size_too_small",
             Self::MaxSteps => "max_steps",
             Self::LinearSolveFailed => "linear_solve_failed",
+            Self::Inaccurate => "inaccurate",
+            Self::Interrupted => "interrupted",
         }
     }
 
@@ -175,6 +184,36 @@ impl Status {
 impl std::fmt::Display for Status {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.as_str())
+    }
+}
+
+/// A flag that stops a run from outside, shared between the caller and the
+/// run (clones share it). The run checks it after every accepted step and
+/// ends with [`Status::Interrupted`] once it is set.
+#[derive(Clone, Debug, Default)]
+pub struct Cancel(std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl Cancel {
+    /// A flag that is not set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Sets the flag: every run holding a clone stops at its next step.
+    pub fn cancel(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// True once [`Cancel::cancel`] was called on this flag or a clone.
+    pub fn is_cancelled(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+/// Two flags are equal when they are the same flag.
+impl PartialEq for Cancel {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
     }
 }
 

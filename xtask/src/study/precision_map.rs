@@ -123,11 +123,15 @@ impl Outcome {
                     Outcome::EnergyError
                 }
             }
+            // Past the energy scale: already more than the map's 1% limit.
+            Status::Inaccurate => Outcome::EnergyError,
             Status::Diverged => Outcome::Diverged,
             // A Newton matrix that cannot be factorised even at smaller
             // steps is, for the map, a step that could not be made.
             Status::StepSizeTooSmall | Status::LinearSolveFailed => Outcome::StepSizeTooSmall,
-            Status::MaxSteps => Outcome::MaxSteps,
+            // The map never cancels a run; a run stopped from outside
+            // would, like a spent budget, not have reached t_end.
+            Status::MaxSteps | Status::Interrupted => Outcome::MaxSteps,
         }
     }
 

@@ -29,7 +29,7 @@ use std::time::Instant;
 
 use crate::chain::{check, Chain, InvalidParameter};
 use crate::kinematics::{tip, tip_velocity, Vec2};
-use crate::ode::{Stats, Status};
+use crate::ode::{Cancel, Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
@@ -120,6 +120,9 @@ pub struct SolveOptions {
     pub max_steps: u64,
     /// Smallest adaptive step before `step_size_too_small` (0: the rounding limit).
     pub h_min: f64,
+    /// A flag that stops the run from outside (`Status::Interrupted`);
+    /// `None` runs to the end.
+    pub cancel: Option<Cancel>,
 }
 
 impl Default for SolveOptions {
@@ -132,6 +135,7 @@ impl Default for SolveOptions {
             output_dt: None,
             max_steps: 100_000_000,
             h_min: 0.0,
+            cancel: None,
         }
     }
 }
