@@ -1,3 +1,9 @@
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "the build tool: a failed figure run stops the build with its message"
+)]
 //! `cargo xtask figures`: regenerates every figure of the registry
 //! (`registry.rs`, the catalogue of `docs/figures.md`) into `figures/`, its
 //! data into `figures/data/`, the animations, `figures/README.md` and
