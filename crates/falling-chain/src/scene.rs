@@ -186,6 +186,7 @@ impl Scene {
             output_dt: Some(run.output_dt),
             max_steps: run.max_steps,
             h_min: run.h_min,
+            cancel: None,
         };
         Ok(Self {
             name: name.unwrap_or_else(|| "scene".into()),
