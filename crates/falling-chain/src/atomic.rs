@@ -14,8 +14,10 @@ fn parent_dir(path: &Path) -> &Path {
 }
 
 /// Checks, before any work is done, that `path` can be an output file: its
-/// directory exists and it is not itself a directory. `what` names the
-/// output in the error (e.g. `"--out"`).
+/// directory exists, a file can be created there, and `path` is absent, a
+/// regular file or a symbolic link to one (written through: the link stays,
+/// its target is replaced). A directory, FIFO, device or socket is refused.
+/// `what` names the output in the error (e.g. `"--out"`).
 pub fn check_writable(what: &'static str, path: &Path) -> Result<(), Error> {
     let dir = parent_dir(path);
     if !dir.is_dir() {
@@ -25,14 +27,7 @@ pub fn check_writable(what: &'static str, path: &Path) -> Result<(), Error> {
             io::Error::new(io::ErrorKind::NotFound, "its directory does not exist"),
         ));
     }
-    if path.is_dir() {
-        return Err(Error::write(
-            what,
-            path,
-            io::Error::new(io::ErrorKind::InvalidInput, "it is a directory"),
-        ));
-    }
-    Ok(())
+    figures::atomic::check_output(path).map_err(|e| Error::write(what, path, e))
 }
 
 /// Writes `path` atomically: `fill` writes into a temporary file in the same

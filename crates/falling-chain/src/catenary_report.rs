@@ -8,6 +8,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{CatenaryNames, Error};
 
+/// The most rods of a discrete equilibrium: the scenes' cap on
+/// `chain.links` (chain-ode's `Chain` accepts 1..=10^6 rods).
+// TODO(issue 24): use the core's public constant once chain-ode or
+// catenary exports it.
+pub const MAX_LINKS: usize = 1_000_000;
+
 /// The discrete equilibrium of `links` rods between the same anchors.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DiscreteReport {
@@ -60,6 +66,12 @@ impl CatenaryReport {
         names: &CatenaryNames,
     ) -> Result<Self, Error> {
         let err = |e| Error::from_catenary(&e, names);
+        if let Some(n) = links.filter(|&n| n > MAX_LINKS) {
+            return Err(Error::field(
+                names.links,
+                format!("must be an integer in 2..={MAX_LINKS} (got {n})"),
+            ));
+        }
         let cat = Catenary::through(p0, p1, length).map_err(err)?;
         let discrete = match links {
             None => None,
@@ -90,7 +102,9 @@ impl CatenaryReport {
 
     /// One line of JSON.
     pub fn to_json(&self) -> String {
-        serde_json::to_string(self).expect("a catenary report always serialises")
+        serde_json::to_string(self).unwrap_or_else(|e| {
+            serde_json::json!({ "error": format!("the report did not serialise: {e}") }).to_string()
+        })
     }
 }
 

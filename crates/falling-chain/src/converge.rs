@@ -115,12 +115,32 @@ pub fn run_level(
 /// How far one level is from the reference (the finest).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Deviation {
-    /// `|v_max / v_max_ref - 1|`.
+    /// `|v_max / v_max_ref - 1|`; where `|v_max_ref|` is below the chain's
+    /// speed scale `v_s` ([`speed_scale`]: `sqrt(g L)`, or `L` per time unit
+    /// at `g = 0`), `|v_max - v_max_ref| / v_s` instead, so that a speed that
+    /// is zero at every level (a chain at rest at `g = 0`) deviates by its
+    /// rounding, not by 0/0.
     pub tip_speed_max: f64,
     /// `|tip_end - tip_end_ref| / L`.
     pub tip_end: f64,
     /// `max_t |tip(t) - tip_ref(t)| / L` over the common sample times.
     pub tip_path: f64,
+}
+
+/// The speed scale of `chain`: `sqrt(E_s / M)` with `E_s` the chain's energy
+/// scale (`Chain::energy_scale`), which is `sqrt(g L)` when `g > 0` and `L`
+/// per time unit at `g = 0`.
+pub fn speed_scale(chain: &Chain) -> f64 {
+    (chain.energy_scale() / chain.total_mass()).sqrt()
+}
+
+/// `|v / v_ref - 1|`, or `|v - v_ref| / scale` where `|v_ref| < scale`.
+fn relative_speed(v: f64, v_ref: f64, scale: f64) -> f64 {
+    if v_ref.abs() >= scale || !scale.is_finite() || scale <= 0.0 {
+        (v / v_ref - 1.0).abs()
+    } else {
+        (v - v_ref).abs() / scale
+    }
 }
 
 impl Deviation {
@@ -136,8 +156,11 @@ impl Deviation {
             .map(|(a, b)| d(a.1, b.1))
             .fold(0.0, f64::max);
         Self {
-            tip_speed_max: (level.summary.tip_speed_max / reference.summary.tip_speed_max - 1.0)
-                .abs(),
+            tip_speed_max: relative_speed(
+                level.summary.tip_speed_max,
+                reference.summary.tip_speed_max,
+                speed_scale(&reference.chain),
+            ),
             tip_end: d(level.summary.tip_end, reference.summary.tip_end) / length,
             tip_path: path / length,
         }
@@ -206,7 +229,7 @@ pub fn parse_links(text: &str) -> Result<Vec<usize>, Error> {
                 .ok_or_else(|| {
                     bad(format!(
                         "'{}' is not an integer in 2..=1000000 (expected N1,N2,...)",
-                        s.trim()
+                        crate::error::echo(s.trim())
                     ))
                 })
         })
@@ -215,7 +238,8 @@ pub fn parse_links(text: &str) -> Result<Vec<usize>, Error> {
     links.dedup();
     if links.len() < 2 {
         return Err(bad(format!(
-            "needs at least two different numbers of rods (got '{text}')"
+            "needs at least two different numbers of rods (got '{}')",
+            crate::error::echo(text)
         )));
     }
     Ok(links)
@@ -247,9 +271,19 @@ pub fn run(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, Error> {
     check_tol(tol)?;
+    let jobs = crate::sweep::check_jobs("--jobs", jobs)?;
     let mut links = links.to_vec();
     links.sort_unstable();
     links.dedup();
+    if links.len() < 2 {
+        return Err(Error::field(
+            "--links",
+            format!(
+                "needs at least two different numbers of rods (got {})",
+                links.len()
+            ),
+        ));
+    }
     // Every scene is checked before any run starts.
     for &n in &links {
         let mut s = refined_scene(scene, n)?;
@@ -263,7 +297,7 @@ pub fn run(
     }
     let done = AtomicUsize::new(0);
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.max(1))
+        .num_threads(jobs.min(links.len()).max(1))
         .build()
         .map_err(|e| Error::field("--jobs", e))?;
     let total = links.len();
@@ -280,7 +314,9 @@ pub fn run(
             .collect::<Result<Vec<_>, Error>>()
     })?;
     levels.sort_by_key(Level::links);
-    let reference = levels.last().expect("at least two levels");
+    let reference = levels
+        .last()
+        .ok_or_else(|| Error::field("--links", "no level ran"))?;
     let base = scene.chain()?;
     let adequate = if levels.iter().all(|l| l.summary.is_ok()) {
         smallest_adequate(&levels, |d| d.tip_speed_max < tol && d.tip_end < tol)
@@ -322,7 +358,9 @@ impl Report {
 
     /// One line of JSON.
     pub fn to_json(&self) -> String {
-        serde_json::to_string(self).expect("a report always serialises")
+        serde_json::to_string(self).unwrap_or_else(|e| {
+            serde_json::json!({ "error": format!("the report did not serialise: {e}") }).to_string()
+        })
     }
 }
 
@@ -364,7 +402,8 @@ impl std::fmt::Display for Report {
         }
         writeln!(
             f,
-            "  d(vmax) = |vmax/vmax_ref - 1|, d(tip_end) = |tip_end - tip_end_ref|/L, \
+            "  d(vmax) = |vmax/vmax_ref - 1| (|vmax - vmax_ref|/sqrt(g L) where vmax_ref < sqrt(g L); \
+             L per time unit at g = 0), d(tip_end) = |tip_end - tip_end_ref|/L, \
              d(path) = max_t |tip - tip_ref|/L; reference n = {}",
             self.reference_links
         )?;

@@ -121,9 +121,79 @@ fn io_reason(e: &io::Error) -> String {
     }
 }
 
-/// Collapses any line breaks so that the message stays on one line.
+/// The longest echo of a user's value in a message (characters), before
+/// it is cut with an ellipsis and its length.
+pub const ECHO_MAX: usize = 80;
+
+/// The longest message line before its middle is cut (a net under
+/// [`echo`]: no message echoes a whole large input).
+const MESSAGE_MAX: usize = 600;
+
+/// `text` with every control character escaped (`\n`, `\t`, `\u{1b}`), so
+/// that it stays on one line; other characters are kept.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A user's text as a message echoes it: control characters escaped, and
+/// cut after [`ECHO_MAX`] characters with an ellipsis and the length
+/// (`[1, 2, 3, ...… (25000001 characters)`).
+pub fn echo(text: &str) -> String {
+    let count = text.chars().count();
+    if count <= ECHO_MAX {
+        return escape(text);
+    }
+    let head: String = text.chars().take(ECHO_MAX).collect();
+    format!("{}… ({count} characters)", escape(&head))
+}
+
+/// A TOML value as a message echoes it ([`echo`]); a long array is shown by
+/// its first elements and its length, without writing it out whole.
+pub fn echo_value(value: &toml::Value) -> String {
+    match value {
+        toml::Value::Array(items) if items.len() > 8 => {
+            let head: Vec<String> = items[..4].iter().map(echo_value).collect();
+            echo(&format!(
+                "[{}, … ({} elements)]",
+                head.join(", "),
+                items.len()
+            ))
+        }
+        toml::Value::Table(t) if t.len() > 8 => format!("a table of {} keys", t.len()),
+        v => echo(&v.to_string()),
+    }
+}
+
+/// A path as a message echoes it: escaped, and cut when very long.
+pub fn echo_path(path: &Path) -> String {
+    let text = path.to_string_lossy();
+    if text.chars().count() <= 4 * ECHO_MAX {
+        escape(&text)
+    } else {
+        let head: String = text.chars().take(4 * ECHO_MAX).collect();
+        format!("{}…", escape(&head))
+    }
+}
+
+/// A message on one line: control characters escaped, and (a net under
+/// [`echo`]) a very long one cut in the middle.
 fn one_line(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
+    let text = escape(text);
+    let count = text.chars().count();
+    if count <= MESSAGE_MAX {
+        return text;
+    }
+    let head: String = text.chars().take(MESSAGE_MAX - 100).collect();
+    let tail: String = text.chars().skip(count - 100).collect();
+    format!("{head} … {tail}")
 }
 
 impl fmt::Display for Error {
@@ -132,16 +202,18 @@ impl fmt::Display for Error {
             Self::Read { what, path, source } => write!(
                 f,
                 "{what}: cannot read '{}': {}",
-                path.display(),
+                echo_path(path),
                 one_line(&io_reason(source))
             ),
             Self::Write { what, path, source } => write!(
                 f,
                 "{what}: cannot write '{}': {}",
-                path.display(),
+                echo_path(path),
                 one_line(&io_reason(source))
             ),
-            Self::Field { field, message } => write!(f, "{field}: {}", one_line(message)),
+            Self::Field { field, message } => {
+                write!(f, "{}: {}", echo(field), one_line(message))
+            }
             Self::Interrupted => f.write_str("interrupted: stopped before the work was done"),
         }
     }
@@ -158,7 +230,10 @@ impl std::error::Error for Error {
 
 impl From<InvalidParameter> for Error {
     fn from(e: InvalidParameter) -> Self {
-        Self::field(e.field, format!("must be {} (got {})", e.accepted, e.got))
+        Self::field(
+            e.field,
+            format!("must be {} (got {})", e.accepted, echo(&e.got)),
+        )
     }
 }
 
@@ -184,8 +259,26 @@ mod tests {
         );
         assert!(e.to_string().starts_with("scene: cannot read 'x.toml': "));
         let e = Error::field("chain.links", "bad\n  value");
-        assert_eq!(e.to_string(), "chain.links: bad value");
+        assert_eq!(e.to_string(), "chain.links: bad\\n  value");
         assert_eq!(e.subject(), "chain.links");
+        let e = Error::field("chain.li\nnks", "unknown key");
+        assert_eq!(e.to_string(), "chain.li\\nnks: unknown key");
+    }
+
+    #[test]
+    fn echoes_are_short_and_escaped() {
+        let long = toml::Value::Array((0..5_000_000).map(toml::Value::Integer).collect());
+        let e = echo_value(&long);
+        assert!(e.chars().count() < 2 * ECHO_MAX, "{e}");
+        assert!(e.contains("5000000 elements"), "{e}");
+        let text = "x".repeat(10_000);
+        let e = echo(&text);
+        assert!(e.ends_with("… (10000 characters)"), "{e}");
+        assert_eq!(escape("a\tb\u{1b}c"), "a\\tb\\u{1b}c");
+        let e = Error::write("--out", Path::new("a\nb.csv"), io::Error::other("x"));
+        assert_eq!(e.to_string(), "--out: cannot write 'a\\nb.csv': x");
+        let e = Error::field("x", "y".repeat(100_000)).to_string();
+        assert!(e.len() < 1000, "{}", e.len());
     }
 
     #[test]

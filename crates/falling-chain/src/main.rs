@@ -3,7 +3,8 @@
 //!
 //! Exit status: 0 on success, 1 if a run failed (its summary and partial
 //! outputs are still written), 2 for bad input or an output that could not be
-//! written, with a one-line message on stderr naming the field.
+//! written, with a one-line message on stderr naming the field; 130 or 143
+//! when stopped by SIGINT or SIGTERM (the temporary output file removed).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -11,6 +12,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
 use falling_chain::atomic::{check_writable, write_atomic};
+use falling_chain::error::{echo, echo_path, escape};
 use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
 
 #[derive(Parser)]
@@ -77,18 +79,20 @@ impl SceneArgs {
 /// `--jobs` of the commands that run scenes in parallel (sweep, converge).
 #[derive(Args)]
 struct JobsArgs {
-    /// Worker threads (default: all cores).
+    /// Worker threads, 1..=256 (default: all cores, at most 256); never
+    /// more threads than runs.
     #[arg(long, value_name = "N")]
     jobs: Option<usize>,
 }
 
 impl JobsArgs {
-    /// The number of threads: `--jobs`, else every core; 0 is an error.
+    /// The number of threads: `--jobs` (1..=256), else every core.
     fn threads(&self) -> Result<usize, Error> {
         match self.jobs {
-            Some(0) => Err(Error::field("--jobs", "must be an integer >= 1 (got 0)")),
-            Some(n) => Ok(n),
-            None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+            Some(n) => falling_chain::sweep::check_jobs("--jobs", n),
+            None => Ok(std::thread::available_parallelism()
+                .map_or(1, |n| n.get())
+                .min(falling_chain::sweep::MAX_JOBS)),
         }
     }
 }
@@ -125,7 +129,7 @@ struct PlotArgs {
     /// The figure: FILE.png or FILE.svg.
     #[arg(short = 'o', long = "out", value_name = "FILE.png|FILE.svg")]
     out: PathBuf,
-    /// Number of snapshots drawn (spread evenly over the run).
+    /// Number of snapshots drawn (spread evenly over the run), 1..=10000.
     #[arg(long, value_name = "N", default_value_t = 50)]
     snapshots: usize,
 }
@@ -151,7 +155,8 @@ struct SweepArgs {
     scene: SceneArgs,
     /// KEY=START:STOP:COUNT (COUNT values, ends included) or KEY=V1,V2,...
     /// for any scene key by dotted path (array elements by index:
-    /// start.p1.0). Several --vary make the Cartesian product.
+    /// start.p1.0). Several --vary make the Cartesian product, of at most
+    /// 1000000 runs; each key at most once.
     #[arg(
         long,
         value_name = "KEY=VALUES",
@@ -188,7 +193,8 @@ struct CatenaryArgs {
     /// Chain length L (must exceed |P1 - P0|).
     #[arg(long, value_name = "L", allow_negative_numbers = true)]
     length: f64,
-    /// Also solve the exact equilibrium of N rigid rods.
+    /// Also solve the exact equilibrium of N rigid rods (2..=1000000, the
+    /// scenes' cap on chain.links).
     #[arg(long, value_name = "N")]
     links: Option<usize>,
     /// Print one JSON object instead of a table.
@@ -224,9 +230,12 @@ struct SimulateArgs {
     json: bool,
 }
 
+/// The most snapshots `plot` draws.
+const MAX_SNAPSHOTS: usize = 10_000;
+
 /// Parses `X,Y`.
 fn parse_point(text: &str) -> Result<[f64; 2], String> {
-    let bad = || format!("expected two numbers X,Y (got '{text}')");
+    let bad = || format!("expected two numbers X,Y (got '{}')", echo(text));
     let (x, y) = text.split_once(',').ok_or_else(bad)?;
     let x = x.trim().parse::<f64>().map_err(|_| bad())?;
     let y = y.trim().parse::<f64>().map_err(|_| bad())?;
@@ -297,7 +306,8 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     if let Some(out) = &args.out {
         check_writable("--out", out)?;
     }
-    sweep::check(&scene, &vary)?;
+    // The grid's size, its keys and every run's scene are checked by
+    // `sweep::run` before any run starts.
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()
     } else {
@@ -366,7 +376,7 @@ fn run_for_drawing(
 }
 
 fn figure_error(what: &str, path: &std::path::Path, e: figures::FigureError) -> Error {
-    Error::field(what, format!("cannot write '{}': {e}", path.display()))
+    Error::field(what, format!("cannot write '{}': {e}", echo_path(path)))
 }
 
 fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
@@ -374,13 +384,16 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
     if !matches!(ext.to_ascii_lowercase().as_str(), "png" | "svg") {
         return Err(Error::field(
             "--out",
-            format!("must end in .png or .svg (got '{}')", args.out.display()),
+            format!("must end in .png or .svg (got '{}')", echo_path(&args.out)),
         ));
     }
-    if args.snapshots == 0 {
+    if !(1..=MAX_SNAPSHOTS).contains(&args.snapshots) {
         return Err(Error::field(
             "--snapshots",
-            "must be an integer >= 1 (got 0)",
+            format!(
+                "must be an integer in 1..={MAX_SNAPSHOTS} (got {})",
+                args.snapshots
+            ),
         ));
     }
     let scene = args.scene.load()?;
@@ -429,7 +442,7 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
     {
         return Err(Error::field(
             "--out",
-            format!("must end in .gif (got '{}')", args.out.display()),
+            format!("must end in .gif (got '{}')", echo_path(&args.out)),
         ));
     }
     if !(1..=50).contains(&args.fps) {
@@ -481,15 +494,37 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
 
 /// Clap's message on one line, without the usage and help hints.
 fn one_line(message: &str) -> String {
-    message
+    let line = message
         .lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with("Usage:") && !l.starts_with("For more"))
         .collect::<Vec<_>>()
-        .join(" ")
+        .join(" ");
+    escape(&line)
+}
+
+/// On SIGINT or SIGTERM: remove the hidden temporary output files in
+/// progress and exit 128 + the signal (130, 143), as a shell does. The
+/// handler is a thread that waits for the signal (signal-hook), so it may
+/// lock and remove files; it holds the list's lock while the process ends,
+/// so that no new temporary file is started meanwhile.
+fn remove_temporaries_on_signals() {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
+        return;
+    };
+    let _ = std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                let _held = figures::atomic::remove_temporaries();
+                std::process::exit(128 + signal);
+            }
+        });
 }
 
 fn main() -> ExitCode {
+    remove_temporaries_on_signals();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => {

@@ -7,7 +7,7 @@
 //! `[3.0, 0.0]`, `"rk4"`, `nan`); a bare word that is not valid TOML
 //! (`dopri5`) is taken as a string.
 
-use crate::error::Error;
+use crate::error::{echo, Error};
 use crate::schema;
 
 /// Splits `KEY=VALUE` and parses the value; the error names the key.
@@ -15,7 +15,10 @@ pub fn parse_assignment(assignment: &str) -> Result<(String, toml::Value), Error
     let Some((path, text)) = assignment.split_once('=') else {
         return Err(Error::field(
             "--set",
-            format!("expected KEY=VALUE, e.g. chain.links=100 (got '{assignment}')"),
+            format!(
+                "expected KEY=VALUE, e.g. chain.links=100 (got '{}')",
+                echo(assignment)
+            ),
         ));
     };
     let path = path.trim();
@@ -37,7 +40,7 @@ pub fn parse_value(text: &str) -> Result<toml::Value, String> {
     }
     let structured = text.starts_with(['[', '{', '"', '\'']) || text.contains(['\n', '\r']);
     if structured {
-        Err(format!("cannot parse '{text}' as a TOML value"))
+        Err(format!("cannot parse '{}' as a TOML value", echo(text)))
     } else {
         Ok(toml::Value::String(text.to_string()))
     }
@@ -90,7 +93,10 @@ pub fn set_path(tree: &mut toml::Table, path: &str, value: toml::Value) -> Resul
             .ok_or_else(|| {
                 Error::field(
                     path,
-                    format!("'{segment}' is not an index of '{walked}' (it has {len} elements)"),
+                    format!(
+                        "'{}' is not an index of '{walked}' (it has {len} elements)",
+                        echo(segment)
+                    ),
                 )
             })?;
         node = &mut items[index];

@@ -125,8 +125,8 @@ impl Scene {
     /// Reads and parses a scene file. A missing `name` becomes the file's stem.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::read("scene", path, e))?;
-        let mut tree = parse_tree(&text, &format!("'{}'", path.display()))?;
+        let text = read_scene_text(path)?;
+        let mut tree = parse_tree(&text, &format!("'{}'", crate::error::echo_path(path)))?;
         if !tree.contains_key("name") {
             let stem = path
                 .file_stem()
@@ -272,6 +272,54 @@ impl Scene {
             options: self.options()?,
         })
     }
+}
+
+/// The largest scene file read (bytes): a scene is a few hundred bytes; an
+/// `angles` start of 10^4 rods is about 200 kB.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+/// Reads a scene file: a regular file (a device such as `/dev/zero`, a FIFO
+/// or a directory is refused before it is opened) of at most
+/// [`MAX_SCENE_BYTES`], read through a limit so that a file that grows
+/// meanwhile is refused too.
+fn read_scene_text(path: &Path) -> Result<String, Error> {
+    use std::io::Read as _;
+    let read = |e| Error::read("scene", path, e);
+    let too_big = || {
+        Error::read(
+            "scene",
+            path,
+            std::io::Error::other(format!(
+                "larger than {MAX_SCENE_BYTES} bytes (1 MiB, the largest scene file)"
+            )),
+        )
+    };
+    let meta = std::fs::metadata(path).map_err(read)?;
+    if !meta.is_file() {
+        let kind = if meta.is_dir() {
+            "a directory"
+        } else {
+            "not a regular file (a device, FIFO or socket)"
+        };
+        return Err(read(std::io::Error::other(format!("it is {kind}"))));
+    }
+    if meta.len() > MAX_SCENE_BYTES {
+        return Err(too_big());
+    }
+    let file = std::fs::File::open(path).map_err(read)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read)?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(too_big());
+    }
+    String::from_utf8(bytes).map_err(|_| {
+        read(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "stream did not contain valid UTF-8",
+        ))
+    })
 }
 
 /// Parses TOML text into a tree; a syntax error names the place.

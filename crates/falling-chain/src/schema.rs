@@ -366,7 +366,11 @@ impl Key {
         } else {
             Err(Error::field(
                 self.path,
-                format!("must be {} (got {value})", self.ty.accepted()),
+                format!(
+                    "must be {} (got {})",
+                    self.ty.accepted(),
+                    crate::error::echo_value(value)
+                ),
             ))
         }
     }
@@ -468,7 +472,10 @@ pub fn check(tree: &toml::Table) -> Result<toml::Table, Error> {
             let Some(section) = value.as_table() else {
                 return Err(Error::field(
                     top.as_str(),
-                    format!("must be a table ([{top}]) (got {value})"),
+                    format!(
+                        "must be a table ([{top}]) (got {})",
+                        crate::error::echo_value(value)
+                    ),
                 ));
             };
             for (name, value) in section {

@@ -5,6 +5,12 @@
 //! `--vary KEY=V1,V2,...`; several `--vary` make the Cartesian product, the
 //! last one varying fastest. Runs are numbered from 0 in that order; a shard
 //! `I/N` takes runs `I, I + N, I + 2N, ...`.
+//!
+//! Bounds, checked before anything is built or run: at most [`MAX_RUNS`]
+//! runs in the whole grid (the product of the value counts, multiplied with
+//! overflow checks), each key once, and 1..=[`MAX_JOBS`] threads (the pool
+//! has no more threads than runs). A run's values are worked out from its
+//! number ([`values_of`]): the grid is never held in memory.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -12,10 +18,29 @@ use chain_ode::Cancel;
 use rayon::prelude::*;
 
 use crate::csv::field as csv_field;
-use crate::error::Error;
+use crate::error::{echo, Error};
 use crate::overrides::parse_value;
 use crate::scene::Scene;
 use crate::summary::RunSummary;
+
+/// The most runs a sweep may have (the product of the `--vary` counts).
+pub const MAX_RUNS: usize = 1_000_000;
+
+/// The most worker threads of a sweep or a convergence ladder (`--jobs`).
+pub const MAX_JOBS: usize = 256;
+
+/// Checks a thread count: an integer in 1..=[`MAX_JOBS`]; `what` names it
+/// in the error (`"--jobs"`, Python's `"jobs"`).
+pub fn check_jobs(what: &str, jobs: usize) -> Result<usize, Error> {
+    if (1..=MAX_JOBS).contains(&jobs) {
+        Ok(jobs)
+    } else {
+        Err(Error::field(
+            what,
+            format!("must be an integer in 1..={MAX_JOBS} (got {jobs})"),
+        ))
+    }
+}
 
 /// One varied key and its values.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,7 +71,10 @@ pub struct SweepRow {
 fn vary_error(spec: &str, why: impl std::fmt::Display) -> Error {
     Error::field(
         "--vary",
-        format!("{why} in '{spec}' (expected KEY=START:STOP:COUNT or KEY=V1,V2,...)"),
+        format!(
+            "{why} in '{}' (expected KEY=START:STOP:COUNT or KEY=V1,V2,...)",
+            echo(spec)
+        ),
     )
 }
 
@@ -77,12 +105,20 @@ impl Vary {
                 s.parse::<f64>()
                     .ok()
                     .filter(|x| x.is_finite())
-                    .ok_or_else(|| vary_error(spec, format!("'{s}' is not a finite number")))
+                    .ok_or_else(|| {
+                        vary_error(spec, format!("'{}' is not a finite number", echo(s)))
+                    })
             };
             let (start, stop) = (num(a)?, num(b)?);
-            let count: usize =
-                c.parse().ok().filter(|&k| k >= 1).ok_or_else(|| {
-                    vary_error(spec, format!("COUNT '{c}' is not an integer >= 1"))
+            let count: usize = c
+                .parse()
+                .ok()
+                .filter(|&k| (1..=MAX_RUNS).contains(&k))
+                .ok_or_else(|| {
+                    vary_error(
+                        spec,
+                        format!("COUNT '{}' is not an integer in 1..={MAX_RUNS}", echo(c)),
+                    )
                 })?;
             (0..count)
                 .map(|i| {
@@ -95,6 +131,13 @@ impl Vary {
                 })
                 .collect()
         } else {
+            let count = rhs.split(',').count();
+            if count > MAX_RUNS {
+                return Err(vary_error(
+                    spec,
+                    format!("{count} values (at most {MAX_RUNS})"),
+                ));
+            }
             rhs.split(',')
                 .map(|v| parse_value(v.trim()).map_err(|e| vary_error(spec, e)))
                 .collect::<Result<Vec<_>, _>>()?
@@ -112,7 +155,10 @@ impl Shard {
         let bad = || {
             Error::field(
                 "--shard",
-                format!("must be I/N with integers 0 <= I < N (got '{spec}')"),
+                format!(
+                    "must be I/N with integers 0 <= I < N (got '{}')",
+                    echo(spec)
+                ),
             )
         };
         let (i, n) = spec.split_once('/').ok_or_else(bad)?;
@@ -131,19 +177,81 @@ impl Shard {
     }
 }
 
-/// The values of every run, in run order (the Cartesian product).
-pub fn grid(vary: &[Vary]) -> Vec<Vec<toml::Value>> {
-    vary.iter().fold(vec![vec![]], |acc, v| {
-        acc.iter()
-            .flat_map(|prefix| {
-                v.values.iter().map(move |x| {
-                    let mut row = prefix.clone();
-                    row.push(x.clone());
-                    row
-                })
-            })
-            .collect()
-    })
+/// The number of runs of the whole grid (the product of the value counts),
+/// at most [`MAX_RUNS`]; every key at most once (a key and one of its
+/// elements, `start.p1` and `start.p1.0`, count as the same key), and every
+/// key with at least one value. Checked with overflow checks, before
+/// anything is built.
+pub fn grid_size(vary: &[Vary]) -> Result<usize, Error> {
+    for (i, v) in vary.iter().enumerate() {
+        if v.values.is_empty() {
+            return Err(Error::field(
+                "--vary",
+                format!("'{}' has no values", echo(&v.key)),
+            ));
+        }
+        let overlaps = |a: &str, b: &str| {
+            a == b || a.strip_prefix(b).is_some_and(|rest| rest.starts_with('.'))
+        };
+        if let Some(w) = vary[..i]
+            .iter()
+            .find(|w| overlaps(&v.key, &w.key) || overlaps(&w.key, &v.key))
+        {
+            let what = if w.key == v.key {
+                format!("'{}' is varied twice", echo(&v.key))
+            } else {
+                format!(
+                    "'{}' and '{}' vary the same value",
+                    echo(&w.key),
+                    echo(&v.key)
+                )
+            };
+            return Err(Error::field(
+                "--vary",
+                format!("{what}: give each key once, with all its values"),
+            ));
+        }
+    }
+    let mut size: usize = 1;
+    for v in vary {
+        size = size
+            .checked_mul(v.values.len())
+            .filter(|&n| n <= MAX_RUNS)
+            .ok_or_else(|| {
+                let counts: Vec<String> = vary.iter().map(|v| v.values.len().to_string()).collect();
+                Error::field(
+                    "--vary",
+                    format!(
+                        "the sweep has {} runs; at most {MAX_RUNS} are allowed",
+                        counts.join(" x ")
+                    ),
+                )
+            })?;
+    }
+    Ok(size)
+}
+
+/// The values of run `run` (numbered as in [`grid`]: the last key varies
+/// fastest), by mixed radix; `run` must be below the grid's size.
+pub fn values_of(vary: &[Vary], run: usize) -> Vec<toml::Value> {
+    let mut values = vec![toml::Value::Boolean(false); vary.len()];
+    let mut rest = run;
+    for (slot, v) in values.iter_mut().zip(vary).rev() {
+        let count = v.values.len().max(1);
+        if let Some(x) = v.values.get(rest % count) {
+            *slot = x.clone();
+        }
+        rest /= count;
+    }
+    values
+}
+
+/// The values of every run, in run order (the Cartesian product, the last
+/// key varying fastest), made one run at a time. The grid is checked
+/// first ([`grid_size`]).
+pub fn grid(vary: &[Vary]) -> Result<impl Iterator<Item = Vec<toml::Value>> + '_, Error> {
+    let size = grid_size(vary)?;
+    Ok((0..size).map(move |run| values_of(vary, run)))
 }
 
 /// The scene of one run: `scene` with the run's values set (an integer
@@ -160,7 +268,7 @@ pub fn scene_for(scene: &Scene, vary: &[Vary], values: &[toml::Value]) -> Result
 /// Checks every run's scene before any run starts: a bad key or value is an
 /// error naming it, and no run is wasted.
 pub fn check(scene: &Scene, vary: &[Vary]) -> Result<(), Error> {
-    for values in grid(vary) {
+    for values in grid(vary)? {
         scene_for(scene, vary, &values)?.prepare()?;
     }
     Ok(())
@@ -193,24 +301,25 @@ pub fn run_cancellable(
     cancel: Option<&Cancel>,
 ) -> Result<Vec<SweepRow>, Error> {
     let cancelled = || cancel.is_some_and(Cancel::is_cancelled);
+    let jobs = check_jobs("--jobs", jobs)?;
+    let size = grid_size(vary)?;
     check(scene, vary)?;
-    let runs: Vec<(usize, Vec<toml::Value>)> = grid(vary)
-        .into_iter()
-        .enumerate()
-        .filter(|(i, _)| shard.is_none_or(|s| s.takes(*i)))
+    let runs: Vec<usize> = (0..size)
+        .filter(|&i| shard.is_none_or(|s| s.takes(i)))
         .collect();
     let total = runs.len();
     let done = AtomicUsize::new(0);
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.max(1))
+        .num_threads(jobs.min(total).max(1))
         .build()
         .map_err(|e| Error::field("--jobs", e))?;
     let rows: Result<Vec<SweepRow>, Error> = pool.install(|| {
         runs.into_par_iter()
-            .map(|(run, values)| {
+            .map(|run| {
                 if cancelled() {
                     return Err(Error::Interrupted);
                 }
+                let values = values_of(vary, run);
                 let s = scene_for(scene, vary, &values)?;
                 let mut prepared = s.prepare()?;
                 prepared.options.output_dt = None;
@@ -277,9 +386,66 @@ mod tests {
         assert_eq!(a.values[4], toml::Value::Float(1.0));
         let b = Vary::parse("run.method=rk4,dopri5").unwrap();
         assert_eq!(b.values[1], toml::Value::String("dopri5".into()));
-        let g = grid(&[a, b]);
+        let g: Vec<_> = grid(&[a, b]).unwrap().collect();
         assert_eq!(g.len(), 10);
         assert_eq!(g[1][1], toml::Value::String("dopri5".into()));
+        assert_eq!(g[1][0], toml::Value::Float(0.0));
+        assert_eq!(g[9][0], toml::Value::Float(1.0));
+    }
+
+    #[test]
+    fn grids_are_bounded_and_keys_given_once() {
+        // Mixed radix, last key fastest, against the nested loops.
+        let a = Vary::floats("chain.damping", &[0.0, 1.0, 2.0]);
+        let b = Vary::floats("chain.mass", &[5.0, 6.0]);
+        let c = Vary::floats("chain.length", &[7.0, 8.0, 9.0, 10.0]);
+        let vary = [a.clone(), b.clone(), c.clone()];
+        let mut run = 0;
+        for x in &a.values {
+            for y in &b.values {
+                for z in &c.values {
+                    assert_eq!(values_of(&vary, run), vec![x.clone(), y.clone(), z.clone()]);
+                    run += 1;
+                }
+            }
+        }
+        assert_eq!(grid_size(&vary).unwrap(), 24);
+        // A product beyond the cap (and beyond usize) is refused unbuilt.
+        let big = Vary::parse("chain.damping=0:1:1000000").unwrap();
+        let big2 = Vary::parse("chain.mass=1:2:1000000").unwrap();
+        let e = grid_size(&[big.clone(), big2]).unwrap_err().to_string();
+        assert!(
+            e.starts_with("--vary: the sweep has 1000000 x 1000000 runs"),
+            "{e}"
+        );
+        assert_eq!(grid_size(&[big]).unwrap(), MAX_RUNS);
+        let e = Vary::parse("start.p1.0=1:5:100000000000000")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("1..=1000000"), "{e}");
+        // The same key twice, or a key and its element.
+        for (k1, k2) in [
+            ("chain.damping", "chain.damping"),
+            ("start.p1", "start.p1.0"),
+        ] {
+            let e = grid_size(&[Vary::floats(k1, &[0.0]), Vary::floats(k2, &[3.0])])
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with("--vary: '"), "{e}");
+        }
+        assert!(grid_size(&[
+            Vary::floats("start.p1.0", &[0.0]),
+            Vary::floats("start.p1.1", &[3.0])
+        ])
+        .is_ok());
+        assert_eq!(check_jobs("--jobs", 256).unwrap(), 256);
+        for bad in [0, 257, usize::MAX] {
+            let e = check_jobs("--jobs", bad).unwrap_err().to_string();
+            assert_eq!(
+                e,
+                format!("--jobs: must be an integer in 1..=256 (got {bad})")
+            );
+        }
     }
 
     #[test]

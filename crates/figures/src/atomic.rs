@@ -6,23 +6,61 @@
 //! target is left as it was. It lives here because this crate depends on
 //! nothing of the project: `falling-chain` (its `--out` files) and `xtask`
 //! (figure data, README, paper) write through it too.
+//!
+//! What a target may be ([`output_target`]): absent, or a regular file, or
+//! a symbolic link whose final target is a regular file, which is then
+//! written in its place (the link stays a link). A directory, a FIFO, a
+//! device, a socket or a dangling link is refused before anything is
+//! written. The temporary files in progress are listed, so that a signal
+//! handler can remove them ([`remove_temporaries`]).
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard};
+
+/// The temporary files being written (their paths are listed before they
+/// are created and unlisted after they are renamed or removed).
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn live() -> MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+fn unlist(temp: &Path) {
+    let mut list = live();
+    if let Some(i) = list.iter().position(|p| p == temp) {
+        list.swap_remove(i);
+    }
+}
+
+/// Removes every temporary file in progress and returns the lock on the
+/// (now empty) list, so that no new one is started while the caller ends
+/// the process: a SIGINT/SIGTERM handler calls this, then exits.
+pub fn remove_temporaries() -> MutexGuard<'static, Vec<PathBuf>> {
+    let mut list = live();
+    for temp in list.drain(..) {
+        let _ = fs::remove_file(&temp);
+    }
+    list
+}
 
 /// A written, synced temporary file beside its target; removed on drop
 /// unless it was renamed into place.
 struct Staged {
     temp: PathBuf,
+    /// Where it is renamed to: the path, or a symlink's final target.
+    target: PathBuf,
     committed: bool,
 }
 
 impl Staged {
-    fn commit(mut self, target: &Path) -> io::Result<()> {
-        fs::rename(&self.temp, target)?;
+    fn commit(mut self) -> io::Result<()> {
+        fs::rename(&self.temp, &self.target)?;
         self.committed = true;
+        unlist(&self.temp);
         Ok(())
     }
 }
@@ -31,8 +69,91 @@ impl Drop for Staged {
     fn drop(&mut self) {
         if !self.committed {
             let _ = fs::remove_file(&self.temp);
+            unlist(&self.temp);
         }
     }
+}
+
+/// What kind of file `meta` is, for the error that refuses it.
+fn kind(meta: &fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt as _;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
+}
+
+fn refuse(why: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, why)
+}
+
+/// The file that writing `path` replaces: `path` itself if it is absent or
+/// a regular file; a symbolic link's final target if that is a regular
+/// file. Anything else (a directory, FIFO, device, socket, or a link to one
+/// or to nothing) is an error saying what it is.
+pub fn output_target(path: &Path) -> io::Result<PathBuf> {
+    let meta = match fs::symlink_metadata(path) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(path.to_path_buf()),
+        Err(e) => return Err(e),
+        Ok(m) => m,
+    };
+    if meta.is_file() {
+        return Ok(path.to_path_buf());
+    }
+    if meta.file_type().is_symlink() {
+        let target = fs::canonicalize(path)
+            .map_err(|_| refuse("it is a symbolic link to nothing".into()))?;
+        let meta = fs::metadata(&target)?;
+        if meta.is_file() {
+            return Ok(target);
+        }
+        return Err(refuse(format!(
+            "it is a symbolic link to {}, not to a regular file",
+            kind(&meta)
+        )));
+    }
+    Err(refuse(format!(
+        "it is {}; an output must be a regular file",
+        kind(&meta)
+    )))
+}
+
+/// The directory of `target` (`.` for a bare file name).
+fn dir_of(target: &Path) -> &Path {
+    parent_dir(target)
+}
+
+/// Checks, before any work, that `path` can be written: it is absent, a
+/// regular file or a link to one ([`output_target`]), and a file can be
+/// created in its directory (one is made and removed again).
+pub fn check_output(path: &Path) -> io::Result<()> {
+    static PROBE: AtomicU64 = AtomicU64::new(0);
+    let target = output_target(path)?;
+    let dir = dir_of(&target);
+    let probe = dir.join(format!(
+        ".falling-chain-probe-{}-{}",
+        std::process::id(),
+        PROBE.fetch_add(1, Ordering::Relaxed)
+    ));
+    live().push(probe.clone());
+    let made = File::create_new(&probe);
+    let _ = fs::remove_file(&probe);
+    unlist(&probe);
+    made.map(drop)
 }
 
 /// The directory `path` will be written into (`.` for a bare file name).
@@ -43,24 +164,35 @@ fn parent_dir(path: &Path) -> &Path {
     }
 }
 
-/// Writes a temporary file beside `path` with `fill` and syncs it.
+/// Writes a temporary file beside `path`'s target ([`output_target`]) with
+/// `fill` and syncs it.
 fn stage<F>(path: &Path, fill: F) -> io::Result<Staged>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let name = path
+    let target = output_target(path)?;
+    let name = target
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
-    let temp = parent_dir(path).join(format!(
+    let temp = dir_of(&target).join(format!(
         ".{}.tmp-{}-{}",
         name.to_string_lossy(),
         std::process::id(),
         COUNTER.fetch_add(1, Ordering::Relaxed)
     ));
-    let file = File::create_new(&temp)?;
+    // Listed before it exists, so that a signal between the two cannot miss it.
+    live().push(temp.clone());
+    let file = match File::create_new(&temp) {
+        Ok(f) => f,
+        Err(e) => {
+            unlist(&temp);
+            return Err(e);
+        }
+    };
     let staged = Staged {
         temp,
+        target,
         committed: false,
     };
     let mut w = BufWriter::new(file);
@@ -76,7 +208,7 @@ pub fn write_atomic<F>(path: &Path, fill: F) -> io::Result<()>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    stage(path, fill)?.commit(path)
+    stage(path, fill)?.commit()
 }
 
 /// Writes every `(path, bytes)` pair, or none: all are staged first and
@@ -92,7 +224,7 @@ pub fn write_all_atomic(files: &[(&Path, &[u8])]) -> Result<(), (PathBuf, io::Er
     for (i, s) in staged.into_iter().enumerate() {
         let path = files[i].0;
         // The later staged files are removed as `staged` drops.
-        if let Err(e) = s.commit(path) {
+        if let Err(e) = s.commit() {
             for (done, _) in &files[..i] {
                 let _ = fs::remove_file(done);
             }
@@ -136,6 +268,55 @@ mod tests {
         assert_eq!(e.to_string(), "disk full");
         assert_eq!(fs::read_to_string(&out).unwrap(), "x\n");
         assert_eq!(names(&d), vec!["a.csv"]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_are_written_through_and_special_files_refused() {
+        let d = scratch("atomic-kinds");
+        let real = d.join("real.csv");
+        fs::write(&real, "old").unwrap();
+        let link = d.join("link.csv");
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write_atomic(&link, |w| w.write_all(b"new")).unwrap();
+        assert!(fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(fs::read_to_string(&real).unwrap(), "new");
+        // A directory, a FIFO, a link to nothing: refused, left as they were.
+        let fifo = d.join("fifo");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let dangling = d.join("dangling.csv");
+        std::os::unix::fs::symlink(d.join("none"), &dangling).unwrap();
+        let sub = d.join("sub");
+        fs::create_dir(&sub).unwrap();
+        for (path, what) in [
+            (&fifo, "a FIFO"),
+            (&dangling, "to nothing"),
+            (&sub, "a directory"),
+        ] {
+            let e = write_atomic(path, |w| w.write_all(b"x")).unwrap_err();
+            assert!(e.to_string().contains(what), "{e}");
+            assert!(check_output(path).is_err());
+        }
+        use std::os::unix::fs::FileTypeExt as _;
+        assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+        assert!(check_output(&d.join("new.csv")).is_ok());
+        assert!(check_output(&link).is_ok());
+        assert!(check_output(&d.join("no/such.csv")).is_err());
+        let mut left = names(&d);
+        left.sort();
+        assert_eq!(
+            left,
+            vec!["dangling.csv", "fifo", "link.csv", "real.csv", "sub"]
+        );
+        assert!(live().is_empty());
         fs::remove_dir_all(&d).unwrap();
     }
 
