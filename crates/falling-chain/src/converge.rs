@@ -197,6 +197,10 @@ pub struct Report {
     /// The smallest adequate `n` (`null`: none below the reference).
     pub adequate_links: Option<usize>,
     pub levels: Vec<ReportLevel>,
+    /// The one-line stiffness hint of the ladder's runs, if an explicit
+    /// method kept detecting stiffness ([`crate::summary::stiffness_hint_for`]).
+    #[serde(skip)]
+    pub stiffness_hint: Option<String>,
 }
 
 /// One row of [`Report`].
@@ -331,6 +335,7 @@ pub fn run(
         bending_viscosity: bending_viscosity(&base),
         reference_links: reference.links(),
         adequate_links: adequate,
+        stiffness_hint: crate::summary::stiffness_hint_for(levels.iter().map(|l| &l.summary)),
         levels: levels
             .iter()
             .map(|l| ReportLevel {

@@ -13,6 +13,7 @@ use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
 use falling_chain::atomic::{check_writable, write_atomic};
 use falling_chain::error::{echo, echo_path, escape};
+use falling_chain::summary::stiffness_hint_for;
 use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
 
 #[derive(Parser)]
@@ -283,6 +284,9 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     } else {
         println!("{summary}");
     }
+    if let Some(hint) = stiffness_hint_for([&summary]) {
+        eprintln!("{hint}");
+    }
     if let Some(out) = &args.out {
         write_atomic("--out", out, |w| csv::write_trajectory(w, &traj))?;
     }
@@ -323,6 +327,9 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
         bar.set_position(done as u64);
     })?;
     bar.finish_and_clear();
+    if let Some(hint) = stiffness_hint_for(rows.iter().map(|r| &r.summary)) {
+        eprintln!("{hint}");
+    }
     let failed = rows.iter().filter(|r| !r.summary.is_ok()).count();
     let csv_text = || {
         let mut text = sweep::csv_header(&vary);
@@ -484,6 +491,9 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
         println!("{}", report.to_json());
     } else {
         println!("{report}");
+    }
+    if let Some(hint) = &report.stiffness_hint {
+        eprintln!("{hint}");
     }
     Ok(if report.all_ok() {
         ExitCode::SUCCESS

@@ -247,7 +247,35 @@ impl Scene {
 
     /// The initial state of the scene's chain (validated).
     pub fn state(&self) -> Result<State, Error> {
-        Ok(self.start.state(&self.chain()?)?)
+        let chain = self.chain()?;
+        self.check_start(&chain)?;
+        Ok(self.start.state(&chain)?)
+    }
+
+    /// What chain-ode's own check of a folded start would misname: a chain
+    /// of one rod cannot fold (the error is about `chain.links`), and
+    /// `start.down` is out of range for this very chain (the range says
+    /// its numbers).
+    fn check_start(&self, chain: &Chain) -> Result<(), Error> {
+        if let Start::Folded { down, .. } = &self.start {
+            let n = chain.links;
+            if n < 2 {
+                return Err(Error::field(
+                    "chain.links",
+                    format!("a folded start needs at least 2 rods (got {n})"),
+                ));
+            }
+            if let Some(down) = down.filter(|&d| d >= n) {
+                return Err(Error::field(
+                    "start.down",
+                    format!(
+                        "must be an integer in 0..={} (chain.links - 1) (got {down})",
+                        n - 1
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The integration method (`run.method` parsed by chain-ode).
@@ -264,6 +292,7 @@ impl Scene {
     /// Validates everything a run needs, in the order chain, start, run.
     pub fn prepare(&self) -> Result<Prepared, Error> {
         let chain = self.chain()?;
+        self.check_start(&chain)?;
         let state = self.start.state(&chain)?;
         Ok(Prepared {
             chain,

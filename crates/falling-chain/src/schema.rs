@@ -341,7 +341,7 @@ impl Key {
     /// Anything else is returned as it is, for [`check`] to judge.
     pub fn coerce(&self, value: toml::Value) -> toml::Value {
         match (self.ty, value) {
-            (Type::Integer, toml::Value::Float(x)) if x.fract() == 0.0 && x.abs() < 9e15 => {
+            (Type::Integer, toml::Value::Float(x)) if whole_i64(x) => {
                 toml::Value::Integer(x as i64)
             }
             (_, v) => v,
@@ -350,6 +350,18 @@ impl Key {
 
     /// Checks the type of `value`; the error names the key and what it takes.
     pub fn check(&self, value: &toml::Value) -> Result<(), Error> {
+        if let (Type::Integer, toml::Value::Float(x)) = (self.ty, value) {
+            if whole_i64(*x) && *x >= 0.0 {
+                return Err(Error::field(
+                    self.path,
+                    format!(
+                        "must be an integer, written without a decimal point or exponent \
+                         in a scene file (got {x:e}: write {})",
+                        *x as i64
+                    ),
+                ));
+            }
+        }
         use toml::Value as V;
         let number = |v: &V| matches!(v, V::Integer(_) | V::Float(_));
         let ok = match (self.ty, value) {
@@ -393,7 +405,7 @@ impl Type {
     pub fn accepted(self) -> String {
         match self {
             Self::Number => "a number".into(),
-            Self::Integer => "an integer >= 0".into(),
+            Self::Integer => format!("an integer in 0..={}", i64::MAX),
             Self::Point => "a point [x, y] of two numbers".into(),
             Self::Numbers => "a list of numbers [a, b, ...]".into(),
             Self::Text => "a string".into(),
@@ -436,6 +448,12 @@ impl Literal {
             Self::Text(s) => format!("`\"{s}\"`"),
         }
     }
+}
+
+/// Whether `x` is a whole number that an `i64` holds exactly.
+fn whole_i64(x: f64) -> bool {
+    // 2^63 is the first float above i64::MAX.
+    x.fract() == 0.0 && x > -9.223_372_036_854_775_808e18 && x < 9.223_372_036_854_775_808e18
 }
 
 /// `6`, `0.2`, `1e-8`: a number as a person writes it.

@@ -105,6 +105,57 @@ pub const SUMMARY_CSV_COLUMNS: [&str; 28] = [
     "segments",
 ];
 
+/// How many stiffness detections of an explicit method (DOPRI5, DOP853)
+/// make a run worth a hint. One detection is 15 accepted steps in a row at
+/// the method's stability limit (`h |lambda| > 3.25`), which a transient
+/// (the whip) can give a few times; 10 of them, 150 steps held at the
+/// limit, mean that the step size is set by stability for a good part of
+/// the run, where an implicit method takes far fewer steps.
+pub const STIFFNESS_HINT_DETECTIONS: u64 = 10;
+
+/// The explicit methods whose stiffness detector [`stiffness_hint`] reads.
+const EXPLICIT_WITH_DETECTOR: [&str; 2] = ["dopri5", "dop853"];
+
+/// Whether `summary` is an explicit method's run that detected stiffness at
+/// least [`STIFFNESS_HINT_DETECTIONS`] times.
+pub fn looks_stiff(summary: &RunSummary) -> bool {
+    EXPLICIT_WITH_DETECTOR.contains(&summary.method.as_str())
+        && summary.stiffness_detections >= STIFFNESS_HINT_DETECTIONS
+}
+
+/// The one-line hint for runs that [`looks_stiff`]: `stiff` of `total` runs
+/// (one run: `total == 1`), by `method` with at most `detections`.
+pub fn stiffness_hint(method: &str, detections: u64, stiff: usize, total: usize) -> String {
+    let which = if total == 1 {
+        format!("{method} detected stiffness {detections} times")
+    } else {
+        format!("{stiff} of {total} runs detected stiffness (up to {detections} times, {method})")
+    };
+    format!(
+        "hint: {which} (each: 15 steps in a row at its stability limit); \
+         --method bdf or auto may need far fewer steps (the run goes on as asked)"
+    )
+}
+
+/// The hint for a set of summaries, if any of them [`looks_stiff`]: one
+/// line for the whole command.
+pub fn stiffness_hint_for<'a>(
+    summaries: impl IntoIterator<Item = &'a RunSummary>,
+) -> Option<String> {
+    let (mut total, mut stiff, mut most, mut method) = (0, 0, 0, "");
+    for s in summaries {
+        total += 1;
+        if looks_stiff(s) {
+            stiff += 1;
+            if s.stiffness_detections >= most {
+                most = s.stiffness_detections;
+                method = s.method.as_str();
+            }
+        }
+    }
+    (stiff > 0).then(|| stiffness_hint(method, most, stiff, total))
+}
+
 impl RunSummary {
     /// The summary of `traj`, under the scene name `name`.
     pub fn from_trajectory(name: &str, traj: &Trajectory) -> Self {
