@@ -2,6 +2,13 @@
 //! the scene files in `scenes/`, one module per command. Expected values come
 //! from the physics (closed forms, energy balance, geometry), never from
 //! earlier output.
+// The helpers are test code too: a failing check is a panic.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "test code: a failed check panics"
+)]
 
 mod catenary;
 mod common;

@@ -315,12 +315,14 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()
     } else {
-        indicatif::ProgressBar::new(0).with_style(
-            indicatif::ProgressStyle::with_template(
-                "{bar:40} {pos}/{len} runs, {elapsed} ({eta} left)",
-            )
-            .expect("a valid progress template"),
-        )
+        let bar = indicatif::ProgressBar::new(0);
+        // The template is a constant; were it refused, the default style stays.
+        match indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} runs, {elapsed} ({eta} left)",
+        ) {
+            Ok(style) => bar.with_style(style),
+            Err(_) => bar,
+        }
     };
     let rows = sweep::run(&scene, &vary, shard, jobs, &|done, total| {
         bar.set_length(total as u64);

@@ -452,8 +452,9 @@ impl Literal {
 
 /// Whether `x` is a whole number that an `i64` holds exactly.
 fn whole_i64(x: f64) -> bool {
-    // 2^63 is the first float above i64::MAX.
-    x.fract() == 0.0 && x > -9.223_372_036_854_775_808e18 && x < 9.223_372_036_854_775_808e18
+    // `i64::MAX as f64` is 2^63, the first float above i64::MAX.
+    let bound = i64::MAX as f64;
+    x.fract() == 0.0 && x > -bound && x < bound
 }
 
 /// `6`, `0.2`, `1e-8`: a number as a person writes it.

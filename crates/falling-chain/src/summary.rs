@@ -206,7 +206,10 @@ impl RunSummary {
 
     /// One line of JSON.
     pub fn to_json(&self) -> String {
-        serde_json::to_string(self).expect("a summary always serialises")
+        serde_json::to_string(self).unwrap_or_else(|e| {
+            serde_json::json!({ "error": format!("the summary did not serialise: {e}") })
+                .to_string()
+        })
     }
 
     /// The header line of [`RunSummary::csv_row`] (no newline).

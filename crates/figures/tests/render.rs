@@ -3,6 +3,13 @@
 //! and carries its labels as text, GIF frames, determinism, atomic writes.
 //!
 //! Set FIGURES_KEEP=<dir> to keep the files there for a look.
+// The helpers below are test code too: a failing check is a panic.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "test code: a failed check panics"
+)]
 
 use std::collections::BTreeSet;
 use std::fs;
