@@ -30,6 +30,52 @@ pub fn check_writable(what: &'static str, path: &Path) -> Result<(), Error> {
     figures::atomic::check_output(path).map_err(|e| Error::write(what, path, e))
 }
 
+/// An output file checked and begun before the work ([`begin`]): its
+/// hidden temporary file exists (and is removed on SIGINT/SIGTERM, or when
+/// this is dropped); [`PendingOutput::write`] fills it and renames it into
+/// place.
+pub struct PendingOutput {
+    what: &'static str,
+    path: std::path::PathBuf,
+    pending: figures::atomic::Pending,
+}
+
+/// Checks `path` as [`check_writable`] does and creates its temporary file
+/// now, before the run, so that an output that cannot be written costs no
+/// run.
+pub fn begin(what: &'static str, path: &Path) -> Result<PendingOutput, Error> {
+    check_writable(what, path)?;
+    let pending =
+        figures::atomic::Pending::create(path).map_err(|e| Error::write(what, path, e))?;
+    Ok(PendingOutput {
+        what,
+        path: path.to_path_buf(),
+        pending,
+    })
+}
+
+impl PendingOutput {
+    /// Fills the file with `fill` and renames it into place.
+    pub fn write<F>(self, fill: F) -> Result<(), Error>
+    where
+        F: FnOnce(&mut dyn Write) -> io::Result<()>,
+    {
+        let Self {
+            what,
+            path,
+            pending,
+        } = self;
+        pending
+            .write(fill)
+            .map_err(|e| Error::write(what, &path, e))
+    }
+
+    /// The output's path as given.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
 /// Writes `path` atomically: `fill` writes into a temporary file in the same
 /// directory, which is then flushed, synced and renamed over `path`. On any
 /// error the temporary file is removed and `path` is left as it was. The

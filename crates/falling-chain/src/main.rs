@@ -11,7 +11,7 @@ use std::process::ExitCode;
 
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
-use falling_chain::atomic::{check_writable, write_atomic};
+use falling_chain::atomic::{begin, check_writable};
 use falling_chain::error::{echo, echo_path, escape};
 use falling_chain::summary::stiffness_hint_for;
 use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
@@ -274,9 +274,7 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         }
     }
     let run = scene.prepare()?;
-    if let Some(out) = &args.out {
-        check_writable("--out", out)?;
-    }
+    let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let traj = run.solve()?;
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
@@ -287,8 +285,8 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     if let Some(hint) = stiffness_hint_for([&summary]) {
         eprintln!("{hint}");
     }
-    if let Some(out) = &args.out {
-        write_atomic("--out", out, |w| csv::write_trajectory(w, &traj))?;
+    if let Some(out) = out {
+        out.write(|w| csv::write_trajectory(w, &traj))?;
     }
     Ok(if summary.is_ok() {
         ExitCode::SUCCESS
@@ -307,9 +305,8 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
         .collect::<Result<Vec<_>, _>>()?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
     let jobs = args.jobs.threads()?;
-    if let Some(out) = &args.out {
-        check_writable("--out", out)?;
-    }
+    sweep::grid_size(&vary)?;
+    let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     // The grid's size, its keys and every run's scene are checked by
     // `sweep::run` before any run starts.
     let bar = if args.quiet {
@@ -358,9 +355,10 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     } else if args.out.is_none() {
         print!("{}", csv_text());
     }
-    if let Some(out) = &args.out {
-        write_atomic("--out", out, |w| w.write_all(csv_text().as_bytes()))?;
-        eprintln!("wrote {} rows to {}", rows.len(), out.display());
+    if let Some(out) = out {
+        let shown = echo_path(out.path());
+        out.write(|w| w.write_all(csv_text().as_bytes()))?;
+        eprintln!("wrote {} rows to {shown}", rows.len());
     }
     if failed > 0 {
         eprintln!("{failed} of {} runs failed (see their status)", rows.len());
@@ -432,7 +430,7 @@ fn draw_scene(
     draw(&fig).map_err(|e| figure_error("--out", out, e))?;
     eprintln!(
         "wrote {} ({} {noun}, status {})",
-        out.display(),
+        echo_path(out),
         fig.frames.len(),
         traj.status
     );

@@ -164,42 +164,82 @@ fn parent_dir(path: &Path) -> &Path {
     }
 }
 
+/// An output whose temporary file exists already (made before a long
+/// computation, which so cannot be wasted on an output that cannot be
+/// written): [`Pending::write`] fills it and renames it into place;
+/// dropping it removes the temporary file.
+pub struct Pending {
+    staged: Staged,
+    file: File,
+}
+
+impl Pending {
+    /// Creates the temporary file beside `path`'s target ([`output_target`]).
+    pub fn create(path: &Path) -> io::Result<Self> {
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+        let target = output_target(path)?;
+        let name = target
+            .file_name()
+            .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
+        let temp = dir_of(&target).join(format!(
+            ".{}.tmp-{}-{}",
+            name.to_string_lossy(),
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        // Listed before it exists, so that a signal between the two cannot miss it.
+        live().push(temp.clone());
+        let file = match File::create_new(&temp) {
+            Ok(f) => f,
+            Err(e) => {
+                unlist(&temp);
+                return Err(e);
+            }
+        };
+        Ok(Self {
+            staged: Staged {
+                temp,
+                target,
+                committed: false,
+            },
+            file,
+        })
+    }
+
+    /// The hidden temporary file (`.NAME.tmp-PID-K` beside the target).
+    pub fn temp_path(&self) -> &Path {
+        &self.staged.temp
+    }
+
+    /// Fills the temporary file with `fill`, syncs it and renames it over
+    /// the target; on any error the temporary file is removed.
+    pub fn write<F>(self, fill: F) -> io::Result<()>
+    where
+        F: FnOnce(&mut dyn Write) -> io::Result<()>,
+    {
+        self.fill(fill)?.commit()
+    }
+
+    fn fill<F>(self, fill: F) -> io::Result<Staged>
+    where
+        F: FnOnce(&mut dyn Write) -> io::Result<()>,
+    {
+        let Self { staged, file } = self;
+        let mut w = BufWriter::new(file);
+        fill(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        Ok(staged)
+    }
+}
+
 /// Writes a temporary file beside `path`'s target ([`output_target`]) with
 /// `fill` and syncs it.
 fn stage<F>(path: &Path, fill: F) -> io::Result<Staged>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let target = output_target(path)?;
-    let name = target
-        .file_name()
-        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
-    let temp = dir_of(&target).join(format!(
-        ".{}.tmp-{}-{}",
-        name.to_string_lossy(),
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    // Listed before it exists, so that a signal between the two cannot miss it.
-    live().push(temp.clone());
-    let file = match File::create_new(&temp) {
-        Ok(f) => f,
-        Err(e) => {
-            unlist(&temp);
-            return Err(e);
-        }
-    };
-    let staged = Staged {
-        temp,
-        target,
-        committed: false,
-    };
-    let mut w = BufWriter::new(file);
-    fill(&mut w)?;
-    let file = w.into_inner().map_err(|e| e.into_error())?;
-    file.sync_all()?;
-    Ok(staged)
+    Pending::create(path)?.fill(fill)
 }
 
 /// Writes `path` atomically: `fill` writes into a temporary file in the same
