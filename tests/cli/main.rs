@@ -13,6 +13,7 @@
 mod catenary;
 mod common;
 mod converge;
+mod hostile;
 mod plot;
 mod scenes;
 mod simulate;
