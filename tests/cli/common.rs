@@ -100,8 +100,8 @@ pub fn names_in(dir: &Path) -> Vec<String> {
     names
 }
 
-/// Runs the binary with a wall-clock limit: `None` if it had to be killed
-/// at `limit` (a hang), else its output.
+/// Runs the binary with a wall-clock limit: `None` if it had to be stopped
+/// at `limit` (a hang: SIGTERM, then SIGKILL), else its output.
 pub fn run_within(args: &[&str], limit: std::time::Duration) -> Option<Output> {
     use std::io::Read;
     use std::process::Stdio;
@@ -128,6 +128,17 @@ pub fn run_within(args: &[&str], limit: std::time::Duration) -> Option<Output> {
             break Some(status);
         }
         if start.elapsed() > limit {
+            // SIGTERM first, so that the CLI removes its temporary file;
+            // SIGKILL if it does not end within two seconds.
+            let _ = Command::new("kill")
+                .args(["-TERM", &child.id().to_string()])
+                .status();
+            let term = std::time::Instant::now();
+            while child.try_wait().unwrap().is_none()
+                && term.elapsed() < std::time::Duration::from_secs(2)
+            {
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
             let _ = child.kill();
             let _ = child.wait();
             break None;

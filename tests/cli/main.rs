@@ -13,6 +13,7 @@
 mod catenary;
 mod common;
 mod converge;
+mod fuzz;
 mod hostile;
 mod plot;
 mod scenes;

@@ -1,0 +1,424 @@
+//! A scene fuzzer: proptest draws scenes of ordinary and extreme values
+//! (lengths, masses, gravity, damping, counts near integer limits, t_end up
+//! to 1e6, output_dt down to 1e-12, tolerances, every method and start
+//! kind) and runs them through every subcommand (simulate, sweep,
+//! converge, plot, animate, catenary). Every run has a step budget
+//! (`--set run.max_steps=...`, smaller for more rods) and a wall-clock kill
+//! timeout. Each must end with exit 0, 1 or 2, never a signal, 101 (panic),
+//! 134 (abort) or a hang; an exit 2 says one line, `error: ...`; any other
+//! exit says at most one line apart from the stiffness hint (`hint: ...`,
+//! allowed: it is the one line the CLI adds on purpose for explicit methods
+//! on stiff scenes) and converge's progress lines.
+//!
+//! `FUZZ_CASES` sets the number of cases (default 100, a few seconds),
+//! `FUZZ_SEED` the seed (default fixed, so that CI is repeatable),
+//! `FUZZ_TIMEOUT` the kill timeout in seconds (default 20). Every failing
+//! case is listed, not only the first.
+
+use std::fmt::Write as _;
+use std::fs;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+
+use crate::common::*;
+
+fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// A number: mostly ordinary (in `lo..hi`), sometimes one of `extremes`.
+fn number(lo: f64, hi: f64, extremes: &'static [f64]) -> BoxedStrategy<f64> {
+    prop_oneof![
+        14 => lo..hi,
+        1 => proptest::sample::select(extremes),
+    ]
+    .boxed()
+}
+
+const HUGE: &[f64] = &[
+    0.0,
+    -1.0,
+    1e-300,
+    1e-12,
+    1e12,
+    1e300,
+    f64::MAX,
+    f64::INFINITY,
+    f64::NAN,
+];
+
+/// TOML for a float (`nan`, `inf` and `-inf` are TOML's names).
+fn toml_f(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// Counts near the integer limits as well as ordinary ones.
+fn count(lo: i128, hi: i128) -> BoxedStrategy<i128> {
+    prop_oneof![
+        14 => lo..hi,
+        1 => proptest::sample::select(&[
+            0_i128,
+            1,
+            2,
+            1000,
+            20_000,
+            1_000_000,
+            1_000_001,
+            i32::MAX as i128,
+            u32::MAX as i128,
+            i64::MAX as i128,
+            u64::MAX as i128,
+            -1,
+        ][..]),
+    ]
+    .boxed()
+}
+
+#[derive(Clone, Debug)]
+struct Case {
+    command: usize,
+    length: f64,
+    links: i128,
+    mass: f64,
+    gravity: f64,
+    damping: f64,
+    kind: usize,
+    p1: (f64, f64),
+    p1_on_circle: bool,
+    down: i128,
+    t_end: f64,
+    method: usize,
+    dt: f64,
+    rtol: f64,
+    atol: f64,
+    output_dt: f64,
+    h_min: f64,
+    extra: i128,
+    with_out: bool,
+}
+
+const COMMANDS: [&str; 6] = [
+    "simulate", "sweep", "converge", "plot", "animate", "catenary",
+];
+const KINDS: [&str; 4] = ["stretched", "catenary", "folded", "angles"];
+
+fn case() -> impl Strategy<Value = Case> {
+    let methods = chain_ode::Method::ALL.len() + 1; // and one bogus name
+    (
+        (
+            0..COMMANDS.len(),
+            number(0.1, 20.0, HUGE),
+            count(1, 40),
+            number(1e-3, 10.0, HUGE),
+            number(0.0, 20.0, &[0.0, -9.8, 1e300, f64::NAN, f64::INFINITY]),
+            number(0.0, 0.05, &[1.0, 1e6, -1.0, 1e300, f64::NAN]),
+            0..KINDS.len(),
+        ),
+        (
+            (number(-10.0, 10.0, HUGE), number(-10.0, 10.0, HUGE)),
+            any::<bool>(),
+            count(0, 40),
+            number(0.01, 3.0, &[1e6, 1e-12, 0.0, -1.0, f64::INFINITY, 1e300]),
+            0..methods,
+            number(1e-3, 0.05, &[1e-300, 1e300, 0.0, 1e-12, 10.0]),
+        ),
+        (
+            number(1e-10, 1e-3, &[1e-20, 1e-300, 0.999999, 1.0, 0.0, 1e-15]),
+            number(1e-12, 1e-4, &[1e-20, 1e300, 0.0, 1e-300]),
+            number(0.01, 0.5, &[1e-12, 1e-9, 1e-6, 1e300, 0.0]),
+            number(0.0, 1e-300, &[0.0, 1e-300, 1.0, -1.0]),
+            count(1, 6),
+            any::<bool>(),
+        ),
+    )
+        .prop_map(
+            |(
+                (command, length, links, mass, gravity, damping, kind),
+                (p1, p1_on_circle, down, t_end, method, dt),
+                (rtol, atol, output_dt, h_min, extra, with_out),
+            )| Case {
+                command,
+                length,
+                links,
+                mass,
+                gravity,
+                damping,
+                kind,
+                p1,
+                p1_on_circle,
+                down,
+                t_end,
+                method,
+                dt,
+                rtol,
+                atol,
+                output_dt,
+                h_min,
+                extra,
+                with_out,
+            },
+        )
+}
+
+impl Case {
+    fn method_name(&self) -> String {
+        chain_ode::Method::ALL
+            .get(self.method)
+            .map_or("no-such-method".into(), |m| m.as_str().to_string())
+    }
+
+    /// P1: on the circle of radius L about P0 half of the time (so that
+    /// stretched starts are valid), else as drawn.
+    fn p1(&self) -> (f64, f64) {
+        if self.p1_on_circle {
+            let a = self.p1.0.atan2(self.p1.1);
+            (self.length * a.cos(), self.length * a.sin())
+        } else {
+            self.p1
+        }
+    }
+
+    fn scene_text(&self) -> String {
+        let (x, y) = self.p1();
+        let mut t = String::new();
+        writeln!(t, "name = \"fuzz\"\n[chain]").unwrap();
+        writeln!(t, "length = {}", toml_f(self.length)).unwrap();
+        // Beyond i64, TOML has no integer: a float, which must be refused.
+        if i64::try_from(self.links).is_ok() {
+            writeln!(t, "links = {}", self.links).unwrap();
+        } else {
+            writeln!(t, "links = {:?}", self.links as f64).unwrap();
+        }
+        writeln!(t, "mass = {}", toml_f(self.mass)).unwrap();
+        writeln!(t, "gravity = {}", toml_f(self.gravity)).unwrap();
+        writeln!(t, "damping = {}", toml_f(self.damping)).unwrap();
+        let kind = KINDS[self.kind];
+        writeln!(t, "[start]\nkind = \"{kind}\"").unwrap();
+        match kind {
+            "stretched" | "catenary" => {
+                writeln!(t, "p1 = [{}, {}]", toml_f(x), toml_f(y)).unwrap();
+            }
+            "folded" => {
+                if i64::try_from(self.down).is_ok() {
+                    writeln!(t, "down = {}", self.down).unwrap();
+                }
+            }
+            _ => {
+                // As many angles as rods where that is small, else a few.
+                let n = usize::try_from(self.links).unwrap_or(3).min(50);
+                let angles: Vec<String> = (0..n).map(|i| toml_f(-1.5 + 0.05 * i as f64)).collect();
+                writeln!(t, "angles = [{}]", angles.join(", ")).unwrap();
+            }
+        }
+        writeln!(t, "[run]").unwrap();
+        writeln!(t, "t_end = {}", toml_f(self.t_end)).unwrap();
+        writeln!(t, "method = \"{}\"", self.method_name()).unwrap();
+        writeln!(t, "dt = {}", toml_f(self.dt)).unwrap();
+        writeln!(t, "rtol = {}", toml_f(self.rtol)).unwrap();
+        writeln!(t, "atol = {}", toml_f(self.atol)).unwrap();
+        writeln!(t, "output_dt = {}", toml_f(self.output_dt)).unwrap();
+        writeln!(t, "h_min = {}", toml_f(self.h_min)).unwrap();
+        t
+    }
+
+    /// The step budget: at most 2000 steps, fewer for more rods (about
+    /// 10^5 rod-steps in all), so that a case is quick whatever it asks.
+    fn budget(&self) -> u64 {
+        let n = u64::try_from(self.links).unwrap_or(1).max(1);
+        (100_000 / n).clamp(1, 2000)
+    }
+
+    fn args(&self, dir: &Path) -> Vec<String> {
+        let scene = dir.join("fuzz.toml");
+        fs::write(&scene, self.scene_text()).unwrap();
+        let scene = scene.to_string_lossy().into_owned();
+        let budget = format!("run.max_steps={}", self.budget());
+        let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
+        let command = COMMANDS[self.command];
+        let mut a: Vec<String> = vec![command.into()];
+        match command {
+            "simulate" => {
+                a.extend([scene, "--set".into(), budget, "--json".into()]);
+                if self.with_out {
+                    a.extend(["--out".into(), out("out.csv")]);
+                }
+            }
+            "sweep" => {
+                // An ordinary sweep of a few runs, or a COUNT near the limits.
+                let count = if self.with_out { 2 } else { self.extra.max(0) };
+                a.extend([
+                    scene,
+                    "--set".into(),
+                    budget,
+                    "--vary".into(),
+                    format!("chain.damping=0:{}:{count}", toml_f(self.damping.abs())),
+                    "--jobs".into(),
+                    "2".into(),
+                    "--quiet".into(),
+                ]);
+            }
+            "converge" => {
+                let top = 2 * usize::try_from(self.extra).unwrap_or(2).clamp(2, 4);
+                a.extend([
+                    scene,
+                    "--set".into(),
+                    budget,
+                    "--tol".into(),
+                    "0.1".into(),
+                    "--links".into(),
+                    format!("2,{top}"),
+                    "--method".into(),
+                    self.method_name(),
+                    "--jobs".into(),
+                    "2".into(),
+                ]);
+            }
+            "plot" => {
+                let snapshots = if self.with_out {
+                    "5".to_string()
+                } else {
+                    self.extra.to_string()
+                };
+                a.extend([
+                    scene,
+                    "--set".into(),
+                    budget,
+                    "-o".into(),
+                    out("p.png"),
+                    "--snapshots".into(),
+                    snapshots,
+                ]);
+            }
+            "animate" => {
+                a.extend([
+                    scene,
+                    "--set".into(),
+                    budget,
+                    "-o".into(),
+                    out("a.gif"),
+                    "--fps".into(),
+                    "5".into(),
+                    "--seconds".into(),
+                    "0.6".into(),
+                ]);
+            }
+            _ => {
+                let (x, y) = self.p1();
+                a.extend([
+                    "--p1".into(),
+                    format!("{x:e},{y:e}"),
+                    "--length".into(),
+                    format!("{:e}", self.length),
+                    "--links".into(),
+                    self.links.to_string(),
+                ]);
+                if self.with_out {
+                    a.push("--json".into());
+                }
+            }
+        }
+        a
+    }
+}
+
+/// What is wrong with how a case ended, if anything.
+fn judge(out: Option<&std::process::Output>, timeout: Duration) -> Option<String> {
+    let Some(out) = out else {
+        return Some(format!("hang: killed after {timeout:?}"));
+    };
+    let err = String::from_utf8_lossy(&out.stderr);
+    let code = out.status.code();
+    let Some(code) = code else {
+        return Some(format!("killed by a signal ({:?}): {err}", out.status));
+    };
+    if !(0..=2).contains(&code) {
+        let head: String = err.chars().take(300).collect();
+        return Some(format!("exit {code}: {head}"));
+    }
+    let lines: Vec<&str> = err.lines().collect();
+    if code == 2 {
+        if lines.len() != 1 || !lines[0].starts_with("error: ") {
+            return Some(format!(
+                "exit 2 with {} lines: {:?}",
+                lines.len(),
+                &lines[..lines.len().min(3)]
+            ));
+        }
+        if lines[0].len() > 800 {
+            return Some(format!("exit 2 with a {}-byte line", lines[0].len()));
+        }
+        return None;
+    }
+    let other: Vec<&&str> = lines
+        .iter()
+        .filter(|l| {
+            !l.starts_with("hint: ") && !(l.starts_with("converge: ") && l.ends_with(" runs done"))
+        })
+        .collect();
+    if other.len() > 1 {
+        return Some(format!(
+            "exit {code} with {} lines: {:?}",
+            other.len(),
+            &other[..other.len().min(3)]
+        ));
+    }
+    None
+}
+
+#[test]
+fn fuzzed_scenes_end_with_a_status_or_one_line() {
+    let cases: u32 = env_or("FUZZ_CASES", 100);
+    let seed: u64 = env_or("FUZZ_SEED", 24);
+    let timeout = Duration::from_secs(env_or("FUZZ_TIMEOUT", 20));
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let strategy = case();
+    let dir = scratch("fuzz");
+    let start = Instant::now();
+    let mut failures = vec![];
+    let mut codes = [0usize; 3];
+    for i in 0..cases {
+        let case = strategy.new_tree(&mut runner).unwrap().current();
+        let args = case.args(&dir);
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run_within(&refs, timeout);
+        match judge(out.as_ref(), timeout) {
+            Some(why) => failures.push(format!(
+                "case {i}: {why}\n  args: {args:?}\n  scene:\n{}",
+                case.scene_text()
+            )),
+            None => {
+                if let Some(c) = out.and_then(|o| o.status.code()) {
+                    codes[usize::try_from(c).unwrap_or(0).min(2)] += 1;
+                }
+            }
+        }
+        for name in names_in(&dir) {
+            if name.starts_with('.') {
+                failures.push(format!("case {i}: left {name}\n  args: {args:?}"));
+            }
+            let _ = fs::remove_file(dir.join(name));
+        }
+    }
+    eprintln!(
+        "fuzz: {cases} cases (seed {seed}) in {:.1} s: exit 0/1/2 = {codes:?}, {} failures",
+        start.elapsed().as_secs_f64(),
+        failures.len()
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
