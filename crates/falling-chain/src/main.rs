@@ -51,6 +51,8 @@ enum Command {
     /// n is stiff. An n is adequate when its tip_speed_max (relative) and its
     /// tip end position (relative to L) differ from the finest n's by less
     /// than --tol, and so do those of every n between it and the finest.
+    /// tip_speed_max is relative to max(|finest n's|, sqrt(g L)) (L per time
+    /// unit at g = 0), so a speed that is zero at every level agrees.
     /// Exit 0 with the answer (or "refine further"), 1 if a run failed.
     Converge(ConvergeArgs),
 }
