@@ -246,7 +246,21 @@ pub fn parse_links(text: &str) -> Result<Vec<usize>, Error> {
             crate::error::echo(text)
         )));
     }
+    check_ladder_length(links.len())?;
     Ok(links)
+}
+
+/// The most levels of a ladder (each keeps its tip track in memory).
+pub const MAX_LEVELS: usize = 32;
+
+fn check_ladder_length(levels: usize) -> Result<(), Error> {
+    if levels > MAX_LEVELS {
+        return Err(Error::field(
+            "--links",
+            format!("at most {MAX_LEVELS} different numbers of rods (got {levels})"),
+        ));
+    }
+    Ok(())
 }
 
 /// Checks `--tol`: a finite number in (0, 1).
@@ -288,6 +302,7 @@ pub fn run(
             ),
         ));
     }
+    check_ladder_length(links.len())?;
     // Every scene is checked before any run starts.
     for &n in &links {
         let mut s = refined_scene(scene, n)?;
@@ -433,9 +448,40 @@ mod tests {
     use super::*;
 
     #[test]
+    fn an_empty_or_single_ladder_is_an_error_not_a_panic() {
+        let scene = Scene::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/span-d3.toml"
+        ))
+        .unwrap();
+        for links in [&[][..], &[8][..], &[8, 8][..]] {
+            let e = run(&scene, links, 0.1, None, None, 1, &|_, _| {})
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with("--links: "), "{e}");
+        }
+        let e = run(&scene, &[4, 8], 0.1, None, None, 1000, &|_, _| {})
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--jobs: "), "{e}");
+    }
+
+    #[test]
+    fn the_speed_deviation_is_finite_when_every_speed_is_zero() {
+        let scale = 2.0;
+        assert_eq!(relative_speed(0.0, 0.0, scale), 0.0);
+        assert_eq!(relative_speed(4e-16, 0.0, scale), 2e-16);
+        // Above the scale: the relative deviation, as before (bit for bit).
+        let (v, r) = (10.3_f64, 10.6_f64);
+        assert_eq!(relative_speed(v, r, scale), (v / r - 1.0).abs());
+    }
+
+    #[test]
     fn links_and_tol_are_checked_by_name() {
         assert_eq!(parse_links("100, 25,50,25").unwrap(), vec![25, 50, 100]);
-        for bad in ["", "25", "25,25", "a,50", "1,50", "-3,50"] {
+        let many: Vec<String> = (2..=34).map(|n| n.to_string()).collect();
+        let many = many.join(",");
+        for bad in ["", "25", "25,25", "a,50", "1,50", "-3,50", many.as_str()] {
             let e = parse_links(bad).unwrap_err().to_string();
             assert!(e.starts_with("--links: "), "{e}");
         }

@@ -107,7 +107,8 @@ struct ConvergeArgs {
     /// Relative tolerance on tip_speed_max and on the tip end (over L).
     #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
     tol: f64,
-    /// The numbers of rods to run, N1,N2,... (the largest is the reference).
+    /// The numbers of rods to run, N1,N2,... (the largest is the reference;
+    /// 2 to 32 different numbers, each in 2..=1000000).
     #[arg(long, value_name = "N1,N2,...", default_value = "25,50,100,200,400")]
     links: String,
     /// Integration method of every run. The default is DOPRI5 because the
@@ -369,6 +370,28 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The most joint positions a figure or animation draws (frames times
+/// rods): 10^7 points, about 160 MB of coordinates and seconds of drawing.
+const MAX_DRAWN_POINTS: usize = 10_000_000;
+
+/// Checks that `frames` drawings of the scene's chain stay within
+/// [`MAX_DRAWN_POINTS`]; the error names `flag` and its largest value here.
+fn check_drawn_points(scene: &Scene, frames: usize, flag: &'static str) -> Result<(), Error> {
+    let links = scene.chain()?.links;
+    let points = frames.saturating_mul(links.saturating_add(1));
+    if points > MAX_DRAWN_POINTS {
+        return Err(Error::field(
+            flag,
+            format!(
+                "{frames} frames of {links} rods are {points} points to draw, more than \
+                 {MAX_DRAWN_POINTS}: at most {} frames at this chain.links",
+                MAX_DRAWN_POINTS / (links + 1)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Runs `scene` with `frames` evenly spaced samples; returns the trajectory
 /// and the release point. A failed run is drawn up to where it got.
 fn run_for_drawing(
@@ -406,6 +429,7 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
         ));
     }
     let scene = args.scene.load()?;
+    check_drawn_points(&scene, args.snapshots, "--snapshots")?;
     check_writable("--out", &args.out)?;
     draw_scene(&scene, &args.out, args.snapshots, "snapshots", |fig| {
         figures::chain_snapshots_to(fig, &args.out)
@@ -469,6 +493,7 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
     let scene = args.scene.load()?;
     check_writable("--out", &args.out)?;
     let frames = ((args.seconds * f64::from(args.fps)).round() as usize).max(2);
+    check_drawn_points(&scene, frames, "--seconds")?;
     draw_scene(&scene, &args.out, frames, "frames", |fig| {
         figures::chain_animation(fig, &args.out, args.fps)
     })
