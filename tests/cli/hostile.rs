@@ -172,6 +172,22 @@ fn counts_are_capped_before_anything_is_computed() {
 }
 
 #[test]
+fn catenary_inputs_of_extreme_magnitude_name_the_input() {
+    // Finite inputs whose span overflows, or whose parameter underflows:
+    // one line about the input, never "must be finite (got inf)" of a
+    // finite point or a solver's internal failure.
+    for (p0, p1, length, subject) in [
+        ("-1e308,0", "1e308,0", "1.7e308", "--p0: "),
+        ("0,0", "1e308,1e308", "1.7e308", "--p1: "),
+        ("0,0", "1e-200,0", "2e-200", "--length: "),
+    ] {
+        let out = run_quick(&["catenary", "--p0", p0, "--p1", p1, "--length", length]);
+        let e = refused(&out, subject);
+        assert!(e.contains("1e150"), "{e}");
+    }
+}
+
+#[test]
 fn a_scene_must_be_a_small_regular_file() {
     let dir = scratch("hostile-scene-file");
     let fifo = dir.join("scene.toml");
@@ -216,6 +232,11 @@ fn errors_are_one_line_whatever_the_input() {
     let e = refused(&run_quick(&["simulate", &big]), "start.p1: ");
     assert!(e.len() < 300, "{} characters: {}", e.len(), &e[..300]);
     assert!(e.contains("100000 elements"), "{e}");
+    // A flag's long bad value (clap's own error) is cut too.
+    let jobs = "9".repeat(100_000);
+    let out = run_quick(&["sweep", &s, "--vary", "chain.damping=0,1", "--jobs", &jobs]);
+    let e = refused(&out, "invalid value");
+    assert!(e.len() < 800, "{}", e.len());
     // A long --set value is cut too.
     let arg = format!("run.method={}", "x".repeat(100_000));
     let e = refused(&run_quick(&["simulate", &s, "--set", &arg]), "run.method: ");

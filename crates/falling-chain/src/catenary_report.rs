@@ -14,6 +14,14 @@ use crate::error::{CatenaryNames, Error};
 // catenary exports it.
 pub const MAX_LINKS: usize = 1_000_000;
 
+/// The largest coordinate or length (in absolute value) of a catenary:
+/// squares and products of the inputs stay finite below 1e300, so a
+/// finite input never turns into an infinite span or a solver given NaN.
+pub const MAX_MAGNITUDE: f64 = 1e150;
+
+/// The smallest chain length: below it the catenary's parameter underflows.
+pub const MIN_LENGTH: f64 = 1e-150;
+
 /// The discrete equilibrium of `links` rods between the same anchors.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DiscreteReport {
@@ -66,6 +74,23 @@ impl CatenaryReport {
         names: &CatenaryNames,
     ) -> Result<Self, Error> {
         let err = |e| Error::from_catenary(&e, names);
+        for (name, p) in [(names.p0, p0), (names.p1, p1)] {
+            if p.iter().any(|x| x.is_finite() && x.abs() > MAX_MAGNITUDE) {
+                return Err(Error::field(
+                    name,
+                    format!(
+                        "coordinates must be finite with |x| <= {MAX_MAGNITUDE:e} (got [{:e}, {:e}])",
+                        p[0], p[1]
+                    ),
+                ));
+            }
+        }
+        if length.is_finite() && length > 0.0 && !(MIN_LENGTH..=MAX_MAGNITUDE).contains(&length) {
+            return Err(Error::field(
+                names.length,
+                format!("must be a number in [{MIN_LENGTH:e}, {MAX_MAGNITUDE:e}] (got {length:e})"),
+            ));
+        }
         if let Some(n) = links.filter(|&n| n > MAX_LINKS) {
             return Err(Error::field(
                 names.links,

@@ -537,7 +537,15 @@ fn one_line(message: &str) -> String {
         .filter(|l| !l.is_empty() && !l.starts_with("Usage:") && !l.starts_with("For more"))
         .collect::<Vec<_>>()
         .join(" ");
-    escape(&line)
+    let line = escape(&line);
+    // Clap echoes a bad value whole: cut a very long one in the middle.
+    let count = line.chars().count();
+    if count <= 600 {
+        return line;
+    }
+    let head: String = line.chars().take(480).collect();
+    let tail: String = line.chars().skip(count - 100).collect();
+    format!("{head} … ({count} characters) … {tail}")
 }
 
 /// On SIGINT or SIGTERM: remove the hidden temporary output files in

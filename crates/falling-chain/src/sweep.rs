@@ -419,6 +419,10 @@ mod tests {
             "{e}"
         );
         assert_eq!(grid_size(&[big]).unwrap(), MAX_RUNS);
+        let list = format!("chain.damping={}", vec!["1"; MAX_RUNS + 1].join(","));
+        let e = Vary::parse(&list).unwrap_err().to_string();
+        assert!(e.contains("1000001 values (at most 1000000)"), "{e}");
+        assert!(e.len() < 400, "{}", e.len());
         let e = Vary::parse("start.p1.0=1:5:100000000000000")
             .unwrap_err()
             .to_string();
