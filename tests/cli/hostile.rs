@@ -103,7 +103,17 @@ fn a_key_varied_twice_is_refused() {
         ]);
         refused(&out, "--vary: ");
     }
-    assert!(names_in(&dir).is_empty());
+    // A bad value found after the output was begun: its temporary file goes.
+    let out = run_quick(&[
+        "sweep",
+        &s,
+        "--vary",
+        "chain.links=5,0",
+        "--out",
+        out_csv.to_str().unwrap(),
+    ]);
+    refused(&out, "chain.links: ");
+    assert!(names_in(&dir).is_empty(), "{:?}", names_in(&dir));
 }
 
 #[test]
