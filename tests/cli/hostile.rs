@@ -272,12 +272,24 @@ fn messages_say_what_is_really_wrong() {
         &run_quick(&["simulate", &f, "--set", "run.max_steps=1e19"]),
         "run.max_steps: ",
     );
-    assert!(e.contains("0..=9223372036854775807"), "{e}");
+    assert!(e.contains("1..=9223372036854775807"), "{e}");
     // A folded chain of one rod: the rods are wrong, not start.down.
     refused(
         &run_quick(&["simulate", &f, "--set", "chain.links=1"]),
         "chain.links: ",
     );
+    let e = refused(
+        &run_quick(&["simulate", &f, "--set", "chain.links=1.5"]),
+        "chain.links: ",
+    );
+    assert!(e.contains("1..=1000000"), "{e}");
+    let angles = small_scene(
+        &dir,
+        "angles.toml",
+        "[chain]\nlinks = 4\n[start]\nkind = \"angles\"\nangles = [1, 2, 3]\n[run]\nt_end = 1\n",
+    );
+    let e = refused(&run_quick(&["simulate", &angles]), "start.angles: ");
+    assert!(e.contains("chain.links = 4"), "{e}");
     let e = refused(
         &run_quick(&["simulate", &f, "--set", "start.down=4"]),
         "start.down: ",

@@ -257,6 +257,24 @@ impl Scene {
     /// `start.down` is out of range for this very chain (the range says
     /// its numbers).
     fn check_start(&self, chain: &Chain) -> Result<(), Error> {
+        if let Start::Angles { angles, rates, .. } = &self.start {
+            let n = chain.links;
+            let lists = [
+                ("start.angles", Some(angles)),
+                ("start.rates", rates.as_ref()),
+            ];
+            for (field, list) in lists {
+                if let Some(list) = list.filter(|l| l.len() != n) {
+                    return Err(Error::field(
+                        field,
+                        format!(
+                            "must be a list of chain.links = {n} numbers (got {} values)",
+                            list.len()
+                        ),
+                    ));
+                }
+            }
+        }
         if let Start::Folded { down, .. } = &self.start {
             let n = chain.links;
             if n < 2 {

@@ -373,14 +373,17 @@ impl Key {
             (Type::OneOf(names), V::String(s)) => names.contains(&s.as_str()),
             _ => false,
         };
+        let accepted = match self.ty {
+            Type::Integer => format!("an integer in {}", integer_range(self.path)),
+            ty => ty.accepted(),
+        };
         if ok {
             Ok(())
         } else {
             Err(Error::field(
                 self.path,
                 format!(
-                    "must be {} (got {})",
-                    self.ty.accepted(),
+                    "must be {accepted} (got {})",
                     crate::error::echo_value(value)
                 ),
             ))
@@ -447,6 +450,18 @@ impl Literal {
             Self::Point([x, y]) => format!("`[{}, {}]`", number_text(x), number_text(y)),
             Self::Text(s) => format!("`\"{s}\"`"),
         }
+    }
+}
+
+/// The range of an integer key, as its error states it (chain-ode checks
+/// the ranges; the type check names them too, so that a 1.5 or a -3 gets
+/// the same range as a 0 or a 10^7).
+fn integer_range(path: &str) -> String {
+    match path {
+        "chain.links" => "1..=1000000".into(),
+        "start.down" => "0..=chain.links-1".into(),
+        "run.max_steps" => format!("1..={}", i64::MAX),
+        _ => format!("0..={}", i64::MAX),
     }
 }
 
