@@ -14,6 +14,9 @@ use crate::error::{CatenaryNames, Error};
 // catenary exports it.
 pub const MAX_LINKS: usize = 1_000_000;
 
+// TODO(issue 24): the core branch bounds the catenary's inputs itself
+// (catenary::{MAX_MAGNITUDE, MIN_LENGTH}, errors naming the input); once it
+// is merged, these checks and constants go and its constants are re-exported.
 /// The largest coordinate or length (in absolute value) of a catenary:
 /// squares and products of the inputs stay finite below 1e300, so a
 /// finite input never turns into an infinite span or a solver given NaN.
