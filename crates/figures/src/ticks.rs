@@ -27,10 +27,7 @@ impl Axis {
         let (lo, hi) = nondegenerate(lo, hi);
         let ticks_for = |n: usize| {
             let step = nice_step((hi - lo) / n as f64);
-            let first = (lo / step - 1e-9).ceil() as i64;
-            let last = (hi / step + 1e-9).floor() as i64;
-            let ticks: Vec<f64> = (first..=last).map(|i| i as f64 * step).collect();
-            (step, ticks)
+            (step, multiples(lo, hi, step))
         };
         // At least three labelled ticks, whatever the range.
         let mut n = target.max(2);
@@ -57,9 +54,7 @@ impl Axis {
         if !(step.is_finite() && step > 0.0) || (hi - lo) / step < 2.0 || (hi - lo) / step > 60.0 {
             return Axis::linear(lo, hi, 6);
         }
-        let first = (lo / step - 1e-9).ceil() as i64;
-        let last = (hi / step + 1e-9).floor() as i64;
-        let ticks: Vec<f64> = (first..=last).map(|i| i as f64 * step).collect();
+        let ticks = multiples(lo, hi, step);
         let labels = linear_labels(&ticks, step);
         Axis {
             lo,
@@ -184,6 +179,23 @@ impl Axis {
     }
 }
 
+/// The most ticks an axis gets; more means a range the step cannot divide
+/// (a span that overflows, such as `[-1e308, 1e308]`).
+const MAX_TICKS: f64 = 1000.0;
+
+/// The multiples `k step` in `[lo, hi]`, or none when there would be more
+/// than [`MAX_TICKS`] of them or the range or step is not finite.
+fn multiples(lo: f64, hi: f64, step: f64) -> Vec<f64> {
+    let first = (lo / step - 1e-9).ceil();
+    let last = (hi / step + 1e-9).floor();
+    if !(first.is_finite() && last.is_finite() && last - first <= MAX_TICKS) {
+        return Vec::new();
+    }
+    (first as i64..=last as i64)
+        .map(|i| i as f64 * step)
+        .collect()
+}
+
 fn nondegenerate(lo: f64, hi: f64) -> (f64, f64) {
     let (lo, hi) = if lo.is_finite() && hi.is_finite() {
         (lo.min(hi), lo.max(hi))
@@ -251,6 +263,14 @@ mod tests {
         assert_eq!(nice_step(2.2), 2.5);
         assert_eq!(nice_step(30.0), 50.0);
         assert_eq!(nice_step(70.0), 100.0);
+    }
+
+    #[test]
+    fn a_range_that_overflows_gets_no_ticks_rather_than_too_many() {
+        let a = Axis::linear(-1.7e308, 1.7e308, 6);
+        assert!(a.ticks.len() <= 1000, "{}", a.ticks.len());
+        let a = Axis::linear_step(-1.7e308, 1.7e308, 1.0);
+        assert!(a.ticks.len() <= 1000, "{}", a.ticks.len());
     }
 
     #[test]
