@@ -198,6 +198,23 @@ fn catenary_inputs_of_extreme_magnitude_name_the_input() {
 }
 
 #[test]
+fn a_chain_of_extreme_length_is_drawn_without_a_panic() {
+    // Found by the fuzzer: L = 1.8e308, its span overflows the axis range,
+    // whose ticks were a capacity-overflow panic (exit 101).
+    let dir = scratch("hostile-huge-plot");
+    let s = small_scene(
+        &dir,
+        "huge.toml",
+        "[chain]\nlength = 1.7976931348623157e308\nlinks = 33\n[start]\nkind = \"stretched\"\n\
+         p1 = [1.0704309583493595e308, 1.444256961395157e308]\n[run]\nt_end = 0.9\n",
+    );
+    let png = dir.join("p.png");
+    let out = run_quick(&["plot", &s, "-o", png.to_str().unwrap(), "--snapshots", "5"]);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
+    assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+}
+
+#[test]
 fn a_scene_must_be_a_small_regular_file() {
     let dir = scratch("hostile-scene-file");
     let fifo = dir.join("scene.toml");
