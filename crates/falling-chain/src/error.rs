@@ -29,6 +29,9 @@ pub enum Error {
     },
     /// A value is wrong: syntax, unknown key, wrong type, missing, or out of range.
     Field { field: String, message: String },
+    /// The work was stopped from outside (a [`chain_ode::Cancel`] was set:
+    /// Ctrl-C in Python, SIGINT or SIGTERM in the CLI) before it finished.
+    Interrupted,
 }
 
 impl Error {
@@ -63,6 +66,7 @@ impl Error {
         match self {
             Self::Read { what, .. } | Self::Write { what, .. } => what,
             Self::Field { field, .. } => field,
+            Self::Interrupted => "interrupted",
         }
     }
 
@@ -138,6 +142,7 @@ impl fmt::Display for Error {
                 one_line(&io_reason(source))
             ),
             Self::Field { field, message } => write!(f, "{field}: {}", one_line(message)),
+            Self::Interrupted => f.write_str("interrupted: stopped before the work was done"),
         }
     }
 }
@@ -146,7 +151,7 @@ impl std::error::Error for Error {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Self::Read { source, .. } | Self::Write { source, .. } => Some(source),
-            Self::Field { .. } => None,
+            Self::Field { .. } | Self::Interrupted => None,
         }
     }
 }

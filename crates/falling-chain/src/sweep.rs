@@ -8,6 +8,7 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use chain_ode::Cancel;
 use rayon::prelude::*;
 
 use crate::csv::field as csv_field;
@@ -167,6 +168,7 @@ pub fn check(scene: &Scene, vary: &[Vary]) -> Result<(), Error> {
 
 /// Runs the sweep (or its shard) on `jobs` threads, calling `progress` after
 /// each run with the number done and the total. Rows come back in run order.
+/// The same as [`run_cancellable`] with no cancel flag.
 pub fn run(
     scene: &Scene,
     vary: &[Vary],
@@ -174,6 +176,23 @@ pub fn run(
     jobs: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Vec<SweepRow>, Error> {
+    run_cancellable(scene, vary, shard, jobs, progress, None)
+}
+
+/// [`run`] that can be stopped from outside: `cancel` is put into every
+/// run's `SolveOptions::cancel` (a run in progress stops at its next step),
+/// no run starts once it is set, and the sweep then returns
+/// [`Error::Interrupted`] (never a partial list of rows), even if every run
+/// had finished when the flag was seen.
+pub fn run_cancellable(
+    scene: &Scene,
+    vary: &[Vary],
+    shard: Option<Shard>,
+    jobs: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: Option<&Cancel>,
+) -> Result<Vec<SweepRow>, Error> {
+    let cancelled = || cancel.is_some_and(Cancel::is_cancelled);
     check(scene, vary)?;
     let runs: Vec<(usize, Vec<toml::Value>)> = grid(vary)
         .into_iter()
@@ -186,13 +205,20 @@ pub fn run(
         .num_threads(jobs.max(1))
         .build()
         .map_err(|e| Error::field("--jobs", e))?;
-    pool.install(|| {
+    let rows: Result<Vec<SweepRow>, Error> = pool.install(|| {
         runs.into_par_iter()
             .map(|(run, values)| {
+                if cancelled() {
+                    return Err(Error::Interrupted);
+                }
                 let s = scene_for(scene, vary, &values)?;
                 let mut prepared = s.prepare()?;
                 prepared.options.output_dt = None;
+                prepared.options.cancel = cancel.cloned();
                 let traj = prepared.solve()?;
+                if cancelled() {
+                    return Err(Error::Interrupted);
+                }
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
                 Ok(SweepRow {
                     run,
@@ -201,7 +227,11 @@ pub fn run(
                 })
             })
             .collect()
-    })
+    });
+    if cancelled() {
+        return Err(Error::Interrupted);
+    }
+    rows
 }
 
 fn value_cell(v: &toml::Value) -> String {
@@ -271,5 +301,36 @@ mod tests {
                 .starts_with("--shard"));
         }
         assert_eq!(Shard::parse("1/3").unwrap(), Shard { index: 1, count: 3 });
+    }
+
+    #[test]
+    fn a_cancelled_sweep_starts_no_run_and_says_interrupted() {
+        let scene = Scene::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/folded.toml"
+        ))
+        .unwrap()
+        .with_overrides(&["run.t_end=0.01", "chain.links=4", "start.down=2"])
+        .unwrap();
+        let vary = [Vary::floats("chain.damping", &[0.0, 0.1, 0.2])];
+        let cancel = Cancel::new();
+        cancel.cancel();
+        let started = AtomicUsize::new(0);
+        let e = run_cancellable(
+            &scene,
+            &vary,
+            None,
+            2,
+            &|_, _| {
+                started.fetch_add(1, Ordering::Relaxed);
+            },
+            Some(&cancel),
+        )
+        .unwrap_err();
+        assert!(matches!(e, Error::Interrupted), "{e}");
+        assert_eq!(started.load(Ordering::Relaxed), 0);
+        // Without the flag the same sweep runs.
+        let rows = run_cancellable(&scene, &vary, None, 2, &|_, _| {}, None).unwrap();
+        assert_eq!(rows.len(), 3);
     }
 }
