@@ -5,15 +5,19 @@ use ::falling_chain::overrides::parse_value;
 use ::falling_chain::Error;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
 
 /// The CLI's one-line error (what `falling-chain` prints after `error: `)
-/// as a `ValueError`.
+/// as a `ValueError`; work stopped from outside (Ctrl-C) is a
+/// KeyboardInterrupt.
 pub fn value_error(e: Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    match e {
+        Error::Interrupted => PyKeyboardInterrupt::new_err(e.to_string()),
+        _ => PyValueError::new_err(e.to_string()),
+    }
 }
 
 /// The largest `chain.links` a scene accepts (chain-ode's `Chain::validate`),

@@ -2,8 +2,7 @@
 
 use ::falling_chain::sweep as core;
 use ::falling_chain::sweep::{Shard, SweepRow, Vary};
-use ::falling_chain::{Error, Scene};
-use chain_ode::Cancel;
+use ::falling_chain::Error;
 use numpy::IntoPyArray;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -247,21 +246,6 @@ fn runs_of(vary: &[Vary], shard: Option<Shard>) -> PyResult<usize> {
     })
 }
 
-/// The sweep's rows, on `jobs` threads; once `cancel` is set no run starts
-/// and a run in progress stops at its next step.
-fn rows_of(
-    scene: &Scene,
-    vary: &[Vary],
-    shard: Option<Shard>,
-    jobs: usize,
-    cancel: &Cancel,
-) -> Result<Vec<SweepRow>, Error> {
-    // Until falling-chain's sweep takes a cancel flag, Ctrl-C is seen only
-    // when the whole sweep is done.
-    let _ = cancel;
-    core::run(scene, vary, shard, jobs, &|_, _| {})
-}
-
 /// Runs `scene` once per value of the keys in `vary`, in parallel, and
 /// returns the rows of `falling-chain sweep --out` as a dict of numpy
 /// columns named as its CSV header: `run`, the varied keys, then the fields
@@ -320,7 +304,10 @@ pub fn sweep<'py>(
     let shard = shard_of(shard)?;
     let runs = runs_of(&vary, shard)?;
     let jobs = jobs_of(jobs, runs)?;
-    let rows = run_interruptible(py, |cancel| rows_of(&scene, &vary, shard, jobs, cancel))?
-        .map_err(value_error)?;
+    // Once Ctrl-C sets `cancel`, no run starts and runs in progress stop.
+    let rows = run_interruptible(py, |cancel| {
+        core::run_cancellable(&scene, &vary, shard, jobs, &|_, _| {}, Some(cancel))
+    })?
+    .map_err(value_error)?;
     columns(py, &vary, &rows)
 }
