@@ -4,7 +4,7 @@ use ::falling_chain::{CatenaryNames, CatenaryReport, Error};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt};
 
-use crate::convert::{array1, json_to_dict, points, value_error, MAX_LINKS};
+use crate::convert::{array1, echo, json_to_dict, points, value_error, MAX_LINKS};
 
 /// The inputs as Python calls them (the CLI's flags without `--`).
 const NAMES: CatenaryNames = CatenaryNames {
@@ -20,7 +20,7 @@ fn point(value: &Bound<'_, PyAny>, field: &str) -> PyResult<[f64; 2]> {
     value.extract::<[f64; 2]>().map_err(|_| {
         value_error(Error::field(
             field,
-            format!("expected two numbers (x, y) (got {value})"),
+            format!("expected two numbers (x, y) (got {})", echo(value)),
         ))
     })
 }
@@ -49,7 +49,7 @@ pub fn catenary<'py>(
             n.extract::<usize>().map_err(|_| {
                 value_error(Error::field(
                     "links",
-                    format!("must be an integer in 1..={MAX_LINKS} (got {n})"),
+                    format!("must be an integer in 1..={MAX_LINKS} (got {})", echo(n)),
                 ))
             })
         })

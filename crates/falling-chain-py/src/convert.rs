@@ -20,6 +20,45 @@ pub fn value_error(e: Error) -> PyErr {
     }
 }
 
+/// The most characters of a value or key that a message shows.
+const ECHO_MAX: usize = 80;
+
+/// Text as a one-line message shows it: control characters escaped (a key
+/// with a newline stays on one line), cut after [`ECHO_MAX`] characters.
+pub fn echo_text(text: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in text.chars().enumerate() {
+        if i == ECHO_MAX {
+            out.push('…');
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A Python value as a one-line message shows it: a container of more than
+/// eight items by its type and length (never written out whole), anything
+/// else by its `repr` through [`echo_text`].
+pub fn echo(value: &Bound<'_, PyAny>) -> String {
+    let kind = value
+        .get_type()
+        .name()
+        .map_or_else(|_| "object".to_string(), |n| n.to_string());
+    let text = value.is_instance_of::<PyString>() || value.is_instance_of::<pyo3::types::PyBytes>();
+    match value.len() {
+        Ok(len) if len > 8 && !text => format!("a {kind} of {len} items"),
+        _ => value.repr().map_or_else(
+            |_| format!("<{kind} too long to show>"),
+            |r| echo_text(&r.to_string_lossy()),
+        ),
+    }
+}
+
 /// The largest `chain.links` a scene accepts (chain-ode's `Chain::validate`),
 /// so the longest list a scene key takes (`start.angles`, `start.rates`).
 pub const MAX_LINKS: usize = 1_000_000;
@@ -218,7 +257,17 @@ fn convert(
         return value
             .extract::<i64>()
             .map(toml::Value::Integer)
-            .map_err(|_| field_error(place, format!("{value} does not fit a 64-bit integer")));
+            .map_err(|_| {
+                field_error(
+                    place,
+                    format!(
+                        "must fit a 64-bit integer, {}..={} (got {})",
+                        i64::MIN,
+                        i64::MAX,
+                        echo(value)
+                    ),
+                )
+            });
     }
     if let Ok(x) = value.cast::<PyFloat>() {
         return Ok(toml::Value::Float(x.value()));
@@ -233,7 +282,11 @@ fn convert(
         for item in d.items().iter() {
             let (k, v) = item.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()?;
             let k: String = k.extract().map_err(|_| {
-                PyTypeError::new_err(format!("{place}: table keys must be str (got {k})"))
+                PyTypeError::new_err(format!(
+                    "{}: table keys must be str (got {})",
+                    echo_text(&place.to_string()),
+                    echo(&k)
+                ))
             })?;
             let inner = Place::Name(place, &k);
             budget.take(py, &inner)?;
@@ -278,8 +331,9 @@ fn convert(
         return Ok(toml::Value::Float(x));
     }
     Err(PyTypeError::new_err(format!(
-        "{place}: cannot use a value of type '{}' in a scene (use str, bool, int, float, a sequence or a dict)",
-        value.get_type().name()?
+        "{}: cannot use a value of type '{}' in a scene (use str, bool, int, float, a sequence or a dict)",
+        echo_text(&place.to_string()),
+        echo_text(&value.get_type().name()?.to_string_lossy())
     )))
 }
 

@@ -8,7 +8,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt, PyList, PyString};
 
-use crate::convert::{read_only, to_toml_items, value_error};
+use crate::convert::{echo, echo_text, read_only, to_toml_items, value_error};
 use crate::interrupt::run_interruptible;
 use crate::run::with_flags;
 use crate::scene::PyScene;
@@ -26,14 +26,15 @@ const MAX_JOBS: usize = 256;
 fn vary_of(key: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Vary> {
     let key: String = key
         .extract()
-        .map_err(|_| PyTypeError::new_err(format!("vary: keys must be str (got {key})")))?;
+        .map_err(|_| PyTypeError::new_err(format!("vary: keys must be str (got {})", echo(key))))?;
     let vary = if let Ok(spec) = values.cast::<PyString>() {
         Vary::parse(&format!("{key}={}", spec.to_cow()?)).map_err(value_error)?
     } else {
         let why = format!("a sweep runs at most {MAX_RUNS} scenes");
         let values = to_toml_items(values, &key, MAX_RUNS, &why)?.ok_or_else(|| {
             PyTypeError::new_err(format!(
-                "vary: the values of '{key}' must be a sequence or a str such as \"0.3:5.97:120\""
+                "vary: the values of '{}' must be a sequence or a str such as \"0.3:5.97:120\"",
+                echo_text(&key)
             ))
         })?;
         Vary { key, values }
@@ -60,7 +61,8 @@ fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
         format!("{i}/{n}")
     } else {
         return Err(PyTypeError::new_err(format!(
-            "shard: expected \"I/N\" or (I, N) (got {shard})"
+            "shard: expected \"I/N\" or (I, N) (got {})",
+            echo(shard)
         )));
     };
     Shard::parse(&spec).map(Some).map_err(value_error)
@@ -212,7 +214,7 @@ fn jobs_of(jobs: Option<&Bound<'_, PyAny>>, runs: usize) -> PyResult<usize> {
                 _ => {
                     return Err(value_error(Error::field(
                         "jobs",
-                        format!("must be an integer in 1..={MAX_JOBS} (got {j})"),
+                        format!("must be an integer in 1..={MAX_JOBS} (got {})", echo(j)),
                     )))
                 }
             }
@@ -234,7 +236,7 @@ fn runs_of(vary: &[Vary], shard: Option<Shard>) -> PyResult<usize> {
         return Err(value_error(Error::field(
             "vary",
             format!(
-                "a sweep runs at most {MAX_RUNS} scenes (got {} values)",
+                "the sweep has {} runs; at most {MAX_RUNS} are allowed",
                 lengths.join(" x ")
             ),
         )));

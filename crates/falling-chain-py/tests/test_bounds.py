@@ -190,3 +190,32 @@ def test_a_scene_path_of_dev_zero():
     # Needs the branch that caps a scene file's size (1 MB): /dev/zero was
     # read to 4.2 GB before "out of memory".
     raises_value_error("fc.Scene.load('/dev/zero')", "scene")
+
+
+# Messages ------------------------------------------------------------------
+
+
+def test_a_key_with_a_newline_gives_one_line():
+    # Needs the i24-cli branch for the ValueErrors (their messages escape
+    # control characters); the TypeError is this module's own.
+    raises_value_error("span.set('chain.li\\nnks', 5)", "chain.li\\nnks")
+    raises_value_error("fc.sweep(span, {'chain.li\\nnks': [5]})", ("chain.li\\nnks", "--vary", "vary"))
+    out = in_child(
+        "import falling_chain as fc\n"
+        f"span = fc.Scene.load({SPAN!r})\n"
+        "try:\n    span.set('start.p1\\n', object())\n"
+        "except TypeError as e:\n    print(repr(str(e)))\n",
+        timeout=30,
+    )
+    assert out.returncode == 0, out.stderr[-2000:]
+    message = eval(out.stdout)
+    assert message.startswith("start.p1\\n: ") and "\n" not in message, message
+
+
+def test_a_long_value_is_not_echoed_whole():
+    # Needs the i24-cli branch: an echoed value is cut (a 5-million-element
+    # p1 was a 25 MB error line). Past 1000000 items the value is refused
+    # before it is read whole, without echoing it.
+    raises_value_error("span.set('start.p1', [0.5] * 100000)", "start.p1")
+    raises_value_error("span.set('start.p1', np.zeros(5_000_000))", "start.p1")
+    raises_value_error("span.set('chain.links', 10**5000)", "chain.links")
