@@ -134,8 +134,10 @@ def test_a_sweep_grid_too_large_fails_before_it_is_built():
 
 def test_a_sweep_range_of_1e14_values():
     # Needs the i24-cli branch: `--vary` ranges are bounded before they are
-    # built (today: "capacity overflow", a panic).
-    raises_value_error("fc.sweep(span, {'start.p1.0': '1:5:100000000000000'})", "start.p1.0")
+    # built (today: "capacity overflow", a panic). A str in `--vary` syntax
+    # fails with the CLI's own message, which names `--vary`.
+    m = raises_value_error("fc.sweep(span, {'start.p1.0': '1:5:100000000000000'})", "--vary")
+    assert "1..=1000000" in m
 
 
 @pytest.mark.parametrize("jobs", ["100000", "4000", "0", "-1", "10**30"])
@@ -219,3 +221,20 @@ def test_a_long_value_is_not_echoed_whole():
     raises_value_error("span.set('start.p1', [0.5] * 100000)", "start.p1")
     raises_value_error("span.set('start.p1', np.zeros(5_000_000))", "start.p1")
     raises_value_error("span.set('chain.links', 10**5000)", "chain.links")
+
+
+def test_scene_text_is_bounded_as_a_scene_file_is(span):
+    import falling_chain as fc
+
+    text = span.to_toml()
+    with pytest.raises(ValueError, match=r"^scene: .*1048576 bytes"):
+        fc.Scene.from_toml(text + "#" * (1 << 20))
+    fc.Scene.from_toml(text + "#" * 1000).check()
+
+
+def test_a_key_and_its_element_in_one_sweep():
+    # Needs the i24-cli branch: a key varied twice (here start.p1 and its
+    # element start.p1.0) is refused instead of the later one winning.
+    raises_value_error(
+        "fc.sweep(span, {'start.p1': [[2.0, 0.0]], 'start.p1.0': [3.0, 4.0]})", ("--vary", "vary")
+    )
