@@ -37,7 +37,7 @@ print("after", fc.simulate(span, t_end=0.05).status, flush=True)
 # The liveness bound: from SIGINT to KeyboardInterrupt.
 BOUND = 2.0
 # How long the work runs before SIGINT.
-WAIT = 0.5
+WAIT = 0.3
 
 
 def interrupt(setup, work):
@@ -101,4 +101,14 @@ def test_ctrl_c_stops_a_sweep_of_many_short_runs():
     interrupt(
         "short = span.set('chain.links', 20).set('run.method', 'rk4').set('run.dt', 1e-3).set('run.t_end', 2)",
         "fc.sweep(short, {'start.p1.0': np.linspace(1.5, 5.5, 5000)}, jobs=2)",
+    )
+
+
+def test_ctrl_c_during_the_check_of_a_large_sweep():
+    # Needs falling-chain's sweep to look at the Cancel flag while it checks
+    # every run's scene (a grid of 10^6 runs takes ~15 s to check here):
+    # asked of the i24-cli branch.
+    interrupt(
+        "v = np.linspace(1.5, 5.5, 1_000_000)",
+        "fc.sweep(span, {'start.p1.0': v}, jobs=2)",
     )
