@@ -108,7 +108,6 @@ def test_ctrl_c_during_the_check_of_a_large_sweep():
     # Needs falling-chain's sweep to look at the Cancel flag while it checks
     # every run's scene (a grid of 10^6 runs takes ~15 s to check here):
     # asked of the i24-cli branch.
-    interrupt(
-        "v = np.linspace(1.5, 5.5, 1_000_000)",
-        "fc.sweep(span, {'start.p1.0': v}, jobs=2)",
-    )
+    # The values in `--vary` syntax: read in Rust at once, so that SIGINT
+    # comes while the scenes are checked, not while values are converted.
+    interrupt("", "fc.sweep(span, {'start.p1.0': '1.5:5.5:1000000'}, jobs=2)")
