@@ -36,7 +36,8 @@ class Scene:
         """Reads a scene file. A scene without ``name`` is named after the file."""
     @staticmethod
     def from_toml(text: str) -> Scene:
-        """Parses a scene from TOML text. A scene without ``name`` is named "scene"."""
+        """Parses a scene from TOML text (at most 1 MiB, as a scene file). A
+        scene without ``name`` is named "scene"."""
     def set(self, key: str, value: _Value) -> Scene:
         """A new scene with the value at the dotted ``key`` replaced, as
         ``--set KEY=VALUE`` does. A ``str`` value is read as the text after
@@ -155,8 +156,9 @@ def catenary(
     links: Optional[int] = None,
 ) -> Dict[str, Any]:
     """The hanging chain between ``p0`` and ``p1`` (``catenary --json``): ``a``,
-    ``x0``, ``c``, ``vertex``, ``lowest_point`` and, with ``links``,
-    ``angles`` (numpy), ``joints`` (numpy), ``end_error``, ``alpha``, ``beta``."""
+    ``x0``, ``c``, ``vertex``, ``lowest_point`` and, with ``links`` (at most
+    1000000, as ``chain.links``), ``angles`` (numpy), ``joints`` (numpy),
+    ``end_error``, ``alpha``, ``beta``. Raises ValueError naming the input."""
 
 def methods() -> List[str]:
     """The names of the integration methods ``run.method`` accepts."""
