@@ -202,9 +202,11 @@ def test_bdf_dense_on_a_long_chain():
 
 
 def test_a_scene_path_of_dev_zero():
-    # Needs the branch that caps a scene file's size (1 MB): /dev/zero was
-    # read to 4.2 GB before "out of memory".
-    raises_value_error("fc.Scene.load('/dev/zero')", "scene")
+    # Needs the i24-cli branch (a scene file is regular and at most 1 MiB):
+    # /dev/zero was read to 4.2 GB before "out of memory" (here, with the
+    # child's address space capped, to the cap).
+    m = raises_value_error("fc.Scene.load('/dev/zero')", "scene")
+    assert "memory" not in m, m
 
 
 # Messages ------------------------------------------------------------------
