@@ -6,7 +6,8 @@ Load a scene (``Scene.load("scenes/span-d3.toml")``), change it
 ``Run`` whose arrays are numpy), sweep a key
 (``sweep(scene, {"start.p1.0": [1, 2, 3]})``) or solve the hanging chain
 (``catenary``). Errors are ValueErrors with the CLI's one-line message
-naming the field.
+naming the field. Runs and sweeps release the GIL, and Ctrl-C stops them:
+they raise KeyboardInterrupt within a fraction of a second.
 """
 
 import os
@@ -35,12 +36,20 @@ class Scene:
         """Reads a scene file. A scene without ``name`` is named after the file."""
     @staticmethod
     def from_toml(text: str) -> Scene:
-        """Parses a scene from TOML text. A scene without ``name`` is named "scene"."""
+        """Parses a scene from TOML text (at most 1 MiB, as a scene file). A
+        scene without ``name`` is named "scene"."""
     def set(self, key: str, value: _Value) -> Scene:
         """A new scene with the value at the dotted ``key`` replaced, as
         ``--set KEY=VALUE`` does. A ``str`` value is read as the text after
-        ``=`` in ``--set``; numbers, bools, sequences and dicts are taken as
-        they are."""
+        ``=`` in ``--set``; numbers, bools, sequences (iterators too) and
+        dicts are taken as they are.
+
+        The value is bounded before it is read whole: a list, iterator or
+        dict holds at most 1000000 items (``start.angles`` at
+        ``chain.links``' cap), the whole value at most 2001000, it nests at
+        most 8 deep, and a ``str`` is at most 32 MiB. Past a bound (an
+        endless iterator such as ``itertools.count()``, a list that contains
+        itself) it raises ValueError naming the key."""
     def to_toml(self) -> str:
         """The scene as TOML text (with every ``set`` applied; defaults left out)."""
     def to_dict(self) -> Dict[str, Any]:
@@ -58,7 +67,8 @@ class Scene:
 class Run:
     """A finished run: its summary and its samples as read-only float64 arrays.
 
-    A run that failed holds what it computed up to ``summary["t_reached"]``.
+    A run that failed holds what it computed up to ``summary["t_reached"]``;
+    its ``status`` says how it failed.
     """
 
     @property
@@ -90,7 +100,11 @@ class Run:
         """The number of rods n."""
     @property
     def status(self) -> str:
-        """``ok``, or how the run failed (the same as ``summary["status"]``)."""
+        """``ok``, or how the run failed (the same as ``summary["status"]``):
+        ``diverged``, ``step_size_too_small``, ``max_steps``,
+        ``linear_solve_failed``, ``inaccurate`` (it reached ``t_end``, but
+        its energy balance error exceeds the chain's energy scale: the
+        numbers are not a solution) or ``interrupted``."""
     @property
     def scene(self) -> Scene:
         """The scene that ran (with the keyword flags of ``simulate`` applied)."""
@@ -111,7 +125,9 @@ def simulate(
     """Runs ``scene`` (as ``falling-chain simulate SCENE --json``) and returns
     its ``Run``. The keywords override ``run.method``, ``run.dt``,
     ``run.rtol``, ``run.atol``, ``run.t_end`` and ``run.output_dt``. Bad
-    input raises ValueError; a failed run does not raise. Releases the GIL."""
+    input raises ValueError; a failed run does not raise. Releases the GIL;
+    Ctrl-C stops the run within a fraction of a second and raises
+    KeyboardInterrupt (no run is returned)."""
 
 def sweep(
     scene: Scene,
@@ -126,7 +142,12 @@ def sweep(
     """Runs ``scene`` once per value of the keys in ``vary`` (several keys: the
     product), in parallel, and returns the rows of ``falling-chain sweep
     --out`` as numpy columns named as its CSV header. A ``str`` value is
-    ``--vary`` syntax (``"0.3:5.97:120"``). Releases the GIL."""
+    ``--vary`` syntax (``"0.3:5.97:120"``); a sequence or iterator holds at
+    most 1000000 values, and the product at most 1000000 runs. ``jobs`` is
+    1 to 256 (default: the machine's cores). Bad input raises ValueError
+    naming the field, before any run. Releases the GIL; Ctrl-C stops the
+    sweep (no run starts, runs in progress stop) within a fraction of a
+    second and raises KeyboardInterrupt (no rows are returned)."""
 
 def catenary(
     p0: Sequence[float],
@@ -135,8 +156,9 @@ def catenary(
     links: Optional[int] = None,
 ) -> Dict[str, Any]:
     """The hanging chain between ``p0`` and ``p1`` (``catenary --json``): ``a``,
-    ``x0``, ``c``, ``vertex``, ``lowest_point`` and, with ``links``,
-    ``angles`` (numpy), ``joints`` (numpy), ``end_error``, ``alpha``, ``beta``."""
+    ``x0``, ``c``, ``vertex``, ``lowest_point`` and, with ``links`` (at most
+    1000000, as ``chain.links``), ``angles`` (numpy), ``joints`` (numpy),
+    ``end_error``, ``alpha``, ``beta``. Raises ValueError naming the input."""
 
 def methods() -> List[str]:
     """The names of the integration methods ``run.method`` accepts."""

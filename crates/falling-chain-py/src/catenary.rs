@@ -2,9 +2,9 @@
 
 use ::falling_chain::{CatenaryNames, CatenaryReport, Error};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyInt};
 
-use crate::convert::{array1, json_to_dict, points, value_error};
+use crate::convert::{array1, echo, json_to_dict, points, value_error, MAX_LINKS};
 
 /// The inputs as Python calls them (the CLI's flags without `--`).
 const NAMES: CatenaryNames = CatenaryNames {
@@ -20,7 +20,7 @@ fn point(value: &Bound<'_, PyAny>, field: &str) -> PyResult<[f64; 2]> {
     value.extract::<[f64; 2]>().map_err(|_| {
         value_error(Error::field(
             field,
-            format!("expected two numbers (x, y) (got {value})"),
+            format!("expected two numbers (x, y) (got {})", echo(value)),
         ))
     })
 }
@@ -40,13 +40,18 @@ pub fn catenary<'py>(
     p0: &Bound<'_, PyAny>,
     p1: &Bound<'_, PyAny>,
     length: f64,
-    links: Option<i64>,
+    links: Option<&Bound<'_, PyInt>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (p0, p1) = (point(p0, "p0")?, point(p1, "p1")?);
+    // Any int: one that fits no usize is out of the scene's range.
     let links = links
         .map(|n| {
-            usize::try_from(n)
-                .map_err(|_| value_error(Error::field("links", format!("must be >= 1 (got {n})"))))
+            n.extract::<usize>().map_err(|_| {
+                value_error(Error::field(
+                    "links",
+                    format!("must be an integer in 1..={MAX_LINKS} (got {})", echo(n)),
+                ))
+            })
         })
         .transpose()?;
     let report = py

@@ -5,50 +5,292 @@ use ::falling_chain::overrides::parse_value;
 use ::falling_chain::Error;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
 
 /// The CLI's one-line error (what `falling-chain` prints after `error: `)
-/// as a `ValueError`.
+/// as a `ValueError`; work stopped from outside (Ctrl-C) is a
+/// KeyboardInterrupt.
 pub fn value_error(e: Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    match e {
+        Error::Interrupted => PyKeyboardInterrupt::new_err(e.to_string()),
+        _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// The most characters of a value or key that a message shows.
+const ECHO_MAX: usize = 80;
+
+/// Text as a one-line message shows it: control characters escaped (a key
+/// with a newline stays on one line), cut after [`ECHO_MAX`] characters.
+pub fn echo_text(text: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in text.chars().enumerate() {
+        if i == ECHO_MAX {
+            out.push('…');
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A Python value as a one-line message shows it: a container of more than
+/// eight items by its type and length (never written out whole), anything
+/// else by its `repr` through [`echo_text`].
+pub fn echo(value: &Bound<'_, PyAny>) -> String {
+    let kind = value
+        .get_type()
+        .name()
+        .map_or_else(|_| "object".to_string(), |n| n.to_string());
+    let text = value.is_instance_of::<PyString>() || value.is_instance_of::<pyo3::types::PyBytes>();
+    match value.len() {
+        Ok(len) if len > 8 && !text => format!("a {kind} of {len} items"),
+        _ => value.repr().map_or_else(
+            |_| format!("<{kind} too long to show>"),
+            |r| echo_text(&r.to_string_lossy()),
+        ),
+    }
+}
+
+/// The largest `chain.links` a scene accepts (chain-ode's `Chain::validate`),
+/// so the longest list a scene key takes (`start.angles`, `start.rates`).
+pub const MAX_LINKS: usize = 1_000_000;
+
+/// The most items one list, tuple, array, iterator or dict may hold when it
+/// becomes a scene value: the longest list a scene key takes.
+pub const MAX_ITEMS: usize = MAX_LINKS;
+
+/// The most items a whole value may hold, nested ones included: a section
+/// set whole (`scene.set("start", {...})`) holds `start.angles` and
+/// `start.rates` at their longest, and a few more keys.
+pub const MAX_TOTAL_ITEMS: usize = 2 * MAX_LINKS + 1_000;
+
+/// How deeply a value may nest. A scene value is at most three deep (a
+/// section, a point or list in it, a number); anything deeper is not a
+/// scene value, and a list or dict that contains itself would go on for ever.
+pub const MAX_DEPTH: usize = 8;
+
+/// The longest `str` value (`scene.set("start.angles", "[0.1, ...]")`):
+/// `start.angles` at `chain.links`' cap, written with every digit, fits.
+pub const MAX_TEXT: usize = 32 << 20;
+
+/// How often (in items) a long conversion checks for Ctrl-C.
+const SIGNAL_EVERY: usize = 1 << 16;
+
+/// Where a value sits inside the value being converted, for error messages:
+/// the key, then the index or dict key of each level (`start.p1.0`). Built
+/// only when an error needs it.
+#[derive(Clone, Copy)]
+enum Place<'a> {
+    Key(&'a str),
+    Index(&'a Place<'a>, usize),
+    Name(&'a Place<'a>, &'a str),
+}
+
+impl Place<'_> {
+    fn depth(&self) -> usize {
+        match self {
+            Place::Key(_) => 0,
+            Place::Index(up, _) | Place::Name(up, _) => up.depth() + 1,
+        }
+    }
+}
+
+impl std::fmt::Display for Place<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Place::Key(key) => f.write_str(key),
+            Place::Index(up, i) => write!(f, "{up}.{i}"),
+            Place::Name(up, name) => write!(f, "{up}.{name}"),
+        }
+    }
+}
+
+/// The error about the value at `place`: a ValueError with the CLI's one line.
+fn field_error(place: &Place<'_>, message: impl std::fmt::Display) -> PyErr {
+    value_error(Error::field(place.to_string(), message))
+}
+
+/// What a conversion may still take: items in all, counted as they come.
+struct Budget {
+    items: usize,
+}
+
+impl Budget {
+    /// Counts one more item at `place`; errors once the whole value holds
+    /// more than [`MAX_TOTAL_ITEMS`]. Checks for Ctrl-C now and then, since
+    /// a long conversion holds the GIL.
+    fn take(&mut self, py: Python<'_>, place: &Place<'_>) -> PyResult<()> {
+        self.items += 1;
+        if self.items > MAX_TOTAL_ITEMS {
+            return Err(too_many(place));
+        }
+        if self.items.is_multiple_of(SIGNAL_EVERY) {
+            py.check_signals()?;
+        }
+        Ok(())
+    }
+}
+
+/// Why the list at a key may hold no more: the longest list a scene key takes.
+const LONGEST_LIST: &str = "the longest list a scene key takes: start.angles at chain.links' cap";
+
+/// The error for a sequence or dict at `place` longer than `max` (`why`).
+fn too_long(place: &Place<'_>, max: usize, why: &str) -> PyErr {
+    field_error(
+        place,
+        format!("a list or dict here holds at most {max} items ({why}); this one holds more"),
+    )
+}
+
+/// The error for a value that holds more than [`MAX_TOTAL_ITEMS`] in all.
+fn too_many(place: &Place<'_>) -> PyErr {
+    field_error(
+        place,
+        format!(
+            "a value holds at most {MAX_TOTAL_ITEMS} items in all, nested ones included \
+             (start.angles and start.rates at chain.links' cap, and the other keys); this one holds more"
+        ),
+    )
+}
+
+/// The error for a value nested deeper than [`MAX_DEPTH`] at `place`.
+fn too_deep(place: &Place<'_>) -> PyErr {
+    field_error(
+        place,
+        format!(
+            "a value nests at most {MAX_DEPTH} levels deep (a scene value has at most 3: \
+             a section, a list in it, a number); does a list or dict contain itself?"
+        ),
+    )
 }
 
 /// A Python value as a scene value, as `--set KEY=VALUE` would give it:
 /// a `str` is parsed as the text after `=` (`"dopri5"`, `"[3.0, 0.0]"`,
 /// `"100"`), `bool`, `int` and `float` (numpy scalars too) are themselves,
-/// sequences (lists, tuples, numpy arrays) are arrays and dicts are tables.
-/// `key` names the value in errors.
+/// sequences (lists, tuples, numpy arrays, iterators) are arrays and dicts
+/// are tables. `key` names the value in errors.
+///
+/// The conversion is bounded before it allocates: a list, iterator or dict
+/// holds at most [`MAX_ITEMS`] items, the whole value [`MAX_TOTAL_ITEMS`],
+/// it nests at most [`MAX_DEPTH`] deep, and a `str` is at most
+/// [`MAX_TEXT`] bytes. Past a bound (an endless iterator such as
+/// `itertools.count()`, a list that contains itself) it raises ValueError
+/// naming the key.
 pub fn to_toml(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+    convert(value, &Place::Key(key), &mut Budget { items: 0 })
+}
+
+/// The items of a sequence or iterator (not a `str`, `bytes` or dict) as
+/// scene values, each converted as [`to_toml`] does and named `key` in
+/// errors: a sweep's values. At most `max` items (`why` says whose cap),
+/// and [`MAX_TOTAL_ITEMS`] in all; `None` if `values` is not iterable.
+pub fn to_toml_items(
+    values: &Bound<'_, PyAny>,
+    key: &str,
+    max: usize,
+    why: &str,
+) -> PyResult<Option<Vec<toml::Value>>> {
+    if values.is_instance_of::<PyString>()
+        || values.is_instance_of::<pyo3::types::PyBytes>()
+        || values.is_instance_of::<PyDict>()
+    {
+        return Ok(None);
+    }
+    let Ok(items) = values.try_iter() else {
+        return Ok(None);
+    };
+    let place = Place::Key(key);
+    if values.len().is_ok_and(|len| len > max) {
+        return Err(too_long(&place, max, why));
+    }
+    let mut budget = Budget { items: 0 };
+    let mut out = Vec::new();
+    for (i, item) in items.enumerate() {
+        if i >= max {
+            return Err(too_long(&place, max, why));
+        }
+        budget.take(values.py(), &place)?;
+        // Each value is a scene value of its own (its elements are named
+        // `key.0`, ... as `--set` would), at the depth of the key.
+        out.push(convert(&item?, &place, &mut budget)?);
+    }
+    Ok(Some(out))
+}
+
+/// The conversion of [`to_toml`] of the value at `place`.
+fn convert(
+    value: &Bound<'_, PyAny>,
+    place: &Place<'_>,
+    budget: &mut Budget,
+) -> PyResult<toml::Value> {
+    let py = value.py();
+    if place.depth() > MAX_DEPTH {
+        return Err(too_deep(place));
+    }
     if let Ok(b) = value.cast::<PyBool>() {
         return Ok(toml::Value::Boolean(b.is_true()));
     }
     if let Ok(s) = value.cast::<PyString>() {
-        return parse_value(&s.to_cow()?).map_err(|m| value_error(Error::field(key, m)));
+        let text = s.to_cow()?;
+        if text.len() > MAX_TEXT {
+            return Err(field_error(
+                place,
+                format!(
+                    "text values must be at most {MAX_TEXT} bytes (got {})",
+                    text.len()
+                ),
+            ));
+        }
+        let parsed = parse_value(&text).map_err(|m| field_error(place, m))?;
+        check_parsed(&parsed, place, budget)?;
+        return Ok(parsed);
     }
     if value.is_instance_of::<PyInt>() {
         return value
             .extract::<i64>()
             .map(toml::Value::Integer)
             .map_err(|_| {
-                value_error(Error::field(
-                    key,
-                    format!("{value} does not fit a 64-bit integer"),
-                ))
+                field_error(
+                    place,
+                    format!(
+                        "must fit a 64-bit integer, {}..={} (got {})",
+                        i64::MIN,
+                        i64::MAX,
+                        echo(value)
+                    ),
+                )
             });
     }
     if let Ok(x) = value.cast::<PyFloat>() {
         return Ok(toml::Value::Float(x.value()));
     }
     if let Ok(d) = value.cast::<PyDict>() {
+        if d.len() > MAX_ITEMS {
+            return Err(too_long(place, MAX_ITEMS, LONGEST_LIST));
+        }
         let mut table = toml::Table::new();
-        for (k, v) in d.iter() {
+        // A snapshot of the items: converting a value runs Python code
+        // (`__iter__`, `__index__`), which may change the dict.
+        for item in d.items().iter() {
+            let (k, v) = item.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()?;
             let k: String = k.extract().map_err(|_| {
-                PyTypeError::new_err(format!("{key}: table keys must be str (got {k})"))
+                PyTypeError::new_err(format!(
+                    "{}: table keys must be str (got {})",
+                    echo_text(&place.to_string()),
+                    echo(&k)
+                ))
             })?;
-            let v = to_toml(&v, &format!("{key}.{k}"))?;
+            let inner = Place::Name(place, &k);
+            budget.take(py, &inner)?;
+            let v = convert(&v, &inner, budget)?;
             table.insert(k, v);
         }
         return Ok(toml::Value::Table(table));
@@ -65,9 +307,21 @@ pub fn to_toml(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
     }
     if !value.is_instance_of::<pyo3::types::PyBytes>() {
         if let Ok(items) = value.try_iter() {
+            // A sized sequence (a list, a numpy array, `range`) that is too
+            // long fails before a single item is read.
+            if let Ok(len) = value.len() {
+                if len > MAX_ITEMS {
+                    return Err(too_long(place, MAX_ITEMS, LONGEST_LIST));
+                }
+            }
             let mut array = Vec::new();
             for (i, item) in items.enumerate() {
-                array.push(to_toml(&item?, &format!("{key}.{i}"))?);
+                if i >= MAX_ITEMS {
+                    return Err(too_long(place, MAX_ITEMS, LONGEST_LIST));
+                }
+                let inner = Place::Index(place, i);
+                budget.take(py, &inner)?;
+                array.push(convert(&item?, &inner, budget)?);
             }
             return Ok(toml::Value::Array(array));
         }
@@ -77,9 +331,45 @@ pub fn to_toml(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
         return Ok(toml::Value::Float(x));
     }
     Err(PyTypeError::new_err(format!(
-        "{key}: cannot use a value of type '{}' in a scene (use str, bool, int, float, a sequence or a dict)",
-        value.get_type().name()?
+        "{}: cannot use a value of type '{}' in a scene (use str, bool, int, float, a sequence or a dict)",
+        echo_text(&place.to_string()),
+        echo_text(&value.get_type().name()?.to_string_lossy())
     )))
+}
+
+/// The bounds of [`to_toml`] on a value parsed from text: its depth (the
+/// TOML parser has its own, larger limit) and its items.
+fn check_parsed(value: &toml::Value, place: &Place<'_>, budget: &mut Budget) -> PyResult<()> {
+    let depth = place.depth();
+    if depth > MAX_DEPTH {
+        return Err(too_deep(place));
+    }
+    let len = match value {
+        toml::Value::Array(a) => a.len(),
+        toml::Value::Table(t) => t.len(),
+        _ => return Ok(()),
+    };
+    if len > MAX_ITEMS {
+        return Err(too_long(place, MAX_ITEMS, LONGEST_LIST));
+    }
+    budget.items = budget.items.saturating_add(len);
+    if budget.items > MAX_TOTAL_ITEMS {
+        return Err(too_many(place));
+    }
+    match value {
+        toml::Value::Array(a) => {
+            for (i, v) in a.iter().enumerate() {
+                check_parsed(v, &Place::Index(place, i), budget)?;
+            }
+        }
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                check_parsed(v, &Place::Name(place, k), budget)?;
+            }
+        }
+        _ => {}
+    }
+    Ok(())
 }
 
 /// A scene value as a Python object (tables as dicts, arrays as lists).

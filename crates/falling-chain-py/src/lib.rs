@@ -4,12 +4,16 @@
 //!
 //! Every Python name maps to one call of the Rust API (ARCHITECTURE.md has
 //! the table); nothing of the scene schema, the methods or the summary is
-//! repeated here. Runs and sweeps release the GIL.
+//! repeated here. Runs and sweeps release the GIL and stop on Ctrl-C
+//! (`interrupt`); Python values become scene values within bounds on their
+//! length and depth (`convert`), so that no input can exhaust the
+//! interpreter's memory or stack.
 
 use pyo3::prelude::*;
 
 mod catenary;
 mod convert;
+mod interrupt;
 mod run;
 mod scene;
 mod sweep;
@@ -27,7 +31,8 @@ fn methods() -> Vec<&'static str> {
 /// it (`scene.set("chain.links", 100)`), run it (`simulate(scene)` returns
 /// a `Run` whose arrays are numpy), sweep a key (`sweep(scene,
 /// {"start.p1.0": [1, 2, 3]})`) or solve the hanging chain (`catenary`).
-/// Errors are ValueErrors with the CLI's one-line message naming the field.
+/// Errors are ValueErrors with the CLI's one-line message naming the field;
+/// Ctrl-C stops a run or a sweep with KeyboardInterrupt.
 #[pymodule]
 #[pyo3(name = "falling_chain")]
 fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {

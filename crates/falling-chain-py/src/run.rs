@@ -2,13 +2,14 @@
 
 use ::falling_chain::{Error, RunSummary, Scene};
 use chain_ode::kinematics::{energy, joints, tip, tip_velocity};
-use chain_ode::Trajectory;
-use numpy::{PyArray1, PyArray2};
+use chain_ode::{Chain, Method, Status, Trajectory, Vec2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{array1, array2, bound, json_to_dict, points, value_error};
+use crate::interrupt::run_interruptible;
 use crate::scene::PyScene;
 
 /// The scene with the keyword flags of `simulate` applied, in the CLI's
@@ -22,6 +23,29 @@ pub fn with_flags(scene: &Scene, flags: &[(&str, Option<toml::Value>)]) -> Resul
         }
     }
     Ok(scene)
+}
+
+/// A trajectory without its samples: what `Run` shows besides the arrays.
+struct Head {
+    chain: Chain,
+    anchor: Vec2,
+    method: Method,
+    status: Status,
+    t_reached: f64,
+    samples: usize,
+}
+
+impl Head {
+    fn of(traj: &Trajectory) -> Self {
+        Self {
+            chain: traj.chain.clone(),
+            anchor: traj.anchor,
+            method: traj.method,
+            status: traj.status,
+            t_reached: traj.t_reached,
+            samples: traj.len(),
+        }
+    }
 }
 
 /// The per-sample series of a trajectory, computed as `--out`'s CSV does.
@@ -78,7 +102,9 @@ impl Series {
 /// `max_steps`, ...) holds what it computed up to `summary["t_reached"]`.
 #[pyclass(module = "falling_chain", frozen)]
 pub struct Run {
-    traj: Trajectory,
+    /// What the arrays need besides themselves (the trajectory's own copy
+    /// of the samples is dropped once the arrays hold them).
+    head: Head,
     scene: Scene,
     /// The `simulate --json` line, parsed on each access (a fresh dict).
     summary: String,
@@ -144,13 +170,13 @@ impl Run {
     /// The number of rods n.
     #[getter]
     fn links(&self) -> usize {
-        self.traj.chain.links
+        self.head.chain.links
     }
 
     /// `ok`, or how the run failed (the same as `summary["status"]`).
     #[getter]
     fn status(&self) -> &'static str {
-        self.traj.status.as_str()
+        self.head.status.as_str()
     }
 
     /// The scene that ran (with the keyword flags of `simulate` applied).
@@ -162,33 +188,45 @@ impl Run {
     /// The joints r_0 = P0, r_1, ..., r_n (the tip) at sample `k`, shape
     /// (n + 1, 2). A negative `k` counts from the end, as in Python.
     fn joints(&self, py: Python<'_>, k: isize) -> PyResult<Py<PyArray2<f64>>> {
-        let len = self.traj.len();
-        let index = if k < 0 { k + len as isize } else { k };
-        if index < 0 || index as usize >= len {
+        let len = self.head.samples;
+        let index = if k < 0 {
+            k.checked_add_unsigned(len)
+        } else {
+            Some(k)
+        };
+        let Some(row) = index
+            .and_then(|i| usize::try_from(i).ok())
+            .filter(|&i| i < len)
+        else {
             return Err(PyIndexError::new_err(format!(
                 "sample {k} out of range (the run has {len} samples)"
             )));
-        }
-        let sample = self.traj.sample(index as usize);
-        points(
-            py,
-            &joints(&self.traj.chain, self.traj.anchor, sample.angles),
-        )
+        };
+        let n = self.head.chain.links;
+        let phi = self.phi.bind(py).readonly();
+        let angles = phi
+            .as_slice()
+            .ok()
+            .and_then(|all| all.get(row * n..(row + 1) * n))
+            .ok_or_else(|| {
+                PyIndexError::new_err(format!("sample {k}: the angles array is not {len} x {n}"))
+            })?;
+        points(py, &joints(&self.head.chain, self.head.anchor, angles))
     }
 
     fn __len__(&self) -> usize {
-        self.traj.len()
+        self.head.samples
     }
 
     fn __repr__(&self) -> String {
         format!(
             "Run(scene={:?}, method={:?}, links={}, status={:?}, t_reached={}, samples={})",
             self.scene.name(),
-            self.traj.method.as_str(),
-            self.traj.chain.links,
-            self.traj.status.as_str(),
-            self.traj.t_reached,
-            self.traj.len()
+            self.head.method.as_str(),
+            self.head.chain.links,
+            self.head.status.as_str(),
+            self.head.t_reached,
+            self.head.samples
         )
     }
 }
@@ -201,7 +239,9 @@ impl Run {
 /// `run.atol`, `run.t_end` and `run.output_dt` (the spacing of the samples).
 /// Bad input raises ValueError with the CLI's one-line message naming the
 /// field. A run that fails does not raise: its `summary["status"]` says how
-/// it failed. The run releases the GIL, so Python threads run in parallel.
+/// it failed. The run releases the GIL, so Python threads run in parallel,
+/// and Ctrl-C stops it within a fraction of a second: `simulate` then raises
+/// KeyboardInterrupt (and returns no run).
 #[pyfunction]
 #[pyo3(signature = (scene, *, method=None, dt=None, rtol=None, atol=None, t_end=None, output_dt=None))]
 #[allow(clippy::too_many_arguments)]
@@ -228,15 +268,15 @@ pub fn simulate(
         ],
     )
     .map_err(value_error)?;
-    let prepared = scene.prepare().map_err(value_error)?;
-    let (traj, series, json) = py
-        .detach(|| -> Result<_, Error> {
-            let traj = prepared.solve()?;
-            let series = Series::of(&traj);
-            let json = RunSummary::from_trajectory(scene.name(), &traj).to_json();
-            Ok((traj, series, json))
-        })
-        .map_err(value_error)?;
+    let mut prepared = scene.prepare().map_err(value_error)?;
+    let (head, series, json) = run_interruptible(py, |cancel| -> Result<_, Error> {
+        prepared.options.cancel = Some(cancel.clone());
+        let traj = prepared.solve()?;
+        let series = Series::of(&traj);
+        let json = RunSummary::from_trajectory(scene.name(), &traj).to_json();
+        Ok((Head::of(&traj), series, json))
+    })?
+    .map_err(value_error)?;
     let (s, n) = (series.samples, series.links);
     Ok(Run {
         summary: json,
@@ -247,7 +287,7 @@ pub fn simulate(
         tip_velocity: array2(py, series.tip_velocity, s, 2)?,
         energy: array1(py, series.energy)?,
         dissipated: array1(py, series.dissipated)?,
-        traj,
+        head,
         scene,
     })
 }

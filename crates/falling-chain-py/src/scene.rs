@@ -2,11 +2,14 @@
 
 use std::path::PathBuf;
 
-use ::falling_chain::Scene;
+use ::falling_chain::{Error, Scene};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{table_to_dict, to_toml, value_error};
+
+/// The longest scene text: the largest scene file the CLI reads (1 MiB).
+const MAX_SCENE_TEXT: usize = 1 << 20;
 
 /// A scene: a chain, how it starts and how to run it (the TOML files of
 /// `scenes/`, described in `scenes/README.md`).
@@ -42,8 +45,18 @@ impl PyScene {
     }
 
     /// Parses a scene from TOML text. A scene without `name` is named "scene".
+    /// The text is at most 1 MiB, as a scene file is.
     #[staticmethod]
     fn from_toml(text: &str) -> PyResult<Self> {
+        if text.len() > MAX_SCENE_TEXT {
+            return Err(value_error(Error::field(
+                "scene",
+                format!(
+                    "the scene text is larger than {MAX_SCENE_TEXT} bytes (1 MiB, the largest scene file; got {})",
+                    text.len()
+                ),
+            )));
+        }
         Scene::from_toml_str(text)
             .map(Self::new)
             .map_err(value_error)

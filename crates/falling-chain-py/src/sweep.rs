@@ -6,29 +6,37 @@ use ::falling_chain::Error;
 use numpy::IntoPyArray;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString};
+use pyo3::types::{PyDict, PyInt, PyList, PyString};
 
-use crate::convert::{read_only, to_toml, value_error};
+use crate::convert::{echo, echo_text, read_only, to_toml_items, value_error};
+use crate::interrupt::run_interruptible;
 use crate::run::with_flags;
 use crate::scene::PyScene;
 
+/// The most runs a sweep may have: the sweep's own grid cap, so that no list
+/// of `vary` is longer than a sweep can run.
+const MAX_RUNS: usize = 1_000_000;
+
+/// The most threads `jobs=` may ask for.
+const MAX_JOBS: usize = 256;
+
 /// One key of `vary`: a `str` is the right-hand side of `--vary KEY=...`
-/// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values.
+/// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values
+/// (at most [`MAX_RUNS`], read lazily: an endless iterator fails at the cap).
 fn vary_of(key: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Vary> {
     let key: String = key
         .extract()
-        .map_err(|_| PyTypeError::new_err(format!("vary: keys must be str (got {key})")))?;
+        .map_err(|_| PyTypeError::new_err(format!("vary: keys must be str (got {})", echo(key))))?;
     let vary = if let Ok(spec) = values.cast::<PyString>() {
         Vary::parse(&format!("{key}={}", spec.to_cow()?)).map_err(value_error)?
     } else {
-        let items = values.try_iter().map_err(|_| {
+        let why = format!("a sweep runs at most {MAX_RUNS} scenes");
+        let values = to_toml_items(values, &key, MAX_RUNS, &why)?.ok_or_else(|| {
             PyTypeError::new_err(format!(
-                "vary: the values of '{key}' must be a sequence or a str such as \"0.3:5.97:120\""
+                "vary: the values of '{}' must be a sequence or a str such as \"0.3:5.97:120\"",
+                echo_text(&key)
             ))
         })?;
-        let values = items
-            .map(|v| to_toml(&v?, &key))
-            .collect::<PyResult<Vec<_>>>()?;
         Vary { key, values }
     };
     if vary.values.is_empty() {
@@ -47,11 +55,14 @@ fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
     };
     let spec = if let Ok(s) = shard.cast::<PyString>() {
         s.to_cow()?.into_owned()
-    } else if let Ok((i, n)) = shard.extract::<(i64, i64)>() {
+    } else if let Ok((i, n)) = shard.extract::<(Bound<'_, PyInt>, Bound<'_, PyInt>)>() {
+        // Any ints: one that fits no integer type is out of range, which
+        // the parser says in the CLI's words.
         format!("{i}/{n}")
     } else {
         return Err(PyTypeError::new_err(format!(
-            "shard: expected \"I/N\" or (I, N) (got {shard})"
+            "shard: expected \"I/N\" or (I, N) (got {})",
+            echo(shard)
         )));
     };
     Shard::parse(&spec).map(Some).map_err(value_error)
@@ -59,21 +70,22 @@ fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
 
 /// Splits one CSV line of ours into its cells (RFC 4180 quoting).
 fn csv_cells(line: &str) -> Vec<String> {
-    let mut cells = vec![String::new()];
+    let mut cells = vec![];
+    let mut cell = String::new();
     let mut quoted = false;
     let mut chars = line.chars().peekable();
     while let Some(c) = chars.next() {
-        let cell = cells.last_mut().expect("one cell");
         match (c, quoted) {
             ('"', true) if chars.peek() == Some(&'"') => {
                 chars.next();
                 cell.push('"');
             }
             ('"', _) => quoted = !quoted,
-            (',', false) => cells.push(String::new()),
+            (',', false) => cells.push(std::mem::take(&mut cell)),
             (c, _) => cell.push(c),
         }
     }
+    cells.push(cell);
     cells
 }
 
@@ -161,16 +173,79 @@ fn columns<'py>(py: Python<'py>, vary: &[Vary], rows: &[SweepRow]) -> PyResult<B
         let kind = if i == 0 {
             Kind::Int
         } else if i <= vary.len() {
-            value_kind(&rows.iter().map(|r| &r.values[i - 1]).collect::<Vec<_>>())
+            value_kind(
+                &rows
+                    .iter()
+                    .filter_map(|r| r.values.get(i - 1))
+                    .collect::<Vec<_>>(),
+            )
         } else if rows.is_empty() {
             Kind::Float
         } else {
             column_kind(&json, name)
         };
-        let cells = table.iter().map(|r| r[i].clone()).collect();
+        let cells = table
+            .iter()
+            .map(|r| r.get(i).cloned().unwrap_or_default())
+            .collect();
         out.set_item(name, read_only(column(py, kind, cells)?)?)?;
     }
     Ok(out)
+}
+
+/// The threads of `jobs=`: an int in `1..=MAX_JOBS`; by default the
+/// machine's cores (at most [`MAX_JOBS`]). Never more than `runs`.
+fn jobs_of(jobs: Option<&Bound<'_, PyAny>>, runs: usize) -> PyResult<usize> {
+    let wanted = match jobs {
+        None => std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_JOBS)),
+        Some(j) => {
+            if !j.is_instance_of::<PyInt>() || j.is_instance_of::<pyo3::types::PyBool>() {
+                return Err(PyTypeError::new_err(format!(
+                    "jobs: must be an int (got '{}')",
+                    j.get_type().name()?
+                )));
+            }
+            match j
+                .extract::<i64>()
+                .ok()
+                .and_then(|n| usize::try_from(n).ok())
+            {
+                Some(n) if (1..=MAX_JOBS).contains(&n) => n,
+                _ => {
+                    return Err(value_error(Error::field(
+                        "jobs",
+                        format!("must be an integer in 1..={MAX_JOBS} (got {})", echo(j)),
+                    )))
+                }
+            }
+        }
+    };
+    Ok(wanted.min(runs.max(1)))
+}
+
+/// The number of runs of the sweep (or of its shard), or the error naming
+/// `vary` when the whole grid has more than [`MAX_RUNS`]: checked before
+/// anything is built.
+fn runs_of(vary: &[Vary], shard: Option<Shard>) -> PyResult<usize> {
+    let total = vary
+        .iter()
+        .try_fold(1usize, |acc, v| acc.checked_mul(v.values.len()))
+        .filter(|&n| n <= MAX_RUNS);
+    let Some(total) = total else {
+        let lengths: Vec<String> = vary.iter().map(|v| v.values.len().to_string()).collect();
+        return Err(value_error(Error::field(
+            "vary",
+            format!(
+                "the sweep has {} runs; at most {MAX_RUNS} are allowed",
+                lengths.join(" x ")
+            ),
+        )));
+    };
+    Ok(match shard {
+        // Runs index, index + count, ... below total.
+        Some(s) => total.saturating_sub(s.index).div_ceil(s.count),
+        None => total,
+    })
 }
 
 /// Runs `scene` once per value of the keys in `vary`, in parallel, and
@@ -183,11 +258,13 @@ fn columns<'py>(py: Python<'py>, vary: &[Vary], rows: &[SweepRow]) -> PyResult<B
 /// from 0.3 to 5.97, `"rk4,dopri5"`); several keys give their product, the
 /// last varying fastest. `method`, `rtol` and `atol` set `run.method`,
 /// `run.rtol` and `run.atol` first. `shard` ("I/N" or (I, N)) runs only
-/// runs I, I + N, ...; `jobs` is the number of threads (default: all cores).
-/// Integer columns are int64, numbers float64 (`t_failed` is NaN where a run
-/// did not fail), text columns str. Every run's scene is checked before
-/// any runs; bad input raises ValueError naming the field. The sweep
-/// releases the GIL.
+/// runs I, I + N, ...; `jobs` is the number of threads (1 to 256; default:
+/// all cores). Integer columns are int64, numbers float64 (`t_failed` is
+/// NaN where a run did not fail), text columns str. Every run's scene is
+/// checked before any runs; bad input raises ValueError naming the field
+/// (a sweep has at most 1000000 runs). The sweep releases the GIL, and
+/// Ctrl-C stops it within a fraction of a second: it then raises
+/// KeyboardInterrupt (and returns no rows).
 #[pyfunction]
 #[pyo3(signature = (scene, vary, *, method=None, rtol=None, atol=None, shard=None, jobs=None))]
 #[allow(clippy::too_many_arguments)]
@@ -199,7 +276,7 @@ pub fn sweep<'py>(
     rtol: Option<f64>,
     atol: Option<f64>,
     shard: Option<&Bound<'_, PyAny>>,
-    jobs: Option<usize>,
+    jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = with_flags(
         &scene.get().inner,
@@ -216,20 +293,23 @@ pub fn sweep<'py>(
             "give at least one key, e.g. {\"start.p1.0\": [1.0, 2.0, 3.0]}",
         )));
     }
+    // A snapshot of the items: reading the values runs Python code, which
+    // may change the dict.
     let vary = vary
+        .items()
         .iter()
-        .map(|(k, v)| vary_of(&k, &v))
+        .map(|item| {
+            let (k, v) = item.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()?;
+            vary_of(&k, &v)
+        })
         .collect::<PyResult<Vec<_>>>()?;
     let shard = shard_of(shard)?;
-    if jobs == Some(0) {
-        return Err(value_error(Error::field(
-            "jobs",
-            "must be an integer >= 1 (got 0)",
-        )));
-    }
-    let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let rows = py
-        .detach(|| core::run(&scene, &vary, shard, jobs, &|_, _| {}))
-        .map_err(value_error)?;
+    let runs = runs_of(&vary, shard)?;
+    let jobs = jobs_of(jobs, runs)?;
+    // Once Ctrl-C sets `cancel`, no run starts and runs in progress stop.
+    let rows = run_interruptible(py, |cancel| {
+        core::run_cancellable(&scene, &vary, shard, jobs, &|_, _| {}, Some(cancel))
+    })?
+    .map_err(value_error)?;
     columns(py, &vary, &rows)
 }

@@ -128,3 +128,39 @@ def require_two_free_cores(ratio, limit):
             f"the machine is busy: even zlib in two threads took {control:.2f}x one thread "
             f"(ours {ratio:.2f}x); no free second core to measure with"
         )
+
+
+# The address space of a child interpreter: the module and numpy take a few
+# hundred MB of it (threads reserve stacks); runs that would take gigabytes
+# fail within it.
+CHILD_MEMORY = 3 << 30
+
+
+def cap_memory(memory=CHILD_MEMORY):
+    """A preexec_fn that caps a child's address space at `memory` bytes."""
+    import resource
+
+    def cap():
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+
+    return cap
+
+
+def in_child(code, timeout=60, memory=CHILD_MEMORY, **popen):
+    """Runs `code` in a fresh interpreter (this one's) whose address space
+    is capped at `memory` bytes, so that a runaway allocation fails there
+    instead of taking the machine. Returns the CompletedProcess (text);
+    fails the test if it runs past `timeout`."""
+    import sys
+
+    try:
+        return subprocess.run(
+            [sys.executable, "-c", code],
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+            preexec_fn=cap_memory(memory),
+            **popen,
+        )
+    except subprocess.TimeoutExpired as e:
+        pytest.fail(f"still running after {timeout} s: {e.stderr!r}"[-2000:])
