@@ -9,7 +9,7 @@ use pyo3::types::PyDict;
 use crate::convert::{table_to_dict, to_toml, value_error};
 
 /// The longest scene text: the largest scene file the CLI reads (1 MiB).
-const MAX_SCENE_TEXT: usize = 1 << 20;
+const MAX_SCENE_TEXT: usize = ::falling_chain::scene::MAX_SCENE_BYTES as usize;
 
 /// A scene: a chain, how it starts and how to run it (the TOML files of
 /// `scenes/`, described in `scenes/README.md`).

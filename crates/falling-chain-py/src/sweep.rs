@@ -13,12 +13,10 @@ use crate::interrupt::run_interruptible;
 use crate::run::with_flags;
 use crate::scene::PyScene;
 
-/// The most runs a sweep may have: the sweep's own grid cap, so that no list
-/// of `vary` is longer than a sweep can run.
-const MAX_RUNS: usize = 1_000_000;
-
-/// The most threads `jobs=` may ask for.
-const MAX_JOBS: usize = 256;
+/// The most runs a sweep may have (the sweep's own grid cap), so that no
+/// list of `vary` is longer than a sweep can run; and the most threads
+/// `jobs=` may ask for. Both are the CLI's.
+use ::falling_chain::sweep::{MAX_JOBS, MAX_RUNS};
 
 /// One key of `vary`: a `str` is the right-hand side of `--vary KEY=...`
 /// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values

@@ -268,7 +268,20 @@ pub fn scene_for(scene: &Scene, vary: &[Vary], values: &[toml::Value]) -> Result
 /// Checks every run's scene before any run starts: a bad key or value is an
 /// error naming it, and no run is wasted.
 pub fn check(scene: &Scene, vary: &[Vary]) -> Result<(), Error> {
+    check_cancellable(scene, vary, None)
+}
+
+/// [`check`] that stops with [`Error::Interrupted`] once `cancel` is set:
+/// preparing 10^6 scenes takes seconds, and Ctrl-C must not wait for it.
+pub fn check_cancellable(
+    scene: &Scene,
+    vary: &[Vary],
+    cancel: Option<&Cancel>,
+) -> Result<(), Error> {
     for values in grid(vary)? {
+        if cancel.is_some_and(Cancel::is_cancelled) {
+            return Err(Error::Interrupted);
+        }
         scene_for(scene, vary, &values)?.prepare()?;
     }
     Ok(())
@@ -303,7 +316,7 @@ pub fn run_cancellable(
     let cancelled = || cancel.is_some_and(Cancel::is_cancelled);
     let jobs = check_jobs("--jobs", jobs)?;
     let size = grid_size(vary)?;
-    check(scene, vary)?;
+    check_cancellable(scene, vary, cancel)?;
     let runs: Vec<usize> = (0..size)
         .filter(|&i| shard.is_none_or(|s| s.takes(i)))
         .collect();
