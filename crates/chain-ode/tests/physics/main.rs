@@ -4,6 +4,7 @@
 //! and the validation claims. Shared scenes and option builders are here.
 
 mod bdf;
+mod bounds;
 mod dae;
 mod dopri5;
 mod dynamics;
