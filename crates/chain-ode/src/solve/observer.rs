@@ -166,18 +166,31 @@ impl ChainObserver {
     }
 }
 
-/// Iteration cap of [`golden_max`]: the width `tol` of [`golden_width`] is
-/// reached within 48 iterations (`R^48 < 1e-10`), so the cap binds only
-/// if that width could never be reached.
+/// Iteration cap of [`golden_max`]: the width `1e-10 h + 1e-15` of
+/// [`golden_width`] is reached within 48 iterations (`R^48 < 1e-10`) wherever
+/// floats are dense enough to reach it, so the cap binds only where a
+/// bracket stalls at one or two ulps of `t`.
 pub(crate) const GOLDEN_MAX_ITERS: u32 = 100;
 
-/// The width at which the maximum search in a step `[t0, t1]` stops:
-/// `1e-10 h + 1e-15` (time units), but never below four times the spacing
-/// of floating-point numbers at `t` (`4 eps max(|t0|, |t1|)`, two to eight
-/// ulps), which a bracket of times around `t` cannot go below.
+/// The spacing of floats at `|x|` (one ulp; `inf` for `inf` or the largest float).
+fn ulp(x: f64) -> f64 {
+    let x = x.abs();
+    if x.is_finite() {
+        f64::from_bits(x.to_bits() + 1) - x
+    } else {
+        x
+    }
+}
+
+/// The width at which the maximum search in a step `[t0, t1]` (time units)
+/// stops: `1e-10 h + 1e-15`, but never below the spacing of floats in the
+/// step (one ulp of the smaller `|t|`), the narrowest bracket of distinct
+/// times. Below `|t| = 8` that spacing is under `1e-15` and the width is
+/// `1e-10 h + 1e-15` exactly; where it is not, the narrower width could
+/// only be met by a bracket of zero width, and the search could stall.
 pub(crate) fn golden_width(t0: f64, t1: f64) -> f64 {
     let width = 1e-10 * (t1 - t0) + 1e-15;
-    width.max(4.0 * f64::EPSILON * t0.abs().max(t1.abs()))
+    width.max(ulp(t0.abs().min(t1.abs())))
 }
 
 /// Golden-section search for the maximum of `f` on `[t0, t1]`: narrows the
@@ -353,15 +366,18 @@ mod tests {
     }
 
     #[test]
-    fn the_width_never_falls_below_a_few_ulps_of_t() {
-        for t in [1.0, 1e3, 1e6, 1e9, 1e15] {
+    fn the_width_never_falls_below_one_ulp_of_t() {
+        for t in [1.0, 8.0, 1e3, 1e6, 1e9, 1e15] {
             let w = golden_width(t, t + 1e-12);
-            assert!(w >= 4.0 * f64::EPSILON * t, "t = {t}: {w:e}");
-            // A bracket of that width holds more than one float.
-            assert!(t + w / 2.0 > t, "t = {t}: {w:e}");
+            // A bracket [t, t + w] holds two distinct floats.
+            assert!(t + w > t, "t = {t}: {w:e}");
+            assert!(w >= 1e-15, "t = {t}: {w:e}");
         }
-        // Where a bracket can narrow to 1e-10 of the step, that is the width.
-        assert_eq!(golden_width(1.0, 1.01), 1e-10 * (1.01 - 1.0) + 1e-15);
+        assert_eq!(golden_width(1e9, 1e9 + 1e-12), 1.1920928955078125e-7);
+        // Below |t| = 8 the width is the step's 1e-10 plus 1e-15, exactly.
+        for (t0, h) in [(0.0, 1e-9), (1.0, 0.01), (7.99, 1e-12), (-3.0, 1e-6)] {
+            assert_eq!(golden_width(t0, t0 + h), 1e-10 * (t0 + h - t0) + 1e-15);
+        }
     }
 
     #[test]
