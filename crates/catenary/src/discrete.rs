@@ -4,7 +4,7 @@
 //! rod `i` points from joint `i - 1` to joint `i`. Lengths in input units.
 
 use crate::continuous::Catenary;
-use crate::error::{check_inputs, CatenaryError, TAUT};
+use crate::error::{check_inputs, CatenaryError, MAX_LINKS, TAUT};
 use crate::rods::Rods;
 use crate::Point;
 use std::f64::consts::{PI, TAU};
@@ -63,6 +63,9 @@ pub fn joints(p0: Point, length: f64, angles: &[f64]) -> Vec<Point> {
 /// `l = length / links`) pinned at `p0` and `p1`; ends at `p1` to
 /// `1e-12 * length`.
 ///
+/// `links` is at most [`MAX_LINKS`](crate::MAX_LINKS), checked before
+/// anything is allocated; the inputs' bounds are the crate's (see its doc).
+///
 /// If `|p1 - p0| == length` (within `1e-12` relative) the chain is straight:
 /// every angle is `atan2(y1 - y0, |x1 - x0|)` (mirrored to `pi - ...` for
 /// `x1 < x0`). Otherwise needs `x1 != x0`, `links >= 2` and
@@ -76,6 +79,9 @@ pub fn discrete_equilibrium(
     length: f64,
     links: usize,
 ) -> Result<DiscreteCatenary, CatenaryError> {
+    if links > MAX_LINKS {
+        return Err(CatenaryError::TooManyLinks { links });
+    }
     let distance = check_inputs(p0, p1, length)?;
     if links == 0 {
         return Err(CatenaryError::NoLinks);
@@ -83,7 +89,8 @@ pub fn discrete_equilibrium(
     let dx = p1[0] - p0[0];
     let h = p1[1] - p0[1];
     let finish = |angles: Vec<f64>, alpha, beta, iterations| {
-        let end = *joints(p0, length, &angles).last().expect("n + 1 joints");
+        // `joints` returns n + 1 >= 1 points.
+        let end = joints(p0, length, &angles).last().copied().unwrap_or(p0);
         DiscreteCatenary {
             angles,
             alpha,

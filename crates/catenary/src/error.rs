@@ -43,6 +43,13 @@ impl fmt::Display for Input {
 pub enum CatenaryError {
     /// An input is NaN or infinite (`P0`, `P1` or the length).
     NonFinite { input: Input, value: f64 },
+    /// A finite input outside [`MAX_MAGNITUDE`]: a coordinate of `P0` or
+    /// `P1` with `|x| > MAX_MAGNITUDE`, or a length above it or below
+    /// [`MIN_LENGTH`]. Past these, sums and products of the inputs overflow
+    /// or underflow before any equation is solved.
+    OutOfRange { input: Input, value: f64 },
+    /// `links > MAX_LINKS`.
+    TooManyLinks { links: usize },
     /// `length <= 0`.
     NonPositiveLength { length: f64 },
     /// `links == 0`.
@@ -67,9 +74,11 @@ impl CatenaryError {
     /// solver did not converge).
     pub fn input(&self) -> Option<Input> {
         match *self {
-            Self::NonFinite { input, .. } => Some(input),
+            Self::NonFinite { input, .. } | Self::OutOfRange { input, .. } => Some(input),
             Self::NonPositiveLength { .. } | Self::TooShort { .. } => Some(Input::Length),
-            Self::NoLinks | Self::SingleRod { .. } => Some(Input::Links),
+            Self::NoLinks | Self::TooManyLinks { .. } | Self::SingleRod { .. } => {
+                Some(Input::Links)
+            }
             Self::Vertical { .. } => Some(Input::P1),
             Self::NoConvergence { .. } => None,
         }
@@ -80,6 +89,14 @@ impl CatenaryError {
     pub fn reason(&self) -> String {
         match *self {
             Self::NonFinite { value, .. } => format!("must be finite (got {value})"),
+            Self::OutOfRange {
+                input: Input::Length,
+                value,
+            } => format!("must be in [{MIN_LENGTH:e}, {MAX_MAGNITUDE:e}] (got {value:e})"),
+            Self::OutOfRange { value, .. } => format!(
+                "must have coordinates in [-{MAX_MAGNITUDE:e}, {MAX_MAGNITUDE:e}] (got {value:e})"
+            ),
+            Self::TooManyLinks { links } => format!("must be at most {MAX_LINKS} (got {links})"),
             Self::NonPositiveLength { length } => format!("must be > 0 (got {length})"),
             Self::NoLinks => "must be >= 1 (got 0)".to_string(),
             Self::TooShort { length, distance } if length < distance => {
@@ -121,12 +138,29 @@ impl fmt::Display for CatenaryError {
 
 impl std::error::Error for CatenaryError {}
 
-/// Checks shared by both constructors: finite inputs, `length > 0`,
-/// `length >= |P1 - P0|`. Returns `|P1 - P0|`.
+/// The largest number of rods of a discrete catenary (and of a chain in a
+/// scene): `10^6`. Larger counts are refused before anything is allocated.
+pub const MAX_LINKS: usize = 1_000_000;
+
+/// The largest magnitude accepted of an anchor coordinate or of the length
+/// (length units): `1e150`. Sums, differences and squares of such inputs
+/// stay finite.
+pub const MAX_MAGNITUDE: f64 = 1e150;
+
+/// The smallest length accepted (length units): `1e-150`, so that the
+/// squares of lengths and distances stay normal numbers.
+pub const MIN_LENGTH: f64 = 1e-150;
+
+/// Checks shared by both constructors: finite inputs within
+/// [`MAX_MAGNITUDE`], `MIN_LENGTH <= length`, `length >= |P1 - P0|`.
+/// Returns `|P1 - P0|`.
 pub(crate) fn check_inputs(p0: [f64; 2], p1: [f64; 2], length: f64) -> Result<f64, CatenaryError> {
     for (input, p) in [(Input::P0, p0), (Input::P1, p1)] {
         if let Some(&value) = p.iter().find(|v| !v.is_finite()) {
             return Err(CatenaryError::NonFinite { input, value });
+        }
+        if let Some(&value) = p.iter().find(|v| v.abs() > MAX_MAGNITUDE) {
+            return Err(CatenaryError::OutOfRange { input, value });
         }
     }
     if !length.is_finite() {
@@ -138,13 +172,14 @@ pub(crate) fn check_inputs(p0: [f64; 2], p1: [f64; 2], length: f64) -> Result<f6
     if length <= 0.0 {
         return Err(CatenaryError::NonPositiveLength { length });
     }
-    let distance = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
-    if !distance.is_finite() {
-        return Err(CatenaryError::NonFinite {
-            input: Input::P1,
-            value: distance,
+    if !(MIN_LENGTH..=MAX_MAGNITUDE).contains(&length) {
+        return Err(CatenaryError::OutOfRange {
+            input: Input::Length,
+            value: length,
         });
     }
+    // Finite: every coordinate is at most 1e150 in magnitude.
+    let distance = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
     if distance > length + TAUT * length {
         return Err(CatenaryError::TooShort { length, distance });
     }

@@ -7,6 +7,11 @@
 //!
 //! Conventions: `y` points up, gravity acts along `-y`; angles in radians
 //! from the horizontal, counter-clockwise; lengths in the caller's unit.
+//!
+//! Bounds: coordinates and lengths up to [`MAX_MAGNITUDE`] (`1e150`), lengths
+//! from [`MIN_LENGTH`] (`1e-150`), at most [`MAX_LINKS`] (`10^6`) rods; every
+//! iteration is capped, and a cap that is hit is an error
+//! ([`CatenaryError::NoConvergence`]), never a panic or a silent answer.
 
 mod continuous;
 mod discrete;
@@ -15,7 +20,7 @@ mod rods;
 
 pub use continuous::Catenary;
 pub use discrete::{discrete_equilibrium, joints, DiscreteCatenary};
-pub use error::{CatenaryError, Input};
+pub use error::{CatenaryError, Input, MAX_LINKS, MAX_MAGNITUDE, MIN_LENGTH};
 
 /// A point `[x, y]` in the plane (length units, `y` up).
 pub type Point = [f64; 2];

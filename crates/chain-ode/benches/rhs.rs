@@ -1,6 +1,13 @@
 //! One right-hand-side evaluation vs n: the O(n) recursion and the dense
 //! Cholesky reference side by side. `cargo bench -p chain-ode --bench rhs`.
 
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "a developer's tool: a bad argument or a failed run stops it with the message"
+)]
+
 use chain_ode::dense;
 use chain_ode::{Chain, ChainSystem, Start};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};

@@ -4,6 +4,13 @@
 //!
 //! `cargo run --release -p chain-ode --example bdf_probe -- N R T_END RTOL DT1[,DT2..] [RUNS]`
 //! (atol = rtol / 100; the reference is BDF at rtol 1e-12, atol 1e-14.)
+
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "a developer's tool: a bad argument or a failed run stops it with the message"
+)]
 use chain_ode::{solve, Chain, Method, SolveOptions, Start, Trajectory};
 
 fn main() {

@@ -1,5 +1,12 @@
 //! Quick look at one scene under every method: `cargo run --release -p chain-ode --example probe -- N R START D T_END RTOL [DT [METHODS]]`
 //! START is `catenary` (P1 = (D, 0)) or `folded`.
+
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "a developer's tool: a bad argument or a failed run stops it with the message"
+)]
 use chain_ode::{solve, Chain, Method, SolveOptions, Start};
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();

@@ -1,4 +1,11 @@
 //! Calls the RHS in a loop, for profilers: `rhs_loop N CALLS`.
+
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "a developer's tool: a bad argument or a failed run stops it with the message"
+)]
 use chain_ode::{Chain, ChainSystem, Start};
 fn main() {
     let a: Vec<usize> = std::env::args()

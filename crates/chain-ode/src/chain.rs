@@ -1,6 +1,12 @@
 //! The chain's physical parameters, validated once.
 
+use std::borrow::Cow;
 use std::fmt;
+
+/// The largest number of rods of a chain (`chain.links`): the same cap as
+/// the catenary's ([`catenary::MAX_LINKS`]), so that every chain has a
+/// catenary start.
+pub const MAX_LINKS: usize = catenary::MAX_LINKS;
 
 /// A chain of `links` equal rigid rods pinned at the anchor `P0`.
 ///
@@ -27,8 +33,9 @@ pub struct Chain {
 pub struct InvalidParameter {
     /// The field, by its scene path (e.g. `chain.links`).
     pub field: &'static str,
-    /// What is accepted.
-    pub accepted: &'static str,
+    /// What is accepted: a range a user can act on (for bounds that depend
+    /// on other fields, with the numbers for this run).
+    pub accepted: Cow<'static, str>,
     /// The value given, as text.
     pub got: String,
 }
@@ -48,7 +55,7 @@ impl std::error::Error for InvalidParameter {}
 pub(crate) fn check(
     ok: bool,
     field: &'static str,
-    accepted: &'static str,
+    accepted: impl Into<Cow<'static, str>>,
     got: impl fmt::Display,
 ) -> Result<(), InvalidParameter> {
     if ok {
@@ -56,11 +63,14 @@ pub(crate) fn check(
     } else {
         Err(InvalidParameter {
             field,
-            accepted,
+            accepted: accepted.into(),
             got: got.to_string(),
         })
     }
 }
+
+/// The accepted range of `chain.links`, in words.
+const LINKS_RANGE: &str = "an integer in 1..=1000000";
 
 impl Chain {
     /// A validated chain.
@@ -98,9 +108,9 @@ impl Chain {
             self.length,
         )?;
         check(
-            (1..=1_000_000).contains(&self.links),
+            (1..=MAX_LINKS).contains(&self.links),
             "chain.links",
-            "an integer in 1..=1000000",
+            LINKS_RANGE,
             self.links,
         )?;
         check(
@@ -181,5 +191,13 @@ mod tests {
             assert!(!e.to_string().contains('\n'));
         }
         assert!(Chain::report(50, 5e-4).is_ok());
+    }
+
+    #[test]
+    fn the_links_cap_is_the_catenarys_and_its_message_states_it() {
+        assert_eq!(LINKS_RANGE, format!("an integer in 1..={MAX_LINKS}"));
+        assert!(Chain::report(MAX_LINKS, 0.0).is_ok());
+        let e = Chain::report(MAX_LINKS + 1, 0.0).unwrap_err();
+        assert_eq!(e.field, "chain.links");
     }
 }

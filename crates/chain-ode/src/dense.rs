@@ -41,14 +41,16 @@ pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// `phi''` by a dense Cholesky solve of `A phi'' = b`.
+/// `phi''` by a dense Cholesky solve of `A phi'' = b`. The mass matrix is
+/// symmetric positive definite for finite angles; if the factorisation
+/// fails all the same (a non-finite angle), every entry is NaN.
 pub fn accelerations(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
     let a = mass_matrix(phi);
     let b = forcing(chain, phi, w);
     let rhs = Mat::from_fn(b.len(), 1, |i, _| b[i]);
-    let llt = a
-        .llt(Side::Lower)
-        .expect("the mass matrix is symmetric positive definite");
+    let Ok(llt) = a.llt(Side::Lower) else {
+        return vec![f64::NAN; b.len()];
+    };
     let x = llt.solve(&rhs);
     (0..b.len()).map(|i| x[(i, 0)]).collect()
 }

@@ -44,12 +44,12 @@ mod solve;
 mod state;
 mod system;
 
-pub use chain::{Chain, InvalidParameter};
+pub use chain::{Chain, InvalidParameter, MAX_LINKS};
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use solve::{
     bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
-    Trajectory,
+    Trajectory, ATOL_RANGE, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES, RTOL_RANGE,
 };
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

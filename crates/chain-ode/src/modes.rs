@@ -11,16 +11,18 @@ use crate::chain::Chain;
 use crate::dense::mt;
 
 /// The angular frequencies `omega_k` (rad/time) of the linearised hanging
-/// chain, lowest first (all `n` of them). Dense: O(n^3).
+/// chain, lowest first (all `n` of them). Dense: O(n^2) memory, O(n^3)
+/// time. If the symmetric eigenvalue iteration does not converge (never
+/// seen: the matrix is finite and symmetric), every entry is NaN.
 pub fn hanging_frequencies(chain: &Chain) -> Vec<f64> {
     let n = chain.links;
     let qs: Vec<f64> = (0..n)
         .map(|i| 1.0 / ((n - i) as f64 - 0.5).sqrt())
         .collect();
     let s = Mat::from_fn(n, n, |i, j| qs[i] * mt(n, i, j) * qs[j]);
-    let lambda = s
-        .self_adjoint_eigenvalues(Side::Lower)
-        .expect("the symmetric eigenvalue iteration converges");
+    let Ok(lambda) = s.self_adjoint_eigenvalues(Side::Lower) else {
+        return vec![f64::NAN; n];
+    };
     let g = chain.gravity_rate();
     // Largest lambda <-> lowest frequency.
     lambda.iter().rev().map(|&x| (g / x).sqrt()).collect()

@@ -108,6 +108,13 @@ pub trait Observer {
     fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]);
     /// Called after every accepted step.
     fn step(&mut self, step: &StepView<'_>);
+    /// True once the run should stop (its [`Cancel`] was set). Every method
+    /// asks before each step attempt and then ends with
+    /// [`Status::Interrupted`] at its last accepted step. Called once per
+    /// attempt: it must be cheap (one relaxed atomic load).
+    fn stop(&self) -> bool {
+        false
+    }
 }
 
 /// Cubic Hermite interpolation between `(y0, f0)` and `(y1, f1)`: fourth-order

@@ -116,10 +116,18 @@ impl Start {
             }
             Self::Folded { down, .. } => {
                 let down = down.unwrap_or(n / 2);
+                // One rod cannot fold: the error is about chain.links, not
+                // about a start.down that was not even given.
                 check(
-                    n >= 2 && down < n,
+                    n >= 2,
+                    "chain.links",
+                    "an integer >= 2 for a folded start",
+                    n,
+                )?;
+                check(
+                    down < n,
                     "start.down",
-                    "an integer in 0..=chain.links-1 (and chain.links >= 2)",
+                    format!("an integer in 0..={} (chain.links - 1)", n - 1),
                     down,
                 )?;
                 let angles = (0..n)
@@ -184,6 +192,31 @@ mod tests {
         );
         assert_eq!(s.angles.iter().filter(|a| **a < 0.0).count(), 25);
         assert_eq!(s.angles.iter().filter(|a| **a > 0.0).count(), 24);
+    }
+
+    #[test]
+    fn a_folded_start_names_the_field_that_is_wrong() {
+        let folded = |down| Start::Folded {
+            p0: [0.0, 0.0],
+            down,
+        };
+        // One rod: chain.links, whether start.down was given or not.
+        let one = Chain::report(1, 0.0).unwrap();
+        for down in [None, Some(0)] {
+            let e = folded(down).state(&one).unwrap_err().to_string();
+            assert_eq!(
+                e,
+                "chain.links: must be an integer >= 2 for a folded start (got 1)"
+            );
+        }
+        let ten = Chain::report(10, 0.0).unwrap();
+        let e = folded(Some(10)).state(&ten).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "start.down: must be an integer in 0..=9 (chain.links - 1) (got 10)"
+        );
+        assert!(folded(Some(9)).state(&ten).is_ok());
+        assert!(folded(None).state(&Chain::report(2, 0.0).unwrap()).is_ok());
     }
 
     #[test]

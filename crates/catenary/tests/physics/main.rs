@@ -1,6 +1,13 @@
 //! Physics tests of the `catenary` crate: closed forms, the discrete
 //! equilibrium, the error cases and random anchors.
 
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "test code, helpers included: a failed unwrap is a failed test"
+)]
+
 mod continuous;
 mod discrete;
 mod errors;

@@ -98,35 +98,37 @@ struct DaeEquations<D> {
     nonfinite: Cell<bool>,
 }
 
-/// A pattern from `(row, column)` pairs, and each pair's CSC position.
-fn pattern(dim: usize, entries: &[(usize, usize)]) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
+/// A pattern from `(row, column)` pairs, and each pair's CSC position;
+/// `None` if an entry is out of range (a programming error of the DAE).
+fn pattern(
+    dim: usize,
+    entries: &[(usize, usize)],
+) -> Option<(SymbolicSparseColMat<usize>, Vec<usize>)> {
     let pairs: Vec<Pair<usize, usize>> = entries.iter().map(|&(r, c)| Pair::new(r, c)).collect();
-    let (sym, _) = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
-        .expect("the DAE's pattern has no duplicate and no out-of-range entry");
+    let (sym, _) = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs).ok()?;
     let (col_ptr, row_idx) = (sym.col_ptr(), sym.row_idx());
     let slots = entries
         .iter()
         .map(|&(r, c)| {
-            let col = &row_idx[col_ptr[c]..col_ptr[c + 1]];
-            col_ptr[c]
-                + col
-                    .binary_search(&r)
-                    .expect("every entry is in the pattern")
+            let col = row_idx.get(*col_ptr.get(c)?..*col_ptr.get(c + 1)?)?;
+            Some(col_ptr[c] + col.binary_search(&r).ok()?)
         })
-        .collect();
-    (sym, slots)
+        .collect::<Option<Vec<usize>>>()?;
+    Some((sym, slots))
 }
 
 impl<D: SemiExplicitDae> DaeEquations<D> {
-    fn new(dae: D, t0: f64, y0: Vec<f64>) -> Self {
+    /// The equations of `dae` from the consistent start `(t0, y0)`; `None`
+    /// if its Jacobian's pattern is malformed.
+    fn new(dae: D, t0: f64, y0: Vec<f64>) -> Option<Self> {
         let dim = dae.dim();
         let mut entries = Vec::with_capacity(7 * dim);
         dae.jacobian_entries(t0, &y0, |r, c, _| entries.push((r, c)));
-        let (jacobian_pattern, jacobian_slots) = pattern(dim, &entries);
+        let (jacobian_pattern, jacobian_slots) = pattern(dim, &entries)?;
         let diagonal: Vec<_> = (0..dae.differential_dim()).map(|i| (i, i)).collect();
-        let (mass_pattern, _) = pattern(dim, &diagonal);
+        let (mass_pattern, _) = pattern(dim, &diagonal)?;
         let ctx = FaerContext::default();
-        Self {
+        Some(Self {
             dae,
             ctx,
             y0,
@@ -136,7 +138,7 @@ impl<D: SemiExplicitDae> DaeEquations<D> {
             rhs_evals: Cell::new(0),
             jacobian_evals: Cell::new(0),
             nonfinite: Cell::new(false),
-        }
+        })
     }
 
     /// Right-hand side on slices, counted and checked.
@@ -312,7 +314,10 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
 ) -> Outcome {
     let (d, dim) = (dae.differential_dim(), dae.dim());
     let y = y0[..d].to_vec();
-    let eqn = DaeEquations::new(dae, t0, y0);
+    let Some(eqn) = DaeEquations::new(dae, t0, y0) else {
+        // A malformed pattern is a programming error: a failure at the start.
+        return Outcome::ended(Status::Diverged, t0, Some(t0), Stats::default(), y);
+    };
     let mut f = vec![0.0; dim];
     eqn.rhs_slices(t0, &eqn.y0, &mut f);
     let stats = Stats {

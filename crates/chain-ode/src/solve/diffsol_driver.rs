@@ -138,6 +138,9 @@ where
         if attempts >= opts.max_steps {
             finish!(Status::MaxSteps, t, Some(t));
         }
+        if obs.stop() {
+            finish!(Status::Interrupted, t, Some(t));
+        }
         let remaining = usize::try_from(opts.max_steps - attempts).unwrap_or(usize::MAX);
         {
             let cfg = solver.config_mut();

@@ -567,6 +567,9 @@ fn steps<S: OdeSystem>(
         if stats.steps + stats.rejected_steps >= o.max_steps {
             return Outcome::ended(Status::MaxSteps, t, Some(t), stats, y);
         }
+        if obs.stop() {
+            return Outcome::ended(Status::Interrupted, t, Some(t), stats, y);
+        }
         let floor = o.floor(t);
         if h < floor {
             let status = if last_nonfinite {

@@ -96,7 +96,7 @@ impl FromStr for Method {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         registry::named(s).ok_or_else(|| InvalidParameter {
             field: "run.method",
-            accepted: registry::accepted_names(),
+            accepted: registry::accepted_names().into(),
             got: s.to_string(),
         })
     }
@@ -155,7 +155,9 @@ impl SolveOptions {
         self
     }
 
-    /// Checks every field; the error names the first one out of range.
+    /// Checks every field on its own; the error names the first one out of
+    /// range. [`SolveOptions::validate_for`] adds the bounds that depend on
+    /// the method and the chain; [`solve`] checks both before it allocates.
     pub fn validate(&self) -> Result<(), InvalidParameter> {
         let pos = |x: f64| x.is_finite() && x > 0.0;
         check(
@@ -165,13 +167,20 @@ impl SolveOptions {
             self.t_end,
         )?;
         check(pos(self.dt), "run.dt", "a finite number > 0", self.dt)?;
+        let (lo, hi) = RTOL_RANGE;
         check(
-            pos(self.rtol) && self.rtol < 1.0,
+            (lo..=hi).contains(&self.rtol),
             "run.rtol",
-            "a number in (0, 1)",
+            "a number in [1e-14, 0.1]",
             self.rtol,
         )?;
-        check(pos(self.atol), "run.atol", "a finite number > 0", self.atol)?;
+        let (lo, hi) = ATOL_RANGE;
+        check(
+            (lo..=hi).contains(&self.atol),
+            "run.atol",
+            "a number in [1e-20, 1]",
+            self.atol,
+        )?;
         if let Some(o) = self.output_dt {
             check(pos(o), "run.output_dt", "a finite number > 0", o)?;
         }
@@ -188,7 +197,97 @@ impl SolveOptions {
             self.max_steps,
         )
     }
+
+    /// [`SolveOptions::validate`], then the bounds that depend on `method`
+    /// and `chain`, each stated with the numbers of this run:
+    /// * RK4: `run.dt <= run.t_end`, and `ceil(t_end / dt) <= run.max_steps`
+    ///   (the smallest step accepted is `t_end / max_steps`);
+    /// * the recorded samples, `t_end / output_dt` of `2 n + 2` numbers
+    ///   each, within [`MAX_OUTPUT_BYTES`] (the smallest `run.output_dt`
+    ///   accepted is [`SolveOptions::min_output_dt`]);
+    /// * `bdf-dense`: at most [`BDF_DENSE_MAX_LINKS`] rods (`bdf` runs any).
+    ///
+    /// `chain` itself is checked by [`Chain::validate`].
+    pub fn validate_for(&self, chain: &Chain, method: Method) -> Result<(), InvalidParameter> {
+        self.validate()?;
+        if method == Method::Rk4 {
+            check(
+                self.dt <= self.t_end,
+                "run.dt",
+                format!("at most run.t_end = {} for rk4", self.t_end),
+                self.dt,
+            )?;
+            let dt_min = self.t_end / self.max_steps as f64;
+            check(
+                self.dt >= dt_min,
+                "run.dt",
+                format!(
+                    "at least run.t_end / run.max_steps = {dt_min:e} for rk4 (t_end = {}, \
+                     max_steps = {})",
+                    self.t_end, self.max_steps
+                ),
+                self.dt,
+            )?;
+        }
+        if let Some(o) = self.output_dt {
+            let o_min = Self::min_output_dt(self.t_end, chain.links);
+            check(
+                o >= o_min,
+                "run.output_dt",
+                format!(
+                    "at least {o_min:e} for t_end = {} and chain.links = {}: the samples \
+                     ({} numbers each) must fit in {} MiB",
+                    self.t_end,
+                    chain.links,
+                    2 * chain.links + 2,
+                    MAX_OUTPUT_BYTES >> 20
+                ),
+                o,
+            )?;
+        }
+        if method == Method::BdfDense {
+            check(
+                chain.links <= BDF_DENSE_MAX_LINKS,
+                "chain.links",
+                format!(
+                    "at most {BDF_DENSE_MAX_LINKS} for bdf-dense (its dense Jacobian and LU \
+                     grow like n^2 in memory and n^3 in time); run.method = \"bdf\" is the \
+                     same method in O(n)"
+                ),
+                chain.links,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The smallest `output_dt` (time units) whose samples over `t_end` fit
+    /// in [`MAX_OUTPUT_BYTES`] for a chain of `links` rods: each sample
+    /// holds its time and the `2 n + 1` state values (`f64`), and a run
+    /// records `t_end / output_dt + 2` samples at most (the start, and the
+    /// end when it is not on the grid).
+    pub fn min_output_dt(t_end: f64, links: usize) -> f64 {
+        let per_sample = 8 * (2 * links as u64 + 2);
+        let samples = MAX_OUTPUT_BYTES / per_sample;
+        t_end / samples.saturating_sub(2).max(1) as f64
+    }
 }
+
+/// The accepted range of `run.rtol`, `[min, max]`: below `1e-14` a relative
+/// error test asks for less than the rounding of `f64` states (the BDFs then
+/// crawl at steps of `1e-13` for hours), above `0.1` it allows errors as
+/// large as the state.
+pub const RTOL_RANGE: (f64, f64) = (1e-14, 0.1);
+
+/// The accepted range of `run.atol` (units of the state: rad, rad per time
+/// unit, energy), `[min, max]`.
+pub const ATOL_RANGE: (f64, f64) = (1e-20, 1.0);
+
+/// The most memory a run's recorded samples may take (bytes): 1 GiB.
+pub const MAX_OUTPUT_BYTES: u64 = 1 << 30;
+
+/// The largest chain `bdf-dense` runs: its Jacobian and LU are dense
+/// `(2n + 1)^2` matrices, factorised in O(n^3).
+pub const BDF_DENSE_MAX_LINKS: usize = 500;
 
 /// The scalar results of a run: what `simulate --json` prints.
 #[derive(Clone, Debug, PartialEq)]
@@ -316,7 +415,15 @@ impl Trajectory {
 /// finite state. A run whose every state is finite but whose summary is not
 /// (an energy that overflows, say) also ends `Status::Diverged`, with
 /// `t_failed` the first time a non-finite value was recorded: a NaN or an
-/// infinity in the summary never comes with `Status::Ok`.
+/// infinity in the summary never comes with `Status::Ok`. A finite run whose
+/// energy balance error `max |E + W - E(0)|` exceeds the chain's energy
+/// scale ([`Chain::energy_scale`]) ends `Status::Inaccurate`, with
+/// `t_failed` the first step end where it did. A run whose
+/// `options.cancel` is set ends `Status::Interrupted` at its last accepted
+/// step (`t_failed = t_reached`).
+///
+/// Every option is checked first ([`SolveOptions::validate_for`]): nothing
+/// is allocated for a run out of bounds.
 pub fn solve(
     chain: &Chain,
     start: &State,
@@ -324,7 +431,7 @@ pub fn solve(
     options: &SolveOptions,
 ) -> Result<Trajectory, InvalidParameter> {
     chain.validate()?;
-    options.validate()?;
+    options.validate_for(chain, method)?;
     let n = chain.links;
     check(
         start.angles.len() == n && start.rates.len() == n,
@@ -334,7 +441,12 @@ pub fn solve(
     )?;
     let mut sys = ChainSystem::new(chain);
     let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
-    let mut obs = ChainObserver::new(chain, options.output_dt);
+    let mut obs = ChainObserver::new(
+        chain,
+        options.t_end,
+        options.output_dt,
+        options.cancel.clone(),
+    );
     let clock = Instant::now();
     let settings = Settings::of(options);
     let outcome = registry::run(
@@ -364,9 +476,15 @@ pub fn solve(
     // A non-finite value in the summary (an energy that overflowed, a NaN
     // from the observer) is a run that went wrong, even when every state
     // stayed finite: it must not pass as `ok`.
+    // A finite run whose energy balance error exceeds the chain's energy
+    // scale is not a solution of the model (a step far too large, a
+    // tolerance far too loose): it must not pass as `ok` either.
     let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
         let t = obs.t_nonfinite.unwrap_or(outcome.t_reached);
         (Status::Diverged, Some(t))
+    } else if outcome.status.is_ok() && summary.energy_balance_error > chain.energy_scale() {
+        let t = obs.t_inaccurate.unwrap_or(outcome.t_reached);
+        (Status::Inaccurate, Some(t))
     } else {
         (outcome.status, outcome.t_failed)
     };
@@ -385,4 +503,67 @@ pub fn solve(
         states: std::mem::take(&mut obs.states),
         final_state: outcome.y_end,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::{all_finite, Observer, StepView};
+    use crate::state::Start;
+
+    /// Asks every method to stop once it has seen `k` accepted steps.
+    struct StopAfter {
+        k: u64,
+        steps: u64,
+        t_last: f64,
+    }
+
+    impl Observer for StopAfter {
+        fn start(&mut self, t0: f64, _: &[f64], _: &[f64]) {
+            self.t_last = t0;
+        }
+        fn step(&mut self, s: &StepView<'_>) {
+            self.steps += 1;
+            self.t_last = s.t1;
+        }
+        fn stop(&self) -> bool {
+            self.steps >= self.k
+        }
+    }
+
+    #[test]
+    fn every_method_stops_at_the_step_its_observer_asks() {
+        let chain = Chain::report(8, 5e-4).unwrap();
+        let start = Start::Catenary {
+            p0: [0.0, 0.0],
+            p1: [3.0, 0.0],
+        }
+        .state(&chain)
+        .unwrap();
+        let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
+        let settings = Settings::of(&SolveOptions {
+            t_end: 4.0,
+            ..Default::default()
+        });
+        for method in Method::ALL {
+            for k in [0, 1, 7] {
+                let mut sys = ChainSystem::new(&chain);
+                let mut obs = StopAfter {
+                    k,
+                    steps: 0,
+                    t_last: f64::NAN,
+                };
+                let out = registry::run(method, &mut sys, 0.0, &y0, 4.0, &settings, &mut obs);
+                assert_eq!(out.status, Status::Interrupted, "{method}, k = {k}");
+                assert_eq!(out.stats.steps, k, "{method}, k = {k}");
+                assert_eq!(obs.steps, k, "{method}, k = {k}");
+                assert_eq!(
+                    out.t_reached, obs.t_last,
+                    "{method}: the last accepted step"
+                );
+                assert!(out.t_reached < 4.0 && all_finite(&out.y_end), "{method}");
+                assert_eq!(out.t_failed, Some(out.t_reached));
+            }
+        }
+    }
 }

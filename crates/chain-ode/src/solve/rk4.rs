@@ -49,6 +49,9 @@ fn steps<S: OdeSystem>(
         if stats.steps >= max_steps {
             return fail(Status::MaxSteps, t, Some(t), stats, y);
         }
+        if obs.stop() {
+            return fail(Status::Interrupted, t, Some(t), stats, y);
+        }
         // Step times from the step count, not by accumulation; the last step
         // lands on t_end exactly (absorbing a sliver below 1e-9 dt).
         let mut t1 = t0 + (k + 1) as f64 * dt;
@@ -123,5 +126,24 @@ impl Integrator for Rk4 {
         obs: &mut dyn Observer,
     ) -> Outcome {
         integrate(sys, t0, y0, t_end, settings.dt, settings.max_steps, obs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::all_finite;
+    use crate::solve::test_problems::{Quiet, OSCILLATOR};
+
+    #[test]
+    fn a_step_budget_ends_with_max_steps_where_it_ran_out() {
+        let mut sys = (OSCILLATOR.system)();
+        let out = integrate(&mut sys, 0.0, &[1.0, 0.0], 1.0, 0.01, 10, &mut Quiet);
+        assert_eq!(out.status, Status::MaxSteps);
+        assert!((out.t_reached - 0.1).abs() < 1e-12);
+        assert_eq!(out.stats.steps, 10);
+        assert_eq!(out.t_failed, Some(out.t_reached));
+        // The state at t = 0.1 of y'' = -y from (1, 0).
+        assert!((out.y_end[0] - 0.1f64.cos()).abs() < 1e-9 && all_finite(&out.y_end));
     }
 }

@@ -3,7 +3,15 @@
 //! banded DAE, every method against the others and against closed forms,
 //! and the validation claims. Shared scenes and option builders are here.
 
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    reason = "test code, helpers included: a failed unwrap is a failed test"
+)]
+
 mod bdf;
+mod bounds;
 mod dae;
 mod dopri5;
 mod dynamics;

@@ -78,7 +78,11 @@ fn a_step_far_too_large_diverges_with_a_status_not_a_nan() {
 }
 
 #[test]
-fn a_step_budget_ends_with_max_steps_where_it_ran_out() {
+fn a_step_budget_too_small_for_the_fixed_steps_is_refused_before_the_run() {
+    // RK4 knows its step count before the first step: a budget of 10 for
+    // 100 steps is a bad input (naming run.dt and the smallest step the
+    // budget allows), not a run that ends max_steps. The integrator's own
+    // max_steps path is tested in rk4.rs.
     let (chain, s) = span3(10, 0.0);
     let opts = SolveOptions {
         t_end: 1.0,
@@ -86,10 +90,9 @@ fn a_step_budget_ends_with_max_steps_where_it_ran_out() {
         max_steps: 10,
         ..Default::default()
     };
-    let tr = solve(&chain, &s, Method::Rk4, &opts).unwrap();
-    assert_eq!(tr.status, Status::MaxSteps);
-    assert!((tr.t_reached - 0.1).abs() < 1e-12);
-    assert_eq!(tr.stats.steps, 10);
+    let e = solve(&chain, &s, Method::Rk4, &opts).unwrap_err();
+    assert_eq!(e.field, "run.dt");
+    assert!(e.to_string().contains("= 1e-1 for rk4"), "{e}");
 }
 
 #[test]
