@@ -96,9 +96,11 @@ impl CatenaryError {
             Self::OutOfRange { value, .. } => format!(
                 "must have coordinates in [-{MAX_MAGNITUDE:e}, {MAX_MAGNITUDE:e}] (got {value:e})"
             ),
-            Self::TooManyLinks { links } => format!("must be at most {MAX_LINKS} (got {links})"),
+            Self::TooManyLinks { links } => {
+                format!("must be an integer in 1..={MAX_LINKS} (got {links})")
+            }
             Self::NonPositiveLength { length } => format!("must be > 0 (got {length})"),
-            Self::NoLinks => "must be >= 1 (got 0)".to_string(),
+            Self::NoLinks => format!("must be an integer in 1..={MAX_LINKS} (got 0)"),
             Self::TooShort { length, distance } if length < distance => {
                 format!("must exceed the anchor distance |P1 - P0| = {distance} (got {length})")
             }

@@ -61,7 +61,7 @@ pub fn echo(value: &Bound<'_, PyAny>) -> String {
 
 /// The largest `chain.links` a scene accepts (chain-ode's `Chain::validate`),
 /// so the longest list a scene key takes (`start.angles`, `start.rates`).
-pub const MAX_LINKS: usize = 1_000_000;
+pub use chain_ode::MAX_LINKS;
 
 /// The most items one list, tuple, array, iterator or dict may hold when it
 /// becomes a scene value: the longest list a scene key takes.

@@ -8,22 +8,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{CatenaryNames, Error};
 
-/// The most rods of a discrete equilibrium: the scenes' cap on
-/// `chain.links` (chain-ode's `Chain` accepts 1..=10^6 rods).
-// TODO(issue 24): use the core's public constant once chain-ode or
-// catenary exports it.
-pub const MAX_LINKS: usize = 1_000_000;
-
-// TODO(issue 24): the core branch bounds the catenary's inputs itself
-// (catenary::{MAX_MAGNITUDE, MIN_LENGTH}, errors naming the input); once it
-// is merged, these checks and constants go and its constants are re-exported.
-/// The largest coordinate or length (in absolute value) of a catenary:
-/// squares and products of the inputs stay finite below 1e300, so a
-/// finite input never turns into an infinite span or a solver given NaN.
-pub const MAX_MAGNITUDE: f64 = 1e150;
-
-/// The smallest chain length: below it the catenary's parameter underflows.
-pub const MIN_LENGTH: f64 = 1e-150;
+/// The bounds of a catenary's inputs, checked by the catenary crate with
+/// errors naming the input: at most `MAX_LINKS` rods (the scenes' cap on
+/// `chain.links`), coordinates and length within `MAX_MAGNITUDE`, length at
+/// least `MIN_LENGTH`.
+pub use catenary::{MAX_LINKS, MAX_MAGNITUDE, MIN_LENGTH};
 
 /// The discrete equilibrium of `links` rods between the same anchors.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -77,29 +66,6 @@ impl CatenaryReport {
         names: &CatenaryNames,
     ) -> Result<Self, Error> {
         let err = |e| Error::from_catenary(&e, names);
-        for (name, p) in [(names.p0, p0), (names.p1, p1)] {
-            if p.iter().any(|x| x.is_finite() && x.abs() > MAX_MAGNITUDE) {
-                return Err(Error::field(
-                    name,
-                    format!(
-                        "coordinates must be finite with |x| <= {MAX_MAGNITUDE:e} (got [{:e}, {:e}])",
-                        p[0], p[1]
-                    ),
-                ));
-            }
-        }
-        if length.is_finite() && length > 0.0 && !(MIN_LENGTH..=MAX_MAGNITUDE).contains(&length) {
-            return Err(Error::field(
-                names.length,
-                format!("must be a number in [{MIN_LENGTH:e}, {MAX_MAGNITUDE:e}] (got {length:e})"),
-            ));
-        }
-        if let Some(n) = links.filter(|&n| n > MAX_LINKS) {
-            return Err(Error::field(
-                names.links,
-                format!("must be an integer in 2..={MAX_LINKS} (got {n})"),
-            ));
-        }
         let cat = Catenary::through(p0, p1, length).map_err(err)?;
         let discrete = match links {
             None => None,

@@ -252,10 +252,8 @@ impl Scene {
         Ok(self.start.state(&chain)?)
     }
 
-    /// What chain-ode's own check of a folded start would misname: a chain
-    /// of one rod cannot fold (the error is about `chain.links`), and
-    /// `start.down` is out of range for this very chain (the range says
-    /// its numbers).
+    /// What chain-ode's own check of an angles start would not say: how
+    /// many numbers `start.angles` and `start.rates` must hold.
     fn check_start(&self, chain: &Chain) -> Result<(), Error> {
         if let Start::Angles { angles, rates, .. } = &self.start {
             let n = chain.links;
@@ -273,24 +271,6 @@ impl Scene {
                         ),
                     ));
                 }
-            }
-        }
-        if let Start::Folded { down, .. } = &self.start {
-            let n = chain.links;
-            if n < 2 {
-                return Err(Error::field(
-                    "chain.links",
-                    format!("a folded start needs at least 2 rods (got {n})"),
-                ));
-            }
-            if let Some(down) = down.filter(|&d| d >= n) {
-                return Err(Error::field(
-                    "start.down",
-                    format!(
-                        "must be an integer in 0..={} (chain.links - 1) (got {down})",
-                        n - 1
-                    ),
-                ));
             }
         }
         Ok(())
@@ -312,11 +292,15 @@ impl Scene {
         let chain = self.chain()?;
         self.check_start(&chain)?;
         let state = self.start.state(&chain)?;
+        let method = self.method()?;
+        // Every bound of the run (tolerances, RK4's step count, the samples'
+        // memory, bdf-dense's size) before anything is allocated or spawned.
+        self.options.validate_for(&chain, method)?;
         Ok(Prepared {
             chain,
             state,
-            method: self.method()?,
-            options: self.options()?,
+            method,
+            options: self.options.clone(),
         })
     }
 }
