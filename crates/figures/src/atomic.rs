@@ -356,7 +356,9 @@ mod tests {
             left,
             vec!["dangling.csv", "fifo", "link.csv", "real.csv", "sub"]
         );
-        assert!(live().is_empty());
+        // The list is the process's: other tests write in parallel, so only
+        // this test's directory must have nothing left in it.
+        assert!(!live().iter().any(|p| p.starts_with(&d)));
         fs::remove_dir_all(&d).unwrap();
     }
 
