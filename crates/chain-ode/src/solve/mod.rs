@@ -11,7 +11,9 @@ mod bdf;
 mod bdf_dense;
 mod diffsol_driver;
 mod dop853;
+mod dop853_tableau;
 mod dopri5;
+mod explicit;
 mod integrator;
 #[cfg(test)]
 mod known_solutions;

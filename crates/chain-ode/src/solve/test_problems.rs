@@ -151,6 +151,37 @@ pub(crate) fn blow_up() -> Toy {
     toy(1, |_t, y, dy| dy[0] = y[0] * y[0]).with_jvp(|_t, y, v, jv| jv[0] = 2.0 * y[0] * v[0])
 }
 
+/// Eccentricity of the Kepler test orbit (`a = 1`, `mu = 1`, period `2 pi`).
+pub(crate) const ECC: f64 = 0.5;
+
+/// Kepler's problem: `y = [q, p]`, `q'' = -q / |q|^3`.
+pub(crate) fn kepler() -> Toy {
+    toy(4, |_t, y, dy| {
+        let r3 = y[0].hypot(y[1]).powi(3);
+        dy[0] = y[2];
+        dy[1] = y[3];
+        dy[2] = -y[0] / r3;
+        dy[3] = -y[1] / r3;
+    })
+}
+
+/// The orbit through periapsis `(1 - e, 0)` at `t = 0`, from Kepler's equation.
+pub(crate) fn kepler_exact(t: f64) -> [f64; 4] {
+    let mut ea = t + ECC * t.sin();
+    for _ in 0..50 {
+        ea -= (ea - ECC * ea.sin() - t) / (1.0 - ECC * ea.cos());
+    }
+    let (s, c) = ea.sin_cos();
+    let b = (1.0 - ECC * ECC).sqrt();
+    let den = 1.0 - ECC * c;
+    [c - ECC, b * s, -s / den, b * c / den]
+}
+
+/// `y' = -1000 (y - cos t)`: stiff, `lambda = -1000`.
+pub(crate) fn relaxation() -> Toy {
+    toy(1, |t, y, dy| dy[0] = -1000.0 * (y[0] - t.cos()))
+}
+
 /// Settings of an adaptive run with these tolerances and a budget of 10^6.
 pub(crate) fn options(rtol: f64, atol: f64) -> Settings {
     let o = SolveOptions {
