@@ -11,9 +11,8 @@ use std::cell::{Cell, RefCell};
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
 use super::diffsol_driver::{drive, Driven};
-use super::integrator::{Integrator, Settings};
-use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
-use crate::system::ChainSystem;
+use super::integrator::{Integrator, Run, Settings, Span};
+use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Problem, Stats, Status};
 
 type Mat = FaerMat<f64>;
 type Lu = FaerLU<f64>;
@@ -21,7 +20,7 @@ type Lu = FaerLU<f64>;
 /// Integrates from `t0` to `t_end` with diffsol's BDF on the explicit form.
 /// Every call to the system, diffsol's and the loop's own, goes through one
 /// [`Counted`]: `rhs_evals` is its count.
-pub(crate) fn integrate<S: OdeSystem>(
+pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -134,16 +133,9 @@ impl Integrator for BdfDense {
         true
     }
 
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings, obs)
+    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
+        let s = span;
+        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
     }
 }
 

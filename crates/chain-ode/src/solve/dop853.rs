@@ -16,9 +16,8 @@ use std::cell::RefCell;
 
 use super::dop853_tableau::{B, BHH, D, DENSE_STAGES, ER, SLOTS, STAGES};
 use super::explicit::{self, lambda_estimate, Control, Pair};
-use super::integrator::{Integrator, Settings};
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, StepView};
-use crate::system::ChainSystem;
+use super::integrator::{Integrator, Run, Settings, Span};
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Problem, StepView};
 
 /// PI controller: exponents and limits (Hairer's DOP853 defaults), and the
 /// stiffness test `h |lambda| > 6.1`.
@@ -165,7 +164,7 @@ pub(crate) fn attempt<S: OdeSystem>(
 /// Integrates from `t0` to `t_end` (`> t0`) through the one step loop
 /// ([`explicit::run`]): observers see every accepted step with
 /// `f1 = f(t1, y1)` and the seventh-order interpolant.
-pub(crate) fn integrate<S: OdeSystem>(
+pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -302,16 +301,9 @@ impl Integrator for Dop853 {
         true
     }
 
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings, obs)
+    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
+        let s = span;
+        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
     }
 }
 
@@ -407,7 +399,6 @@ mod tests {
             assert_eq!(out.status, Status::Ok);
             assert_eq!(out.t_reached, t_end);
             assert_eq!(out.t_failed, None);
-            assert_eq!(out.stiff_at, None);
             assert_eq!(obs.starts, 1);
             assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
             assert_eq!(obs.steps, out.stats.steps);
@@ -644,6 +635,25 @@ mod tests {
         assert!((out.y_end[0] - out.t_reached).abs() < 1e-14);
     }
 
+    /// Stops the run at the first stiffness detection past `switch_lambda`.
+    struct StopWhenStiff {
+        switch_lambda: f64,
+        at: Option<f64>,
+    }
+
+    impl Observer for StopWhenStiff {
+        fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
+        fn step(&mut self, _: &StepView<'_>) {}
+        fn stiff(&mut self, t: f64, lambda: f64) {
+            if lambda > self.switch_lambda && self.at.is_none() {
+                self.at = Some(t);
+            }
+        }
+        fn stop(&self) -> bool {
+            self.at.is_some()
+        }
+    }
+
     #[test]
     fn stiffness_is_detected_and_can_stop_the_run() {
         let t_end = 10.0;
@@ -656,24 +666,24 @@ mod tests {
         let out = run_clean(&mut sys, 0.0, &[1.0], t_end, &o, &mut Quiet, Some(false));
         eprintln!("relaxation: {:?}", out.stats);
         assert_eq!(out.status, Status::Ok);
-        assert_eq!(out.stiff_at, None);
         assert!(out.stats.stiffness_detections > 0, "{:?}", out.stats);
         let e = (out.y_end[0] - slow(t_end)).abs();
         eprintln!("relaxation end error {e:.1e}");
         assert!(e < 1e-5, "{:?}", out.y_end);
 
-        // Stops at the first detection if |lambda| = 1000 exceeds switch_lambda ...
+        // The observer hears of every detection, with |lambda| = 1000: one
+        // that stops the run at the first past switch_lambda (as `auto`
+        // does) stops it there ...
         for (switch_lambda, stops) in [(990.0, true), (1010.0, false)] {
             let mut sys = relaxation();
-            let o = Settings {
-                stop_when_stiff: true,
+            let mut obs = StopWhenStiff {
                 switch_lambda,
-                ..o
+                at: None,
             };
-            let stop = run_clean(&mut sys, 0.0, &[1.0], t_end, &o, &mut Quiet, Some(false));
-            assert_eq!(stop.status, Status::Ok);
+            let stop = run_clean(&mut sys, 0.0, &[1.0], t_end, &o, &mut obs, Some(false));
             if stops {
-                let t = stop.stiff_at.expect("stopped when stiff");
+                let t = obs.at.expect("stopped when stiff");
+                assert_eq!(stop.status, Status::Interrupted);
                 assert_eq!(stop.t_reached, t);
                 assert!(t < t_end);
                 assert_eq!(stop.stats.stiffness_detections, 1);
@@ -681,8 +691,9 @@ mod tests {
                 eprintln!("stopped when stiff at t = {t:.3}, error {e:.1e}");
                 assert!(e < 1e-4, "{e:e}");
             } else {
-                // ... and not otherwise.
-                assert_eq!(stop.stiff_at, None);
+                // ... and one that does not, not.
+                assert_eq!(stop.status, Status::Ok);
+                assert_eq!(obs.at, None);
                 assert_eq!(stop.t_reached, t_end);
                 assert_eq!(stop.stats, out.stats);
             }

@@ -3,10 +3,9 @@
 //! fourth-order dense output, and Hairer's stiffness detection.
 
 use super::explicit::{self, lambda_estimate, Control, Pair};
-use super::integrator::{Integrator, Settings};
+use super::integrator::{Integrator, Run, Settings, Span};
 use super::step_size::rms_norm;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, StepView};
-use crate::system::ChainSystem;
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Problem, StepView};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -145,7 +144,7 @@ pub(crate) fn attempt<S: OdeSystem>(
 
 /// Integrates from `t0` to `t_end` through the one step loop
 /// ([`explicit::run`]).
-pub(crate) fn integrate<S: OdeSystem>(
+pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -268,16 +267,9 @@ impl Integrator for Dopri5 {
         true
     }
 
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings, obs)
+    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
+        let s = span;
+        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
     }
 }
 

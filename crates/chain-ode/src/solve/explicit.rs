@@ -10,8 +10,8 @@
 //! * retrying a non-finite trial [`NONFINITE_SHRINK`] times smaller (ending
 //!   `diverged` at the floor);
 //! * the PI step-size controller, with each method's [`Control`];
-//! * Hairer's stiffness counter and `auto`'s handover
-//!   ([`Settings::stop_when_stiff`]);
+//! * Hairer's stiffness counter, which tells the observer
+//!   ([`Observer::stiff`]: `auto` hands over from there);
 //! * the cancel check ([`Observer::stop`]) before every attempt.
 //!
 //! The arithmetic is the methods' own loops', operation for operation.
@@ -117,7 +117,7 @@ pub(crate) fn lambda_estimate(ka: &[f64], kb: &[f64], y1: &[f64], ys: &[f64]) ->
 /// observers see every accepted step with `f1 = f(t1, y1)` and the pair's
 /// interpolant; the run ends on `t_end` or with a status, at the last
 /// finite state. Every right-hand side is counted.
-pub(crate) fn run<P: Pair, S: OdeSystem>(
+pub(crate) fn run<P: Pair, S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -231,13 +231,8 @@ fn steps<P: Pair, S: OdeSystem>(
             }
             last_rejected = false;
             h = h_new;
-            // Hand over only where the implicit method should be cheaper:
-            // its dense LU costs O(dim^3) per factorisation, while the
-            // explicit cost per unit time grows like dim |lambda|.
-            if stiff_now && o.stop_when_stiff && lambda > o.switch_lambda && t < t_end {
-                let mut out = Outcome::ended(Status::Ok, t, None, stats, y);
-                out.stiff_at = Some(t);
-                return out;
+            if stiff_now {
+                obs.stiff(t, lambda);
             }
         } else {
             stats.rejected_steps += 1;

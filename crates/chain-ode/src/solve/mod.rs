@@ -36,7 +36,7 @@ use crate::state::State;
 use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
 pub use integrator::Accuracy;
-use integrator::Settings;
+use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
 
 /// An integration method. The variant is the public handle; its name and
@@ -451,15 +451,13 @@ pub fn solve(
     );
     let clock = Instant::now();
     let settings = Settings::of(options);
-    let outcome = registry::run(
-        method,
-        &mut sys,
-        0.0,
-        &y0,
-        options.t_end,
-        &settings,
-        &mut obs,
-    );
+    let span = Span {
+        t0: 0.0,
+        y0: &y0,
+        t_end: options.t_end,
+        settings: &settings,
+    };
+    let Run { outcome, segments } = registry::run(method, &mut sys, &span, &mut obs);
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
@@ -499,7 +497,7 @@ pub fn solve(
         t_reached: outcome.t_reached,
         t_failed,
         stats: outcome.stats,
-        segments: outcome.segments,
+        segments,
         summary,
         times: std::mem::take(&mut obs.times),
         states: std::mem::take(&mut obs.states),
@@ -555,7 +553,13 @@ mod tests {
                     steps: 0,
                     t_last: f64::NAN,
                 };
-                let out = registry::run(method, &mut sys, 0.0, &y0, 4.0, &settings, &mut obs);
+                let span = Span {
+                    t0: 0.0,
+                    y0: &y0,
+                    t_end: 4.0,
+                    settings: &settings,
+                };
+                let out = registry::run(method, &mut sys, &span, &mut obs).outcome;
                 assert_eq!(out.status, Status::Interrupted, "{method}, k = {k}");
                 assert_eq!(out.stats.steps, k, "{method}, k = {k}");
                 assert_eq!(obs.steps, k, "{method}, k = {k}");

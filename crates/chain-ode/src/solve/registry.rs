@@ -4,10 +4,9 @@
 
 use std::sync::OnceLock;
 
-use super::integrator::{Integrator, Settings};
+use super::integrator::{Integrator, Run, Span};
 use super::{auto, bdf, bdf_dense, dop853, dopri5, rk4, Method, Segment};
-use crate::ode::{Observer, Outcome};
-use crate::system::ChainSystem;
+use crate::ode::{Observer, Problem};
 
 /// Every method, in the order figures list them. Adding a method: its file,
 /// its `Method` variant, its arm in [`integrator`] (the compiler asks for
@@ -62,26 +61,23 @@ pub(crate) fn accepted_names() -> &'static str {
     })
 }
 
-/// Runs `method` from `(t0, y0)` to `t_end` and records the span it
-/// covered (a method that runs others, `auto`, records theirs instead).
+/// Runs `method` on `problem` over `span` and records the span it covered
+/// (a method that runs others, `auto`, records theirs instead).
 pub(crate) fn run(
     method: Method,
-    sys: &mut ChainSystem,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    settings: &Settings,
+    problem: &mut dyn Problem,
+    span: &Span<'_>,
     obs: &mut dyn Observer,
-) -> Outcome {
-    let mut out = integrator(method).integrate(sys, t0, y0, t_end, settings, obs);
-    if out.segments.is_empty() {
-        out.segments.push(Segment {
+) -> Run {
+    let mut run = integrator(method).integrate(problem, span, obs);
+    if run.segments.is_empty() {
+        run.segments.push(Segment {
             method,
-            t_start: t0,
-            t_end: out.t_reached,
+            t_start: span.t0,
+            t_end: run.outcome.t_reached,
         });
     }
-    out
+    run
 }
 
 #[cfg(test)]

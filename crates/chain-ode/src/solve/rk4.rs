@@ -1,14 +1,13 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension.
 
-use super::integrator::{Integrator, Settings};
+use super::integrator::{Integrator, Run, Span};
 use crate::ode::{
-    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
+    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Problem, Stats, Status, StepView,
 };
-use crate::system::ChainSystem;
 
 /// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
-pub(crate) fn integrate<S: OdeSystem>(
+pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -116,16 +115,9 @@ impl Integrator for Rk4 {
         false
     }
 
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings.dt, settings.max_steps, obs)
+    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
+        let (s, o) = (span, span.settings);
+        integrate(problem, s.t0, s.y0, s.t_end, o.dt, o.max_steps, obs).into()
     }
 }
 
