@@ -75,6 +75,7 @@ impl Observer for Watch<'_> {
         self.inner.step(step)
     }
     fn stiff(&mut self, t: f64, lambda: f64) {
+        self.inner.stiff(t, lambda);
         // Hand over only where the implicit method should be cheaper: its
         // LU costs grow with the problem, while the explicit cost per unit
         // time grows like dim |lambda|.
@@ -88,54 +89,49 @@ impl Observer for Watch<'_> {
 }
 
 /// `auto`: runs [`Method::auto_plan`]'s methods through the registry.
-pub(crate) struct Auto;
+pub(crate) const AUTO: Integrator = Integrator {
+    name: "auto",
+    adaptive: true,
+    run,
+};
 
-impl Integrator for Auto {
-    fn name(&self) -> &'static str {
-        "auto"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-        let (explicit, switch_lambda) = plan(problem, span.settings.rtol);
-        let Some(explicit) = explicit else {
-            return registry::run(Method::Bdf, problem, span, obs);
-        };
-        let mut watch = Watch {
-            inner: obs,
-            switch_lambda,
-            t_end: span.t_end,
-            stiff_at: None,
-        };
-        let first = registry::run(explicit, problem, span, &mut watch);
-        let handover = watch
-            .stiff_at
-            .filter(|_| first.outcome.status == Status::Interrupted);
-        let Some(t_switch) = handover else {
-            return first;
-        };
-        let done = first.outcome.stats;
-        // What is left of the step budget.
-        let settings = Settings {
-            max_steps: span
-                .settings
-                .max_steps
-                .saturating_sub(done.steps + done.rejected_steps)
-                .max(1),
-            ..*span.settings
-        };
-        let rest = Span {
-            t0: t_switch,
-            y0: &first.outcome.y_end,
-            t_end: span.t_end,
-            settings: &settings,
-        };
-        let mut second = registry::run(Method::Bdf, problem, &rest, obs);
-        second.outcome.stats += done;
-        second.segments.splice(0..0, first.segments);
-        second
-    }
+/// The explicit method until the watcher hands over, then BDF from there.
+fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
+    let (explicit, switch_lambda) = plan(problem, span.settings.rtol);
+    let Some(explicit) = explicit else {
+        return registry::run(Method::Bdf, problem, span, obs);
+    };
+    let mut watch = Watch {
+        inner: obs,
+        switch_lambda,
+        t_end: span.t_end,
+        stiff_at: None,
+    };
+    let first = registry::run(explicit, problem, span, &mut watch);
+    let handover = watch
+        .stiff_at
+        .filter(|_| first.outcome.status == Status::Interrupted);
+    let Some(t_switch) = handover else {
+        return first;
+    };
+    let done = first.outcome.stats;
+    // What is left of the step budget.
+    let settings = Settings {
+        max_steps: span
+            .settings
+            .max_steps
+            .saturating_sub(done.steps + done.rejected_steps)
+            .max(1),
+        ..*span.settings
+    };
+    let rest = Span {
+        t0: t_switch,
+        y0: &first.outcome.y_end,
+        t_end: span.t_end,
+        settings: &settings,
+    };
+    let mut second = registry::run(Method::Bdf, problem, &rest, obs);
+    second.outcome.stats += done;
+    second.segments.splice(0..0, first.segments);
+    second
 }

@@ -34,7 +34,7 @@ use diffsol::{
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
 use super::diffsol_driver::{drive, slice, slice_mut, Driven};
-use super::integrator::{Integrator, Run, Settings, Span};
+use super::integrator::{Integrator, Settings};
 use super::sparse_lu::{LuLog, SparseLu};
 use crate::ode::{
     all_finite, BandedDae, Observer, Outcome, Problem, SemiExplicitDae, Stats, Status,
@@ -353,19 +353,8 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
 }
 
 /// `bdf`: diffsol's BDF on the problem's banded DAE, O(n) per step.
-pub(crate) struct SparseBdf;
-
-impl Integrator for SparseBdf {
-    fn name(&self) -> &'static str {
-        "bdf"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-        let s = span;
-        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
-    }
-}
+pub(crate) const BDF: Integrator = Integrator {
+    name: "bdf",
+    adaptive: true,
+    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};

@@ -11,8 +11,8 @@ use std::cell::{Cell, RefCell};
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
 use super::diffsol_driver::{drive, Driven};
-use super::integrator::{Integrator, Run, Settings, Span};
-use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Problem, Stats, Status};
+use super::integrator::{Integrator, Settings};
+use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
 
 type Mat = FaerMat<f64>;
 type Lu = FaerLU<f64>;
@@ -122,22 +122,11 @@ fn run<S: OdeSystem>(
 
 /// `bdf-dense`: diffsol's BDF on the explicit form, dense LU: the O(n^3)
 /// reference for `bdf`.
-pub(crate) struct BdfDense;
-
-impl Integrator for BdfDense {
-    fn name(&self) -> &'static str {
-        "bdf-dense"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-        let s = span;
-        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
-    }
-}
+pub(crate) const BDF_DENSE: Integrator = Integrator {
+    name: "bdf-dense",
+    adaptive: true,
+    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};
 
 #[cfg(test)]
 mod tests {

@@ -16,8 +16,8 @@ use std::cell::RefCell;
 
 use super::dop853_tableau::{B, BHH, D, DENSE_STAGES, ER, SLOTS, STAGES};
 use super::explicit::{self, lambda_estimate, Control, Pair};
-use super::integrator::{Integrator, Run, Settings, Span};
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Problem, StepView};
+use super::integrator::{Integrator, Settings};
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, StepView};
 
 /// PI controller: exponents and limits (Hairer's DOP853 defaults), and the
 /// stiffness test `h |lambda| > 6.1`.
@@ -290,22 +290,11 @@ impl Pair for Stages {
 }
 
 /// `dop853`: Dormand–Prince 8(5,3), adaptive, for tight tolerances.
-pub(crate) struct Dop853;
-
-impl Integrator for Dop853 {
-    fn name(&self) -> &'static str {
-        "dop853"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-        let s = span;
-        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
-    }
-}
+pub(crate) const DOP853: Integrator = Integrator {
+    name: "dop853",
+    adaptive: true,
+    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};
 
 #[cfg(test)]
 mod tests {

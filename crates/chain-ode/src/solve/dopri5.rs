@@ -3,9 +3,9 @@
 //! fourth-order dense output, and Hairer's stiffness detection.
 
 use super::explicit::{self, lambda_estimate, Control, Pair};
-use super::integrator::{Integrator, Run, Settings, Span};
+use super::integrator::{Integrator, Settings};
 use super::step_size::rms_norm;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, Problem, StepView};
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, StepView};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -256,22 +256,11 @@ impl Pair for Stages {
 }
 
 /// `dopri5`: Dormand–Prince 5(4), adaptive.
-pub(crate) struct Dopri5;
-
-impl Integrator for Dopri5 {
-    fn name(&self) -> &'static str {
-        "dopri5"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-        let s = span;
-        integrate(problem, s.t0, s.y0, s.t_end, s.settings, obs).into()
-    }
-}
+pub(crate) const DOPRI5: Integrator = Integrator {
+    name: "dopri5",
+    adaptive: true,
+    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};
 
 #[cfg(test)]
 mod tests {

@@ -26,33 +26,33 @@ impl Accuracy {
 
 /// A method: its name, what kind it is, and how it runs any [`Problem`].
 ///
-/// Every method is one file with one implementation of this trait, listed by
-/// one line in [`super::registry`]. Its work counters come from the system it
+/// Every method is one file with one constant of this type, listed by one
+/// line in [`super::registry`]. Its work counters come from the system it
 /// is handed wrapped in a [`Counted`](crate::ode::Counted), never from
 /// counting by hand.
-pub(crate) trait Integrator {
+pub(crate) struct Integrator {
     /// The name on the command line, in scenes and in output. A contract:
     /// never renamed.
-    fn name(&self) -> &'static str;
-
+    pub name: &'static str,
     /// True if the step adapts to `rtol`/`atol`.
-    fn adaptive(&self) -> bool;
+    pub adaptive: bool,
+    /// Integrates a problem over a span, showing the observer every
+    /// accepted step. Never panics and never returns a NaN: a failure is a
+    /// status with the last finite state. Leaves `segments` empty unless
+    /// the method runs others (then it lists theirs).
+    pub run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
+}
 
+impl Integrator {
     /// The parameter that sets the accuracy: `rtol` for adaptive methods,
     /// `dt` for fixed-step ones.
-    fn accuracy(&self) -> Accuracy {
-        if self.adaptive() {
+    pub fn accuracy(&self) -> Accuracy {
+        if self.adaptive {
             Accuracy::Tolerance
         } else {
             Accuracy::Step
         }
     }
-
-    /// Integrates `problem` over `span`, showing `obs` every accepted step.
-    /// Never panics and never returns a NaN: a failure is a status with the
-    /// last finite state. Leaves `segments` empty unless the method runs
-    /// others (then it lists theirs).
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run;
 }
 
 /// What a method is asked: from `(t0, y0)` to `t_end`, with `settings`.

@@ -68,12 +68,12 @@ impl Method {
 
     /// The name used on the command line, in scenes and in output.
     pub fn as_str(self) -> &'static str {
-        registry::integrator(self).name()
+        registry::integrator(self).name
     }
 
     /// True if the method adapts its step to `rtol`/`atol`.
     pub fn adaptive(self) -> bool {
-        registry::integrator(self).adaptive()
+        registry::integrator(self).adaptive
     }
 
     /// The parameter that sets the method's accuracy.

@@ -33,14 +33,14 @@ pub(crate) const fn methods<const N: usize>() -> [Method; N] {
 }
 
 /// The integrator of `method`: one for every variant, by construction.
-pub(crate) fn integrator(method: Method) -> &'static dyn Integrator {
+pub(crate) fn integrator(method: Method) -> &'static Integrator {
     match method {
-        Method::Rk4 => &rk4::Rk4,
-        Method::Dopri5 => &dopri5::Dopri5,
-        Method::Dop853 => &dop853::Dop853,
-        Method::Bdf => &bdf::SparseBdf,
-        Method::BdfDense => &bdf_dense::BdfDense,
-        Method::Auto => &auto::Auto,
+        Method::Rk4 => &rk4::RK4,
+        Method::Dopri5 => &dopri5::DOPRI5,
+        Method::Dop853 => &dop853::DOP853,
+        Method::Bdf => &bdf::BDF,
+        Method::BdfDense => &bdf_dense::BDF_DENSE,
+        Method::Auto => &auto::AUTO,
     }
 }
 
@@ -49,14 +49,14 @@ pub(crate) fn named(name: &str) -> Option<Method> {
     REGISTRY
         .iter()
         .copied()
-        .find(|&m| integrator(m).name() == name)
+        .find(|&m| integrator(m).name == name)
 }
 
 /// `"one of rk4, dopri5, ..."`: the accepted names, for error messages.
 pub(crate) fn accepted_names() -> &'static str {
     static TEXT: OnceLock<String> = OnceLock::new();
     TEXT.get_or_init(|| {
-        let names: Vec<&str> = REGISTRY.iter().map(|&m| integrator(m).name()).collect();
+        let names: Vec<&str> = REGISTRY.iter().map(|&m| integrator(m).name).collect();
         format!("one of {}", names.join(", "))
     })
 }
@@ -69,7 +69,7 @@ pub(crate) fn run(
     span: &Span<'_>,
     obs: &mut dyn Observer,
 ) -> Run {
-    let mut run = integrator(method).integrate(problem, span, obs);
+    let mut run = (integrator(method).run)(problem, span, obs);
     if run.segments.is_empty() {
         run.segments.push(Segment {
             method,
@@ -90,9 +90,9 @@ mod tests {
             let i = integrator(m);
             assert_eq!(Method::ALL[k], m);
             assert_eq!(REGISTRY.iter().filter(|&&x| x == m).count(), 1);
-            assert_eq!(m.as_str(), i.name());
-            assert_eq!(named(i.name()), Some(m));
-            assert_eq!(i.name().parse::<Method>(), Ok(m));
+            assert_eq!(m.as_str(), i.name);
+            assert_eq!(named(i.name), Some(m));
+            assert_eq!(i.name.parse::<Method>(), Ok(m));
         }
         assert_eq!(
             accepted_names(),

@@ -1,9 +1,9 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension.
 
-use super::integrator::{Integrator, Run, Span};
+use super::integrator::Integrator;
 use crate::ode::{
-    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Problem, Stats, Status, StepView,
+    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
 };
 
 /// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
@@ -104,22 +104,22 @@ fn steps<S: OdeSystem>(
 }
 
 /// `rk4`: classical fixed-step RK4; `dt` sets its accuracy.
-pub(crate) struct Rk4;
-
-impl Integrator for Rk4 {
-    fn name(&self) -> &'static str {
-        "rk4"
-    }
-
-    fn adaptive(&self) -> bool {
-        false
-    }
-
-    fn integrate(&self, problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-        let (s, o) = (span, span.settings);
-        integrate(problem, s.t0, s.y0, s.t_end, o.dt, o.max_steps, obs).into()
-    }
-}
+pub(crate) const RK4: Integrator = Integrator {
+    name: "rk4",
+    adaptive: false,
+    run: |p, s, obs| {
+        integrate(
+            p,
+            s.t0,
+            s.y0,
+            s.t_end,
+            s.settings.dt,
+            s.settings.max_steps,
+            obs,
+        )
+        .into()
+    },
+};
 
 #[cfg(test)]
 mod tests {
