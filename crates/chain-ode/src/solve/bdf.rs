@@ -322,14 +322,7 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
     };
     let eqn = &problem.eqn;
     let driven = if solver.set_stop_time(t_end).is_err() {
-        // t_end is within rounding of t0: there is nothing to integrate.
-        Driven {
-            status: Status::Ok,
-            t: t_end,
-            t_failed: None,
-            discarded: 0,
-            y,
-        }
+        Driven::nothing_to_do(t_end, y)
     } else {
         // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
         let mut own = |t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(t, y, f);

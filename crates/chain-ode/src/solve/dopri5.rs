@@ -5,7 +5,7 @@
 use super::explicit::{self, lambda_estimate, Control, Pair};
 use super::integrator::{Integrator, Settings};
 use super::step_size::rms_norm;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, Outcome, StepView};
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, StepView};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -142,19 +142,6 @@ pub(crate) fn attempt<S: OdeSystem>(
     }
 }
 
-/// Integrates from `t0` to `t_end` through the one step loop
-/// ([`explicit::run`]).
-pub(crate) fn integrate<S: OdeSystem + ?Sized>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    explicit::run::<Stages, S>(sys, t0, y0, t_end, o, obs)
-}
-
 /// DOPRI5's buffers: the stages `k1..k7`, the sixth stage's state, the
 /// error estimate and the dense-output coefficients.
 pub(crate) struct Stages {
@@ -259,7 +246,7 @@ impl Pair for Stages {
 pub(crate) const DOPRI5: Integrator = Integrator {
     name: "dopri5",
     adaptive: true,
-    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+    run: |p, s, obs| explicit::run::<Stages, _>(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
 };
 
 #[cfg(test)]

@@ -685,3 +685,44 @@ fn leaving_the_domain_of_f_mid_run_ends_diverged_where_it_left() {
         );
     }
 }
+
+#[test]
+fn a_non_finite_start_is_diverged_at_the_start() {
+    // Every method, through the registry: a NaN in y0 ends the run at t0,
+    // `diverged`, after the one right-hand side that showed it.
+    for method in Method::ALL {
+        let o = Settings {
+            dt: 0.1,
+            ..options(1e-8, 1e-10)
+        };
+        let mut sys = (OSCILLATOR.system)();
+        let out = run(method, &mut sys, 0.0, &[f64::NAN, 0.0], 1.0, &o, &mut Quiet);
+        assert_eq!(out.status, Status::Diverged, "{method}");
+        assert_eq!((out.t_reached, out.t_failed), (0.0, Some(0.0)), "{method}");
+        assert_eq!(out.stats.steps, 0, "{method}");
+    }
+}
+
+#[test]
+fn the_budget_counts_every_attempt() {
+    // Van der Pol at mu = 1000 from (2, 0): a budget of 1 to 199 attempts
+    // (accepted + rejected) ends `max_steps` with exactly that many, for
+    // every adaptive method that steps the ODE (the sparse BDF's budget is
+    // tested on the chain, tests/physics/bdf.rs).
+    for method in [Method::Dopri5, Method::Dop853, Method::BdfDense] {
+        let mut rejected_seen = false;
+        for max_steps in 1..200 {
+            let o = Settings {
+                max_steps,
+                ..options(1e-6, 1e-8)
+            };
+            let mut sys = van_der_pol(1000.0);
+            let out = run(method, &mut sys, 0.0, &[2.0, 0.0], 3000.0, &o, &mut Quiet);
+            assert_eq!(out.status, Status::MaxSteps, "{method}: budget {max_steps}");
+            assert_eq!(out.stats.steps + out.stats.rejected_steps, max_steps);
+            assert!(out.t_reached < 3000.0 && out.y_end.iter().all(|v| v.is_finite()));
+            rejected_seen |= out.stats.rejected_steps > 0;
+        }
+        assert!(rejected_seen, "{method}");
+    }
+}
