@@ -4,75 +4,13 @@
 //! embedded error estimates against the true local errors, and the dense
 //! output against the exact solution between steps.
 
-use super::integrator::{Settings, Span};
+use super::integrator::Settings;
 use super::test_problems::{
-    arenstorf, blow_up, domain_exit, max_diff, one_step, options, slope, van_der_pol, ExactCheck,
-    Known, Probe, Quiet, Toy, FORCED, GAUSSIAN, OSCILLATOR,
+    arenstorf, blow_up, domain_exit, every_adaptive, max_diff, one_step, options, run, run_dae,
+    slope, van_der_pol, ExactCheck, Known, Probe, Quiet, FORCED, GAUSSIAN, OSCILLATOR,
 };
-use super::{dop853, dopri5, registry, Method};
-use crate::ode::{Observer, OdeSystem, Outcome, Status};
-
-/// Runs `method` on `sys` from `(t0, y0)` to `t_end` through the registry,
-/// as `solve` runs the chain: RK4 with the step `o.dt`, the others with
-/// their tolerances, the sparse BDF on the toy's DAE. The work counters are
-/// the toy's own count (the sparse BDF counts its DAE's calls).
-fn run(
-    method: Method,
-    sys: &mut Toy,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    let span = Span {
-        t0,
-        y0,
-        t_end,
-        settings: o,
-    };
-    let run = registry::run(method, sys, &span, obs);
-    let out = run.outcome;
-    if run.segments.iter().all(|s| s.method != Method::Bdf) {
-        assert_eq!(out.stats.rhs_evals, sys.rhs_calls, "{method}");
-    }
-    assert_eq!(
-        run.segments.first().map(|s| s.t_start),
-        Some(t0),
-        "{method}"
-    );
-    assert_eq!(run.segments.last().map(|s| s.t_end), Some(out.t_reached));
-    out
-}
-
-/// Runs the sparse BDF on `p`'s problem from its exact state at `t0`.
-fn run_dae(p: &Known, t0: f64, t_end: f64, o: &Settings, obs: &mut dyn Observer) -> Outcome {
-    run(
-        Method::Bdf,
-        &mut (p.system)(),
-        t0,
-        &(p.exact)(t0),
-        t_end,
-        o,
-        obs,
-    )
-}
-
-/// Every adaptive method (every registered one but RK4) from `(t0, y0)` to
-/// `t_end`, quietly, each on a fresh `system()` through the registry.
-fn every_adaptive(
-    system: fn() -> Toy,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-) -> Vec<(Method, Outcome)> {
-    Method::ALL
-        .into_iter()
-        .filter(|m| m.adaptive())
-        .map(|m| (m, run(m, &mut system(), t0, y0, t_end, o, &mut Quiet)))
-        .collect()
-}
+use super::{dop853, dopri5, Method};
+use crate::ode::{OdeSystem, Status};
 
 #[test]
 fn every_method_runs_every_known_problem_through_the_registry() {

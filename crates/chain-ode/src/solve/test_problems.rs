@@ -4,9 +4,9 @@
 //! record or probe a run, and the least-squares slope behind every order
 //! measurement.
 
-use super::integrator::Settings;
-use super::SolveOptions;
-use crate::ode::{BandedDae, Observer, OdeSystem, Problem, SemiExplicitDae, StepView};
+use super::integrator::{Settings, Span};
+use super::{registry, Method, SolveOptions};
+use crate::ode::{BandedDae, Observer, OdeSystem, Outcome, Problem, SemiExplicitDae, StepView};
 
 type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
 type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
@@ -220,6 +220,74 @@ pub(crate) fn kepler_exact(t: f64) -> [f64; 4] {
 /// `y' = -1000 (y - cos t)`: stiff, `lambda = -1000`.
 pub(crate) fn relaxation() -> Toy {
     toy(1, |t, y, dy| dy[0] = -1000.0 * (y[0] - t.cos()))
+}
+
+/// Runs `method` on `sys` from `(t0, y0)` to `t_end` through the registry,
+/// as `solve` runs the chain: RK4 with the step `o.dt`, the others with
+/// their tolerances, the sparse BDF on the toy's DAE. The work counters are
+/// the toy's own count (the sparse BDF counts its DAE's calls).
+pub(crate) fn run(
+    method: Method,
+    sys: &mut Toy,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    let span = Span {
+        t0,
+        y0,
+        t_end,
+        settings: o,
+    };
+    let run = registry::run(method, sys, &span, obs);
+    let out = run.outcome;
+    if run.segments.iter().all(|s| s.method != Method::Bdf) {
+        assert_eq!(out.stats.rhs_evals, sys.rhs_calls, "{method}");
+    }
+    assert_eq!(
+        run.segments.first().map(|s| s.t_start),
+        Some(t0),
+        "{method}"
+    );
+    assert_eq!(run.segments.last().map(|s| s.t_end), Some(out.t_reached));
+    out
+}
+
+/// Runs the sparse BDF on `p`'s problem from its exact state at `t0`.
+pub(crate) fn run_dae(
+    p: &Known,
+    t0: f64,
+    t_end: f64,
+    o: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    run(
+        Method::Bdf,
+        &mut (p.system)(),
+        t0,
+        &(p.exact)(t0),
+        t_end,
+        o,
+        obs,
+    )
+}
+
+/// Every adaptive method (every registered one but RK4) from `(t0, y0)` to
+/// `t_end`, quietly, each on a fresh `system()` through the registry.
+pub(crate) fn every_adaptive(
+    system: fn() -> Toy,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+) -> Vec<(Method, Outcome)> {
+    Method::ALL
+        .into_iter()
+        .filter(|m| m.adaptive())
+        .map(|m| (m, run(m, &mut system(), t0, y0, t_end, o, &mut Quiet)))
+        .collect()
 }
 
 /// Settings of an adaptive run with these tolerances and a budget of 10^6.
