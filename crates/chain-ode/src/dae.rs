@@ -33,6 +33,7 @@
 use crate::chain::Chain;
 use crate::dynamics::{accelerations, damping_stencil, Workspace};
 use crate::kinematics::dissipation_rate;
+use crate::ode::SemiExplicitDae;
 use crate::scalar::sin_cos;
 
 /// The falling chain as `M y' = f(y)` with algebraic unknowns; see the module doc.
@@ -255,5 +256,21 @@ impl ChainDae {
             }
             out[i] = r2 * d;
         }
+    }
+}
+
+/// The sparse BDF's view of the chain. The chain is autonomous: `t` is ignored.
+impl SemiExplicitDae for ChainDae {
+    fn dim(&self) -> usize {
+        ChainDae::dim(self)
+    }
+    fn differential_dim(&self) -> usize {
+        ChainDae::differential_dim(self)
+    }
+    fn rhs(&self, _t: f64, y: &[f64], out: &mut [f64]) {
+        ChainDae::rhs(self, y, out)
+    }
+    fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        ChainDae::jacobian_entries(self, y, emit)
     }
 }

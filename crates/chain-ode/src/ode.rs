@@ -1,10 +1,14 @@
 //! The narrow interface between a problem and the integrators.
 //!
-//! A problem is an [`OdeSystem`] `y' = f(t, y)`; an integrator advances it and
-//! hands every accepted step, with its continuous extension, to an
-//! [`Observer`]. Integrators never look inside the state; observers never step.
+//! A problem is a [`Problem`]: an [`OdeSystem`] `y' = f(t, y)` that may
+//! also state itself as a banded [`SemiExplicitDae`] (for the O(n) BDF) and
+//! name the chain it models (for `auto`'s crossover). An integrator advances
+//! it and hands every accepted step, with its continuous extension, to an
+//! [`Observer`]. Integrators never look inside the state; observers never
+//! step. This module depends on no method: `solve` depends on it, never the
+//! other way.
 
-use crate::solve::Segment;
+use crate::chain::Chain;
 
 /// `y' = f(t, y)` on `R^dim`.
 pub trait OdeSystem {
@@ -25,6 +29,66 @@ impl<S: OdeSystem + ?Sized> OdeSystem for &mut S {
     }
     fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
         (**self).jvp(t, y, v, jv)
+    }
+}
+
+/// A semi-explicit DAE `M y' = f(t, y)` with the constant mass matrix
+/// `M = diag(1 (differential_dim), 0 (the rest))`: the differential unknowns
+/// come first, then the algebraic ones. The sparse BDF runs any of them;
+/// it must be of index 1 (the algebraic block of the Jacobian nonsingular).
+pub trait SemiExplicitDae {
+    /// Number of unknowns.
+    fn dim(&self) -> usize;
+    /// Number of differential unknowns: the first rows and columns.
+    fn differential_dim(&self) -> usize;
+    /// `out = f(t, y)`: the derivatives of the differential unknowns, then
+    /// the residuals of the algebraic equations.
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]);
+    /// Entries of `df/dy` at `(t, y)` as `emit(row, column, value)`. The
+    /// entries and their order must not depend on `t` or `y`: the pattern
+    /// is built once, from the start.
+    fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64));
+}
+
+impl<D: SemiExplicitDae + ?Sized> SemiExplicitDae for Box<D> {
+    fn dim(&self) -> usize {
+        (**self).dim()
+    }
+    fn differential_dim(&self) -> usize {
+        (**self).differential_dim()
+    }
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        (**self).rhs(t, y, out)
+    }
+    fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        (**self).jacobian_entries(t, y, emit)
+    }
+}
+
+/// A problem as a banded DAE: the equations, and the consistent start whose
+/// first `differential_dim` unknowns are the [`OdeSystem`]'s state.
+pub struct BandedDae {
+    pub dae: Box<dyn SemiExplicitDae>,
+    /// Every unknown at the start, the algebraic equations holding.
+    pub y0: Vec<f64>,
+}
+
+/// What every method runs: the [`OdeSystem`], and what some methods need
+/// besides. A new model implements this once and every method runs it.
+pub trait Problem: OdeSystem {
+    /// The problem as a banded index-1 DAE from the state `y0` at `t0`,
+    /// whose differential unknowns are this system's state (the O(n) BDF
+    /// runs it). `None` (the default): the problem has no such form, and
+    /// `bdf` ends at the start with `diverged`.
+    fn banded_dae(&self, _t0: f64, _y0: &[f64]) -> Option<BandedDae> {
+        None
+    }
+
+    /// The chain this problem models, if any: `auto` places its crossover
+    /// from it (without one, `auto` starts explicit and hands over at the
+    /// first stiffness detection).
+    fn chain(&self) -> Option<&Chain> {
+        None
     }
 }
 
@@ -108,6 +172,10 @@ pub trait Observer {
     fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]);
     /// Called after every accepted step.
     fn step(&mut self, step: &StepView<'_>);
+    /// Called when an explicit method's stiffness detector fires on the
+    /// accepted step ending at `t` (just shown), with its estimate
+    /// `|lambda|` (1/time). `auto` watches it to hand over.
+    fn stiff(&mut self, _t: f64, _lambda: f64) {}
     /// True once the run should stop (its [`Cancel`] was set). Every method
     /// asks before each step attempt and then ends with
     /// [`Status::Interrupted`] at its last accepted step. Called once per
@@ -263,12 +331,6 @@ pub struct Outcome {
     pub stats: Stats,
     /// The state at `t_reached`.
     pub y_end: Vec<f64>,
-    /// Set when an explicit method stopped early because the problem turned
-    /// stiff (only with `stop_when_stiff`): the time it stopped.
-    pub stiff_at: Option<f64>,
-    /// Which methods ran over which spans, for a method that runs others
-    /// (`auto`); empty otherwise (the registry records the one method).
-    pub segments: Vec<Segment>,
 }
 
 impl Outcome {
@@ -280,8 +342,6 @@ impl Outcome {
             t_failed,
             stats,
             y_end: y,
-            stiff_at: None,
-            segments: Vec::new(),
         }
     }
 }

@@ -3,9 +3,10 @@
 //! balance `E + W = E(0)` can be checked along any run.
 
 use crate::chain::Chain;
+use crate::dae::ChainDae;
 use crate::dynamics::{accelerations, Reactions, Workspace};
 use crate::kinematics::dissipation_rate;
-use crate::ode::OdeSystem;
+use crate::ode::{BandedDae, OdeSystem, Problem};
 use crate::scalar::Dual;
 
 /// The falling chain as `y' = f(y)`, with preallocated workspaces.
@@ -111,5 +112,27 @@ impl OdeSystem for ChainSystem {
 
     fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
         ChainSystem::jvp(self, t, y, v, jv)
+    }
+}
+
+/// Every method runs the chain: the explicit ones and `bdf-dense` through
+/// [`OdeSystem`], `bdf` on its banded DAE ([`ChainDae`]), `auto` with its
+/// crossover placed from the chain.
+impl Problem for ChainSystem {
+    /// [`ChainDae`] from `y0 = [phi, w, W]`, its accelerations and joint
+    /// forces made consistent by the O(n) recursion.
+    fn banded_dae(&self, _t0: f64, y0: &[f64]) -> Option<BandedDae> {
+        let dae = ChainDae::new(&self.chain);
+        let mut full = vec![0.0; dae.dim()];
+        full[..dae.differential_dim()].copy_from_slice(y0);
+        dae.make_consistent(&mut full, &mut Workspace::new(self.chain.links));
+        Some(BandedDae {
+            dae: Box::new(dae),
+            y0: full,
+        })
+    }
+
+    fn chain(&self) -> Option<&Chain> {
+        Some(&self.chain)
     }
 }

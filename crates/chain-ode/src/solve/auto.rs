@@ -3,11 +3,10 @@
 //! tolerances) until its stiffness detector keeps firing with `|lambda|`
 //! past the crossover's `48 gamma`, then BDF from that state.
 
-use super::integrator::{Integrator, Settings};
+use super::integrator::{Integrator, Run, Settings, Span};
 use super::{registry, Method};
 use crate::chain::Chain;
-use crate::ode::{Observer, Outcome};
-use crate::system::ChainSystem;
+use crate::ode::{Observer, Problem, Status, StepView};
 
 /// The damping rate `gamma = r / (m l^2)` (1/time) past which the O(n) BDF
 /// overtakes DOPRI5 on this chain, and from which `auto` runs BDF from the
@@ -43,59 +42,96 @@ impl Method {
     }
 }
 
+/// The explicit method `auto` starts with on `problem` (none: BDF from the
+/// start), and the stiffness estimate `|lambda|` (1/time) past which it
+/// hands over. A chain places both from its crossover; a problem that names
+/// no chain starts explicit and hands over at the first detection.
+fn plan(problem: &dyn Problem, rtol: f64) -> (Option<Method>, f64) {
+    match problem.chain() {
+        Some(chain) => (
+            Method::auto_plan(chain, rtol),
+            48.0 * bdf_crossover_gamma(chain),
+        ),
+        None if rtol <= AUTO_DOP853_RTOL => (Some(Method::Dop853), 0.0),
+        None => (Some(Method::Dopri5), 0.0),
+    }
+}
+
+/// Watches the explicit method for `auto`: passes everything on, and once
+/// the stiffness detector fires with `|lambda|` past `switch_lambda` (before
+/// `t_end`), asks the method to stop there: the handover.
+struct Watch<'a> {
+    inner: &'a mut dyn Observer,
+    switch_lambda: f64,
+    t_end: f64,
+    stiff_at: Option<f64>,
+}
+
+impl Observer for Watch<'_> {
+    fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]) {
+        self.inner.start(t0, y0, f0)
+    }
+    fn step(&mut self, step: &StepView<'_>) {
+        self.inner.step(step)
+    }
+    fn stiff(&mut self, t: f64, lambda: f64) {
+        self.inner.stiff(t, lambda);
+        // Hand over only where the implicit method should be cheaper: its
+        // LU costs grow with the problem, while the explicit cost per unit
+        // time grows like dim |lambda|.
+        if lambda > self.switch_lambda && t < self.t_end && self.stiff_at.is_none() {
+            self.stiff_at = Some(t);
+        }
+    }
+    fn stop(&self) -> bool {
+        self.stiff_at.is_some() || self.inner.stop()
+    }
+}
+
 /// `auto`: runs [`Method::auto_plan`]'s methods through the registry.
-pub(crate) struct Auto;
+pub(crate) const AUTO: Integrator = Integrator {
+    name: "auto",
+    adaptive: true,
+    run,
+};
 
-impl Integrator for Auto {
-    fn name(&self) -> &'static str {
-        "auto"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        let chain = sys.chain().clone();
-        let Some(explicit) = Method::auto_plan(&chain, settings.rtol) else {
-            return registry::run(Method::Bdf, sys, t0, y0, t_end, settings, obs);
-        };
-        let watch = Settings {
-            stop_when_stiff: true,
-            switch_lambda: 48.0 * bdf_crossover_gamma(&chain),
-            ..*settings
-        };
-        let first = registry::run(explicit, sys, t0, y0, t_end, &watch, obs);
-        let Some(t_switch) = first.stiff_at.filter(|_| first.status.is_ok()) else {
-            return first;
-        };
-        // What is left of the step budget.
-        let budget = Settings {
-            max_steps: settings
-                .max_steps
-                .saturating_sub(first.stats.steps + first.stats.rejected_steps)
-                .max(1),
-            ..*settings
-        };
-        let mut second = registry::run(
-            Method::Bdf,
-            sys,
-            t_switch,
-            &first.y_end,
-            t_end,
-            &budget,
-            obs,
-        );
-        second.stats += first.stats;
-        second.segments.splice(0..0, first.segments);
-        second
-    }
+/// The explicit method until the watcher hands over, then BDF from there.
+fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
+    let (explicit, switch_lambda) = plan(problem, span.settings.rtol);
+    let Some(explicit) = explicit else {
+        return registry::run(Method::Bdf, problem, span, obs);
+    };
+    let mut watch = Watch {
+        inner: obs,
+        switch_lambda,
+        t_end: span.t_end,
+        stiff_at: None,
+    };
+    let first = registry::run(explicit, problem, span, &mut watch);
+    let handover = watch
+        .stiff_at
+        .filter(|_| first.outcome.status == Status::Interrupted);
+    let Some(t_switch) = handover else {
+        return first;
+    };
+    let done = first.outcome.stats;
+    // What is left of the step budget.
+    let settings = Settings {
+        max_steps: span
+            .settings
+            .max_steps
+            .saturating_sub(done.steps + done.rejected_steps)
+            .max(1),
+        ..*span.settings
+    };
+    let rest = Span {
+        t0: t_switch,
+        y0: &first.outcome.y_end,
+        t_end: span.t_end,
+        settings: &settings,
+    };
+    let mut second = registry::run(Method::Bdf, problem, &rest, obs);
+    second.outcome.stats += done;
+    second.segments.splice(0..0, first.segments);
+    second
 }

@@ -1,6 +1,6 @@
-//! `bdf`: diffsol's BDF (variable order 1-5) on the chain as a banded,
-//! index-1 DAE ([`ChainDae`]), with sparse linear algebra: every step costs
-//! O(n).
+//! `bdf`: diffsol's BDF (variable order 1-5) on a problem's banded, index-1
+//! DAE (the chain's is `ChainDae`), with sparse linear algebra: every step
+//! of the chain costs O(n).
 //!
 //! What keeps it O(n), against diffsol's defaults:
 //! * the Jacobian's pattern is given explicitly and its values are written
@@ -18,9 +18,10 @@
 //! equations, and they jump at a whip by orders of magnitude. Step sizes
 //! are set by `phi`, `w` and `W` only, as for the explicit methods.
 //!
-//! The step loop runs any [`SemiExplicitDae`] ([`integrate_dae`]): the chain
-//! ([`ChainDae`], autonomous) through [`integrate`], and the tests' DAEs
-//! with known solutions, non-autonomous ones among them.
+//! The step loop runs any [`SemiExplicitDae`] ([`integrate_dae`]): every
+//! [`Problem`] that states itself as one ([`Problem::banded_dae`]: the
+//! chain's `ChainDae`, autonomous, and the tests' problems with known
+//! solutions, non-autonomous ones among them) through [`integrate`].
 
 use std::cell::Cell;
 use std::rc::Rc;
@@ -35,11 +36,9 @@ use faer::sparse::{Pair, SymbolicSparseColMat};
 use super::diffsol_driver::{drive, slice, slice_mut, Driven};
 use super::integrator::{Integrator, Settings};
 use super::sparse_lu::{LuLog, SparseLu};
-use crate::chain::Chain;
-use crate::dae::ChainDae;
-use crate::dynamics::Workspace;
-use crate::ode::{all_finite, Observer, Outcome, Stats, Status};
-use crate::system::ChainSystem;
+use crate::ode::{
+    all_finite, BandedDae, Observer, Outcome, Problem, SemiExplicitDae, Stats, Status,
+};
 
 type Mat = FaerSparseMat<f64>;
 type Vf = FaerVec<f64>;
@@ -47,40 +46,6 @@ type Vf = FaerVec<f64>;
 /// Absolute tolerance of the algebraic unknowns: large enough that they
 /// never weigh in the error norm (their values are below 1e8 in every scene).
 pub(crate) const ALGEBRAIC_ATOL: f64 = 1e10;
-
-/// A semi-explicit DAE `M y' = f(t, y)` with the constant mass matrix
-/// `M = diag(1 (differential_dim), 0 (the rest))`: the differential unknowns
-/// come first, then the algebraic ones. The sparse BDF runs any of them;
-/// it must be of index 1 (the algebraic block of the Jacobian nonsingular).
-pub(crate) trait SemiExplicitDae {
-    /// Number of unknowns.
-    fn dim(&self) -> usize;
-    /// Number of differential unknowns: the first rows and columns.
-    fn differential_dim(&self) -> usize;
-    /// `out = f(t, y)`: the derivatives of the differential unknowns, then
-    /// the residuals of the algebraic equations.
-    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]);
-    /// Entries of `df/dy` at `(t, y)` as `emit(row, column, value)`. The
-    /// entries and their order must not depend on `t` or `y`: the pattern
-    /// is built once, from the start.
-    fn jacobian_entries(&self, t: f64, y: &[f64], emit: impl FnMut(usize, usize, f64));
-}
-
-/// The chain is autonomous: `t` is ignored.
-impl SemiExplicitDae for ChainDae {
-    fn dim(&self) -> usize {
-        ChainDae::dim(self)
-    }
-    fn differential_dim(&self) -> usize {
-        ChainDae::differential_dim(self)
-    }
-    fn rhs(&self, _t: f64, y: &[f64], out: &mut [f64]) {
-        ChainDae::rhs(self, y, out)
-    }
-    fn jacobian_entries(&self, _t: f64, y: &[f64], emit: impl FnMut(usize, usize, f64)) {
-        ChainDae::jacobian_entries(self, y, emit)
-    }
-}
 
 /// The DAE as diffsol's `OdeEquations`, with exact call counters.
 struct DaeEquations<D> {
@@ -123,7 +88,7 @@ impl<D: SemiExplicitDae> DaeEquations<D> {
     fn new(dae: D, t0: f64, y0: Vec<f64>) -> Option<Self> {
         let dim = dae.dim();
         let mut entries = Vec::with_capacity(7 * dim);
-        dae.jacobian_entries(t0, &y0, |r, c, _| entries.push((r, c)));
+        dae.jacobian_entries(t0, &y0, &mut |r, c, _| entries.push((r, c)));
         let (jacobian_pattern, jacobian_slots) = pattern(dim, &entries)?;
         let diagonal: Vec<_> = (0..dae.differential_dim()).map(|i| (i, i)).collect();
         let (mass_pattern, _) = pattern(dim, &diagonal)?;
@@ -213,14 +178,14 @@ impl<D: SemiExplicitDae> NonLinearOpJacobian for DaeRhs<'_, D> {
         out.fill(0.0);
         self.0
             .dae
-            .jacobian_entries(t, slice(x), |r, c, j| out[r] += j * v[c]);
+            .jacobian_entries(t, slice(x), &mut |r, c, j| out[r] += j * v[c]);
     }
 
     fn jacobian_inplace(&self, x: &Vf, t: f64, y: &mut Mat) {
         let slots = &self.0.jacobian_slots;
         let values = y.inner_mut()[0].val_mut();
         let mut k = 0;
-        self.0.dae.jacobian_entries(t, slice(x), |_, _, j| {
+        self.0.dae.jacobian_entries(t, slice(x), &mut |_, _, j| {
             values[slots[k]] = j;
             k += 1;
         });
@@ -283,20 +248,26 @@ impl<D: SemiExplicitDae> OdeEquations for DaeEquations<D> {
     fn get_params(&self, _p: &mut Vf) {}
 }
 
-/// Integrates the chain from `t0` (state `y0 = [phi, w, W]`) to `t_end`.
+/// Integrates `problem` from `t0` (its state `y0`) to `t_end` on its banded
+/// DAE ([`Problem::banded_dae`]); a problem without one ends at the start,
+/// `diverged`.
 pub(crate) fn integrate(
-    chain: &Chain,
+    problem: &dyn Problem,
     t0: f64,
     y0: &[f64],
     t_end: f64,
     opts: &Settings,
     obs: &mut dyn Observer,
 ) -> Outcome {
-    let dae = ChainDae::new(chain);
-    let (d, dim) = (dae.differential_dim(), dae.dim());
-    let mut full = vec![0.0; dim];
-    full[..d].copy_from_slice(y0);
-    dae.make_consistent(&mut full, &mut Workspace::new(chain.links));
+    let Some(BandedDae { dae, y0: full }) = problem.banded_dae(t0, y0) else {
+        return Outcome::ended(
+            Status::Diverged,
+            t0,
+            Some(t0),
+            Stats::default(),
+            y0.to_vec(),
+        );
+    };
     integrate_dae(dae, t0, full, t_end, opts, obs)
 }
 
@@ -351,14 +322,7 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
     };
     let eqn = &problem.eqn;
     let driven = if solver.set_stop_time(t_end).is_err() {
-        // t_end is within rounding of t0: there is nothing to integrate.
-        Driven {
-            status: Status::Ok,
-            t: t_end,
-            t_failed: None,
-            discarded: 0,
-            y,
-        }
+        Driven::nothing_to_do(t_end, y)
     } else {
         // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
         let mut own = |t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(t, y, f);
@@ -381,28 +345,9 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
     )
 }
 
-/// `bdf`: diffsol's BDF on the banded DAE, O(n) per step. It needs the
-/// chain itself, not only the system.
-pub(crate) struct SparseBdf;
-
-impl Integrator for SparseBdf {
-    fn name(&self) -> &'static str {
-        "bdf"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys.chain(), t0, y0, t_end, settings, obs)
-    }
-}
+/// `bdf`: diffsol's BDF on the problem's banded DAE, O(n) per step.
+pub(crate) const BDF: Integrator = Integrator {
+    name: "bdf",
+    adaptive: true,
+    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};

@@ -13,7 +13,6 @@ use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 use super::diffsol_driver::{drive, Driven};
 use super::integrator::{Integrator, Settings};
 use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
-use crate::system::ChainSystem;
 
 type Mat = FaerMat<f64>;
 type Lu = FaerLU<f64>;
@@ -21,7 +20,7 @@ type Lu = FaerLU<f64>;
 /// Integrates from `t0` to `t_end` with diffsol's BDF on the explicit form.
 /// Every call to the system, diffsol's and the loop's own, goes through one
 /// [`Counted`]: `rhs_evals` is its count.
-pub(crate) fn integrate<S: OdeSystem>(
+pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -93,14 +92,7 @@ fn run<S: OdeSystem>(
         return fail_setup(stats, y);
     };
     let driven = if solver.set_stop_time(t_end).is_err() {
-        // t_end is within rounding of t0: there is nothing to integrate.
-        Driven {
-            status: Status::Ok,
-            t: t_end,
-            t_failed: None,
-            discarded: 0,
-            y,
-        }
+        Driven::nothing_to_do(t_end, y)
     } else {
         let mut own = |t: f64, y: &[f64], f: &mut [f64]| sys.borrow_mut().rhs(t, y, f);
         drive(
@@ -123,36 +115,16 @@ fn run<S: OdeSystem>(
 
 /// `bdf-dense`: diffsol's BDF on the explicit form, dense LU: the O(n^3)
 /// reference for `bdf`.
-pub(crate) struct BdfDense;
-
-impl Integrator for BdfDense {
-    fn name(&self) -> &'static str {
-        "bdf-dense"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings, obs)
-    }
-}
+pub(crate) const BDF_DENSE: Integrator = Integrator {
+    name: "bdf-dense",
+    adaptive: true,
+    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::test_problems::{
-        blow_up, options, van_der_pol, ExactCheck, Quiet, OSCILLATOR,
-    };
+    use crate::solve::test_problems::{options, van_der_pol, ExactCheck, Quiet, OSCILLATOR};
 
     #[test]
     fn oscillator_matches_the_exact_solution_with_dense_output() {
@@ -194,62 +166,5 @@ mod tests {
         // A relaxation oscillation of period ~ (3 - 2 ln 2) mu ~ 1614:
         // after 3000 time units x is on the slow branch, |x| in [1, 2].
         assert!((1.0..=2.0).contains(&out.y_end[0].abs()), "{:?}", out.y_end);
-    }
-
-    #[test]
-    fn the_budget_counts_every_attempt() {
-        let mut rejected_seen = false;
-        for max_steps in 1..200 {
-            let mut sys = van_der_pol(1000.0);
-            let o = Settings {
-                max_steps,
-                ..options(1e-6, 1e-8)
-            };
-            let out = integrate(&mut sys, 0.0, &[2.0, 0.0], 3000.0, &o, &mut Quiet);
-            assert_eq!(out.status, Status::MaxSteps, "budget {max_steps}");
-            assert_eq!(out.stats.steps + out.stats.rejected_steps, max_steps);
-            assert!(out.t_reached < 3000.0 && all_finite(&out.y_end));
-            rejected_seen |= out.stats.rejected_steps > 0;
-        }
-        assert!(rejected_seen);
-    }
-
-    #[test]
-    fn a_blow_up_ends_with_a_status_and_a_finite_state() {
-        // y' = y^2, y(0) = 1: y = 1 / (1 - t) leaves every bound at t = 1.
-        let mut sys = blow_up();
-        let out = integrate(
-            &mut sys,
-            0.0,
-            &[1.0],
-            2.0,
-            &options(1e-8, 1e-10),
-            &mut Quiet,
-        );
-        // Never `diverged`: y stays finite (~1e12) while the step shrinks
-        // to the floor; see known_solutions::a_blow_up_ends_step_size_too_small_just_before_the_pole.
-        assert_eq!(out.status, Status::StepSizeTooSmall);
-        assert!(out.t_reached < 1.0);
-        assert!(out.t_failed.is_some_and(|t| t >= out.t_reached));
-        assert!(all_finite(&out.y_end));
-        // It stopped on the numerical solution's pole: y = 1 / (t_pole - t)
-        // with t_pole = 1 to the tolerance (y itself is ill-conditioned there).
-        let t_pole = out.t_reached + 1.0 / out.y_end[0];
-        assert!((t_pole - 1.0).abs() < 1e-5, "{out:?}");
-    }
-
-    #[test]
-    fn a_non_finite_start_is_diverged() {
-        let mut sys = (OSCILLATOR.system)();
-        let out = integrate(
-            &mut sys,
-            0.0,
-            &[f64::NAN, 0.0],
-            1.0,
-            &options(1e-8, 1e-10),
-            &mut Quiet,
-        );
-        assert_eq!(out.status, Status::Diverged);
-        assert_eq!(out.t_reached, 0.0);
     }
 }

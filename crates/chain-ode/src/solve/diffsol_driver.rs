@@ -53,6 +53,18 @@ impl Interpolant for Dense<'_> {
 }
 
 impl Driven {
+    /// A run whose `t_end` is within rounding of `t0`: there is nothing to
+    /// integrate, and it ends at `t_end` in state `y`.
+    pub(crate) fn nothing_to_do(t_end: f64, y: Vec<f64>) -> Self {
+        Self {
+            status: Status::Ok,
+            t: t_end,
+            t_failed: None,
+            discarded: 0,
+            y,
+        }
+    }
+
     /// The run's outcome: steps and rejections from diffsol's statistics
     /// (a step accepted below the floor counts as rejected), one LU per
     /// linear-solver setup, and the call counts the caller made exactly.

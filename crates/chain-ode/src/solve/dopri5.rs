@@ -2,12 +2,10 @@
 //! `rtol`/`atol`, a PI step-size controller, Hairer's initial step, the
 //! fourth-order dense output, and Hairer's stiffness detection.
 
+use super::explicit::{self, lambda_estimate, Control, Pair};
 use super::integrator::{Integrator, Settings};
-use super::step_size::{initial_step, rms_norm};
-use crate::ode::{
-    all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Stats, Status, StepView,
-};
-use crate::system::ChainSystem;
+use super::step_size::rms_norm;
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, StepView};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -48,16 +46,17 @@ const D5: f64 = 701980252875.0 / 199316789632.0;
 const D6: f64 = -1453857185.0 / 822651844.0;
 const D7: f64 = 69997945.0 / 29380423.0;
 
-/// PI controller: exponents and limits (Hairer's defaults).
-const SAFETY: f64 = 0.9;
+/// PI controller: exponents and limits (Hairer's defaults), and the
+/// stiffness test `h |lambda| > 3.25`.
 const BETA: f64 = 0.04;
-const EXPO1: f64 = 0.2 - BETA * 0.75;
-const FAC_MIN: f64 = 0.2; // h_new >= 0.2 h
-const FAC_MAX: f64 = 10.0; // h_new <= 10 h
-/// Stiffness test: `h |lambda| > 3.25` on 15 accepted steps (without 6 clean ones between).
-const STIFF_HLAMBDA: f64 = 3.25;
-const STIFF_COUNT: u32 = 15;
-const NONSTIFF_RESET: u32 = 6;
+const CONTROL: Control = Control {
+    safety: 0.9,
+    beta: BETA,
+    expo1: 0.2 - BETA * 0.75,
+    fac_min: 0.2,  // h_new >= 0.2 h
+    fac_max: 10.0, // h_new <= 10 h
+    stiff_hlambda: 3.25,
+};
 
 /// The continuous extension of one step: `y(t0 + theta h)`.
 struct Dense<'a> {
@@ -143,194 +142,112 @@ pub(crate) fn attempt<S: OdeSystem>(
     }
 }
 
-/// Integrates from `t0` to `t_end`.
-pub(crate) fn integrate<S: OdeSystem>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, o, obs))
+/// DOPRI5's buffers: the stages `k1..k7`, the sixth stage's state, the
+/// error estimate and the dense-output coefficients.
+pub(crate) struct Stages {
+    k: Vec<Vec<f64>>,
+    ys: Vec<f64>,
+    err: Vec<f64>,
+    rcont: Vec<f64>,
 }
 
-fn steps<S: OdeSystem>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    let d = sys.dim();
-    let mut stats = Stats::default();
-    let mut y = y0.to_vec();
-    let mut k = vec![vec![0.0; d]; 7];
-    let (mut y1, mut ys, mut err) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
-    let mut rcont = vec![0.0; 5 * d];
+impl Pair for Stages {
+    const ORDER: u32 = 5;
+    const CONTROL: Control = CONTROL;
 
-    sys.rhs(t0, &y, &mut k[0]);
-    if !all_finite(&k[0]) {
-        return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
-    }
-    obs.start(t0, &y, &k[0]);
-
-    let span = t_end - t0;
-    let mut h = match o.h0 {
-        Some(h) => h.min(span),
-        None => initial_step(sys, t0, &y, &k[0], span, o, 5, (&mut ys, &mut err)),
-    };
-    let mut t = t0;
-    let mut fac_old: f64 = 1e-4;
-    let mut last_rejected = false;
-    let mut last_nonfinite = false;
-    let (mut stiff_steps, mut nonstiff_steps) = (0u32, 0u32);
-
-    while t < t_end {
-        if stats.steps + stats.rejected_steps >= o.max_steps {
-            return Outcome::ended(Status::MaxSteps, t, Some(t), stats, y);
-        }
-        if obs.stop() {
-            return Outcome::ended(Status::Interrupted, t, Some(t), stats, y);
-        }
-        let floor = o.floor(t);
-        if h < floor {
-            let status = if last_nonfinite {
-                Status::Diverged
-            } else {
-                Status::StepSizeTooSmall
-            };
-            return Outcome::ended(status, t, Some(t + h), stats, y);
-        }
-        // Land on t_end exactly; stretch a step that would leave a sliver.
-        let mut t1 = t + h;
-        if t1 > t_end - 1e-10 * h {
-            t1 = t_end;
-            h = t_end - t;
-        }
-
-        attempt(sys, t, t1, h, &y, &mut k, &mut ys, &mut y1, &mut err);
-        let e = rms_norm(&err, &y, &y1, o);
-
-        if !e.is_finite() || !all_finite(&y1) || !all_finite(&k[6]) {
-            // A non-finite trial: retry much smaller; give up at the floor.
-            stats.rejected_steps += 1;
-            last_rejected = true;
-            last_nonfinite = true;
-            h *= FAC_MIN;
-            continue;
-        }
-        last_nonfinite = false;
-
-        let fac11 = e.powf(EXPO1);
-        if e <= 1.0 {
-            // Accepted.
-            let fac = (fac11 / fac_old.powf(BETA) / SAFETY).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
-            let mut h_new = h / fac;
-            fac_old = e.max(1e-4);
-            stats.steps += 1;
-
-            // Stiffness detection: h |lambda| ~ h |k7 - k6| / |y1 - y_stage6|.
-            let (mut num, mut den) = (0.0, 0.0);
-            for i in 0..d {
-                num += (k[6][i] - k[5][i]).powi(2);
-                den += (y1[i] - ys[i]).powi(2);
-            }
-            let mut stiff_now = false;
-            let lambda = if den > 0.0 { (num / den).sqrt() } else { 0.0 };
-            if h * lambda > STIFF_HLAMBDA {
-                nonstiff_steps = 0;
-                stiff_steps += 1;
-                if stiff_steps == STIFF_COUNT {
-                    stats.stiffness_detections += 1;
-                    stiff_steps = 0;
-                    stiff_now = true;
-                }
-            } else {
-                nonstiff_steps += 1;
-                if nonstiff_steps == NONSTIFF_RESET {
-                    stiff_steps = 0;
-                }
-            }
-
-            // Dense output coefficients.
-            for i in 0..d {
-                let dy = y1[i] - y[i];
-                let bspl = h * k[0][i] - dy;
-                rcont[i] = y[i];
-                rcont[d + i] = dy;
-                rcont[2 * d + i] = bspl;
-                rcont[3 * d + i] = dy - h * k[6][i] - bspl;
-                rcont[4 * d + i] = h
-                    * (D1 * k[0][i]
-                        + D3 * k[2][i]
-                        + D4 * k[3][i]
-                        + D5 * k[4][i]
-                        + D6 * k[5][i]
-                        + D7 * k[6][i]);
-            }
-            obs.step(&StepView {
-                t0: t,
-                t1,
-                y0: &y,
-                y1: &y1,
-                f1: &k[6],
-                interpolant: &Dense {
-                    t0: t,
-                    h,
-                    r: &rcont,
-                },
-            });
-            std::mem::swap(&mut y, &mut y1);
-            k.swap(0, 6); // FSAL: k7 of this step is k1 of the next.
-            t = t1;
-            if last_rejected {
-                h_new = h_new.min(h);
-            }
-            last_rejected = false;
-            h = h_new;
-            // Hand over only where the implicit method should be cheaper:
-            // its dense LU costs O(dim^3) per factorisation, while the
-            // explicit cost per unit time grows like dim |lambda|.
-            if stiff_now && o.stop_when_stiff && lambda > o.switch_lambda && t < t_end {
-                let mut out = Outcome::ended(Status::Ok, t, None, stats, y);
-                out.stiff_at = Some(t);
-                return out;
-            }
-        } else {
-            stats.rejected_steps += 1;
-            last_rejected = true;
-            h /= (fac11 / SAFETY).min(1.0 / FAC_MIN);
+    fn new(d: usize) -> Self {
+        Self {
+            k: vec![vec![0.0; d]; 7],
+            ys: vec![0.0; d],
+            err: vec![0.0; d],
+            rcont: vec![0.0; 5 * d],
         }
     }
-    Outcome::ended(Status::Ok, t, None, stats, y)
+
+    fn f0_mut(&mut self) -> &mut [f64] {
+        &mut self.k[0]
+    }
+
+    fn start_buffers(&mut self) -> (&[f64], &mut [f64], &mut [f64]) {
+        (&self.k[0], &mut self.ys, &mut self.err)
+    }
+
+    fn attempt<S: OdeSystem>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        t1: f64,
+        h: f64,
+        y: &[f64],
+        y1: &mut [f64],
+        o: &Settings,
+    ) -> Option<f64> {
+        attempt(
+            sys,
+            t,
+            t1,
+            h,
+            y,
+            &mut self.k,
+            &mut self.ys,
+            y1,
+            &mut self.err,
+        );
+        let e = rms_norm(&self.err, y, y1, o);
+        (e.is_finite() && all_finite(y1) && all_finite(&self.k[6])).then_some(e)
+    }
+
+    fn lambda(&self, y1: &[f64]) -> f64 {
+        // h |lambda| ~ h |k7 - k6| / |y1 - y_stage6|.
+        lambda_estimate(&self.k[5], &self.k[6], y1, &self.ys)
+    }
+
+    fn show<S: OdeSystem>(
+        &mut self,
+        _sys: &mut S,
+        t: f64,
+        t1: f64,
+        h: f64,
+        y: &[f64],
+        y1: &[f64],
+        obs: &mut dyn Observer,
+    ) {
+        let (k, rcont) = (&self.k, &mut self.rcont);
+        let d = y.len();
+        // Dense output coefficients.
+        for i in 0..d {
+            let dy = y1[i] - y[i];
+            let bspl = h * k[0][i] - dy;
+            rcont[i] = y[i];
+            rcont[d + i] = dy;
+            rcont[2 * d + i] = bspl;
+            rcont[3 * d + i] = dy - h * k[6][i] - bspl;
+            rcont[4 * d + i] = h
+                * (D1 * k[0][i]
+                    + D3 * k[2][i]
+                    + D4 * k[3][i]
+                    + D5 * k[4][i]
+                    + D6 * k[5][i]
+                    + D7 * k[6][i]);
+        }
+        obs.step(&StepView {
+            t0: t,
+            t1,
+            y0: y,
+            y1,
+            f1: &k[6],
+            interpolant: &Dense { t0: t, h, r: rcont },
+        });
+        self.k.swap(0, 6); // FSAL: k7 of this step is k1 of the next.
+    }
 }
 
 /// `dopri5`: Dormand–Prince 5(4), adaptive.
-pub(crate) struct Dopri5;
-
-impl Integrator for Dopri5 {
-    fn name(&self) -> &'static str {
-        "dopri5"
-    }
-
-    fn adaptive(&self) -> bool {
-        true
-    }
-
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings, obs)
-    }
-}
+pub(crate) const DOPRI5: Integrator = Integrator {
+    name: "dopri5",
+    adaptive: true,
+    run: |p, s, obs| explicit::run::<Stages, _>(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+};
 
 #[cfg(test)]
 mod tests {

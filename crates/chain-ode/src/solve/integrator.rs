@@ -1,9 +1,8 @@
 //! The one interface every method implements ([`Integrator`]), what it is
 //! told ([`Settings`]) and which parameter sets its accuracy ([`Accuracy`]).
 
-use super::SolveOptions;
-use crate::ode::{Observer, Outcome};
-use crate::system::ChainSystem;
+use super::{Segment, SolveOptions};
+use crate::ode::{Observer, Outcome, Problem};
 
 /// The parameter that sets a method's accuracy.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -25,47 +24,66 @@ impl Accuracy {
     }
 }
 
-/// A method: its name, what kind it is, and how it runs a chain.
+/// A method: its name, what kind it is, and how it runs any [`Problem`].
 ///
-/// Every method is one file with one implementation of this trait, listed by
-/// one line in [`super::registry`]. Its work counters come from the system it
+/// Every method is one file with one constant of this type, listed by one
+/// line in [`super::registry`]. Its work counters come from the system it
 /// is handed wrapped in a [`Counted`](crate::ode::Counted), never from
 /// counting by hand.
-pub(crate) trait Integrator {
+pub(crate) struct Integrator {
     /// The name on the command line, in scenes and in output. A contract:
     /// never renamed.
-    fn name(&self) -> &'static str;
-
+    pub name: &'static str,
     /// True if the step adapts to `rtol`/`atol`.
-    fn adaptive(&self) -> bool;
+    pub adaptive: bool,
+    /// Integrates a problem over a span, showing the observer every
+    /// accepted step. Never panics and never returns a NaN: a failure is a
+    /// status with the last finite state. Leaves `segments` empty unless
+    /// the method runs others (then it lists theirs).
+    pub run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
+}
 
+impl Integrator {
     /// The parameter that sets the accuracy: `rtol` for adaptive methods,
     /// `dt` for fixed-step ones.
-    fn accuracy(&self) -> Accuracy {
-        if self.adaptive() {
+    pub fn accuracy(&self) -> Accuracy {
+        if self.adaptive {
             Accuracy::Tolerance
         } else {
             Accuracy::Step
         }
     }
-
-    /// Integrates from `(t0, y0)` to `t_end`, showing `obs` every accepted
-    /// step. Never panics and never returns a NaN: a failure is a status with
-    /// the last finite state. Leaves `segments` empty unless the method runs
-    /// others (then it lists theirs).
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome;
 }
 
-/// A run's options as the integrators read them: [`SolveOptions`], plus
-/// what `auto` sets when it runs another method.
+/// What a method is asked: from `(t0, y0)` to `t_end`, with `settings`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Span<'a> {
+    pub t0: f64,
+    pub y0: &'a [f64],
+    pub t_end: f64,
+    pub settings: &'a Settings,
+}
+
+/// What a method returns through the registry: its [`Outcome`] and, for a
+/// method that runs others (`auto`), which ran over which spans.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Run {
+    pub outcome: Outcome,
+    /// Empty for a method that runs alone (the registry records it).
+    pub segments: Vec<Segment>,
+}
+
+impl From<Outcome> for Run {
+    fn from(outcome: Outcome) -> Self {
+        Self {
+            outcome,
+            segments: Vec::new(),
+        }
+    }
+}
+
+/// A run's options as the integrators read them: [`SolveOptions`], plus the
+/// starting step the tests set.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Settings {
     /// Fixed step (RK4).
@@ -79,12 +97,6 @@ pub(crate) struct Settings {
     pub max_steps: u64,
     /// Initial step; `None` picks one (Hairer's algorithm for DOPRI5).
     pub h0: Option<f64>,
-    /// Explicit adaptive methods only: return as soon as the stiffness
-    /// detector fires (for `auto`).
-    pub stop_when_stiff: bool,
-    /// With `stop_when_stiff`: the stiffness estimate `|lambda|` must also
-    /// exceed this (1/time) before the method stops.
-    pub switch_lambda: f64,
 }
 
 impl Settings {
@@ -97,8 +109,6 @@ impl Settings {
             h_min: options.h_min,
             max_steps: options.max_steps,
             h0: None,
-            stop_when_stiff: false,
-            switch_lambda: 0.0,
         }
     }
 

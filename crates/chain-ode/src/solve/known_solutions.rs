@@ -6,57 +6,45 @@
 
 use super::integrator::Settings;
 use super::test_problems::{
-    arenstorf, blow_up, domain_exit, max_diff, one_step, options, slope, van_der_pol, ExactCheck,
-    Known, KnownDae, Probe, Quiet, Toy, BLOW_UP_DAE, DOMAIN_EXIT_DAE, FORCED, FORCED_DAE, GAUSSIAN,
-    GAUSSIAN_DAE, VAN_DER_POL_DAE,
+    arenstorf, blow_up, domain_exit, every_adaptive, max_diff, one_step, options, run, run_dae,
+    slope, van_der_pol, ExactCheck, Known, Probe, Quiet, FORCED, GAUSSIAN, OSCILLATOR,
 };
-use super::{bdf, bdf_dense, dop853, dopri5, rk4, Method};
-use crate::ode::{Observer, OdeSystem, Outcome, Status};
+use super::{dop853, dopri5, Method};
+use crate::ode::{OdeSystem, Status};
 
-/// Runs `method` (one that steps an [`OdeSystem`]) from `(t0, y0)` to
-/// `t_end`: RK4 with the step `o.dt`, the others with their tolerances.
-fn run(
-    method: Method,
-    sys: &mut Toy,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    let out = match method {
-        Method::Rk4 => rk4::integrate(sys, t0, y0, t_end, o.dt, o.max_steps, obs),
-        Method::Dopri5 => dopri5::integrate(sys, t0, y0, t_end, o, obs),
-        Method::Dop853 => dop853::integrate(sys, t0, y0, t_end, o, obs),
-        Method::BdfDense => bdf_dense::integrate(sys, t0, y0, t_end, o, obs),
-        _ => unreachable!("{method} does not step an OdeSystem"),
-    };
-    assert_eq!(out.stats.rhs_evals, sys.rhs_calls, "{method}");
-    out
-}
-
-/// Runs the sparse BDF on `p` from its exact (consistent) state at `t0`.
-fn run_dae(p: &KnownDae, t0: f64, t_end: f64, o: &Settings, obs: &mut dyn Observer) -> Outcome {
-    bdf::integrate_dae(*p, t0, (p.exact)(t0), t_end, o, obs)
-}
-
-/// Every adaptive method from `(t0, y0)` to `t_end`, quietly: the sparse BDF
-/// on `dae` (started from its `exact(t0)`), the others on `system()`.
-fn every_adaptive(
-    system: fn() -> Toy,
-    dae: &KnownDae,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-) -> [(Method, Outcome); 4] {
-    let explicit = |m| (m, run(m, &mut system(), t0, y0, t_end, o, &mut Quiet));
-    [
-        (Method::Bdf, run_dae(dae, t0, t_end, o, &mut Quiet)),
-        explicit(Method::BdfDense),
-        explicit(Method::Dopri5),
-        explicit(Method::Dop853),
-    ]
+#[test]
+fn every_method_runs_every_known_problem_through_the_registry() {
+    // Every `Method` variant (a new one cannot escape), on the problems
+    // with exact solutions, as the chain runs: through `registry::run`.
+    // RK4 at dt = 1e-3, the others at 1e-8; the end error over [0, 3] is
+    // bounded by 1e-5 (measured at most 6.6e-8, the BDFs').
+    for method in Method::ALL {
+        for p in [&OSCILLATOR, &GAUSSIAN, &FORCED] {
+            let o = Settings {
+                dt: 1e-3,
+                ..options(1e-8, 1e-10)
+            };
+            let mut obs = ExactCheck::new(p.exact);
+            let out = run(
+                method,
+                &mut (p.system)(),
+                0.0,
+                &(p.exact)(0.0),
+                3.0,
+                &o,
+                &mut obs,
+            );
+            let e = max_diff(&out.y_end, &(p.exact)(3.0));
+            eprintln!(
+                "{method} on {}: {} steps, end error {e:.2e}",
+                p.name, out.stats.steps
+            );
+            assert_eq!(out.status, Status::Ok, "{method} on {}", p.name);
+            assert_eq!(out.t_reached, 3.0, "{method} on {}", p.name);
+            assert_eq!(obs.steps, out.stats.steps, "{method} on {}", p.name);
+            assert!(e < 1e-5, "{method} on {}: end error {e:e}", p.name);
+        }
+    }
 }
 
 /// One step of exactly `h` from the exact state at `t0`: the step's error at
@@ -407,7 +395,7 @@ fn dense_output_follows_the_exact_solution_between_steps() {
     // The sparse BDF on the same problems written as index-1 DAEs, at
     // 1e-8: measured worst 17 tol (Gaussian) and 27 tol (forced), the
     // global error (the nodes are as far off); 4x margin.
-    for p in [&GAUSSIAN_DAE, &FORCED_DAE] {
+    for p in [&GAUSSIAN, &FORCED] {
         let tol = 1e-8;
         let mut obs = ExactCheck::new(p.exact);
         let out = run_dae(p, 0.0, 10.0, &options(tol, tol), &mut obs);
@@ -509,9 +497,11 @@ fn van_der_pol_agrees_with_a_tight_reference() {
     }
     // The sparse BDF on Van der Pol as an index-1 DAE: measured 7.1e-7 at
     // 1e-8 (bdf-dense: 5.6e-7 on the ODE). Bound ~5x.
-    let out = run_dae(
-        &VAN_DER_POL_DAE,
+    let out = run(
+        Method::Bdf,
+        &mut van_der_pol(10.0),
         0.0,
+        &[2.0, 0.0],
         20.0,
         &options(1e-8, 1e-8),
         &mut Quiet,
@@ -529,7 +519,7 @@ fn the_sparse_bdf_error_falls_with_the_tolerance() {
     // 159x (Gaussian) and 737x (forced) from 1e-5 to 1e-8, and by 352x and
     // 935x from 1e-8 to 1e-11. A method that stopped converging would fall
     // by ~1; the band is 2.5x beyond the measured extremes.
-    for p in [&GAUSSIAN_DAE, &FORCED_DAE] {
+    for p in [&GAUSSIAN, &FORCED] {
         let worst = |tol: f64| {
             let mut obs = ExactCheck::new(p.exact);
             let out = run_dae(p, 0.0, 10.0, &options(tol, tol), &mut obs);
@@ -560,7 +550,7 @@ fn a_blow_up_ends_step_size_too_small_just_before_the_pole() {
     // is the exact pole to the accuracy of the run: measured |t_pole - 1|
     // 2.9e-7 (bdf), 2.7e-7 (bdf-dense), 5.2e-10 (dopri5), 1.2e-9 (dop853).
     let o = options(1e-8, 1e-10);
-    let runs = every_adaptive(blow_up, &BLOW_UP_DAE, 0.0, &[1.0], 2.0, &o);
+    let runs = every_adaptive(blow_up, 0.0, &[1.0], 2.0, &o);
     for (method, out) in runs {
         let bound = match method {
             Method::Bdf | Method::BdfDense => 1e-6,
@@ -607,7 +597,7 @@ fn leaving_the_domain_of_f_mid_run_ends_diverged_where_it_left() {
     // and the cuts reach the floor. The status says a non-finite value
     // appeared, and the run keeps its last finite state, just short of 1.
     let o = options(1e-8, 1e-10);
-    let runs = every_adaptive(domain_exit, &DOMAIN_EXIT_DAE, 0.0, &[0.0], 2.0, &o);
+    let runs = every_adaptive(domain_exit, 0.0, &[0.0], 2.0, &o);
     for (method, out) in runs {
         eprintln!("{method} domain exit: {out:?}");
         assert_eq!(out.status, Status::Diverged, "{method}: {out:?}");
@@ -631,5 +621,46 @@ fn leaving_the_domain_of_f_mid_run_ends_diverged_where_it_left() {
             out.t_failed.is_some_and(|t| t > out.t_reached),
             "{method}: {out:?}"
         );
+    }
+}
+
+#[test]
+fn a_non_finite_start_is_diverged_at_the_start() {
+    // Every method, through the registry: a NaN in y0 ends the run at t0,
+    // `diverged`, after the one right-hand side that showed it.
+    for method in Method::ALL {
+        let o = Settings {
+            dt: 0.1,
+            ..options(1e-8, 1e-10)
+        };
+        let mut sys = (OSCILLATOR.system)();
+        let out = run(method, &mut sys, 0.0, &[f64::NAN, 0.0], 1.0, &o, &mut Quiet);
+        assert_eq!(out.status, Status::Diverged, "{method}");
+        assert_eq!((out.t_reached, out.t_failed), (0.0, Some(0.0)), "{method}");
+        assert_eq!(out.stats.steps, 0, "{method}");
+    }
+}
+
+#[test]
+fn the_budget_counts_every_attempt() {
+    // Van der Pol at mu = 1000 from (2, 0): a budget of 1 to 199 attempts
+    // (accepted + rejected) ends `max_steps` with exactly that many, for
+    // every adaptive method that steps the ODE (the sparse BDF's budget is
+    // tested on the chain, tests/physics/bdf.rs).
+    for method in [Method::Dopri5, Method::Dop853, Method::BdfDense] {
+        let mut rejected_seen = false;
+        for max_steps in 1..200 {
+            let o = Settings {
+                max_steps,
+                ..options(1e-6, 1e-8)
+            };
+            let mut sys = van_der_pol(1000.0);
+            let out = run(method, &mut sys, 0.0, &[2.0, 0.0], 3000.0, &o, &mut Quiet);
+            assert_eq!(out.status, Status::MaxSteps, "{method}: budget {max_steps}");
+            assert_eq!(out.stats.steps + out.stats.rejected_steps, max_steps);
+            assert!(out.t_reached < 3000.0 && out.y_end.iter().all(|v| v.is_finite()));
+            rejected_seen |= out.stats.rejected_steps > 0;
+        }
+        assert!(rejected_seen, "{method}");
     }
 }

@@ -11,7 +11,9 @@ mod bdf;
 mod bdf_dense;
 mod diffsol_driver;
 mod dop853;
+mod dop853_tableau;
 mod dopri5;
+mod explicit;
 mod integrator;
 #[cfg(test)]
 mod known_solutions;
@@ -34,7 +36,7 @@ use crate::state::State;
 use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
 pub use integrator::Accuracy;
-use integrator::Settings;
+use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
 
 /// An integration method. The variant is the public handle; its name and
@@ -66,12 +68,12 @@ impl Method {
 
     /// The name used on the command line, in scenes and in output.
     pub fn as_str(self) -> &'static str {
-        registry::integrator(self).name()
+        registry::integrator(self).name
     }
 
     /// True if the method adapts its step to `rtol`/`atol`.
     pub fn adaptive(self) -> bool {
-        registry::integrator(self).adaptive()
+        registry::integrator(self).adaptive
     }
 
     /// The parameter that sets the method's accuracy.
@@ -449,15 +451,13 @@ pub fn solve(
     );
     let clock = Instant::now();
     let settings = Settings::of(options);
-    let outcome = registry::run(
-        method,
-        &mut sys,
-        0.0,
-        &y0,
-        options.t_end,
-        &settings,
-        &mut obs,
-    );
+    let span = Span {
+        t0: 0.0,
+        y0: &y0,
+        t_end: options.t_end,
+        settings: &settings,
+    };
+    let Run { outcome, segments } = registry::run(method, &mut sys, &span, &mut obs);
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
@@ -497,7 +497,7 @@ pub fn solve(
         t_reached: outcome.t_reached,
         t_failed,
         stats: outcome.stats,
-        segments: outcome.segments,
+        segments,
         summary,
         times: std::mem::take(&mut obs.times),
         states: std::mem::take(&mut obs.states),
@@ -553,7 +553,13 @@ mod tests {
                     steps: 0,
                     t_last: f64::NAN,
                 };
-                let out = registry::run(method, &mut sys, 0.0, &y0, 4.0, &settings, &mut obs);
+                let span = Span {
+                    t0: 0.0,
+                    y0: &y0,
+                    t_end: 4.0,
+                    settings: &settings,
+                };
+                let out = registry::run(method, &mut sys, &span, &mut obs).outcome;
                 assert_eq!(out.status, Status::Interrupted, "{method}, k = {k}");
                 assert_eq!(out.stats.steps, k, "{method}, k = {k}");
                 assert_eq!(obs.steps, k, "{method}, k = {k}");

@@ -4,10 +4,9 @@
 
 use std::sync::OnceLock;
 
-use super::integrator::{Integrator, Settings};
+use super::integrator::{Integrator, Run, Span};
 use super::{auto, bdf, bdf_dense, dop853, dopri5, rk4, Method, Segment};
-use crate::ode::{Observer, Outcome};
-use crate::system::ChainSystem;
+use crate::ode::{Observer, Problem};
 
 /// Every method, in the order figures list them. Adding a method: its file,
 /// its `Method` variant, its arm in [`integrator`] (the compiler asks for
@@ -34,14 +33,14 @@ pub(crate) const fn methods<const N: usize>() -> [Method; N] {
 }
 
 /// The integrator of `method`: one for every variant, by construction.
-pub(crate) fn integrator(method: Method) -> &'static dyn Integrator {
+pub(crate) fn integrator(method: Method) -> &'static Integrator {
     match method {
-        Method::Rk4 => &rk4::Rk4,
-        Method::Dopri5 => &dopri5::Dopri5,
-        Method::Dop853 => &dop853::Dop853,
-        Method::Bdf => &bdf::SparseBdf,
-        Method::BdfDense => &bdf_dense::BdfDense,
-        Method::Auto => &auto::Auto,
+        Method::Rk4 => &rk4::RK4,
+        Method::Dopri5 => &dopri5::DOPRI5,
+        Method::Dop853 => &dop853::DOP853,
+        Method::Bdf => &bdf::BDF,
+        Method::BdfDense => &bdf_dense::BDF_DENSE,
+        Method::Auto => &auto::AUTO,
     }
 }
 
@@ -50,38 +49,35 @@ pub(crate) fn named(name: &str) -> Option<Method> {
     REGISTRY
         .iter()
         .copied()
-        .find(|&m| integrator(m).name() == name)
+        .find(|&m| integrator(m).name == name)
 }
 
 /// `"one of rk4, dopri5, ..."`: the accepted names, for error messages.
 pub(crate) fn accepted_names() -> &'static str {
     static TEXT: OnceLock<String> = OnceLock::new();
     TEXT.get_or_init(|| {
-        let names: Vec<&str> = REGISTRY.iter().map(|&m| integrator(m).name()).collect();
+        let names: Vec<&str> = REGISTRY.iter().map(|&m| integrator(m).name).collect();
         format!("one of {}", names.join(", "))
     })
 }
 
-/// Runs `method` from `(t0, y0)` to `t_end` and records the span it
-/// covered (a method that runs others, `auto`, records theirs instead).
+/// Runs `method` on `problem` over `span` and records the span it covered
+/// (a method that runs others, `auto`, records theirs instead).
 pub(crate) fn run(
     method: Method,
-    sys: &mut ChainSystem,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    settings: &Settings,
+    problem: &mut dyn Problem,
+    span: &Span<'_>,
     obs: &mut dyn Observer,
-) -> Outcome {
-    let mut out = integrator(method).integrate(sys, t0, y0, t_end, settings, obs);
-    if out.segments.is_empty() {
-        out.segments.push(Segment {
+) -> Run {
+    let mut run = (integrator(method).run)(problem, span, obs);
+    if run.segments.is_empty() {
+        run.segments.push(Segment {
             method,
-            t_start: t0,
-            t_end: out.t_reached,
+            t_start: span.t0,
+            t_end: run.outcome.t_reached,
         });
     }
-    out
+    run
 }
 
 #[cfg(test)]
@@ -94,9 +90,9 @@ mod tests {
             let i = integrator(m);
             assert_eq!(Method::ALL[k], m);
             assert_eq!(REGISTRY.iter().filter(|&&x| x == m).count(), 1);
-            assert_eq!(m.as_str(), i.name());
-            assert_eq!(named(i.name()), Some(m));
-            assert_eq!(i.name().parse::<Method>(), Ok(m));
+            assert_eq!(m.as_str(), i.name);
+            assert_eq!(named(i.name), Some(m));
+            assert_eq!(i.name.parse::<Method>(), Ok(m));
         }
         assert_eq!(
             accepted_names(),

@@ -1,14 +1,13 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension.
 
-use super::integrator::{Integrator, Settings};
+use super::integrator::Integrator;
 use crate::ode::{
     all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
 };
-use crate::system::ChainSystem;
 
 /// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
-pub(crate) fn integrate<S: OdeSystem>(
+pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     sys: &mut S,
     t0: f64,
     y0: &[f64],
@@ -105,29 +104,22 @@ fn steps<S: OdeSystem>(
 }
 
 /// `rk4`: classical fixed-step RK4; `dt` sets its accuracy.
-pub(crate) struct Rk4;
-
-impl Integrator for Rk4 {
-    fn name(&self) -> &'static str {
-        "rk4"
-    }
-
-    fn adaptive(&self) -> bool {
-        false
-    }
-
-    fn integrate(
-        &self,
-        sys: &mut ChainSystem,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        settings: &Settings,
-        obs: &mut dyn Observer,
-    ) -> Outcome {
-        integrate(sys, t0, y0, t_end, settings.dt, settings.max_steps, obs)
-    }
-}
+pub(crate) const RK4: Integrator = Integrator {
+    name: "rk4",
+    adaptive: false,
+    run: |p, s, obs| {
+        integrate(
+            p,
+            s.t0,
+            s.y0,
+            s.t_end,
+            s.settings.dt,
+            s.settings.max_steps,
+            obs,
+        )
+        .into()
+    },
+};
 
 #[cfg(test)]
 mod tests {

@@ -4,21 +4,42 @@
 //! record or probe a run, and the least-squares slope behind every order
 //! measurement.
 
-use super::bdf::SemiExplicitDae;
-use super::integrator::Settings;
-use super::SolveOptions;
-use crate::ode::{Observer, OdeSystem, StepView};
+use super::integrator::{Settings, Span};
+use super::{registry, Method, SolveOptions};
+use crate::ode::{BandedDae, Observer, OdeSystem, Outcome, Problem, SemiExplicitDae, StepView};
 
 type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
 type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
 
-/// A small system given by closures, counting its own calls.
+/// A small system given by closures, counting its own calls: a
+/// [`Problem`] that every method runs through the registry, as the chain.
 pub(crate) struct Toy {
     dim: usize,
     f: Rhs,
     j: Option<Jvp>,
+    /// The same problem as an index-1 DAE, for the sparse BDF.
+    dae: Option<KnownDae>,
     pub rhs_calls: u64,
     pub jvp_calls: u64,
+}
+
+/// A toy states itself as its [`KnownDae`], if it has one. The algebraic
+/// unknowns of every test DAE are the last derivatives of the ODE (`z = y'`
+/// or the acceleration `a = v'`), so the consistent start is `y0` followed
+/// by the last entries of `f(t0, y0)`.
+impl Problem for Toy {
+    fn banded_dae(&self, t0: f64, y0: &[f64]) -> Option<BandedDae> {
+        let dae = self.dae?;
+        let mut f = vec![0.0; self.dim];
+        (self.f)(t0, y0, &mut f);
+        let algebraic = dae.dim - dae.differential_dim;
+        let mut full = y0.to_vec();
+        full.extend_from_slice(&f[self.dim - algebraic..]);
+        Some(BandedDae {
+            dae: Box::new(dae),
+            y0: full,
+        })
+    }
 }
 
 impl OdeSystem for Toy {
@@ -42,6 +63,7 @@ pub(crate) fn toy(dim: usize, f: impl Fn(f64, &[f64], &mut [f64]) + 'static) -> 
         dim,
         f: Box::new(f),
         j: None,
+        dae: None,
         rhs_calls: 0,
         jvp_calls: 0,
     }
@@ -51,6 +73,12 @@ impl Toy {
     /// The same system with its Jacobian-vector product `jv = (df/dy) v`.
     pub fn with_jvp(mut self, j: impl Fn(f64, &[f64], &[f64], &mut [f64]) + 'static) -> Self {
         self.j = Some(Box::new(j));
+        self
+    }
+
+    /// The same system, stating itself as `dae` for the sparse BDF.
+    pub fn with_dae(mut self, dae: KnownDae) -> Self {
+        self.dae = Some(dae);
         self
     }
 }
@@ -74,6 +102,7 @@ pub(crate) const OSCILLATOR: Known = Known {
             jv[0] = v[1];
             jv[1] = -v[0];
         })
+        .with_dae(OSCILLATOR_DAE)
     },
     exact: |t| vec![t.cos(), -t.sin()],
 };
@@ -82,7 +111,9 @@ pub(crate) const OSCILLATOR: Known = Known {
 pub(crate) const GAUSSIAN: Known = Known {
     name: "y' = -2ty",
     system: || {
-        toy(1, |t, y, dy| dy[0] = -2.0 * t * y[0]).with_jvp(|t, _y, v, jv| jv[0] = -2.0 * t * v[0])
+        toy(1, |t, y, dy| dy[0] = -2.0 * t * y[0])
+            .with_jvp(|t, _y, v, jv| jv[0] = -2.0 * t * v[0])
+            .with_dae(GAUSSIAN_DAE)
     },
     exact: |t| vec![(-t * t).exp()],
 };
@@ -100,6 +131,7 @@ pub(crate) const FORCED: Known = Known {
             jv[0] = v[1];
             jv[1] = -v[0];
         })
+        .with_dae(FORCED_DAE)
     },
     exact: |t| {
         vec![
@@ -134,21 +166,128 @@ pub(crate) mod arenstorf {
     }
 }
 
-/// Van der Pol's oscillator `x'' = mu (1 - x^2) x' - x`, `y = [x, x']`.
+/// Van der Pol's oscillator `x'' = mu (1 - x^2) x' - x`, `y = [x, x']`
+/// (at `mu = 10`, with its DAE for the sparse BDF).
 pub(crate) fn van_der_pol(mu: f64) -> Toy {
-    toy(2, move |_t, y, dy| {
+    let toy = toy(2, move |_t, y, dy| {
         dy[0] = y[1];
         dy[1] = mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
     })
     .with_jvp(move |_t, y, v, jv| {
         jv[0] = v[1];
         jv[1] = (-2.0 * mu * y[0] * y[1] - 1.0) * v[0] + mu * (1.0 - y[0] * y[0]) * v[1];
-    })
+    });
+    if mu == 10.0 {
+        toy.with_dae(VAN_DER_POL_DAE)
+    } else {
+        toy
+    }
 }
 
 /// `y' = y^2`, `y(0) = 1`: `y = 1 / (1 - t)` leaves every bound at `t = 1`.
 pub(crate) fn blow_up() -> Toy {
-    toy(1, |_t, y, dy| dy[0] = y[0] * y[0]).with_jvp(|_t, y, v, jv| jv[0] = 2.0 * y[0] * v[0])
+    toy(1, |_t, y, dy| dy[0] = y[0] * y[0])
+        .with_jvp(|_t, y, v, jv| jv[0] = 2.0 * y[0] * v[0])
+        .with_dae(BLOW_UP_DAE)
+}
+
+/// Eccentricity of the Kepler test orbit (`a = 1`, `mu = 1`, period `2 pi`).
+pub(crate) const ECC: f64 = 0.5;
+
+/// Kepler's problem: `y = [q, p]`, `q'' = -q / |q|^3`.
+pub(crate) fn kepler() -> Toy {
+    toy(4, |_t, y, dy| {
+        let r3 = y[0].hypot(y[1]).powi(3);
+        dy[0] = y[2];
+        dy[1] = y[3];
+        dy[2] = -y[0] / r3;
+        dy[3] = -y[1] / r3;
+    })
+}
+
+/// The orbit through periapsis `(1 - e, 0)` at `t = 0`, from Kepler's equation.
+pub(crate) fn kepler_exact(t: f64) -> [f64; 4] {
+    let mut ea = t + ECC * t.sin();
+    for _ in 0..50 {
+        ea -= (ea - ECC * ea.sin() - t) / (1.0 - ECC * ea.cos());
+    }
+    let (s, c) = ea.sin_cos();
+    let b = (1.0 - ECC * ECC).sqrt();
+    let den = 1.0 - ECC * c;
+    [c - ECC, b * s, -s / den, b * c / den]
+}
+
+/// `y' = -1000 (y - cos t)`: stiff, `lambda = -1000`.
+pub(crate) fn relaxation() -> Toy {
+    toy(1, |t, y, dy| dy[0] = -1000.0 * (y[0] - t.cos()))
+}
+
+/// Runs `method` on `sys` from `(t0, y0)` to `t_end` through the registry,
+/// as `solve` runs the chain: RK4 with the step `o.dt`, the others with
+/// their tolerances, the sparse BDF on the toy's DAE. The work counters are
+/// the toy's own count (the sparse BDF counts its DAE's calls).
+pub(crate) fn run(
+    method: Method,
+    sys: &mut Toy,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    let span = Span {
+        t0,
+        y0,
+        t_end,
+        settings: o,
+    };
+    let run = registry::run(method, sys, &span, obs);
+    let out = run.outcome;
+    if run.segments.iter().all(|s| s.method != Method::Bdf) {
+        assert_eq!(out.stats.rhs_evals, sys.rhs_calls, "{method}");
+    }
+    assert_eq!(
+        run.segments.first().map(|s| s.t_start),
+        Some(t0),
+        "{method}"
+    );
+    assert_eq!(run.segments.last().map(|s| s.t_end), Some(out.t_reached));
+    out
+}
+
+/// Runs the sparse BDF on `p`'s problem from its exact state at `t0`.
+pub(crate) fn run_dae(
+    p: &Known,
+    t0: f64,
+    t_end: f64,
+    o: &Settings,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    run(
+        Method::Bdf,
+        &mut (p.system)(),
+        t0,
+        &(p.exact)(t0),
+        t_end,
+        o,
+        obs,
+    )
+}
+
+/// Every adaptive method (every registered one but RK4) from `(t0, y0)` to
+/// `t_end`, quietly, each on a fresh `system()` through the registry.
+pub(crate) fn every_adaptive(
+    system: fn() -> Toy,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    o: &Settings,
+) -> Vec<(Method, Outcome)> {
+    Method::ALL
+        .into_iter()
+        .filter(|m| m.adaptive())
+        .map(|m| (m, run(m, &mut system(), t0, y0, t_end, o, &mut Quiet)))
+        .collect()
 }
 
 /// Settings of an adaptive run with these tolerances and a budget of 10^6.
@@ -221,11 +360,10 @@ impl Observer for Probe {
 /// Where a [`KnownDae`] writes its Jacobian's entries: `(row, column, value)`.
 type Emit<'a> = &'a mut dyn FnMut(usize, usize, f64);
 
-/// A semi-explicit index-1 DAE for the sparse BDF, with its consistent start
-/// at `t0` and (where known) its exact solution.
+/// A semi-explicit index-1 DAE for the sparse BDF: a [`Toy`]'s problem with
+/// its last derivatives as algebraic unknowns ([`Toy::with_dae`]).
 #[derive(Clone, Copy)]
 pub(crate) struct KnownDae {
-    pub name: &'static str,
     /// Number of unknowns.
     pub dim: usize,
     /// Number of differential unknowns (the first ones).
@@ -233,8 +371,6 @@ pub(crate) struct KnownDae {
     pub rhs: fn(f64, &[f64], &mut [f64]),
     /// The Jacobian's entries, always the same ones in the same order.
     pub jacobian: fn(f64, &[f64], Emit<'_>),
-    /// Every unknown at `t`, consistent.
-    pub exact: fn(f64) -> Vec<f64>,
 }
 
 impl SemiExplicitDae for KnownDae {
@@ -247,15 +383,32 @@ impl SemiExplicitDae for KnownDae {
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
         (self.rhs)(t, y, out)
     }
-    fn jacobian_entries(&self, t: f64, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
-        (self.jacobian)(t, y, &mut emit)
+    fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        (self.jacobian)(t, y, emit)
     }
 }
+
+/// `x' = v`, `v' = a`, `0 = a + x`: [`OSCILLATOR`] with the acceleration as
+/// an algebraic unknown.
+pub(crate) const OSCILLATOR_DAE: KnownDae = KnownDae {
+    dim: 3,
+    differential_dim: 2,
+    rhs: |_t, y, out| {
+        out[0] = y[1];
+        out[1] = y[2];
+        out[2] = y[2] + y[0];
+    },
+    jacobian: |_t, _y, emit| {
+        emit(0, 1, 1.0);
+        emit(1, 2, 1.0);
+        emit(2, 0, 1.0);
+        emit(2, 2, 1.0);
+    },
+};
 
 /// `y' = z`, `0 = z + 2 t y`: [`GAUSSIAN`] with its derivative as an
 /// algebraic unknown.
 pub(crate) const GAUSSIAN_DAE: KnownDae = KnownDae {
-    name: "y' = z, 0 = z + 2ty",
     dim: 2,
     differential_dim: 1,
     rhs: |t, y, out| {
@@ -267,16 +420,11 @@ pub(crate) const GAUSSIAN_DAE: KnownDae = KnownDae {
         emit(1, 0, 2.0 * t);
         emit(1, 1, 1.0);
     },
-    exact: |t| {
-        let y = (-t * t).exp();
-        vec![y, -2.0 * t * y]
-    },
 };
 
 /// `x' = v`, `v' = a`, `0 = a + x - cos 2t`: [`FORCED`] with the
 /// acceleration as an algebraic unknown.
 pub(crate) const FORCED_DAE: KnownDae = KnownDae {
-    name: "x' = v, v' = a, 0 = a + x - cos 2t",
     dim: 3,
     differential_dim: 2,
     rhs: |t, y, out| {
@@ -290,17 +438,11 @@ pub(crate) const FORCED_DAE: KnownDae = KnownDae {
         emit(2, 0, 1.0);
         emit(2, 2, 1.0);
     },
-    exact: |t| {
-        let xv = (FORCED.exact)(t);
-        let a = -xv[0] + (2.0 * t).cos();
-        vec![xv[0], xv[1], a]
-    },
 };
 
 /// Van der Pol as `x' = v`, `v' = a`, `0 = a - (mu (1 - x^2) v - x)` with
 /// `mu = 10` (no closed form: `exact` only gives the start `(2, 0)`).
 pub(crate) const VAN_DER_POL_DAE: KnownDae = KnownDae {
-    name: "van der Pol, mu = 10, as a DAE",
     dim: 3,
     differential_dim: 2,
     rhs: |_t, y, out| {
@@ -315,12 +457,10 @@ pub(crate) const VAN_DER_POL_DAE: KnownDae = KnownDae {
         emit(2, 1, -10.0 * (1.0 - y[0] * y[0]));
         emit(2, 2, 1.0);
     },
-    exact: |_t| vec![2.0, 0.0, -2.0],
 };
 
 /// `y' = z`, `0 = z - y^2`, `y(0) = 1`: [`blow_up`] as a DAE, `y = 1 / (1 - t)`.
 pub(crate) const BLOW_UP_DAE: KnownDae = KnownDae {
-    name: "y' = z, 0 = z - y^2",
     dim: 2,
     differential_dim: 1,
     rhs: |_t, y, out| {
@@ -332,10 +472,6 @@ pub(crate) const BLOW_UP_DAE: KnownDae = KnownDae {
         emit(1, 0, -2.0 * y[0]);
         emit(1, 1, 1.0);
     },
-    exact: |t| {
-        let y = 1.0 / (1.0 - t);
-        vec![y, y * y]
-    },
 };
 
 /// `y' = 1` while `y <= 1`, not finite past it (as `sqrt(1 - y)` is not):
@@ -344,11 +480,11 @@ pub(crate) fn domain_exit() -> Toy {
     let f = |y: f64| 1.0 + 0.0 * (1.0 - y).sqrt();
     toy(1, move |_t, y, dy| dy[0] = f(y[0]))
         .with_jvp(|_t, y, v, jv| jv[0] = if y[0] <= 1.0 { 0.0 } else { f64::NAN } * v[0])
+        .with_dae(DOMAIN_EXIT_DAE)
 }
 
 /// [`domain_exit`] as `y' = z`, `0 = z - 1 - 0 sqrt(1 - y)`.
 pub(crate) const DOMAIN_EXIT_DAE: KnownDae = KnownDae {
-    name: "y' = z, 0 = z - 1 - 0 sqrt(1 - y)",
     dim: 2,
     differential_dim: 1,
     rhs: |_t, y, out| {
@@ -360,7 +496,6 @@ pub(crate) const DOMAIN_EXIT_DAE: KnownDae = KnownDae {
         emit(1, 0, if y[0] <= 1.0 { 0.0 } else { f64::NAN });
         emit(1, 1, 1.0);
     },
-    exact: |t| vec![t, 1.0],
 };
 
 /// `f(t, y)` as a value, for checking what a method reports as `f1`.
