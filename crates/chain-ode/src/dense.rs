@@ -65,5 +65,5 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
             q += w[i] * a[(i, j)] * w[j];
         }
     }
-    0.5 * chain.mass * chain.rod_length().powi(2) * q
+    0.5 * chain.mass() * chain.rod_length().powi(2) * q
 }

@@ -57,7 +57,7 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
         jx += nx;
         jy += ny;
     }
-    0.5 * chain.mass * chain.rod_length().powi(2) * twice
+    0.5 * chain.mass() * chain.rod_length().powi(2) * twice
 }
 
 /// Potential energy `m g l sum_i q_i sin phi_i`, zero at the height of `P0`.
@@ -68,7 +68,7 @@ pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
         .enumerate()
         .map(|(i, p)| ((n - i - 1) as f64 + 0.5) * p.sin())
         .sum();
-    chain.mass * chain.gravity * chain.rod_length() * sum
+    chain.mass() * chain.gravity() * chain.rod_length() * sum
 }
 
 /// Total mechanical energy `T + V`.
@@ -78,5 +78,5 @@ pub fn energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
 
 /// Dissipation rate `2R = r sum_{i>=2} (w_i - w_{i-1})^2 = -dE/dt` (power, >= 0).
 pub fn dissipation_rate(chain: &Chain, w: &[f64]) -> f64 {
-    chain.damping * w.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
+    chain.damping() * w.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
 }

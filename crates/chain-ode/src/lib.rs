@@ -44,7 +44,7 @@ mod solve;
 mod state;
 mod system;
 
-pub use chain::{Chain, InvalidParameter, MAX_LINKS};
+pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use solve::{

@@ -15,7 +15,7 @@ use crate::dense::mt;
 /// time. If the symmetric eigenvalue iteration does not converge (never
 /// seen: the matrix is finite and symmetric), every entry is NaN.
 pub fn hanging_frequencies(chain: &Chain) -> Vec<f64> {
-    let n = chain.links;
+    let n = chain.links();
     let qs: Vec<f64> = (0..n)
         .map(|i| 1.0 / ((n - i) as f64 - 0.5).sqrt())
         .collect();

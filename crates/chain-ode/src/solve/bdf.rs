@@ -296,7 +296,7 @@ pub(crate) fn integrate(
     let (d, dim) = (dae.differential_dim(), dae.dim());
     let mut full = vec![0.0; dim];
     full[..d].copy_from_slice(y0);
-    dae.make_consistent(&mut full, &mut Workspace::new(chain.links));
+    dae.make_consistent(&mut full, &mut Workspace::new(chain.links()));
     integrate_dae(dae, t0, full, t_end, opts, obs)
 }
 
