@@ -2,7 +2,7 @@
 //! and the continuous maximum of the tip speed. One O(n) pass per step.
 
 use crate::chain::Chain;
-use crate::kinematics::{energy, tip_velocity, Vec2};
+use crate::kinematics::{energy, lever_arm, tip_velocity, RodSums, Vec2};
 use crate::ode::{Cancel, Observer, StepView};
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
@@ -16,26 +16,26 @@ pub(crate) struct Metrics {
 pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     let n = chain.links();
     let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
-    let (mut jx, mut jy) = (0.0, 0.0);
+    // The kinematics' per-rod kernel, the potential's lever arms, and the
+    // tip acceleration, in one pass.
+    let mut sums = RodSums::default();
     let (mut ax, mut ay) = (0.0, 0.0);
-    let (mut twice_t, mut v) = (0.0, 0.0);
+    let mut v = 0.0;
     for i in 0..n {
         let (s, c) = crate::scalar::sin_cos(phi[i]);
         let (wi, ai) = (w[i], acc[i]);
-        let (nx, ny) = (-s * wi, c * wi);
-        let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
-        twice_t += cx * cx + cy * cy + wi * wi / 12.0;
-        v += ((n - i) as f64 - 0.5) * s;
-        jx += nx;
-        jy += ny;
+        sums.add(s, c, wi);
+        v += lever_arm(n, i) * s;
         ax += -ai * s - wi * wi * c;
         ay += ai * c - wi * wi * s;
     }
     let l = chain.rod_length();
+    // `T + V` as `kinematics::energy` states it; the products are kept in
+    // the order the committed data were made with (`m l l`, then 1/2).
     let ml2 = chain.mass() * l * l;
     Metrics {
-        energy: 0.5 * ml2 * twice_t + chain.mass() * chain.gravity() * l * v,
-        tip_velocity: [l * jx, l * jy],
+        energy: 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v,
+        tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }
 }
