@@ -431,3 +431,67 @@ fn fuzzed_scenes_end_with_a_status_or_one_line() {
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The scene keys the fuzzer leaves at their defaults: free text, the
+/// pivot (every start is drawn about `P0 = [0, 0]`; not drawn yet), and the
+/// angles start's rates (its angles are drawn). Each must be a key.
+const NOT_FUZZED: [&str; 3] = ["description", "start.p0", "start.rates"];
+
+/// The fuzzer draws every key of the scene schema but [`NOT_FUZZED`]: a key
+/// added to `schema::KEYS` fails here until the fuzzer draws it (or it is
+/// listed above).
+#[test]
+fn the_fuzzer_draws_every_scene_key() {
+    let dir = scratch("fuzz-keys");
+    let mut drawn: Vec<String> = vec![];
+    for kind in 0..KINDS.len() {
+        let case = Case {
+            command: 0,
+            length: 6.0,
+            links: 4,
+            mass: 0.2,
+            gravity: 1.0,
+            damping: 0.0,
+            kind,
+            p1: (3.0, 0.0),
+            p1_on_circle: false,
+            down: 2,
+            t_end: 1.0,
+            method: 0,
+            dt: 0.01,
+            rtol: 1e-8,
+            atol: 1e-10,
+            output_dt: 0.01,
+            h_min: 0.0,
+            extra: 1,
+            with_out: false,
+        };
+        let tree: toml::Table = case.scene_text().parse().unwrap();
+        for (top, value) in &tree {
+            match value.as_table() {
+                Some(section) => drawn.extend(section.keys().map(|k| format!("{top}.{k}"))),
+                None => drawn.push(top.clone()),
+            }
+        }
+        // Keys set on the command line.
+        let args = case.args(&dir);
+        for pair in args.windows(2).filter(|p| p[0] == "--set") {
+            drawn.extend(pair[1].split_once('=').map(|(k, _)| k.to_string()));
+        }
+    }
+    fs::remove_dir_all(&dir).unwrap();
+    for path in NOT_FUZZED {
+        assert!(
+            falling_chain::schema::key(path).is_some(),
+            "{path} is not a key"
+        );
+        assert!(!drawn.iter().any(|d| d == path), "{path} is fuzzed");
+    }
+    for k in falling_chain::schema::KEYS {
+        assert!(
+            NOT_FUZZED.contains(&k.path) || drawn.iter().any(|d| d == k.path),
+            "the fuzzer never draws {}",
+            k.path
+        );
+    }
+}

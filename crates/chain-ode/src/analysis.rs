@@ -20,38 +20,21 @@ pub const J0_ZEROS: [f64; 5] = [
 
 /// The continuum frequencies of the hanging chain, `omega_k = (j_{0,k}/2) sqrt(g/L)`.
 pub fn bessel_frequencies(chain: &Chain) -> [f64; 5] {
-    let s = (chain.gravity / chain.length).sqrt();
+    let s = (chain.gravity() / chain.length()).sqrt();
     J0_ZEROS.map(|j| 0.5 * j * s)
 }
 
-/// The same continuous chain cut into `links` rods: `chain` refined (or
-/// coarsened) at fixed continuum properties.
-///
-/// * Length `L` and `g` are kept.
-/// * The total mass `M = n m` is kept: `m' = M / n'`.
-/// * The joint friction is kept as a continuum viscous bending moment
-///   `M_b(s) = eta * d(omega)/ds`: a joint's torque `r (w_{i+1} - w_i)`
-///   is `r l d(omega)/ds`, and the dissipated power `r sum (w_{i+1} - w_i)^2`
-///   tends to `r l * integral (d(omega)/ds)^2 ds`, so `eta = r l` is the
-///   continuum quantity and `r' = eta / l' = r n' / n`.
-///
-/// The damping rate `r / (m l^2) = eta n^4 / (M L^3)` then grows like `n^4`:
-/// the grid-scale bending modes of a viscous rope are damped that fast,
-/// which makes the refined problem stiff.
+/// The same continuous chain cut into `links` rods, at fixed total mass
+/// and bending viscosity: [`Chain::refined`], the one refinement (its
+/// documentation derives it). Every other field is carried.
 pub fn refined(chain: &Chain, links: usize) -> Result<Chain, InvalidParameter> {
-    let ratio = links as f64 / chain.links as f64;
-    Chain::new(
-        chain.length,
-        links,
-        chain.total_mass() / links as f64,
-        chain.gravity,
-        chain.damping * ratio,
-    )
+    chain.refined(links)
 }
 
-/// The continuum bending viscosity `eta = r l` of a chain (see [`refined`]).
+/// The continuum bending viscosity `eta = r l` of a chain
+/// ([`Chain::bending_viscosity`]).
 pub fn bending_viscosity(chain: &Chain) -> f64 {
-    chain.damping * chain.rod_length()
+    chain.bending_viscosity()
 }
 
 /// The force of the pivot on rod 1 (physical units) in the state

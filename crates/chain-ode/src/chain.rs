@@ -8,17 +8,19 @@ use std::fmt;
 /// catenary start.
 pub const MAX_LINKS: usize = catenary::MAX_LINKS;
 
-/// A chain of `links` equal rigid rods pinned at the anchor `P0`.
+/// The parameters of a chain, as given: plain data, not yet checked.
 ///
-/// Units are the user's (the report uses `L = 6`, `m = 0.2` per rod, `g = 1`).
-/// `mass` is **per rod**, as in the report: at fixed `damping` the damping rate
-/// `r / (m l^2)` grows like `n^2`, so changing `links` at fixed `damping` is not
-/// a pure refinement.
+/// Build a [`Chain`] from it with [`Chain::new`], which checks every field
+/// once. Fields left out take the report's values
+/// (`..ChainParams::default()`: `L = 6`, `n = 50`, `m = 0.2`, `g = 1`, `r = 0`).
+/// Units are the user's. `mass` is **per rod**, as in the report: at fixed
+/// `damping` the damping rate `r / (m l^2)` grows like `n^2`, so changing
+/// `links` at fixed `damping` is not a pure refinement ([`Chain::refined`] is).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Chain {
+pub struct ChainParams {
     /// Total length `L` (> 0).
     pub length: f64,
-    /// Number of rods `n` (>= 1).
+    /// Number of rods `n` (in `1..=MAX_LINKS`).
     pub links: usize,
     /// Mass of one rod `m` (> 0).
     pub mass: f64,
@@ -26,6 +28,27 @@ pub struct Chain {
     pub gravity: f64,
     /// Joint friction coefficient `r` (>= 0): torque `r (w_{i+1} - w_i)` between neighbours.
     pub damping: f64,
+}
+
+impl Default for ChainParams {
+    /// The report's chain of 50 rods without friction.
+    fn default() -> Self {
+        Self {
+            length: 6.0,
+            links: 50,
+            mass: 0.2,
+            gravity: 1.0,
+            damping: 0.0,
+        }
+    }
+}
+
+/// A chain of `links` equal rigid rods pinned at the anchor `P0`: a
+/// [`ChainParams`] that has passed the range checks. Its fields are private,
+/// so that no chain skips them; read them by the accessors of the same names.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chain {
+    params: ChainParams,
 }
 
 /// A parameter outside its accepted range. `Display` is one line naming the field.
@@ -72,99 +95,153 @@ pub(crate) fn check(
 /// The accepted range of `chain.links`, in words.
 const LINKS_RANGE: &str = "an integer in 1..=1000000";
 
+/// Checks every field of `p`; the error names the first one out of range.
+/// Only [`Chain::new`] calls it.
+fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
+    let finite_pos = |x: f64| x.is_finite() && x > 0.0;
+    let finite_nonneg = |x: f64| x.is_finite() && x >= 0.0;
+    check(
+        finite_pos(p.length),
+        "chain.length",
+        "a finite number > 0",
+        p.length,
+    )?;
+    check(
+        (1..=MAX_LINKS).contains(&p.links),
+        "chain.links",
+        LINKS_RANGE,
+        p.links,
+    )?;
+    check(
+        finite_pos(p.mass),
+        "chain.mass",
+        "a finite number > 0",
+        p.mass,
+    )?;
+    check(
+        finite_nonneg(p.gravity),
+        "chain.gravity",
+        "a finite number >= 0",
+        p.gravity,
+    )?;
+    check(
+        finite_nonneg(p.damping),
+        "chain.damping",
+        "a finite number >= 0",
+        p.damping,
+    )
+}
+
 impl Chain {
-    /// A validated chain.
-    pub fn new(
-        length: f64,
-        links: usize,
-        mass: f64,
-        gravity: f64,
-        damping: f64,
-    ) -> Result<Self, InvalidParameter> {
-        let chain = Self {
-            length,
-            links,
-            mass,
-            gravity,
-            damping,
-        };
-        chain.validate()?;
-        Ok(chain)
+    /// The chain of `params`, checked; the error names the first field out
+    /// of range. This is the one place a chain is validated.
+    pub fn new(params: ChainParams) -> Result<Self, InvalidParameter> {
+        validate(&params)?;
+        Ok(Self { params })
     }
 
     /// The report's chain: `L = 6`, `m = 0.2` per rod, `g = 1`.
     pub fn report(links: usize, damping: f64) -> Result<Self, InvalidParameter> {
-        Self::new(6.0, links, 0.2, 1.0, damping)
+        Self::new(ChainParams {
+            links,
+            damping,
+            ..ChainParams::default()
+        })
     }
 
-    /// Checks every field; the error names the first one out of range.
-    pub fn validate(&self) -> Result<(), InvalidParameter> {
-        let finite_pos = |x: f64| x.is_finite() && x > 0.0;
-        let finite_nonneg = |x: f64| x.is_finite() && x >= 0.0;
-        check(
-            finite_pos(self.length),
-            "chain.length",
-            "a finite number > 0",
-            self.length,
-        )?;
-        check(
-            (1..=MAX_LINKS).contains(&self.links),
-            "chain.links",
-            LINKS_RANGE,
-            self.links,
-        )?;
-        check(
-            finite_pos(self.mass),
-            "chain.mass",
-            "a finite number > 0",
-            self.mass,
-        )?;
-        check(
-            finite_nonneg(self.gravity),
-            "chain.gravity",
-            "a finite number >= 0",
-            self.gravity,
-        )?;
-        check(
-            finite_nonneg(self.damping),
-            "chain.damping",
-            "a finite number >= 0",
-            self.damping,
-        )
+    /// The parameters it was built from.
+    pub fn params(&self) -> &ChainParams {
+        &self.params
+    }
+
+    /// Total length `L`.
+    pub fn length(&self) -> f64 {
+        self.params.length
+    }
+
+    /// Number of rods `n`.
+    pub fn links(&self) -> usize {
+        self.params.links
+    }
+
+    /// Mass of one rod `m`.
+    pub fn mass(&self) -> f64 {
+        self.params.mass
+    }
+
+    /// Gravitational acceleration `g`, along -y.
+    pub fn gravity(&self) -> f64 {
+        self.params.gravity
+    }
+
+    /// Joint friction coefficient `r`.
+    pub fn damping(&self) -> f64 {
+        self.params.damping
+    }
+
+    /// The same continuous chain cut into `links` rods: this chain refined
+    /// (or coarsened) at fixed continuum properties. Every other field is
+    /// carried unchanged. The one refinement: `analysis::refined` and
+    /// falling-chain's `converge` both call it.
+    ///
+    /// * The total mass `M = n m` is kept: `m' = M / n'`.
+    /// * The joint friction is kept as a continuum viscous bending moment
+    ///   `M_b(s) = eta * d(omega)/ds`: a joint's torque `r (w_{i+1} - w_i)`
+    ///   is `r l d(omega)/ds`, and the dissipated power
+    ///   `r sum (w_{i+1} - w_i)^2` tends to `r l * integral (d(omega)/ds)^2 ds`,
+    ///   so `eta = r l` ([`Chain::bending_viscosity`]) is the continuum
+    ///   quantity and `r' = eta / l' = r n' / n` (rounded as `(r n') / n`).
+    ///
+    /// The damping rate `r / (m l^2) = eta n^4 / (M L^3)` then grows like
+    /// `n^4`: the grid-scale bending modes of a viscous rope are damped that
+    /// fast, which makes the refined problem stiff.
+    pub fn refined(&self, links: usize) -> Result<Self, InvalidParameter> {
+        let (n, n_new) = (self.params.links as f64, links as f64);
+        Self::new(ChainParams {
+            links,
+            mass: self.total_mass() / n_new,
+            damping: self.params.damping * n_new / n,
+            ..self.params.clone()
+        })
+    }
+
+    /// The continuum bending viscosity `eta = r l` (see [`Chain::refined`]).
+    pub fn bending_viscosity(&self) -> f64 {
+        self.params.damping * self.rod_length()
     }
 
     /// Rod length `l = L / n`.
     pub fn rod_length(&self) -> f64 {
-        self.length / self.links as f64
+        self.params.length / self.params.links as f64
     }
 
     /// Total mass `M = n m`.
     pub fn total_mass(&self) -> f64 {
-        self.mass * self.links as f64
+        self.params.mass * self.params.links as f64
     }
 
     /// The chain's weight `M g`.
     pub fn weight(&self) -> f64 {
-        self.total_mass() * self.gravity
+        self.total_mass() * self.params.gravity
     }
 
     /// Damping rate `gamma = r / (m l^2)` (1/time): the stiffness parameter.
     pub fn damping_rate(&self) -> f64 {
-        self.damping / (self.mass * self.rod_length().powi(2))
+        self.params.damping / (self.params.mass * self.rod_length().powi(2))
     }
 
     /// `g / l` (1/time^2).
     pub fn gravity_rate(&self) -> f64 {
-        self.gravity / self.rod_length()
+        self.params.gravity / self.rod_length()
     }
 
     /// Energy scale `M g L`, against which energy errors are judged.
     pub fn energy_scale(&self) -> f64 {
         let w = self.weight();
         if w > 0.0 {
-            w * self.length
+            w * self.params.length
         } else {
-            self.total_mass() * self.length.powi(2)
+            self.total_mass() * self.params.length.powi(2)
         }
     }
 }
@@ -173,24 +250,101 @@ impl Chain {
 mod tests {
     use super::*;
 
+    /// `ChainParams` with `field` replaced.
+    fn with(field: &str, x: f64) -> ChainParams {
+        let mut p = ChainParams {
+            length: 1.0,
+            links: 5,
+            mass: 1.0,
+            gravity: 1.0,
+            damping: 0.0,
+        };
+        match field {
+            "chain.length" => p.length = x,
+            "chain.links" => p.links = x as usize,
+            "chain.mass" => p.mass = x,
+            "chain.gravity" => p.gravity = x,
+            _ => p.damping = x,
+        }
+        p
+    }
+
     #[test]
     fn rejects_each_bad_field_by_name() {
         let bad = [
-            (Chain::new(-1.0, 5, 1.0, 1.0, 0.0), "chain.length"),
-            (Chain::new(f64::NAN, 5, 1.0, 1.0, 0.0), "chain.length"),
-            (Chain::new(1.0, 0, 1.0, 1.0, 0.0), "chain.links"),
-            (Chain::new(1.0, 5, 0.0, 1.0, 0.0), "chain.mass"),
-            (Chain::new(1.0, 5, 1.0, f64::INFINITY, 0.0), "chain.gravity"),
-            (Chain::new(1.0, 5, 1.0, 1.0, -1e-3), "chain.damping"),
-            (Chain::new(1.0, 5, 1.0, 1.0, f64::NAN), "chain.damping"),
+            ("chain.length", -1.0),
+            ("chain.length", f64::NAN),
+            ("chain.links", 0.0),
+            ("chain.mass", 0.0),
+            ("chain.gravity", f64::INFINITY),
+            ("chain.damping", -1e-3),
+            ("chain.damping", f64::NAN),
         ];
-        for (res, field) in bad {
-            let e = res.unwrap_err();
+        for (field, x) in bad {
+            let e = Chain::new(with(field, x)).unwrap_err();
             assert_eq!(e.field, field);
             assert!(e.to_string().starts_with(field));
             assert!(!e.to_string().contains('\n'));
         }
         assert!(Chain::report(50, 5e-4).is_ok());
+        assert!(Chain::new(ChainParams::default()).is_ok());
+    }
+
+    /// The refinement carries every field: each is set to a value no
+    /// default has, and the destructuring below is exhaustive, so a field
+    /// added to `ChainParams` does not compile here until this test (and
+    /// so `Chain::refined`) says what becomes of it.
+    #[test]
+    fn refinement_carries_every_field() {
+        let given = ChainParams {
+            length: 2.5,
+            links: 40,
+            mass: 0.35,
+            gravity: 9.81,
+            damping: 3e-3,
+        };
+        assert_ne!(given, ChainParams::default());
+        let chain = Chain::new(given.clone()).unwrap();
+        let refined = chain.refined(160).unwrap();
+        let ChainParams {
+            length,
+            links,
+            mass,
+            gravity,
+            damping,
+        } = refined.params().clone();
+        // Carried as they are.
+        assert_eq!(length.to_bits(), given.length.to_bits());
+        assert_eq!(gravity.to_bits(), given.gravity.to_bits());
+        // Refined: the continuum's total mass and bending viscosity kept.
+        assert_eq!(links, 160);
+        assert_eq!(mass.to_bits(), (0.35 * 40.0 / 160.0_f64).to_bits());
+        assert_eq!(damping.to_bits(), (3e-3 * 160.0 / 40.0_f64).to_bits());
+        assert!((refined.total_mass() - chain.total_mass()).abs() < 1e-15);
+        assert!((refined.bending_viscosity() - chain.bending_viscosity()).abs() < 1e-18);
+        // And back.
+        let back = refined.refined(40).unwrap();
+        assert!((back.mass() - chain.mass()).abs() < 1e-15);
+        assert!((back.damping() - chain.damping()).abs() < 1e-18);
+        assert_eq!(back.length(), chain.length());
+        assert_eq!(back.gravity(), chain.gravity());
+    }
+
+    #[test]
+    fn accessors_read_the_params() {
+        let chain = Chain::report(7, 0.25).unwrap();
+        let p = chain.params();
+        assert_eq!(
+            (
+                chain.length(),
+                chain.links(),
+                chain.mass(),
+                chain.gravity(),
+                chain.damping()
+            ),
+            (p.length, p.links, p.mass, p.gravity, p.damping)
+        );
+        assert_eq!((p.links, p.damping), (7, 0.25));
     }
 
     #[test]

@@ -52,7 +52,7 @@ impl ChainDae {
     pub fn new(chain: &Chain) -> Self {
         Self {
             chain: chain.clone(),
-            n: chain.links,
+            n: chain.links(),
             gl: chain.gravity_rate(),
             gamma: chain.damping_rate(),
         }
@@ -245,7 +245,7 @@ impl ChainDae {
     /// written into `out` (length `n`).
     pub fn dissipation_row(&self, w: &[f64], out: &mut [f64]) {
         let n = self.n;
-        let r2 = 2.0 * self.chain.damping;
+        let r2 = 2.0 * self.chain.damping();
         for i in 0..n {
             let mut d = 0.0;
             if i > 0 {

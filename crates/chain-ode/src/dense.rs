@@ -7,6 +7,7 @@ use faer::{Mat, Side};
 
 use crate::chain::Chain;
 use crate::dynamics::damping_stencil;
+use crate::kinematics::lever_arm;
 
 /// `mt_ij`: `n - i + 1/3` on the diagonal, `n - max(i,j) + 1/2` off it (1-based).
 pub fn mt(n: usize, i: usize, j: usize) -> f64 {
@@ -15,7 +16,7 @@ pub fn mt(n: usize, i: usize, j: usize) -> f64 {
     if i == j {
         (n - k) as f64 + 1.0 / 3.0
     } else {
-        (n - k) as f64 + 0.5
+        lever_arm(n, k - 1)
     }
 }
 
@@ -35,7 +36,7 @@ pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
             let centripetal: f64 = (0..n)
                 .map(|j| mt(n, i, j) * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
-            let q = (n - i - 1) as f64 + 0.5;
+            let q = lever_arm(n, i);
             -centripetal - g * q * phi[i].cos() + gamma * damping_stencil(w, i)
         })
         .collect()
@@ -65,5 +66,5 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
             q += w[i] * a[(i, j)] * w[j];
         }
     }
-    0.5 * chain.mass * chain.rod_length().powi(2) * q
+    0.5 * chain.mass() * chain.rod_length().powi(2) * q
 }

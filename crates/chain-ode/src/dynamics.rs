@@ -89,7 +89,7 @@ pub fn accelerations<T: Scalar>(
     acc: &mut [T],
     ws: &mut Workspace<T>,
 ) -> Reactions<T> {
-    let n = chain.links;
+    let n = chain.links();
     assert!(phi.len() == n && w.len() == n && acc.len() == n && ws.len() == n);
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
@@ -153,7 +153,7 @@ pub fn accelerations<T: Scalar>(
     }
 
     let l = chain.rod_length();
-    let ml = chain.mass * l;
+    let ml = chain.mass() * l;
     Reactions {
         pivot_force: [bx * ml, by * ml],
         tip_acceleration: [ax * l, ay * l],
@@ -163,11 +163,19 @@ pub fn accelerations<T: Scalar>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::chain::ChainParams;
 
     #[test]
     fn single_rod_is_a_physical_pendulum() {
         // phi'' = -(3 g / 2 l) cos phi for a uniform rod about its end.
-        let chain = Chain::new(2.0, 1, 1.0, 9.81, 0.3).unwrap();
+        let chain = Chain::new(ChainParams {
+            length: 2.0,
+            links: 1,
+            mass: 1.0,
+            gravity: 9.81,
+            damping: 0.3,
+        })
+        .unwrap();
         let mut ws = Workspace::new(1);
         let mut acc = [0.0];
         let phi = [0.4];

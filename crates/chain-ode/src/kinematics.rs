@@ -32,43 +32,79 @@ pub fn tip(chain: &Chain, p0: Vec2, phi: &[f64]) -> Vec2 {
     })
 }
 
+/// The lever arm of rod `i` (0-based) of `n`, in rod lengths:
+/// `q_i = n - i - 1/2` (`n - i + 1/2` with 1-based `i`), the rods below it
+/// plus half of itself. It weighs rod `i`'s height in the potential energy,
+/// its gravity torque and the off-diagonal mass matrix. Exact in `f64`.
+#[inline(always)]
+pub fn lever_arm(n: usize, i: usize) -> f64 {
+    (n - i - 1) as f64 + 0.5
+}
+
+/// Running sums over the rods, from the pivot down, in rod units (lengths
+/// in `l`): the velocity of the current joint `sum_j w_j (-sin phi_j, cos phi_j)`
+/// and twice the kinetic energy in units of `m l^2`. [`RodSums::add`] is
+/// the one per-rod kernel of the tip velocity and the kinetic energy, here
+/// and in the solver's fused per-step pass (`solve/observer.rs`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct RodSums {
+    /// Velocity of the lower joint of the last rod added (the tip once
+    /// every rod is in), over `l`.
+    pub joint_velocity: Vec2,
+    /// `sum_k |v_ck|^2 + w_k^2 / 12` over the rods added, `v_ck` the centre
+    /// velocity over `l`: `T = (m l^2 / 2)` times it.
+    pub twice_kinetic: f64,
+}
+
+impl RodSums {
+    /// Adds the next rod, with `(s, c) = (sin phi, cos phi)` and rate `w`.
+    #[inline(always)]
+    pub(crate) fn add(&mut self, s: f64, c: f64, w: f64) {
+        let [jx, jy] = self.joint_velocity;
+        let (nx, ny) = (-s * w, c * w);
+        let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
+        self.twice_kinetic += cx * cx + cy * cy + w * w / 12.0;
+        self.joint_velocity = [jx + nx, jy + ny];
+    }
+
+    /// The sums over every rod of `(phi, w)`.
+    fn of(phi: &[f64], w: &[f64]) -> Self {
+        let mut sums = Self::default();
+        for (&p, &wk) in phi.iter().zip(w) {
+            let (s, c) = sin_cos(p);
+            sums.add(s, c, wk);
+        }
+        sums
+    }
+
+    /// The tip velocity, for rods of length `l`.
+    #[inline(always)]
+    pub(crate) fn tip_velocity(&self, l: f64) -> Vec2 {
+        [l * self.joint_velocity[0], l * self.joint_velocity[1]]
+    }
+}
+
 /// The exact tip velocity `l sum_j w_j (-sin phi_j, cos phi_j)`.
 pub fn tip_velocity(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec2 {
-    let l = chain.rod_length();
-    let (mut vx, mut vy) = (0.0, 0.0);
-    for (&p, &wj) in phi.iter().zip(w) {
-        let (s, c) = sin_cos(p);
-        vx -= wj * s;
-        vy += wj * c;
-    }
-    [l * vx, l * vy]
+    RodSums::of(phi, w).tip_velocity(chain.rod_length())
 }
 
 /// Kinetic energy: `sum_k (m/2)|v_ck|^2 + (J/2) w_k^2`, `J = m l^2 / 12`
 /// (equal to `(m l^2 / 2) w^T A w`).
 pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    let (mut jx, mut jy) = (0.0, 0.0); // velocity of the rod's lower joint, rod units
-    let mut twice = 0.0;
-    for (&p, &wk) in phi.iter().zip(w) {
-        let (s, c) = sin_cos(p);
-        let (nx, ny) = (-s * wk, c * wk);
-        let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
-        twice += cx * cx + cy * cy + wk * wk / 12.0;
-        jx += nx;
-        jy += ny;
-    }
-    0.5 * chain.mass * chain.rod_length().powi(2) * twice
+    0.5 * chain.mass() * chain.rod_length().powi(2) * RodSums::of(phi, w).twice_kinetic
 }
 
-/// Potential energy `m g l sum_i q_i sin phi_i`, zero at the height of `P0`.
+/// Potential energy `m g l sum_i q_i sin phi_i` ([`lever_arm`] `q_i`), zero
+/// at the height of `P0`.
 pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
     let n = phi.len();
     let sum: f64 = phi
         .iter()
         .enumerate()
-        .map(|(i, p)| ((n - i - 1) as f64 + 0.5) * p.sin())
+        .map(|(i, p)| lever_arm(n, i) * p.sin())
         .sum();
-    chain.mass * chain.gravity * chain.rod_length() * sum
+    chain.mass() * chain.gravity() * chain.rod_length() * sum
 }
 
 /// Total mechanical energy `T + V`.
@@ -78,5 +114,5 @@ pub fn energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
 
 /// Dissipation rate `2R = r sum_{i>=2} (w_i - w_{i-1})^2 = -dE/dt` (power, >= 0).
 pub fn dissipation_rate(chain: &Chain, w: &[f64]) -> f64 {
-    chain.damping * w.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
+    chain.damping() * w.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
 }

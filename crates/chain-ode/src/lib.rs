@@ -14,8 +14,9 @@
 //! The API is what a scene, a study or a test needs, and nothing of how the
 //! methods work inside:
 //!
-//! * running: [`solve`], [`Chain`], [`Start`] -> [`State`], [`Method`] (with
-//!   its [`Accuracy`] parameter), [`SolveOptions`] -> [`Trajectory`] with its
+//! * running: [`solve`], [`Chain`] (from [`ChainParams`]), [`Start`] ->
+//!   [`State`], [`Method`] (with its [`Accuracy`] parameter),
+//!   [`SolveOptions`] -> [`Trajectory`] with its
 //!   [`Summary`], [`Segment`]s, [`Stats`] and [`Status`];
 //!   [`bdf_crossover_gamma`], the damping rate past which `auto` runs BDF;
 //! * the physics the studies and the tests check the runs against:
@@ -44,7 +45,7 @@ mod solve;
 mod state;
 mod system;
 
-pub use chain::{Chain, InvalidParameter, MAX_LINKS};
+pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use solve::{

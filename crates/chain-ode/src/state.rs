@@ -89,10 +89,9 @@ impl Start {
         Ok(crate::kinematics::tip(chain, s.anchor, &s.angles))
     }
 
-    /// The initial state of `chain` (validated).
+    /// The initial state of `chain` (a `Chain` is valid by construction).
     pub fn state(&self, chain: &Chain) -> Result<State, StartError> {
-        chain.validate()?;
-        let n = chain.links;
+        let n = chain.links();
         let p0 = self.anchor();
         finite_point(p0, "start.p0")?;
         let (angles, rates) = match self {
@@ -101,16 +100,16 @@ impl Start {
                 let (dx, dy) = (p1[0] - p0[0], p1[1] - p0[1]);
                 let span = dx.hypot(dy);
                 check(
-                    (span - chain.length).abs() <= 1e-9 * chain.length,
+                    (span - chain.length()).abs() <= 1e-9 * chain.length(),
                     "start.p1",
                     "at distance chain.length from start.p0 for a stretched start",
-                    format!("|P1 - P0| = {span}, L = {}", chain.length),
+                    format!("|P1 - P0| = {span}, L = {}", chain.length()),
                 )?;
                 (vec![dy.atan2(dx); n], vec![0.0; n])
             }
             Self::Catenary { p1, .. } => {
                 finite_point(*p1, "start.p1")?;
-                let eq = catenary::discrete_equilibrium(p0, *p1, chain.length, n)
+                let eq = catenary::discrete_equilibrium(p0, *p1, chain.length(), n)
                     .map_err(StartError::Catenary)?;
                 (eq.angles, vec![0.0; n])
             }

@@ -23,7 +23,7 @@ pub struct ChainSystem {
 impl ChainSystem {
     /// The system for a validated chain.
     pub fn new(chain: &Chain) -> Self {
-        let n = chain.links;
+        let n = chain.links();
         Self {
             chain: chain.clone(),
             ws: Workspace::new(n),
@@ -50,7 +50,7 @@ impl ChainSystem {
 
     /// `dy = f(y)`, also returning the pivot force and tip acceleration.
     pub fn rhs_with_reactions(&mut self, y: &[f64], dy: &mut [f64]) -> Reactions<f64> {
-        let n = self.chain.links;
+        let n = self.chain.links();
         let (phi, rest) = y.split_at(n);
         let w = &rest[..n];
         let (dphi, drest) = dy.split_at_mut(n);
@@ -62,7 +62,7 @@ impl ChainSystem {
 
     /// Length of the state `[phi, w, W]`: `2 n + 1`.
     pub fn dim(&self) -> usize {
-        2 * self.chain.links + 1
+        2 * self.chain.links() + 1
     }
 
     /// `dy = f(y)`, O(n) and allocation-free (the system is autonomous: `t`
@@ -74,7 +74,7 @@ impl ChainSystem {
     /// The exact Jacobian-vector product `jv = (df/dy)(y) v`, by forward-mode
     /// dual numbers through the same recursion.
     pub fn jvp(&mut self, _t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
-        let n = self.chain.links;
+        let n = self.chain.links();
         for i in 0..n {
             self.dual_phi[i] = Dual::new(y[i], v[i]);
             self.dual_w[i] = Dual::new(y[n + i], v[n + i]);
@@ -96,7 +96,7 @@ impl ChainSystem {
         for i in 1..n {
             d += (w[i] - w[i - 1]) * (vw[i] - vw[i - 1]);
         }
-        jv[2 * n] = 2.0 * self.chain.damping * d;
+        jv[2 * n] = 2.0 * self.chain.damping() * d;
     }
 }
 
@@ -125,7 +125,7 @@ impl Problem for ChainSystem {
         let dae = ChainDae::new(&self.chain);
         let mut full = vec![0.0; dae.dim()];
         full[..dae.differential_dim()].copy_from_slice(y0);
-        dae.make_consistent(&mut full, &mut Workspace::new(self.chain.links));
+        dae.make_consistent(&mut full, &mut Workspace::new(self.chain.links()));
         Some(BandedDae {
             dae: Box::new(dae),
             y0: full,

@@ -63,7 +63,7 @@ struct Series {
 
 impl Series {
     fn of(traj: &Trajectory) -> Self {
-        let (samples, n) = (traj.len(), traj.chain.links);
+        let (samples, n) = (traj.len(), traj.chain.links());
         let mut s = Self {
             samples,
             links: n,
@@ -170,7 +170,7 @@ impl Run {
     /// The number of rods n.
     #[getter]
     fn links(&self) -> usize {
-        self.head.chain.links
+        self.head.chain.links()
     }
 
     /// `ok`, or how the run failed (the same as `summary["status"]`).
@@ -202,7 +202,7 @@ impl Run {
                 "sample {k} out of range (the run has {len} samples)"
             )));
         };
-        let n = self.head.chain.links;
+        let n = self.head.chain.links();
         let phi = self.phi.bind(py).readonly();
         let angles = phi
             .as_slice()
@@ -223,7 +223,7 @@ impl Run {
             "Run(scene={:?}, method={:?}, links={}, status={:?}, t_reached={}, samples={})",
             self.scene.name(),
             self.head.method.as_str(),
-            self.head.chain.links,
+            self.head.chain.links(),
             self.head.status.as_str(),
             self.head.t_reached,
             self.head.samples

@@ -36,18 +36,12 @@ pub const SCALING: &str = "total mass M = n m and bending viscosity eta = r l ke
 /// The default ladder of `n`.
 pub const DEFAULT_LINKS: [usize; 5] = [25, 50, 100, 200, 400];
 
-/// `scene` cut into `links` rods at fixed total mass and bending viscosity.
+/// `scene` cut into `links` rods at fixed total mass and bending viscosity:
+/// its chain refined by [`Chain::refined`] (the one refinement, which
+/// carries every field), written back whole ([`Scene::with_chain`]).
 pub fn refined_scene(scene: &Scene, links: usize) -> Result<Scene, Error> {
     let chain = scene.chain()?;
-    let mut s = scene.with_value("chain.links", toml::Value::Integer(links as i64))?;
-    s = s.with_value(
-        "chain.mass",
-        toml::Value::Float(chain.total_mass() / links as f64),
-    )?;
-    s = s.with_value(
-        "chain.damping",
-        toml::Value::Float(chain.damping * links as f64 / chain.links as f64),
-    )?;
+    let mut s = scene.with_chain(&chain.refined(links)?)?;
     match scene.start() {
         Start::Angles { .. } => {
             return Err(Error::field(
@@ -58,7 +52,7 @@ pub fn refined_scene(scene: &Scene, links: usize) -> Result<Scene, Error> {
         Start::Folded {
             down: Some(down), ..
         } => {
-            let scaled = (down as u128 * links as u128 / chain.links as u128) as i64;
+            let scaled = (down as u128 * links as u128 / chain.links() as u128) as i64;
             s = s.with_value("start.down", toml::Value::Integer(scaled))?;
         }
         _ => {}
@@ -79,7 +73,7 @@ pub struct Level {
 impl Level {
     /// Number of rods.
     pub fn links(&self) -> usize {
-        self.chain.links
+        self.chain.links()
     }
 }
 
@@ -146,7 +140,7 @@ fn relative_speed(v: f64, v_ref: f64, scale: f64) -> f64 {
 impl Deviation {
     /// The deviation of `level` from `reference`.
     pub fn between(level: &Level, reference: &Level) -> Self {
-        let length = reference.chain.length;
+        let length = reference.chain.length();
         let d = |a: Vec2, b: Vec2| (a[0] - b[0]).hypot(a[1] - b[1]);
         let path = level
             .track
@@ -355,8 +349,8 @@ pub fn run(
             .iter()
             .map(|l| ReportLevel {
                 links: l.links(),
-                mass: l.chain.mass,
-                damping: l.chain.damping,
+                mass: l.chain.mass(),
+                damping: l.chain.damping(),
                 damping_rate: l.chain.damping_rate(),
                 status: l.summary.status.clone(),
                 energy_start: l.summary.energy_start,
@@ -508,9 +502,9 @@ t_end = 1
         let scene = Scene::from_toml_str(text).unwrap();
         let s = refined_scene(&scene, 200).unwrap();
         let c = s.chain().unwrap();
-        assert_eq!(c.links, 200);
+        assert_eq!(c.links(), 200);
         assert!((c.total_mass() - 10.0).abs() < 1e-12);
-        assert!((c.damping * c.rod_length() - 0.001 * 0.12).abs() < 1e-15);
+        assert!((c.damping() * c.rod_length() - 0.001 * 0.12).abs() < 1e-15);
         assert_eq!(
             s.start(),
             chain_ode::Start::Folded {

@@ -29,7 +29,7 @@ pub fn trajectory_header(links: usize) -> String {
 /// with `{}`, which round-trips every `f64`. Tip position, tip velocity and
 /// energy are computed exactly from each sample's angles and rates.
 pub fn write_trajectory<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
-    writeln!(w, "{}", trajectory_header(traj.chain.links))?;
+    writeln!(w, "{}", trajectory_header(traj.chain.links()))?;
     let mut line = String::new();
     for s in traj.samples() {
         let p = tip(&traj.chain, traj.anchor, s.angles);

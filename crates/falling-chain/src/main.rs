@@ -377,7 +377,7 @@ const MAX_DRAWN_POINTS: usize = 10_000_000;
 /// Checks that `frames` drawings of the scene's chain stay within
 /// [`MAX_DRAWN_POINTS`]; the error names `flag` and its largest value here.
 fn check_drawn_points(scene: &Scene, frames: usize, flag: &'static str) -> Result<(), Error> {
-    let links = scene.chain()?.links;
+    let links = scene.chain()?.links();
     let points = frames.saturating_mul(links.saturating_add(1));
     if points > MAX_DRAWN_POINTS {
         return Err(Error::field(
@@ -449,7 +449,7 @@ fn draw_scene(
     let title = format!(
         "{} (n = {}, {})",
         scene.name(),
-        traj.chain.links,
+        traj.chain.links(),
         traj.method
     );
     let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));

@@ -27,7 +27,7 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, State, Trajectory};
+use chain_ode::{solve, Chain, ChainParams, Method, SolveOptions, Start, State, Trajectory};
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
@@ -99,7 +99,8 @@ pub struct Scene {
     tree: toml::Table,
     name: String,
     description: String,
-    chain: Chain,
+    /// As read; checked when a [`Chain`] is built ([`Scene::chain`]).
+    chain: ChainParams,
     start: Start,
     method: String,
     options: SolveOptions,
@@ -150,12 +151,21 @@ impl Scene {
             start,
             run,
         } = SceneFile::read(&tree)?;
-        let chain = Chain {
-            length: chain.length,
-            links: chain.links,
-            mass: chain.mass,
-            gravity: chain.gravity,
-            damping: chain.damping,
+        // Exhaustive both ways: a field of `ChainParams` without its key
+        // here, or a key without its field, does not compile.
+        let ChainSection {
+            length,
+            links,
+            mass,
+            gravity,
+            damping,
+        } = chain;
+        let chain = ChainParams {
+            length,
+            links,
+            mass,
+            gravity,
+            damping,
         };
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
@@ -236,8 +246,40 @@ impl Scene {
 
     /// The chain, validated by chain-ode (the error names the field).
     pub fn chain(&self) -> Result<Chain, Error> {
-        self.chain.validate()?;
-        Ok(self.chain.clone())
+        Ok(Chain::new(self.chain.clone())?)
+    }
+
+    /// The chain's parameters as read, before chain-ode's range checks.
+    pub fn chain_params(&self) -> &ChainParams {
+        &self.chain
+    }
+
+    /// This scene with every `chain.*` key set from `chain` (so that a
+    /// chain-ode [`Chain`], such as [`Chain::refined`]'s, becomes a scene
+    /// whole: every field is written, none is left at the old scene's value).
+    pub fn with_chain(&self, chain: &Chain) -> Result<Self, Error> {
+        // Exhaustive: a new field of `ChainParams` does not compile here
+        // until it is written to its key.
+        let ChainParams {
+            length,
+            links,
+            mass,
+            gravity,
+            damping,
+        } = chain.params().clone();
+        let links = i64::try_from(links)
+            .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
+        let mut tree = self.tree.clone();
+        for (path, value) in [
+            ("chain.length", toml::Value::Float(length)),
+            ("chain.links", toml::Value::Integer(links)),
+            ("chain.mass", toml::Value::Float(mass)),
+            ("chain.gravity", toml::Value::Float(gravity)),
+            ("chain.damping", toml::Value::Float(damping)),
+        ] {
+            overrides::set_path(&mut tree, path, value)?;
+        }
+        Self::from_tree(tree)
     }
 
     /// The start as written (built into a state by [`Scene::state`]).
@@ -256,7 +298,7 @@ impl Scene {
     /// many numbers `start.angles` and `start.rates` must hold.
     fn check_start(&self, chain: &Chain) -> Result<(), Error> {
         if let Start::Angles { angles, rates, .. } = &self.start {
-            let n = chain.links;
+            let n = chain.links();
             let lists = [
                 ("start.angles", Some(angles)),
                 ("start.rates", rates.as_ref()),
@@ -390,7 +432,10 @@ t_end = 4
     fn defaults_fill_what_is_left_out_and_integers_are_numbers() {
         let s = Scene::from_toml_str(SPAN).unwrap();
         let c = s.chain().unwrap();
-        assert_eq!((c.length, c.links, c.mass, c.gravity), (6.0, 10, 0.2, 1.0));
+        assert_eq!(
+            (c.length(), c.links(), c.mass(), c.gravity()),
+            (6.0, 10, 0.2, 1.0)
+        );
         assert_eq!(
             s.start(),
             Start::Catenary {
@@ -495,6 +540,120 @@ t_end = 4
         }
     }
 
+    /// A scene of each start kind that `prepare` accepts, with every key
+    /// it leaves out at its default.
+    fn valid_base(kind: StartKind) -> toml::Table {
+        let extra = match kind {
+            StartKind::Stretched => "p1 = [6, 0]",
+            StartKind::Catenary => "p1 = [3, 0]",
+            StartKind::Folded => "",
+            StartKind::Angles => "angles = [0, 0, 0, 0]",
+        };
+        format!(
+            "[chain]\nlinks = 4\n[start]\nkind = \"{}\"\n{extra}\n[run]\nt_end = 1\n",
+            kind.as_str()
+        )
+        .parse()
+        .unwrap()
+    }
+
+    /// Everything a scene builds: its name and description, and the
+    /// chain-ode values of `prepare` (`Chain`, `State`, `Method`,
+    /// `SolveOptions`).
+    fn model(tree: toml::Table) -> Result<(String, String, Prepared), Error> {
+        let s = Scene::from_tree(tree)?;
+        let prepared = s.prepare()?;
+        Ok((s.name().to_string(), s.description().to_string(), prepared))
+    }
+
+    /// `base` with `path` set to the `--set` text `text`.
+    fn set(mut base: toml::Table, path: &str, text: &str) -> toml::Table {
+        overrides::apply(&mut base, &[format!("{path}={text}")])
+            .unwrap_or_else(|e| panic!("{path}={text}: {e}"));
+        base
+    }
+
+    /// Each key of the schema reaches the model: its row's `example` (a
+    /// valid value other than the default) changes what the scene builds.
+    /// A key read into the serde structs but never used when the scene is
+    /// built, or a row whose example is not accepted anywhere, fails here.
+    #[test]
+    fn every_key_reaches_the_model() {
+        for k in schema::KEYS {
+            if k.path == schema::START_KIND {
+                // The start kind cannot be set alone (each kind has its own
+                // keys): each kind's scene must build a start of its own.
+                let starts: Vec<Start> = StartKind::ALL
+                    .iter()
+                    .map(|&kind| {
+                        model(valid_base(kind)).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+                        Scene::from_tree(valid_base(kind)).unwrap().start()
+                    })
+                    .collect();
+                for (i, a) in starts.iter().enumerate() {
+                    for b in &starts[..i] {
+                        assert!(std::mem::discriminant(a) != std::mem::discriminant(b));
+                    }
+                }
+                continue;
+            }
+            let mut accepted = 0;
+            for kind in kinds_taking(k) {
+                let before = model(valid_base(kind)).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+                let Ok(after) = model(set(valid_base(kind), k.path, k.example)) else {
+                    continue;
+                };
+                accepted += 1;
+                assert!(
+                    after != before,
+                    "{}={} ({kind:?}) changes nothing in the built scene: the key does not \
+                     reach the model (or the example is its default)",
+                    k.path,
+                    k.example
+                );
+            }
+            assert!(
+                accepted > 0,
+                "{}={}: the example is rejected for every start kind",
+                k.path,
+                k.example
+            );
+        }
+    }
+
+    /// Each key with a range has it checked: its row's `out_of_range`
+    /// value (of the right type) is rejected by an error that names the
+    /// key, wherever the row's `example` is accepted. A range check removed
+    /// (a damping of -1e-3 let through) fails here.
+    #[test]
+    fn every_range_is_checked_by_its_key() {
+        let mut checked = 0;
+        for k in schema::KEYS {
+            let Some(bad) = k.out_of_range else {
+                continue;
+            };
+            // The bad value has the key's type: the type check passes it, so
+            // only a range check can reject it.
+            if let Ok(v) = overrides::parse_value(bad) {
+                if k.path != schema::START_KIND {
+                    k.check(&k.coerce(v))
+                        .unwrap_or_else(|e| panic!("{}={bad} is not of its type: {e}", k.path));
+                }
+            }
+            for kind in kinds_taking(k) {
+                if model(set(valid_base(kind), k.path, k.example)).is_err() {
+                    continue;
+                }
+                match model(set(valid_base(kind), k.path, bad)) {
+                    Ok(_) => panic!("{}={bad} ({kind:?}) is accepted: no range check", k.path),
+                    Err(e) => assert_eq!(e.subject(), k.path, "{}={bad}: {e}", k.path),
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked >= 15, "only {checked} ranges checked");
+    }
+
     #[test]
     fn every_error_names_a_table_key() {
         let bad: &[(schema::Type, &[&str])] = &[
@@ -579,7 +738,7 @@ t_end = 4
         let t = s
             .with_overrides(&["chain.links=100", "start.p1.0=2.5", "run.t_end=1"])
             .unwrap();
-        assert_eq!(t.chain().unwrap().links, 100);
+        assert_eq!(t.chain().unwrap().links(), 100);
         assert_eq!(
             t.start(),
             Start::Catenary {

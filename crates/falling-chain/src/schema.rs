@@ -121,8 +121,19 @@ pub struct Key {
     pub ty: Type,
     pub default: DefaultValue,
     pub kinds: Kinds,
-    /// One line (markdown) for the README table.
+    /// One line (markdown) for the README table; it states the accepted
+    /// range where there is one.
     pub doc: &'static str,
+    /// A valid value other than the default, as `--set` text. Setting it
+    /// must change what the scene builds (its name or description, or the
+    /// `Chain`, `State`, `Method` or `SolveOptions` of `Scene::prepare`):
+    /// `scene::tests::every_key_reaches_the_model` sets it.
+    pub example: &'static str,
+    /// A value of the key's type outside its accepted range, as `--set`
+    /// text (`None`: every value of the type is accepted, as for `name`).
+    /// `scene::tests::every_range_is_checked_by_its_key` sets it and wants
+    /// an error naming the key: a missing range check fails it.
+    pub out_of_range: Option<&'static str>,
 }
 
 const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
@@ -136,6 +147,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Computed("the file's stem"),
         kinds: Kinds::Any,
         doc: "the scene's name (in summaries)",
+        example: "sample",
+        out_of_range: None,
     },
     Key {
         path: "description",
@@ -143,41 +156,53 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Text("")),
         kinds: Kinds::Any,
         doc: "free text: which report figure, what it shows",
+        example: "sample",
+        out_of_range: None,
     },
     Key {
         path: "chain.length",
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(6.0)),
         kinds: Kinds::Any,
-        doc: "total length `L`",
+        doc: "total length `L`, finite and > 0",
+        example: "7.5",
+        out_of_range: Some("-1"),
     },
     Key {
         path: "chain.links",
         ty: Type::Integer,
         default: DefaultValue::Required,
         kinds: Kinds::Any,
-        doc: "number of rods `n`",
+        doc: "number of rods `n`, in 1..=1000000",
+        example: "6",
+        out_of_range: Some("0"),
     },
     Key {
         path: "chain.mass",
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(0.2)),
         kinds: Kinds::Any,
-        doc: "mass of **one rod** `m`",
+        doc: "mass of **one rod** `m`, finite and > 0",
+        example: "0.375",
+        out_of_range: Some("0"),
     },
     Key {
         path: "chain.gravity",
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(1.0)),
         kinds: Kinds::Any,
-        doc: "`g`, along -y",
+        doc: "`g`, along -y, finite and >= 0",
+        example: "2.5",
+        out_of_range: Some("-1"),
     },
     Key {
         path: "chain.damping",
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(0.0)),
         kinds: Kinds::Any,
-        doc: "joint friction `r`",
+        doc: "joint friction `r`, finite and >= 0",
+        example: "0.001",
+        out_of_range: Some("-1e-3"),
     },
     Key {
         path: "start.kind",
@@ -185,6 +210,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Required,
         kinds: ALL_KINDS,
         doc: "how the chain lies at `t = 0` (see Starts below)",
+        example: "folded",
+        out_of_range: Some("zigzag"),
     },
     Key {
         path: "start.p0",
@@ -192,6 +219,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Point([0.0, 0.0])),
         kinds: ALL_KINDS,
         doc: "the pivot `P0`",
+        example: "[0.5, -0.5]",
+        out_of_range: Some("[nan, 0]"),
     },
     Key {
         path: "start.p1",
@@ -199,6 +228,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Required,
         kinds: Kinds::Only(&[StartKind::Stretched, StartKind::Catenary]),
         doc: "where the free end is held, `P1`",
+        example: "[3.6, -4.8]",
+        out_of_range: Some("[nan, 0]"),
     },
     Key {
         path: "start.down",
@@ -206,6 +237,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Computed("`links / 2`, rounded down"),
         kinds: Kinds::Only(&[StartKind::Folded]),
         doc: "rods hanging down from `P0`",
+        example: "1",
+        out_of_range: Some("1000000"),
     },
     Key {
         path: "start.angles",
@@ -213,6 +246,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Required,
         kinds: Kinds::Only(&[StartKind::Angles]),
         doc: "`phi_1..phi_n` in rad from the horizontal",
+        example: "[0.1, 0.2, 0.3, 0.4]",
+        out_of_range: Some("[nan, 0, 0, 0]"),
     },
     Key {
         path: "start.rates",
@@ -220,13 +255,17 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Computed("all `0`"),
         kinds: Kinds::Only(&[StartKind::Angles]),
         doc: "`w_1..w_n` in rad/time",
+        example: "[0.5, 0.5, 0.5, 0.5]",
+        out_of_range: Some("[nan, 0, 0, 0]"),
     },
     Key {
         path: "run.t_end",
         ty: Type::Number,
         default: DefaultValue::Required,
         kinds: Kinds::Any,
-        doc: "end time",
+        doc: "end time, finite and > 0",
+        example: "2.5",
+        out_of_range: Some("-1"),
     },
     Key {
         path: "run.method",
@@ -234,6 +273,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Text("rk4")),
         kinds: Kinds::Any,
         doc: "integration method: any name chain-ode's `Method` parses (`rk4`, `dopri5`, ...)",
+        example: "dopri5",
+        out_of_range: Some("nonesuch"),
     },
     Key {
         path: "run.dt",
@@ -241,6 +282,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Number(0.01)),
         kinds: Kinds::Any,
         doc: "fixed step of RK4: at most `run.t_end`, at least `run.t_end / run.max_steps`",
+        example: "0.005",
+        out_of_range: Some("-1"),
     },
     Key {
         path: "run.rtol",
@@ -248,6 +291,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Number(1e-8)),
         kinds: Kinds::Any,
         doc: "relative tolerance of the adaptive methods, in [1e-14, 0.1]",
+        example: "1e-6",
+        out_of_range: Some("1"),
     },
     Key {
         path: "run.atol",
@@ -255,6 +300,8 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Number(1e-10)),
         kinds: Kinds::Any,
         doc: "absolute tolerance of the adaptive methods, in [1e-20, 1]",
+        example: "1e-9",
+        out_of_range: Some("2"),
     },
     Key {
         path: "run.output_dt",
@@ -262,20 +309,26 @@ pub static KEYS: &[Key] = &[
         default: DefaultValue::Value(Literal::Number(0.01)),
         kinds: Kinds::Any,
         doc: "spacing of recorded samples (`--out` rows); at least what keeps the samples within 1 GiB (the error says how much)",
+        example: "0.02",
+        out_of_range: Some("-1"),
     },
     Key {
         path: "run.max_steps",
         ty: Type::Integer,
         default: DefaultValue::Value(Literal::Integer(100_000_000)),
         kinds: Kinds::Any,
-        doc: "step budget (the run ends with status `max_steps`)",
+        doc: "step budget, >= 1 (the run ends with status `max_steps`)",
+        example: "1000",
+        out_of_range: Some("0"),
     },
     Key {
         path: "run.h_min",
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(0.0)),
         kinds: Kinds::Any,
-        doc: "smallest adaptive step (0: the rounding limit)",
+        doc: "smallest adaptive step, finite and >= 0 (0: the rounding limit)",
+        example: "1e-9",
+        out_of_range: Some("-1"),
     },
 ];
 
@@ -669,9 +722,18 @@ mod tests {
             top_names(),
             ["name", "description", "chain", "start", "run"]
         );
-        assert_eq!(StartKind::Catenary.keys(), ["kind", "p0", "p1"]);
-        assert_eq!(StartKind::Folded.keys(), ["kind", "p0", "down"]);
-        assert_eq!(StartKind::Angles.keys(), ["kind", "p0", "angles", "rates"]);
+        // Every kind takes `kind` and `p0` first; every [start] row is
+        // taken by some kind (the rest of each list is the table's).
+        for kind in StartKind::ALL {
+            assert_eq!(kind.keys()[..2], ["kind", "p0"], "{kind:?}");
+        }
+        for k in section_rows("start") {
+            assert!(
+                StartKind::ALL.iter().any(|&kind| k.kinds.accepts(kind)),
+                "{}",
+                k.path
+            );
+        }
     }
 
     #[test]
@@ -703,15 +765,18 @@ mod tests {
 
     #[test]
     fn unknown_keys_say_which_keys_there_are() {
+        // The lists are the table's, in its order.
+        let chain_keys: Vec<&str> = KEYS
+            .iter()
+            .filter_map(|k| k.path.strip_prefix("chain."))
+            .collect();
+        let chain_hint = format!("[chain] has the keys {}", chain_keys.join(", "));
         for (path, hint) in [
             (
                 "colour",
                 "a scene has the keys name, description, chain, start, run",
             ),
-            (
-                "chain.lenght",
-                "[chain] has the keys length, links, mass, gravity, damping",
-            ),
+            ("chain.lenght", chain_hint.as_str()),
             ("name.x", "'name' is not a table"),
         ] {
             let e = unknown_key(path).to_string();

@@ -165,7 +165,7 @@ impl RunSummary {
             name: name.to_string(),
             status: traj.status.as_str().to_string(),
             method: traj.method.as_str().to_string(),
-            links: traj.chain.links,
+            links: traj.chain.links(),
             t_end: traj.t_end,
             t_reached: traj.t_reached,
             t_failed: traj.t_failed,

@@ -167,9 +167,10 @@ impl Outcome {
     }
 }
 
-/// `max |E + W - E(0)| / (M g L)`.
+/// `max |E + W - E(0)| / E_s`, with `E_s` the chain's energy scale
+/// ([`chain_ode::Chain::energy_scale`]: `M g L`, or `M L^2` per time unit squared at `g = 0`).
 fn relative_energy_error(t: &Trajectory) -> f64 {
-    t.summary.energy_balance_error / (t.chain.weight() * t.chain.length)
+    t.summary.energy_balance_error / t.chain.energy_scale()
 }
 
 /// One cell: a run, or the reason it was not made.
@@ -259,15 +260,15 @@ impl Make for StabilityMap {
         for c in &cells {
             let p = &prepared[c.scene];
             let ch = &p.chain;
-            let mgl = ch.weight() * ch.length;
+            let mgl = ch.energy_scale();
             let key = format!("{},{},{}", c.method, accuracy_name(c.method), exp(c.param));
             write!(
                 csv,
                 "{},{},{},{},{},{},{key},",
                 SCENES[c.scene].key,
                 text(SCENES[c.scene].label),
-                ch.links,
-                num(ch.damping),
+                ch.links(),
+                num(ch.damping()),
                 num(ch.damping_rate()),
                 num(p.options.t_end),
             )

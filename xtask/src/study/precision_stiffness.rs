@@ -46,7 +46,7 @@ const DOPRI5_STEP_PER_ROD: f64 = 1.7e-7;
 /// The span d = 3 start of `n` rods at damping rate `gamma`.
 fn scene(n: usize, gamma: f64) -> Result<(Chain, chain_ode::State), String> {
     let base = Chain::report(n, 0.0).map_err(|e| e.to_string())?;
-    let r = gamma * base.mass * base.rod_length().powi(2);
+    let r = gamma * base.mass() * base.rod_length().powi(2);
     let chain = Chain::report(n, r).map_err(|e| e.to_string())?;
     let s = Start::Catenary {
         p0: [0.0, 0.0],
@@ -176,7 +176,7 @@ impl Make for Stiffness {
                 "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 c.n,
                 exp(c.gamma),
-                exp(c.bdf.chain.damping),
+                exp(c.bdf.chain.damping()),
                 c.explicit.status,
                 c.explicit.stats.steps,
                 fixed(c.explicit.t_reached, 6),

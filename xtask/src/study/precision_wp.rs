@@ -115,7 +115,7 @@ impl Make for Spec {
                 let div = divergence(&p)?;
                 let undamped = divergence(&ctx.prepare(self.scene, &["chain.damping=0"])?)?;
                 let mut csv = String::from("damping,t,tip_separation,amplification\n");
-                for (r, d) in [(p.chain.damping, &div), (0.0, &undamped)] {
+                for (r, d) in [(p.chain.damping(), &div), (0.0, &undamped)] {
                     for &(t, sep) in &d.curve {
                         writeln!(
                             csv,
@@ -397,7 +397,7 @@ impl Point {
             status: t.status.as_str().into(),
             t_reached: t.t_reached,
             stats: t.stats,
-            dim: 2 * t.chain.links + 1,
+            dim: 2 * t.chain.links() + 1,
             err_tip,
             err_vmax,
             switched: t.segments.len() > 1,
@@ -588,7 +588,7 @@ fn study(
     let reference = Reference {
         tip: r.summary.tip_end,
         vmax: r.summary.tip_speed_max,
-        length: p.chain.length,
+        length: p.chain.length(),
     };
     let mut rows = vec![Point::from_run(
         "reference-dopri5".into(),

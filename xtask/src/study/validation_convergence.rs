@@ -111,10 +111,10 @@ impl Make for Convergence {
                     csv,
                     "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                     SCENES[s],
-                    c.links,
-                    num(c.mass),
-                    num(c.damping),
-                    num(c.damping * c.rod_length()),
+                    c.links(),
+                    num(c.mass()),
+                    num(c.damping()),
+                    num(c.damping() * c.rod_length()),
                     num(c.damping_rate()),
                     l.summary.status,
                     num(l.summary.tip_speed_max),
@@ -151,7 +151,7 @@ impl Make for Convergence {
                 cell(both(TOLS[0])),
                 cell(both(TOLS[1])),
                 num(base.total_mass()),
-                num(base.damping * base.rod_length()),
+                num(base.damping() * base.rod_length()),
                 text(SCALING)
             )
             .unwrap();

@@ -65,7 +65,7 @@ impl Make for EnergyBudget {
                 writeln!(
                     csv,
                     "{},{},{},{},{},{},{},{},{}",
-                    num(chain.damping),
+                    num(chain.damping()),
                     num(chain.damping_rate()),
                     num(scale),
                     num(s.t),
@@ -80,7 +80,7 @@ impl Make for EnergyBudget {
             println!(
                 "  {}: r = {} (r/(m l^2) = {:.3}): max |E + W - E(0)| = {worst:.2e} M g L",
                 fig.id,
-                chain.damping,
+                chain.damping(),
                 chain.damping_rate()
             );
         }

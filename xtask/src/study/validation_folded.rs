@@ -42,10 +42,10 @@ struct FoldedRun {
 
 impl FoldedRun {
     fn length(&self) -> f64 {
-        self.traj.chain.length
+        self.traj.chain.length()
     }
     fn gravity(&self) -> f64 {
-        self.traj.chain.gravity
+        self.traj.chain.gravity()
     }
     /// `(t, x, |v|)` during the fall, `x` from the free end's start height.
     fn fall_curve(&self) -> Vec<(f64, f64, f64)> {
@@ -66,7 +66,7 @@ fn folded_runs(ctx: &Ctx) -> Result<&'static [FoldedRun], String> {
             let base = ctx.scene("folded", &["chain.damping=0"])?;
             let chain = base.chain().map_err(|e| e.to_string())?;
             let p0 = base.start().anchor();
-            let tau = (chain.length / chain.gravity).sqrt();
+            let tau = (chain.length() / chain.gravity()).sqrt();
             ctx.pool()?
                 .install(|| {
                     LINKS
@@ -110,7 +110,7 @@ fn folded_runs(ctx: &Ctx) -> Result<&'static [FoldedRun], String> {
                         .collect::<Result<Vec<_>, String>>()
                 })
                 .map(|mut v| {
-                    v.sort_by_key(|r| r.traj.chain.links);
+                    v.sort_by_key(|r| r.traj.chain.links());
                     v
                 })
         })
@@ -151,7 +151,7 @@ impl Make for FoldedVsAnalytic {
              t_law_over_sqrt_L_over_g\n",
         );
         for run in runs {
-            let n = run.traj.chain.links;
+            let n = run.traj.chain.links();
             let curve = run.fall_curve();
             for &(t, x, v) in &curve {
                 let law = if x < length {
@@ -409,7 +409,7 @@ impl Make for SupportForce {
         );
         for run in runs {
             let chain = &run.traj.chain;
-            let (weight, length, g) = (chain.weight(), chain.length, chain.gravity);
+            let (weight, length, g) = (chain.weight(), chain.length(), chain.gravity());
             let vs = (g * length).sqrt();
             let forces = &pivot_forces(&run.traj)[..run.fall];
             let y0 = run.track[0].1[1];
@@ -439,7 +439,7 @@ impl Make for SupportForce {
                 writeln!(
                     csv,
                     "folded,{},{},{},{},{},{},{},{},{},{}",
-                    chain.links,
+                    chain.links(),
                     short(fy[k].0),
                     short(xi[k]),
                     short(forces[k].1[0] / weight),
@@ -477,7 +477,7 @@ impl Make for SupportForce {
                  momentum from the impulse at xi = 0.5: {:+.2}% of the law's, within {:.4} \
                  M sqrt(g L) of it to xi = 0.75; raw force in [{lo:.2}, {hi:.2}] M g for \
                  0.4 <= xi <= 0.6",
-                chain.links,
+                chain.links(),
                 100.0 * worst_mean,
                 100.0 * (p_half / law_half - 1.0),
                 worst_p,
@@ -490,7 +490,7 @@ impl Make for SupportForce {
             writeln!(
                 csv,
                 "span-d3,{},{},,{},{},,,,,",
-                chain.links,
+                chain.links(),
                 short(*t),
                 short(f[0] / weight),
                 short(f[1] / weight)
@@ -689,10 +689,10 @@ impl Make for FoldedTipAcceleration {
         );
         for run in runs
             .iter()
-            .filter(|r| ACCEL_LINKS.contains(&r.traj.chain.links))
+            .filter(|r| ACCEL_LINKS.contains(&r.traj.chain.links()))
         {
             let chain = &run.traj.chain;
-            let n = chain.links;
+            let n = chain.links();
             let (length, g) = (run.length(), run.gravity());
             let mut ws = Workspace::new(n);
             let mut acc = vec![0.0; n];

@@ -27,7 +27,7 @@ impl Make for NormalModes {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let base = Chain::report(LINKS[0], 0.0).map_err(|e| e.to_string())?;
         let bessel = bessel_frequencies(&base);
-        let unit = (base.length / base.gravity).sqrt();
+        let unit = (base.length() / base.gravity()).sqrt();
         let mut csv = String::from(
             "links,mode,omega,omega_bessel,relative_error,omega_sqrt_L_over_g,\
              omega_bessel_sqrt_L_over_g\n",

@@ -20,7 +20,7 @@ use crate::ode::{Observer, Problem, Status, StepView};
 /// measured it and fits it as `27 sqrt(g/L) + 0.12 sqrt(g L) / l`: 12 at
 /// n = 25 and 168 at n = 3200 in the report's units.
 pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
-    let (g, big_l) = (chain.gravity, chain.length);
+    let (g, big_l) = (chain.gravity(), chain.length());
     27.0 * (g / big_l).sqrt() + 0.12 * (g * big_l).sqrt() / chain.rod_length()
 }
 

@@ -232,7 +232,7 @@ impl SolveOptions {
             )?;
         }
         if let Some(o) = self.output_dt {
-            let o_min = Self::min_output_dt(self.t_end, chain.links);
+            let o_min = Self::min_output_dt(self.t_end, chain.links());
             check(
                 o >= o_min,
                 "run.output_dt",
@@ -240,8 +240,8 @@ impl SolveOptions {
                     "at least {o_min:e} for t_end = {} and chain.links = {}: the samples \
                      ({} numbers each) must fit in {} MiB",
                     self.t_end,
-                    chain.links,
-                    2 * chain.links + 2,
+                    chain.links(),
+                    2 * chain.links() + 2,
                     MAX_OUTPUT_BYTES >> 20
                 ),
                 o,
@@ -249,14 +249,14 @@ impl SolveOptions {
         }
         if method == Method::BdfDense {
             check(
-                chain.links <= BDF_DENSE_MAX_LINKS,
+                chain.links() <= BDF_DENSE_MAX_LINKS,
                 "chain.links",
                 format!(
                     "at most {BDF_DENSE_MAX_LINKS} for bdf-dense (its dense Jacobian and LU \
                      grow like n^2 in memory and n^3 in time); run.method = \"bdf\" is the \
                      same method in O(n)"
                 ),
-                chain.links,
+                chain.links(),
             )?;
         }
         Ok(())
@@ -394,7 +394,7 @@ impl Trajectory {
 
     /// Sample `k`.
     pub fn sample(&self, k: usize) -> Sample<'_> {
-        let n = self.chain.links;
+        let n = self.chain.links();
         let y = &self.states[k * (2 * n + 1)..(k + 1) * (2 * n + 1)];
         Sample {
             t: self.times[k],
@@ -432,9 +432,8 @@ pub fn solve(
     method: Method,
     options: &SolveOptions,
 ) -> Result<Trajectory, InvalidParameter> {
-    chain.validate()?;
     options.validate_for(chain, method)?;
-    let n = chain.links;
+    let n = chain.links();
     check(
         start.angles.len() == n && start.rates.len() == n,
         "start",

@@ -2,7 +2,7 @@
 //! and the continuous maximum of the tip speed. One O(n) pass per step.
 
 use crate::chain::Chain;
-use crate::kinematics::{energy, tip_velocity, Vec2};
+use crate::kinematics::{energy, lever_arm, tip_velocity, RodSums, Vec2};
 use crate::ode::{Cancel, Observer, StepView};
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
@@ -14,28 +14,28 @@ pub(crate) struct Metrics {
 }
 
 pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
-    let n = chain.links;
+    let n = chain.links();
     let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
-    let (mut jx, mut jy) = (0.0, 0.0);
+    // The kinematics' per-rod kernel, the potential's lever arms, and the
+    // tip acceleration, in one pass.
+    let mut sums = RodSums::default();
     let (mut ax, mut ay) = (0.0, 0.0);
-    let (mut twice_t, mut v) = (0.0, 0.0);
+    let mut v = 0.0;
     for i in 0..n {
         let (s, c) = crate::scalar::sin_cos(phi[i]);
         let (wi, ai) = (w[i], acc[i]);
-        let (nx, ny) = (-s * wi, c * wi);
-        let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
-        twice_t += cx * cx + cy * cy + wi * wi / 12.0;
-        v += ((n - i) as f64 - 0.5) * s;
-        jx += nx;
-        jy += ny;
+        sums.add(s, c, wi);
+        v += lever_arm(n, i) * s;
         ax += -ai * s - wi * wi * c;
         ay += ai * c - wi * wi * s;
     }
     let l = chain.rod_length();
-    let ml2 = chain.mass * l * l;
+    // `T + V` as `kinematics::energy` states it; the products are kept in
+    // the order the committed data were made with (`m l l`, then 1/2).
+    let ml2 = chain.mass() * l * l;
     Metrics {
-        energy: 0.5 * ml2 * twice_t + chain.mass * chain.gravity * l * v,
-        tip_velocity: [l * jx, l * jy],
+        energy: 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v,
+        tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }
 }
@@ -88,7 +88,7 @@ impl ChainObserver {
     /// An observer of a run of `chain` over `[0, t_end]`, recording a sample
     /// every `output_dt` (time units) if given; `cancel` stops the run.
     pub fn new(chain: &Chain, t_end: f64, output_dt: Option<f64>, cancel: Option<Cancel>) -> Self {
-        let dim = 2 * chain.links + 1;
+        let dim = 2 * chain.links() + 1;
         // Saturating: `solve` has bounded t_end / output_dt already.
         let last_sample = output_dt.map_or(0, |dt| ((t_end / dt).floor() as u64).saturating_add(1));
         Self {
@@ -134,7 +134,7 @@ impl ChainObserver {
             // The method stopped before its first right-hand side was finite:
             // the energies and the speed are the start's, from the state
             // alone (not the zeros the observer was made with).
-            let n = self.chain.links;
+            let n = self.chain.links();
             let (phi, w) = (&y[..n], &y[n..2 * n]);
             self.energy_start = energy(&self.chain, phi, w);
             self.energy_end = self.energy_start;
@@ -150,7 +150,7 @@ impl ChainObserver {
 
     fn speed_at(&mut self, step: &StepView<'_>, t: f64) -> f64 {
         step.interpolant.eval(t, &mut self.buf);
-        let n = self.chain.links;
+        let n = self.chain.links();
         let v = tip_velocity(&self.chain, &self.buf[..n], &self.buf[n..2 * n]);
         v[0].hypot(v[1])
     }
@@ -258,7 +258,7 @@ impl Observer for ChainObserver {
     }
 
     fn step(&mut self, step: &StepView<'_>) {
-        let n = self.chain.links;
+        let n = self.chain.links();
         let m = metrics(&self.chain, step.y1, step.f1);
         let dissipated = step.y1[2 * n];
         // NaN-propagating maxima: `f64::max` would drop a NaN and hide it.

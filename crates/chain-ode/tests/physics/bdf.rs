@@ -111,7 +111,7 @@ fn stiff_chain_completes_in_far_fewer_steps_than_rk4_can_take() {
 fn auto_picks_the_side_of_the_crossover_it_is_on() {
     for n in [25, 50, 400] {
         let unit = Chain::report(n, 0.0).unwrap();
-        let m_l2 = unit.mass * unit.rod_length().powi(2);
+        let m_l2 = unit.mass() * unit.rod_length().powi(2);
         let cross = chain_ode::bdf_crossover_gamma(&unit);
         for (factor, rtol, expect) in [
             (0.25, 1e-6, Method::Dopri5),

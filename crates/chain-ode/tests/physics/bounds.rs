@@ -39,7 +39,7 @@ fn refused(chain: &Chain, method: Method, options: &SolveOptions, field: &str) -
     // solve refuses it the same way, before any allocation or step.
     let s = Start::Stretched {
         p0: [0.0, 0.0],
-        p1: [chain.length, 0.0],
+        p1: [chain.length(), 0.0],
     }
     .state(chain)
     .unwrap();

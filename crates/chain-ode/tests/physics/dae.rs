@@ -21,8 +21,8 @@ fn packed(dae: &ChainDae, phi: &[f64], w: &[f64]) -> Vec<f64> {
 
 /// The recursion's `phi''` and pivot force (physical units).
 fn recursion(chain: &Chain, phi: &[f64], w: &[f64]) -> (Vec<f64>, [f64; 2]) {
-    let mut acc = vec![0.0; chain.links];
-    let r = accelerations(chain, phi, w, &mut acc, &mut Workspace::new(chain.links));
+    let mut acc = vec![0.0; chain.links()];
+    let r = accelerations(chain, phi, w, &mut acc, &mut Workspace::new(chain.links()));
     (acc, r.pivot_force)
 }
 
@@ -35,11 +35,11 @@ proptest! {
     fn the_residual_vanishes_at_the_consistent_state((chain, phi, w) in chain_and_state(60)) {
         let dae = ChainDae::new(&chain);
         let mut y = packed(&dae, &phi, &w);
-        dae.make_consistent(&mut y, &mut Workspace::new(chain.links));
+        dae.make_consistent(&mut y, &mut Workspace::new(chain.links()));
         let mut f = vec![0.0; dae.dim()];
         dae.rhs(&y, &mut f);
-        let scale = 1.0 + max_abs(&y[2 * chain.links + 1..]);
-        let worst = max_abs(&f[2 * chain.links + 1..]);
+        let scale = 1.0 + max_abs(&y[2 * chain.links() + 1..]);
+        let worst = max_abs(&f[2 * chain.links() + 1..]);
         prop_assert!(worst < 1e-12 * scale, "residual {worst:e} (scale {scale:e})");
     }
 
@@ -48,7 +48,7 @@ proptest! {
     /// in `alpha` and `f`) reproduces the recursion's `alpha` and pivot force.
     #[test]
     fn the_algebraic_block_reproduces_the_recursion((chain, phi, w) in chain_and_state(60)) {
-        let n = chain.links;
+        let n = chain.links();
         let dae = ChainDae::new(&chain);
         let (d, dim) = (dae.differential_dim(), dae.dim());
         let y = packed(&dae, &phi, &w);
@@ -67,7 +67,7 @@ proptest! {
         for i in 0..n {
             prop_assert!((x[(i, 0)] - acc[i]).abs() < 1e-9 * scale, "alpha_{i}: {} vs {}", x[(i, 0)], acc[i]);
         }
-        let ml = chain.mass * chain.rod_length();
+        let ml = chain.mass() * chain.rod_length();
         let fscale = 1.0 + pivot[0].abs().max(pivot[1].abs());
         for k in 0..2 {
             let f = x[(n + k, 0)] * ml;
@@ -91,7 +91,7 @@ fn noise(k: usize) -> f64 {
 #[test]
 fn the_analytic_jacobian_matches_central_differences() {
     for (n, damping) in [(1, 0.3), (2, 0.0), (5, 0.02), (17, 1.0)] {
-        let chain = Chain::new(6.0, n, 0.2, 1.0, damping).unwrap();
+        let chain = Chain::report(n, damping).unwrap();
         let dae = ChainDae::new(&chain);
         let dim = dae.dim();
         // An inconsistent state: every unknown random.

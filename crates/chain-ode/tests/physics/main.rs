@@ -21,7 +21,9 @@ mod modes;
 mod rk4;
 mod validation;
 
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, State, Status, Trajectory, Vec2};
+use chain_ode::{
+    solve, Chain, ChainParams, Method, SolveOptions, Start, State, Status, Trajectory, Vec2,
+};
 use proptest::prelude::*;
 
 /// The report's chain (`L = 6`, `m = 0.2` per rod, `g = 1`) of `n` rods
@@ -114,7 +116,14 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
         0.0f64..0.5,
     )
         .prop_flat_map(|(n, length, mass, gravity, damping)| {
-            let chain = Chain::new(length, n, mass, gravity, damping).unwrap();
+            let chain = Chain::new(ChainParams {
+                length,
+                links: n,
+                mass,
+                gravity,
+                damping,
+            })
+            .unwrap();
             (
                 Just(chain),
                 prop::collection::vec(-7.0f64..7.0, n),

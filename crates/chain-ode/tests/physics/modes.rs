@@ -8,7 +8,7 @@ const J0_ZEROS: [f64; 3] = [2.404825558, 5.520078110, 8.653727913];
 fn relative_errors(n: usize) -> Vec<f64> {
     let chain = Chain::report(n, 0.0).unwrap();
     let w = hanging_frequencies(&chain);
-    let scale = (chain.gravity / chain.length).sqrt();
+    let scale = (chain.gravity() / chain.length()).sqrt();
     J0_ZEROS
         .iter()
         .enumerate()

@@ -9,7 +9,7 @@ use chain_ode::analysis::{
 };
 use chain_ode::kinematics::{dissipation_rate, energy};
 use chain_ode::modes::hanging_frequencies;
-use chain_ode::{solve, Chain, ChainSystem, Method, SolveOptions, Start, State};
+use chain_ode::{solve, Chain, ChainParams, ChainSystem, Method, SolveOptions, Start, State};
 use std::f64::consts::FRAC_PI_2;
 
 /// `integral_a^b f` by composite Simpson with `panels` (even) intervals.
@@ -89,18 +89,24 @@ fn folded_law_times_are_the_quadrature_of_one_over_v() {
 /// would begin at `x = l` with `v = 0`, a time offset of about
 /// `sqrt(2 l / g)` (12% of t(L/2) at n = 100).
 fn folded_times(n: usize, fractions: &[f64]) -> Vec<(f64, f64)> {
-    let chain = Chain::new(6.0, n, 10.0 / n as f64, 1.0, 0.0).unwrap();
+    let chain = Chain::new(ChainParams {
+        links: n,
+        mass: 10.0 / n as f64,
+        ..ChainParams::default()
+    })
+    .unwrap();
     let start = Start::Folded {
         p0: [0.0, 0.0],
         down: None,
     }
     .state(&chain)
     .unwrap();
-    let tau = (chain.length / chain.gravity).sqrt();
+    let tau = (chain.length() / chain.gravity()).sqrt();
     let xi_max = fractions.iter().copied().fold(0.0, f64::max);
     let options = SolveOptions {
         // Past the last crossing, before the whip at t = 1.198 tau.
-        t_end: (folded_law::time(xi_max * chain.length, chain.length, chain.gravity) / tau + 0.004)
+        t_end: (folded_law::time(xi_max * chain.length(), chain.length(), chain.gravity()) / tau
+            + 0.004)
             * tau,
         rtol: 1e-9,
         atol: 1e-11,
@@ -115,10 +121,10 @@ fn folded_times(n: usize, fractions: &[f64]) -> Vec<(f64, f64)> {
     fractions
         .iter()
         .map(|&xi| {
-            let x = xi * chain.length;
+            let x = xi * chain.length();
             let t = first_time_below(&track, y_start - x)
                 .unwrap_or_else(|| panic!("n = {n}: the tip never fell {x}"));
-            (t, folded_law::time(x, chain.length, chain.gravity))
+            (t, folded_law::time(x, chain.length(), chain.gravity()))
         })
         .collect()
 }
@@ -243,10 +249,10 @@ fn force_and_momentum_balance(chain: &Chain, phi: &[f64], w: &[f64]) -> ([f64; 2
     let y = ChainSystem::pack(phi, w, 0.0);
     let mut dy = vec![0.0; y.len()];
     let f = sys.rhs_with_reactions(&y, &mut dy).pivot_force;
-    let n = chain.links;
+    let n = chain.links();
     let a = centre_of_mass_acceleration(chain, phi, w, &dy[n..2 * n]);
     let m = chain.total_mass();
-    (f, [m * a[0], m * (a[1] + chain.gravity)])
+    (f, [m * a[0], m * (a[1] + chain.gravity())])
 }
 
 #[test]
@@ -256,7 +262,14 @@ fn pivot_force_of_a_chain_hanging_at_rest_is_its_weight() {
         (50, 0.2, 1.0, 5e-4),
         (333, 0.01, 2.5, 1.0),
     ] {
-        let chain = Chain::new(6.0, n, mass, g, r).unwrap();
+        let chain = Chain::new(ChainParams {
+            length: 6.0,
+            links: n,
+            mass,
+            gravity: g,
+            damping: r,
+        })
+        .unwrap();
         let start = State {
             anchor: [0.0, 0.0],
             angles: vec![-FRAC_PI_2; n],
@@ -329,7 +342,7 @@ fn refinement_keeps_total_mass_and_bending_viscosity() {
         let c = refined(&base, n).unwrap();
         assert!((c.total_mass() - base.total_mass()).abs() < 1e-12);
         assert!(
-            (c.damping * c.rod_length() - base.damping * base.rod_length()).abs() < 1e-18,
+            (c.damping() * c.rod_length() - base.damping() * base.rod_length()).abs() < 1e-18,
             "eta changed at n = {n}"
         );
         // gamma = eta n^4 / (M L^3).
