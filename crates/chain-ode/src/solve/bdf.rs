@@ -33,8 +33,8 @@ use diffsol::{
 };
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
-use super::diffsol_driver::{drive, slice, slice_mut, Driven};
-use super::integrator::{Integrator, Settings};
+use super::diffsol_driver::{drive, slice, slice_mut, Hooks};
+use super::integrator::{Integrator, Settings, Span};
 use super::sparse_lu::{LuLog, SparseLu};
 use crate::ode::{
     all_finite, BandedDae, Observer, Outcome, Problem, SemiExplicitDae, Stats, Status,
@@ -251,14 +251,8 @@ impl<D: SemiExplicitDae> OdeEquations for DaeEquations<D> {
 /// Integrates `problem` from `t0` (its state `y0`) to `t_end` on its banded
 /// DAE ([`Problem::banded_dae`]); a problem without one ends at the start,
 /// `diverged`.
-pub(crate) fn integrate(
-    problem: &dyn Problem,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    opts: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
+pub(crate) fn integrate(problem: &dyn Problem, s: &Span<'_>, obs: &mut dyn Observer) -> Outcome {
+    let (t0, y0) = (s.t0, s.y0);
     let Some(BandedDae { dae, y0: full }) = problem.banded_dae(t0, y0) else {
         return Outcome::ended(
             Status::Diverged,
@@ -268,7 +262,7 @@ pub(crate) fn integrate(
             y0.to_vec(),
         );
     };
-    integrate_dae(dae, t0, full, t_end, opts, obs)
+    integrate_dae(dae, t0, full, s.t_end, s.settings, obs)
 }
 
 /// Integrates `dae` from `(t0, y0)` to `t_end`; `y0` holds every unknown,
@@ -321,23 +315,13 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     };
     let eqn = &problem.eqn;
-    let driven = if solver.set_stop_time(t_end).is_err() {
-        Driven::nothing_to_do(t_end, y)
-    } else {
-        // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
-        let mut own = |t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(t, y, f);
-        drive(
-            &mut solver,
-            t0,
-            y,
-            t_end,
-            opts,
-            obs,
-            &mut own,
-            &eqn.nonfinite,
-            &|| log.last_failed.get(),
-        )
+    // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
+    let hooks = Hooks {
+        rhs: &mut |t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(t, y, f),
+        nonfinite: &eqn.nonfinite,
+        linear_failed: &|| log.last_failed.get(),
     };
+    let driven = drive(&mut solver, t0, y, t_end, opts, obs, hooks);
     driven.outcome(
         solver.get_statistics(),
         eqn.rhs_evals.get(),
@@ -349,5 +333,5 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
 pub(crate) const BDF: Integrator = Integrator {
     name: "bdf",
     adaptive: true,
-    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+    run: |p, s, obs| integrate(p, s, obs).into(),
 };

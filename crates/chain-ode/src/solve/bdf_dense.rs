@@ -10,8 +10,8 @@ use std::cell::{Cell, RefCell};
 
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
-use super::diffsol_driver::{drive, Driven};
-use super::integrator::{Integrator, Settings};
+use super::diffsol_driver::{drive, Hooks};
+use super::integrator::{Integrator, Span};
 use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
 
 type Mat = FaerMat<f64>;
@@ -20,25 +20,20 @@ type Lu = FaerLU<f64>;
 /// Integrates from `t0` to `t_end` with diffsol's BDF on the explicit form.
 /// Every call to the system, diffsol's and the loop's own, goes through one
 /// [`Counted`]: `rhs_evals` is its count.
-pub(crate) fn integrate<S: OdeSystem + ?Sized>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    opts: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    Counted::run(sys, |sys| run(sys, t0, y0, t_end, opts, obs))
+pub(crate) fn integrate<S>(sys: &mut S, s: &Span<'_>, obs: &mut dyn Observer) -> Outcome
+where
+    S: OdeSystem + ?Sized,
+{
+    Counted::run(sys, |sys| run(sys, s, obs))
 }
 
-fn run<S: OdeSystem>(
-    sys: &mut Counted<S>,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    opts: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
+fn run<S: OdeSystem>(sys: &mut Counted<S>, s: &Span<'_>, obs: &mut dyn Observer) -> Outcome {
+    let Span {
+        t0,
+        y0,
+        t_end,
+        settings: opts,
+    } = *s;
     let d = sys.dim();
     let stats = Stats::default();
     let y = y0.to_vec();
@@ -91,22 +86,12 @@ fn run<S: OdeSystem>(
     let Ok(mut solver) = problem.bdf::<Lu>() else {
         return fail_setup(stats, y);
     };
-    let driven = if solver.set_stop_time(t_end).is_err() {
-        Driven::nothing_to_do(t_end, y)
-    } else {
-        let mut own = |t: f64, y: &[f64], f: &mut [f64]| sys.borrow_mut().rhs(t, y, f);
-        drive(
-            &mut solver,
-            t0,
-            y,
-            t_end,
-            opts,
-            obs,
-            &mut own,
-            &nonfinite,
-            &|| false,
-        )
+    let hooks = Hooks {
+        rhs: &mut |t: f64, y: &[f64], f: &mut [f64]| sys.borrow_mut().rhs(t, y, f),
+        nonfinite: &nonfinite,
+        linear_failed: &|| false,
     };
+    let driven = drive(&mut solver, t0, y, t_end, opts, obs, hooks);
     let jvp_calls = sys.borrow().jvp_calls();
     // diffsol builds each dense Jacobian from exactly `d` JVPs and calls the
     // JVP for nothing else; `rhs_evals` is filled in by [`Counted::run`].
@@ -118,46 +103,38 @@ fn run<S: OdeSystem>(
 pub(crate) const BDF_DENSE: Integrator = Integrator {
     name: "bdf-dense",
     adaptive: true,
-    run: |p, s, obs| integrate(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
+    run: |p, s, obs| integrate(p, s, obs).into(),
 };
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::test_problems::{options, van_der_pol, ExactCheck, Quiet, OSCILLATOR};
+    use crate::solve::test_problems::{options, oscillator_dense_check, van_der_pol, Quiet};
 
     #[test]
     fn oscillator_matches_the_exact_solution_with_dense_output() {
-        for t0 in [0.0, 1.5] {
-            let mut sys = (OSCILLATOR.system)();
-            let mut obs = ExactCheck::new(OSCILLATOR.exact).with_rhs(|_t, y| vec![y[1], -y[0]]);
-            let y0 = [f64::cos(t0), -f64::sin(t0)];
-            let t_end = 10.0;
-            let out = integrate(&mut sys, t0, &y0, t_end, &options(1e-10, 1e-12), &mut obs);
-            assert_eq!(out.status, Status::Ok);
-            assert_eq!(out.t_reached, t_end);
-            assert_eq!(out.t_failed, None);
-            assert_eq!(obs.starts, 1);
-            assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
-            assert_eq!(obs.steps, out.stats.steps);
-            let e = (out.y_end[0] - t_end.cos()).abs() + (out.y_end[1] + t_end.sin()).abs();
-            assert!(e < 1e-7, "end error {e:e}");
-            assert!(obs.inside < 1e-7, "dense error {:e}", obs.inside);
-            assert!(obs.ends < 1e-12, "ends {:e}", obs.ends);
-        }
+        let o = options(1e-10, 1e-12);
+        oscillator_dense_check(1e-7, |sys, t0, y0, t_end, obs| {
+            let span = Span {
+                t0,
+                y0,
+                t_end,
+                settings: &o,
+            };
+            integrate(sys, &span, obs)
+        });
     }
 
     #[test]
     fn counters_are_exact_on_a_stiff_problem() {
         let mut sys = van_der_pol(1000.0);
-        let out = integrate(
-            &mut sys,
-            0.0,
-            &[2.0, 0.0],
-            3000.0,
-            &options(1e-6, 1e-8),
-            &mut Quiet,
-        );
+        let span = Span {
+            t0: 0.0,
+            y0: &[2.0, 0.0],
+            t_end: 3000.0,
+            settings: &options(1e-6, 1e-8),
+        };
+        let out = integrate(&mut sys, &span, &mut Quiet);
         assert_eq!(out.status, Status::Ok);
         assert!(out.stats.rejected_steps > 0, "{:?}", out.stats);
         assert_eq!(out.stats.rhs_evals, sys.rhs_calls);

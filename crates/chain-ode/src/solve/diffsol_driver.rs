@@ -55,7 +55,7 @@ impl Interpolant for Dense<'_> {
 impl Driven {
     /// A run whose `t_end` is within rounding of `t0`: there is nothing to
     /// integrate, and it ends at `t_end` in state `y`.
-    pub(crate) fn nothing_to_do(t_end: f64, y: Vec<f64>) -> Self {
+    fn nothing_to_do(t_end: f64, y: Vec<f64>) -> Self {
         Self {
             status: Status::Ok,
             t: t_end,
@@ -102,13 +102,22 @@ pub(crate) struct Driven {
     pub y: Vec<f64>,
 }
 
-/// Steps `solver` from `t0` (observed state `y`, already shown to `obs`) to
-/// `t_end`. `rhs(t, y_full, f_full)` evaluates the right-hand side at an
-/// accepted state, for the observer's `f1` (its first `y.len()` entries);
-/// `nonfinite` is set by the caller's right-hand sides when they produce a
-/// non-finite value and is cleared here after every accepted step;
-/// `linear_failed` reports whether the last linear solve failed.
-#[allow(clippy::too_many_arguments)]
+/// How the driver reaches the problem between diffsol's steps.
+pub(crate) struct Hooks<'h> {
+    /// `rhs(t, y_full, f_full)`: the right-hand side at an accepted state,
+    /// for the observer's `f1` (its first `y.len()` entries).
+    pub rhs: StateRhs<'h>,
+    /// Set by the caller's right-hand sides when they produce a non-finite
+    /// value; cleared by the driver after every accepted step.
+    pub nonfinite: &'h Cell<bool>,
+    /// Whether the last linear solve failed.
+    pub linear_failed: &'h dyn Fn() -> bool,
+}
+
+/// Sets `solver`'s stop time to `t_end` and steps it there from `t0`
+/// (observed state `y`, already shown to `obs`), reaching the problem
+/// through `hooks`. A `t_end` diffsol cannot stop at (within rounding of
+/// `t0`) leaves nothing to do.
 pub(crate) fn drive<'a, Eqn, S>(
     solver: &mut S,
     t0: f64,
@@ -116,14 +125,20 @@ pub(crate) fn drive<'a, Eqn, S>(
     t_end: f64,
     opts: &Settings,
     obs: &mut dyn Observer,
-    rhs: StateRhs<'_>,
-    nonfinite: &Cell<bool>,
-    linear_failed: &dyn Fn() -> bool,
+    hooks: Hooks<'_>,
 ) -> Driven
 where
     Eqn: OdeEquations<T = f64, V = FaerVec<f64>, C = FaerContext> + 'a,
     S: OdeSolverMethod<'a, Eqn, Config = BdfConfig<f64>>,
 {
+    if solver.set_stop_time(t_end).is_err() {
+        return Driven::nothing_to_do(t_end, y);
+    }
+    let Hooks {
+        rhs,
+        nonfinite,
+        linear_failed,
+    } = hooks;
     let d = y.len();
     let full = solver.state().y.len();
     let mut t = t0;

@@ -15,9 +15,9 @@
 use std::cell::RefCell;
 
 use super::dop853_tableau::{B, BHH, D, DENSE_STAGES, ER, SLOTS, STAGES};
-use super::explicit::{self, lambda_estimate, Control, Pair};
+use super::explicit::{self, lambda_estimate, Control, Pair, Parts, Step};
 use super::integrator::{Integrator, Settings};
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, StepView};
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem};
 
 /// PI controller: exponents and limits (Hairer's DOP853 defaults), and the
 /// stiffness test `h |lambda| > 6.1`.
@@ -161,56 +161,36 @@ pub(crate) fn attempt<S: OdeSystem>(
     Estimate { sq5, sq3 }
 }
 
-/// DOP853's buffers: the stage slots `k1..k16`, the last stage's state, the
-/// dense-output coefficients and `f1`.
-pub(crate) struct Stages {
-    k: Vec<f64>,
-    ys: Vec<f64>,
-    rcont: Vec<f64>,
-    f1: Vec<f64>,
-}
+/// DOP853's storage: the stage slots `k1..k16` (`k`, one run of `16 d`)
+/// and the shared buffers (`ys`: the last stage's state; `aux`: `f1`;
+/// eight rows of dense output).
+pub(crate) type Stages = explicit::Stages<Vec<f64>>;
+
+/// `dop853`: Dormand–Prince 8(5,3), adaptive, for tight tolerances.
+pub(crate) const DOP853: Integrator = explicit::integrator::<Stages>("dop853");
 
 impl Pair for Stages {
     const ORDER: u32 = 8;
     const CONTROL: Control = CONTROL;
 
     fn new(d: usize) -> Self {
-        Self {
-            k: vec![0.0; SLOTS * d],
-            ys: vec![0.0; d],
-            rcont: vec![0.0; 8 * d],
-            f1: vec![0.0; d],
-        }
+        Self::with(vec![0.0; SLOTS * d], d, 8)
     }
 
-    fn f0_mut(&mut self) -> &mut [f64] {
+    fn parts(&mut self) -> Parts<'_> {
         let d = self.ys.len();
-        &mut self.k[..d]
+        (&mut self.k[..d], (&mut self.ys, &mut self.aux))
     }
 
-    fn start_buffers(&mut self) -> (&[f64], &mut [f64], &mut [f64]) {
-        let d = self.ys.len();
-        let (f0, rest) = self.k.split_at_mut(d);
-        (f0, &mut self.ys, &mut rest[..d])
-    }
-
-    fn attempt<S: OdeSystem>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        t1: f64,
-        h: f64,
-        y: &[f64],
-        y1: &mut [f64],
-        o: &Settings,
-    ) -> Option<f64> {
-        let d = y.len();
+    fn attempt<S: OdeSystem>(&mut self, sys: &mut S, s: &mut Step<'_>) -> Option<f64> {
+        let d = s.y.len();
         let k = &mut self.k;
-        let e = attempt(sys, t, h, y, k, &mut self.ys, y1, o).norm(h, d);
+        let y1 = &mut *s.y1;
+        let e = attempt(sys, s.t, s.h, s.y, k, &mut self.ys, y1, s.o).norm(s.h, d);
         // A passing trial also needs a finite k13 before it is accepted.
         let mut finite = e.is_finite() && all_finite(y1);
         if finite && e <= 1.0 {
-            sys.rhs(t1, y1, &mut k[12 * d..13 * d]);
+            sys.rhs(s.t1, y1, &mut k[12 * d..13 * d]);
             finite = all_finite(&k[12 * d..13 * d]);
         }
         finite.then_some(e)
@@ -227,16 +207,9 @@ impl Pair for Stages {
         )
     }
 
-    fn show<S: OdeSystem>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        t1: f64,
-        h: f64,
-        y: &[f64],
-        y1: &[f64],
-        obs: &mut dyn Observer,
-    ) {
+    fn show<S: OdeSystem>(&mut self, sys: &mut S, s: &Step<'_>, obs: &mut dyn Observer) {
+        let Step { t, h, y, .. } = *s;
+        let y1: &[f64] = s.y1;
         let d = y.len();
         let (k, rcont) = (&mut self.k, &mut self.rcont);
         // Dense output: the cheap coefficients now, the stages on demand.
@@ -248,7 +221,7 @@ impl Pair for Stages {
             rcont[2 * d + i] = bspl;
             rcont[3 * d + i] = dy - h * k[12 * d + i] - bspl;
         }
-        self.f1.copy_from_slice(&k[12 * d..13 * d]);
+        self.aux.copy_from_slice(&k[12 * d..13 * d]);
         {
             let dense = Dense {
                 t0: t,
@@ -262,33 +235,20 @@ impl Pair for Stages {
                     r: rcont,
                 }),
             };
-            obs.step(&StepView {
-                t0: t,
-                t1,
-                y0: y,
-                y1,
-                f1: &self.f1,
-                interpolant: &dense,
-            });
+            obs.step(&s.view(&self.aux, &dense));
         }
         k.copy_within(12 * d..13 * d, 0); // FSAL: k13 of this step is k1 of the next.
     }
 }
 
-/// `dop853`: Dormand–Prince 8(5,3), adaptive, for tight tolerances.
-pub(crate) const DOP853: Integrator = Integrator {
-    name: "dop853",
-    adaptive: true,
-    run: |p, s, obs| explicit::run::<Stages, _>(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
-};
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::{Outcome, Status};
+    use crate::ode::{Outcome, Status, StepView};
+    use crate::solve::integrator::Span;
     use crate::solve::test_problems::{
-        kepler, kepler_exact, max_diff, options, relaxation, slope, toy, ExactCheck, Probe, Quiet,
-        Toy, ECC, OSCILLATOR,
+        kepler, kepler_exact, max_diff, options, oscillator_dense_check, relaxation, slope, toy,
+        Probe, Quiet, Toy, ECC,
     };
 
     /// Runs and checks the cost model against the toy's own count:
@@ -305,7 +265,13 @@ mod tests {
         obs: &mut dyn Observer,
         interpolates: Option<bool>,
     ) -> Outcome {
-        let out = explicit::run::<Stages, _>(sys, t0, y0, t_end, o, obs);
+        let span = Span {
+            t0,
+            y0,
+            t_end,
+            settings: o,
+        };
+        let out = explicit::run::<Stages, _>(sys, &span, obs);
         let s = out.stats;
         assert_eq!(s.rhs_evals, sys.rhs_calls);
         let probe = u64::from(o.h0.is_none());
@@ -364,28 +330,10 @@ mod tests {
 
     #[test]
     fn oscillator_matches_the_exact_solution_with_dense_output() {
-        for t0 in [0.0, 1.5] {
-            let mut sys = (OSCILLATOR.system)();
-            let mut obs = ExactCheck::new(OSCILLATOR.exact).with_rhs(|_t, y| vec![y[1], -y[0]]);
-            let y0 = [f64::cos(t0), -f64::sin(t0)];
-            let t_end = 10.0;
-            let o = options(1e-12, 1e-14);
-            let out = run_clean(&mut sys, t0, &y0, t_end, &o, &mut obs, Some(true));
-            assert_eq!(out.status, Status::Ok);
-            assert_eq!(out.t_reached, t_end);
-            assert_eq!(out.t_failed, None);
-            assert_eq!(obs.starts, 1);
-            assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
-            assert_eq!(obs.steps, out.stats.steps);
-            let e = max_diff(&out.y_end, &[t_end.cos(), -t_end.sin()]);
-            eprintln!(
-                "oscillator t0 = {t0}: {} steps, end error {e:.1e}, dense {:.1e}, ends {:.1e}",
-                out.stats.steps, obs.inside, obs.ends
-            );
-            assert!(e < 1e-10, "end error {e:e}");
-            assert!(obs.inside < 1e-10, "dense error {:e}", obs.inside);
-            assert!(obs.ends < 1e-12, "ends {:e}", obs.ends);
-        }
+        let o = options(1e-12, 1e-14);
+        oscillator_dense_check(1e-10, |sys, t0, y0, t_end, obs| {
+            run_clean(sys, t0, y0, t_end, &o, obs, Some(true))
+        });
     }
 
     #[test]
@@ -520,14 +468,13 @@ mod tests {
         // y' = 1 up to t = 0.5, NaN beyond: every trial across the wall is
         // non-finite and retried 5x smaller until the step hits the floor.
         let mut sys = toy(1, |t, _y, dy| dy[0] = if t > 0.5 { f64::NAN } else { 1.0 });
-        let out = explicit::run::<Stages, _>(
-            &mut sys,
-            0.0,
-            &[0.0],
-            1.0,
-            &options(1e-8, 1e-10),
-            &mut Quiet,
-        );
+        let span = Span {
+            t0: 0.0,
+            y0: &[0.0],
+            t_end: 1.0,
+            settings: &options(1e-8, 1e-10),
+        };
+        let out = explicit::run::<Stages, _>(&mut sys, &span, &mut Quiet);
         eprintln!("wall: {out:?}");
         assert_eq!(out.status, Status::Diverged);
         assert_eq!(out.stats.rhs_evals, sys.rhs_calls);

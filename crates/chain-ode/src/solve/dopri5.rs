@@ -2,10 +2,10 @@
 //! `rtol`/`atol`, a PI step-size controller, Hairer's initial step, the
 //! fourth-order dense output, and Hairer's stiffness detection.
 
-use super::explicit::{self, lambda_estimate, Control, Pair};
-use super::integrator::{Integrator, Settings};
+use super::explicit::{self, lambda_estimate, Control, Pair, Parts, Step};
+use super::integrator::Integrator;
 use super::step_size::rms_norm;
-use crate::ode::{all_finite, Interpolant, Observer, OdeSystem, StepView};
+use crate::ode::{all_finite, Interpolant, Observer, OdeSystem};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -142,59 +142,32 @@ pub(crate) fn attempt<S: OdeSystem>(
     }
 }
 
-/// DOPRI5's buffers: the stages `k1..k7`, the sixth stage's state, the
-/// error estimate and the dense-output coefficients.
-pub(crate) struct Stages {
-    k: Vec<Vec<f64>>,
-    ys: Vec<f64>,
-    err: Vec<f64>,
-    rcont: Vec<f64>,
-}
+/// DOPRI5's storage: the stages `k1..k7` (`k`) and the shared buffers (`ys`: the
+/// sixth stage's state; `aux`: the error estimate; five rows of dense
+/// output).
+pub(crate) type Stages = explicit::Stages<Vec<Vec<f64>>>;
+
+/// `dopri5`: Dormand–Prince 5(4), adaptive.
+pub(crate) const DOPRI5: Integrator = explicit::integrator::<Stages>("dopri5");
 
 impl Pair for Stages {
     const ORDER: u32 = 5;
     const CONTROL: Control = CONTROL;
 
     fn new(d: usize) -> Self {
-        Self {
-            k: vec![vec![0.0; d]; 7],
-            ys: vec![0.0; d],
-            err: vec![0.0; d],
-            rcont: vec![0.0; 5 * d],
-        }
+        Self::with(vec![vec![0.0; d]; 7], d, 5)
     }
 
-    fn f0_mut(&mut self) -> &mut [f64] {
-        &mut self.k[0]
+    fn parts(&mut self) -> Parts<'_> {
+        (&mut self.k[0], (&mut self.ys, &mut self.aux))
     }
 
-    fn start_buffers(&mut self) -> (&[f64], &mut [f64], &mut [f64]) {
-        (&self.k[0], &mut self.ys, &mut self.err)
-    }
-
-    fn attempt<S: OdeSystem>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        t1: f64,
-        h: f64,
-        y: &[f64],
-        y1: &mut [f64],
-        o: &Settings,
-    ) -> Option<f64> {
-        attempt(
-            sys,
-            t,
-            t1,
-            h,
-            y,
-            &mut self.k,
-            &mut self.ys,
-            y1,
-            &mut self.err,
-        );
-        let e = rms_norm(&self.err, y, y1, o);
-        (e.is_finite() && all_finite(y1) && all_finite(&self.k[6])).then_some(e)
+    fn attempt<S: OdeSystem>(&mut self, sys: &mut S, s: &mut Step<'_>) -> Option<f64> {
+        let Step { t, t1, h, y, .. } = *s;
+        let (ys, err) = (&mut self.ys, &mut self.aux);
+        attempt(sys, t, t1, h, y, &mut self.k, ys, s.y1, err);
+        let e = rms_norm(err, y, s.y1, s.o);
+        (e.is_finite() && all_finite(s.y1) && all_finite(&self.k[6])).then_some(e)
     }
 
     fn lambda(&self, y1: &[f64]) -> f64 {
@@ -202,16 +175,9 @@ impl Pair for Stages {
         lambda_estimate(&self.k[5], &self.k[6], y1, &self.ys)
     }
 
-    fn show<S: OdeSystem>(
-        &mut self,
-        _sys: &mut S,
-        t: f64,
-        t1: f64,
-        h: f64,
-        y: &[f64],
-        y1: &[f64],
-        obs: &mut dyn Observer,
-    ) {
+    fn show<S: OdeSystem>(&mut self, _sys: &mut S, s: &Step<'_>, obs: &mut dyn Observer) {
+        let Step { t, h, y, .. } = *s;
+        let y1: &[f64] = s.y1;
         let (k, rcont) = (&self.k, &mut self.rcont);
         let d = y.len();
         // Dense output coefficients.
@@ -230,24 +196,10 @@ impl Pair for Stages {
                     + D6 * k[5][i]
                     + D7 * k[6][i]);
         }
-        obs.step(&StepView {
-            t0: t,
-            t1,
-            y0: y,
-            y1,
-            f1: &k[6],
-            interpolant: &Dense { t0: t, h, r: rcont },
-        });
+        obs.step(&s.view(&k[6], &Dense { t0: t, h, r: rcont }));
         self.k.swap(0, 6); // FSAL: k7 of this step is k1 of the next.
     }
 }
-
-/// `dopri5`: Dormand–Prince 5(4), adaptive.
-pub(crate) const DOPRI5: Integrator = Integrator {
-    name: "dopri5",
-    adaptive: true,
-    run: |p, s, obs| explicit::run::<Stages, _>(p, s.t0, s.y0, s.t_end, s.settings, obs).into(),
-};
 
 #[cfg(test)]
 mod tests {

@@ -16,9 +16,12 @@
 //!
 //! The arithmetic is the methods' own loops', operation for operation.
 
-use super::integrator::Settings;
+use super::integrator::{Integrator, Run, Settings, Span};
 use super::step_size::initial_step;
-use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
+use crate::ode::{
+    all_finite, Counted, Interpolant, Observer, OdeSystem, Outcome, Problem, Stats, Status,
+    StepView,
+};
 
 /// A non-finite trial is retried this much smaller (not in Hairer's codes).
 pub(crate) const NONFINITE_SHRINK: f64 = 0.2;
@@ -57,45 +60,77 @@ pub(crate) trait Pair {
     /// The pair's buffers for a state of `dim` numbers.
     fn new(dim: usize) -> Self;
 
-    /// `k1`, to be set to `f(t0, y0)` at the start.
-    fn f0_mut(&mut self) -> &mut [f64];
+    /// `k1` (to be set to `f(t0, y0)` at the start) and two scratch
+    /// vectors for the starting step's trial.
+    fn parts(&mut self) -> Parts<'_>;
 
-    /// `k1` and two scratch vectors for the starting step's trial.
-    fn start_buffers(&mut self) -> (&[f64], &mut [f64], &mut [f64]);
-
-    /// One attempt of a step of `h` from `(t, y)` to `t1` (`t + h`, or
-    /// `t_end` exactly): its solution in `y1` and its error norm (accepted
-    /// when at most 1), or `None` when the trial is not finite (the loop
-    /// retries smaller). An attempt that passes has every value the next
-    /// step and the interpolant need (`f(t1, y1)` among them).
-    #[allow(clippy::too_many_arguments)]
-    fn attempt<S: OdeSystem>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        t1: f64,
-        h: f64,
-        y: &[f64],
-        y1: &mut [f64],
-        o: &Settings,
-    ) -> Option<f64>;
+    /// One attempt of the step `s`: its solution in `s.y1` and its error
+    /// norm (accepted when at most 1), or `None` when the trial is not
+    /// finite (the loop retries smaller). An attempt that passes has every
+    /// value the next step and the interpolant need (`f(t1, y1)` among them).
+    fn attempt<S: OdeSystem>(&mut self, sys: &mut S, s: &mut Step<'_>) -> Option<f64>;
 
     /// The stiffness estimate `|lambda|` (1/time) of the step just accepted.
     fn lambda(&self, y1: &[f64]) -> f64;
 
-    /// Shows the accepted step from `(t, y)` to `(t1, y1)` to `obs`, with its
-    /// interpolant, then makes `f(t1, y1)` the next step's `k1` (FSAL).
-    #[allow(clippy::too_many_arguments)]
-    fn show<S: OdeSystem>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        t1: f64,
-        h: f64,
-        y: &[f64],
-        y1: &[f64],
-        obs: &mut dyn Observer,
-    );
+    /// Shows the accepted step `s` to `obs`, with its interpolant, then makes
+    /// `f(t1, y1)` the next step's `k1` (FSAL).
+    fn show<S: OdeSystem>(&mut self, sys: &mut S, s: &Step<'_>, obs: &mut dyn Observer);
+}
+
+/// `k1` and two scratch vectors, as [`Pair::parts`] gives them.
+pub(crate) type Parts<'a> = (&'a mut [f64], (&'a mut [f64], &'a mut [f64]));
+
+/// One step as the loop hands it to a pair: from `(t, y)` by `h` to `t1`
+/// (`t + h`, or `t_end` exactly; time units of the problem), the solution
+/// going to `y1`, measured against the run's tolerances `o`.
+pub(crate) struct Step<'a> {
+    pub t: f64,
+    pub t1: f64,
+    pub h: f64,
+    pub y: &'a [f64],
+    pub y1: &'a mut [f64],
+    pub o: &'a Settings,
+}
+
+impl Step<'_> {
+    /// The accepted step as observers see it, with `f1 = f(t1, y1)` and the
+    /// pair's interpolant.
+    pub(crate) fn view<'v>(&'v self, f1: &'v [f64], dense: &'v dyn Interpolant) -> StepView<'v> {
+        StepView {
+            t0: self.t,
+            t1: self.t1,
+            y0: self.y,
+            y1: self.y1,
+            f1,
+            interpolant: dense,
+        }
+    }
+}
+
+/// A pair's working storage for a state of `d` numbers: its stages `k` (in
+/// the pair's own layout, `k1` first), a stage's state `ys`, a vector `aux`
+/// of the pair's own (DOPRI5: the error estimate; DOP853: `f1`) and `rows`
+/// vectors of dense-output coefficients `rcont`. `ys` and `aux` are the
+/// starting step's scratch.
+pub(crate) struct Stages<K> {
+    pub k: K,
+    pub ys: Vec<f64>,
+    pub aux: Vec<f64>,
+    pub rcont: Vec<f64>,
+}
+
+impl<K> Stages<K> {
+    /// The stages `k` and zeroed buffers for a state of `d` numbers with
+    /// `rows` rows of dense output.
+    pub(crate) fn with(k: K, d: usize, rows: usize) -> Self {
+        Self {
+            k,
+            ys: vec![0.0; d],
+            aux: vec![0.0; d],
+            rcont: vec![0.0; rows * d],
+        }
+    }
 }
 
 /// `sqrt(|ka - kb|^2 / |y1 - ys|^2)`: Hairer's estimate of `|lambda|` from
@@ -113,29 +148,39 @@ pub(crate) fn lambda_estimate(ka: &[f64], kb: &[f64], y1: &[f64], ys: &[f64]) ->
     }
 }
 
-/// Integrates `sys` from `(t0, y0)` to `t_end` (`> t0`) with the pair `P`:
-/// observers see every accepted step with `f1 = f(t1, y1)` and the pair's
+/// Integrates `sys` over `s` (from `(t0, y0)` to `t_end > t0`, with
+/// `settings`) with the pair `P`: observers see every accepted step with `f1 = f(t1, y1)` and the pair's
 /// interpolant; the run ends on `t_end` or with a status, at the last
 /// finite state. Every right-hand side is counted.
-pub(crate) fn run<P: Pair, S: OdeSystem + ?Sized>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    Counted::run(sys, |sys| steps::<P, _>(sys, t0, y0, t_end, o, obs))
+pub(crate) fn run<P, S>(sys: &mut S, s: &Span<'_>, obs: &mut dyn Observer) -> Outcome
+where
+    P: Pair,
+    S: OdeSystem + ?Sized,
+{
+    Counted::run(sys, |sys| steps::<P, _>(sys, s, obs))
 }
 
-fn steps<P: Pair, S: OdeSystem>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    o: &Settings,
-    obs: &mut dyn Observer,
-) -> Outcome {
+/// The registry's entry of the adaptive pair `P`, named `name`: it runs
+/// any problem through [`run`].
+pub(crate) const fn integrator<P: Pair>(name: &'static str) -> Integrator {
+    Integrator {
+        name,
+        adaptive: true,
+        run: run_span::<P>,
+    }
+}
+
+fn run_span<P: Pair>(p: &mut dyn Problem, s: &Span<'_>, obs: &mut dyn Observer) -> Run {
+    run::<P, _>(p, s, obs).into()
+}
+
+fn steps<P: Pair, S: OdeSystem>(sys: &mut S, asked: &Span<'_>, obs: &mut dyn Observer) -> Outcome {
+    let Span {
+        t0,
+        y0,
+        t_end,
+        settings: o,
+    } = *asked;
     let c = P::CONTROL;
     let d = sys.dim();
     let mut stats = Stats::default();
@@ -143,18 +188,19 @@ fn steps<P: Pair, S: OdeSystem>(
     let mut y = y0.to_vec();
     let mut y1 = vec![0.0; d];
 
-    sys.rhs(t0, &y, pair.f0_mut());
-    if !all_finite(pair.f0_mut()) {
+    let (f0, _) = pair.parts();
+    sys.rhs(t0, &y, f0);
+    if !all_finite(f0) {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     }
-    obs.start(t0, &y, pair.f0_mut());
+    obs.start(t0, &y, f0);
 
     let span = t_end - t0;
     let mut h = match o.h0 {
         Some(h) => h.min(span),
         None => {
-            let (f0, a, b) = pair.start_buffers();
-            initial_step(sys, t0, &y, f0, span, o, P::ORDER, (a, b))
+            let (f0, scratch) = pair.parts();
+            initial_step(sys, t0, &y, f0, span, o, P::ORDER, scratch)
         }
     };
     let mut t = t0;
@@ -186,7 +232,15 @@ fn steps<P: Pair, S: OdeSystem>(
             h = t_end - t;
         }
 
-        let Some(e) = pair.attempt(sys, t, t1, h, &y, &mut y1, o) else {
+        let mut s = Step {
+            t,
+            t1,
+            h,
+            y: &y,
+            y1: &mut y1,
+            o,
+        };
+        let Some(e) = pair.attempt(sys, &mut s) else {
             // A non-finite trial: retry much smaller; give up at the floor.
             stats.rejected_steps += 1;
             last_rejected = true;
@@ -206,7 +260,7 @@ fn steps<P: Pair, S: OdeSystem>(
             stats.steps += 1;
 
             // Stiffness detection: h |lambda| past the bound, often enough.
-            let lambda = pair.lambda(&y1);
+            let lambda = pair.lambda(s.y1);
             let mut stiff_now = false;
             if h * lambda > c.stiff_hlambda {
                 nonstiff_steps = 0;
@@ -223,7 +277,7 @@ fn steps<P: Pair, S: OdeSystem>(
                 }
             }
 
-            pair.show(sys, t, t1, h, &y, &y1, obs);
+            pair.show(sys, &s, obs);
             std::mem::swap(&mut y, &mut y1);
             t = t1;
             if last_rejected {

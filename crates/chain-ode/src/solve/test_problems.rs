@@ -6,7 +6,9 @@
 
 use super::integrator::{Settings, Span};
 use super::{registry, Method, SolveOptions};
-use crate::ode::{BandedDae, Observer, OdeSystem, Outcome, Problem, SemiExplicitDae, StepView};
+use crate::ode::{
+    BandedDae, Observer, OdeSystem, Outcome, Problem, SemiExplicitDae, Status, StepView,
+};
 
 type Rhs = Box<dyn Fn(f64, &[f64], &mut [f64])>;
 type Jvp = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
@@ -497,6 +499,38 @@ pub(crate) const DOMAIN_EXIT_DAE: KnownDae = KnownDae {
         emit(1, 1, 1.0);
     },
 };
+
+/// Runs `run` on [`OSCILLATOR`] from its exact state at `t0 = 0` and at
+/// `t0 = 1.5` to `t_end = 10`, watched by an [`ExactCheck`] of `f1`: each
+/// run ends `ok` on `t_end` with its last step there and every step shown;
+/// its end error and its interpolant's error (max norm) are below `tol`,
+/// and the interpolant passes through each step's ends to 1e-12.
+pub(crate) fn oscillator_dense_check(
+    tol: f64,
+    mut run: impl FnMut(&mut Toy, f64, &[f64], f64, &mut ExactCheck) -> Outcome,
+) {
+    for t0 in [0.0, 1.5] {
+        let mut sys = (OSCILLATOR.system)();
+        let mut obs = ExactCheck::new(OSCILLATOR.exact).with_rhs(|_t, y| vec![y[1], -y[0]]);
+        let y0 = [f64::cos(t0), -f64::sin(t0)];
+        let t_end = 10.0;
+        let out = run(&mut sys, t0, &y0, t_end, &mut obs);
+        assert_eq!(out.status, Status::Ok);
+        assert_eq!(out.t_reached, t_end);
+        assert_eq!(out.t_failed, None);
+        assert_eq!(obs.starts, 1);
+        assert_eq!(obs.t_last, t_end, "the last step lands on t_end");
+        assert_eq!(obs.steps, out.stats.steps);
+        let e = max_diff(&out.y_end, &[t_end.cos(), -t_end.sin()]);
+        eprintln!(
+            "oscillator t0 = {t0}: {} steps, end error {e:.1e}, dense {:.1e}, ends {:.1e}",
+            out.stats.steps, obs.inside, obs.ends
+        );
+        assert!(e < tol, "end error {e:e}");
+        assert!(obs.inside < tol, "dense error {:e}", obs.inside);
+        assert!(obs.ends < 1e-12, "ends {:e}", obs.ends);
+    }
+}
 
 /// `f(t, y)` as a value, for checking what a method reports as `f1`.
 type RhsOf = fn(f64, &[f64]) -> Vec<f64>;
