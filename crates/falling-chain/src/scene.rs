@@ -461,21 +461,6 @@ t_end = 4
         }
     }
 
-    /// The smallest scene of each start kind.
-    fn base(kind: StartKind) -> toml::Table {
-        let extra = match kind {
-            StartKind::Stretched | StartKind::Catenary => "p1 = [3, 0]",
-            StartKind::Folded => "",
-            StartKind::Angles => "angles = [0, 0, 0, 0]",
-        };
-        format!(
-            "[chain]\nlinks = 4\n[start]\nkind = \"{}\"\n{extra}\n[run]\nt_end = 1\n",
-            kind.as_str()
-        )
-        .parse()
-        .unwrap()
-    }
-
     /// The kinds of start under which a key can be set.
     fn kinds_taking(k: &schema::Key) -> Vec<StartKind> {
         match k.kinds {
@@ -528,7 +513,7 @@ t_end = 4
     fn every_row_round_trips_through_set() {
         for k in schema::KEYS {
             for kind in kinds_taking(k) {
-                let mut tree = base(kind);
+                let mut tree = valid_base(kind);
                 let text = sample(k, kind);
                 overrides::apply(&mut tree, &[format!("{}={text}", k.path)])
                     .unwrap_or_else(|e| panic!("{}: {e}", k.path));
@@ -688,7 +673,7 @@ t_end = 4
                 // the check below never passes for want of an error.
                 let mut rejected = 0;
                 for text in values {
-                    let mut tree = base(kind);
+                    let mut tree = valid_base(kind);
                     overrides::apply(&mut tree, &[format!("{}={text}", k.path)]).unwrap();
                     if let Err(e) = Scene::from_tree(tree).and_then(|s| s.prepare()) {
                         rejected += 1;
