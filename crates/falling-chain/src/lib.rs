@@ -4,7 +4,8 @@
 //! [`Scene`] reads a scene file (and `--set` overrides) into the chain-ode
 //! types, checked against [`schema::KEYS`], the one table of scene keys;
 //! [`RunSummary`] is what a run prints as JSON or as a CSV row, [`csv`] writes a trajectory's samples, and [`atomic`] makes every output
-//! file appear whole or not at all. Every error is an [`Error`], one line
+//! file appear whole or not at all; [`viewer`] writes the self-contained
+//! HTML page of `view` (and [`run_csv`] reads a run back from `--out`'s CSV). Every error is an [`Error`], one line
 //! that starts with the field it is about.
 
 pub mod atomic;
@@ -14,10 +15,12 @@ pub mod csv;
 pub mod error;
 pub mod overrides;
 pub mod render;
+pub mod run_csv;
 pub mod scene;
 pub mod schema;
 pub mod summary;
 pub mod sweep;
+pub mod viewer;
 
 pub use catenary_report::{CatenaryReport, DiscreteReport};
 pub use error::{CatenaryNames, Error};

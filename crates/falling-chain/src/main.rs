@@ -55,6 +55,12 @@ enum Command {
     /// unit at g = 0), so a speed that is zero at every level agrees.
     /// Exit 0 with the answer (or "refine further"), 1 if a run failed.
     Converge(ConvergeArgs),
+    /// Run one or more scenes (or read runs written by simulate --out) and
+    /// write one self-contained HTML page that plays, scrubs and overlays
+    /// them: the chain to scale with the tip's path, the tip speed and the
+    /// energy balance with a cursor, each run's summary. Exit 1 if a run
+    /// failed (the page is still written, showing where it failed).
+    View(ViewArgs),
 }
 
 /// What every scene-taking command (simulate, sweep, converge, plot,
@@ -124,6 +130,29 @@ struct ConvergeArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Args)]
+struct ViewArgs {
+    /// Scene files to run, each with the --set overrides (with --method,
+    /// once per method); with --from, none are needed. At most 8 runs in all.
+    #[arg(value_name = "SCENE.toml")]
+    scenes: Vec<PathBuf>,
+    /// Set any scene key of every scene by its dotted path (as simulate).
+    #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+    set: Vec<String>,
+    /// Run every scene with each of these methods, M1,M2,... (overrides
+    /// run.method), e.g. to overlay rk4 and dopri5.
+    #[arg(long, value_name = "M1,M2,...")]
+    method: Option<String>,
+    /// A run already written by simulate --out, shown without running it
+    /// again (repeatable). It may carry joint forces as extra columns
+    /// tension_0..tension_n and shear_0..shear_n.
+    #[arg(long, value_name = "RUN.csv")]
+    from: Vec<PathBuf>,
+    /// The page, FILE.html.
+    #[arg(short = 'o', long = "out", value_name = "FILE.html")]
+    out: PathBuf,
 }
 
 #[derive(Args)]
@@ -499,6 +528,92 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
     })
 }
 
+fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
+    use falling_chain::viewer::{self, ViewRun, DATA_BUDGET_BYTES};
+    if !args.out.extension().is_some_and(|e| {
+        e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm")
+    }) {
+        return Err(Error::field(
+            "--out",
+            format!("must end in .html (got '{}')", echo_path(&args.out)),
+        ));
+    }
+    let methods: Vec<Option<&str>> = match &args.method {
+        None => vec![None],
+        Some(list) => list.split(',').map(|m| Some(m.trim())).collect(),
+    };
+    let count = args
+        .scenes
+        .len()
+        .saturating_mul(methods.len())
+        .saturating_add(args.from.len());
+    viewer::check_run_count("SCENE.toml/--from", count)?;
+    // Every scene is checked, and every CSV read, before any run starts.
+    let mut prepared = Vec::new();
+    for path in &args.scenes {
+        let base = Scene::load(path)?.with_overrides(&args.set)?;
+        for method in &methods {
+            let scene = match method {
+                Some(m) => base.with_value("run.method", toml::Value::String((*m).to_string()))?,
+                None => base.clone(),
+            };
+            let run = scene.prepare()?;
+            viewer::check_links("chain.links", run.chain.links())?;
+            let label = match method {
+                Some(m) if methods.len() > 1 => format!("{} ({m})", scene.name()),
+                _ => scene.name().to_string(),
+            };
+            prepared.push((label, scene, run));
+        }
+    }
+    let budget = DATA_BUDGET_BYTES / count;
+    let from = args
+        .from
+        .iter()
+        .map(|p| falling_chain::run_csv::read_run_csv(p, budget))
+        .collect::<Result<Vec<_>, _>>()?;
+    let out = begin("--out", &args.out)?;
+    let mut runs = Vec::with_capacity(count);
+    let mut failed = 0;
+    for (label, scene, run) in prepared {
+        let traj = run.solve()?;
+        let summary = RunSummary::from_trajectory(scene.name(), &traj);
+        failed += usize::from(!summary.is_ok());
+        runs.push(ViewRun::from_trajectory(&label, &traj, &summary, budget));
+    }
+    runs.extend(from);
+    // Two runs of one label are told apart by their number.
+    for k in 1..runs.len() {
+        if runs[..k].iter().any(|r| r.label == runs[k].label) {
+            runs[k].label = format!("{} #{}", runs[k].label, k + 1);
+        }
+    }
+    let title = runs
+        .iter()
+        .map(|r| r.label.as_str())
+        .collect::<Vec<_>>()
+        .join(" vs ");
+    let page = viewer::page(&title, &runs);
+    let shown = echo_path(out.path());
+    out.write(|w| w.write_all(page.as_bytes()))?;
+    let thinned = runs.iter().filter(|r| r.stride > 1).count();
+    eprintln!(
+        "wrote {shown} ({} runs, {} bytes{})",
+        runs.len(),
+        page.len(),
+        if thinned > 0 {
+            format!(", {thinned} thinned")
+        } else {
+            String::new()
+        }
+    );
+    if failed > 0 {
+        eprintln!("{failed} of {} runs failed (see their status)", runs.len());
+        return Ok(ExitCode::FAILURE);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
     use falling_chain::converge;
     converge::check_tol(args.tol)?;
@@ -594,6 +709,7 @@ fn main() -> ExitCode {
         Command::Plot(args) => plot(args),
         Command::Animate(args) => animate(args),
         Command::Converge(args) => converge(args),
+        Command::View(args) => view(args),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e}");

@@ -1,0 +1,356 @@
+//! The self-contained HTML viewer of `falling-chain view`: one page with the
+//! runs' data and every script inline (no network, no server), which plays,
+//! scrubs and steps through up to [`MAX_RUNS`] runs overlaid.
+//!
+//! The page's data model, one object per run in `#fc-data` (JSON):
+//! `label`; `summary` (the `simulate --json` object, or for a run read from
+//! a CSV the fields that file gives); `status` and `t_failed`; `links` (n),
+//! `rod` (l = L/n) and `anchor` (P0), in the scene's length unit; `samples`
+//! (before thinning) and `stride` (every `stride`-th sample is kept, and the
+//! last); per kept sample `t`, `speed` (tip speed), `energy` (E) and
+//! `dissipated` (W); `phi`, the n absolute rod angles of every kept sample
+//! in a row (rad from the horizontal, 6 decimals), from which the page
+//! builds the joints `P0 + l sum (cos, sin)`; and `forces`, `null` or
+//! `{ "tension": [...], "shear": [...] }` (either may be absent), n + 1 joint
+//! values per kept sample in a row (issue "elastic links"), drawn as
+//! colour along the chain. `source` names the CSV a run was read from.
+
+use std::fmt::Write as _;
+
+use chain_ode::kinematics::tip_velocity;
+use chain_ode::Trajectory;
+use serde_json::{json, Value};
+
+use crate::{Error, RunSummary};
+
+/// The most runs one page overlays (one colour each).
+pub const MAX_RUNS: usize = 8;
+
+/// The data a page holds, over all its runs, in bytes: each of `k` runs is
+/// thinned to `DATA_BUDGET_BYTES / k`. A 50-rod, 8 s run at the default
+/// output step (801 samples) takes about 0.5 MB, well inside one run's
+/// share, so the page of one such run stays under 2 MB unthinned.
+pub const DATA_BUDGET_BYTES: usize = 1_800_000;
+
+/// The most rods a page draws: two frames of each of 8 runs must fit the
+/// budget ([`DATA_BUDGET_BYTES`]).
+pub const MAX_VIEW_LINKS: usize = 10_000;
+
+/// Bytes of one angle in the data (`-1.570796,`).
+const ANGLE_BYTES: usize = 10;
+/// Bytes of one force value (`-1.2345e-3,`).
+const FORCE_BYTES: usize = 11;
+/// Bytes of the per-sample scalars (t, speed, energy, dissipated).
+const SCALAR_BYTES: usize = 4 * 24;
+
+/// Joint forces of one run: n + 1 values per kept sample, in a row.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct JointForces {
+    /// Tension at each joint (force unit of the scene), if the run has it.
+    pub tension: Option<Vec<f64>>,
+    /// Shear at each joint, if the run has it.
+    pub shear: Option<Vec<f64>>,
+}
+
+/// One run as the page holds it (see the module's data model).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ViewRun {
+    pub label: String,
+    pub summary: Value,
+    pub status: String,
+    pub t_failed: Option<f64>,
+    pub links: usize,
+    pub rod: f64,
+    pub anchor: [f64; 2],
+    pub samples: usize,
+    pub stride: usize,
+    pub t: Vec<f64>,
+    pub speed: Vec<f64>,
+    pub energy: Vec<f64>,
+    pub dissipated: Vec<f64>,
+    pub phi: Vec<f64>,
+    pub forces: Option<JointForces>,
+    /// The file a run was read from (`--from`), shown on the page.
+    pub source: Option<String>,
+}
+
+/// The stride that keeps `samples` frames of `links` rods (with forces of
+/// `force_arrays` kinds) within `budget` bytes: every `stride`-th sample
+/// and the last are kept. At least 1.
+pub fn stride_for(samples: usize, links: usize, force_arrays: usize, budget: usize) -> usize {
+    let frame = links * ANGLE_BYTES + force_arrays * (links + 1) * FORCE_BYTES + SCALAR_BYTES;
+    let kept = (budget / frame.max(1)).max(2);
+    if samples <= kept {
+        1
+    } else {
+        // Samples 0, s, 2s, ... below the last, then the last.
+        (samples - 1).div_ceil(kept - 1)
+    }
+}
+
+/// Whether sample `k` of `samples` is kept at `stride`.
+pub fn keeps(k: usize, samples: usize, stride: usize) -> bool {
+    k % stride == 0 || k + 1 == samples
+}
+
+/// Checks the number of runs of one page: 1..=[`MAX_RUNS`]; the error
+/// names `field`.
+pub fn check_run_count(field: &str, runs: usize) -> Result<(), Error> {
+    if (1..=MAX_RUNS).contains(&runs) {
+        Ok(())
+    } else {
+        Err(Error::field(
+            field,
+            format!("a page shows 1 to {MAX_RUNS} runs (got {runs})"),
+        ))
+    }
+}
+
+/// Checks that a page can draw `links` rods (at most [`MAX_VIEW_LINKS`]);
+/// the error names `field`.
+pub fn check_links(field: &str, links: usize) -> Result<(), Error> {
+    if links <= MAX_VIEW_LINKS {
+        Ok(())
+    } else {
+        Err(Error::field(
+            field,
+            format!("the viewer draws at most {MAX_VIEW_LINKS} rods (got {links})"),
+        ))
+    }
+}
+
+impl ViewRun {
+    /// A finished (or failed) run, thinned to `budget` bytes, with its
+    /// `simulate --json` summary.
+    pub fn from_trajectory(
+        label: &str,
+        traj: &Trajectory,
+        summary: &RunSummary,
+        budget: usize,
+    ) -> Self {
+        let links = traj.chain.links();
+        let samples = traj.len();
+        let stride = stride_for(samples, links, 0, budget);
+        let kept = samples.div_ceil(stride) + 1;
+        let mut run = Self {
+            label: label.to_string(),
+            summary: serde_json::to_value(summary).unwrap_or(Value::Null),
+            status: summary.status.clone(),
+            t_failed: summary.t_failed,
+            links,
+            rod: traj.chain.length() / links as f64,
+            anchor: traj.anchor,
+            samples,
+            stride,
+            t: Vec::with_capacity(kept),
+            speed: Vec::with_capacity(kept),
+            energy: Vec::with_capacity(kept),
+            dissipated: Vec::with_capacity(kept),
+            phi: Vec::with_capacity(kept * links),
+            forces: None,
+            source: None,
+        };
+        for (k, s) in traj.samples().enumerate() {
+            if !keeps(k, samples, stride) {
+                continue;
+            }
+            let v = tip_velocity(&traj.chain, s.angles, s.rates);
+            run.t.push(s.t);
+            run.speed.push(v[0].hypot(v[1]));
+            run.energy
+                .push(chain_ode::kinematics::energy(&traj.chain, s.angles, s.rates));
+            run.dissipated.push(s.dissipated);
+            run.phi.extend_from_slice(s.angles);
+        }
+        run
+    }
+
+    /// The run as the page's JSON object (numbers written by hand: angles
+    /// to 6 decimals, forces to 5 digits, the rest round-tripping).
+    fn write_json(&self, out: &mut String) {
+        let head = json!({
+            "label": self.label,
+            "summary": self.summary,
+            "status": self.status,
+            "t_failed": self.t_failed,
+            "links": self.links,
+            "rod": self.rod,
+            "anchor": self.anchor,
+            "samples": self.samples,
+            "stride": self.stride,
+            "source": self.source,
+        });
+        let head = head.to_string();
+        // The object without its closing brace, then the arrays.
+        out.push_str(&head[..head.len() - 1]);
+        for (name, values) in [
+            ("t", &self.t),
+            ("speed", &self.speed),
+            ("energy", &self.energy),
+            ("dissipated", &self.dissipated),
+        ] {
+            write_array(out, name, values, |out, v| {
+                let _ = write!(out, "{}", finite(v));
+            });
+        }
+        write_array(out, "phi", &self.phi, |out, v| {
+            let _ = write!(out, "{:.6}", finite(v));
+        });
+        out.push_str(",\"forces\":");
+        match &self.forces {
+            None => out.push_str("null"),
+            Some(f) => {
+                out.push('{');
+                let mut first = true;
+                for (name, values) in [("tension", &f.tension), ("shear", &f.shear)] {
+                    if let Some(values) = values {
+                        if !first {
+                            out.push(',');
+                        }
+                        first = false;
+                        write_array(&mut *out, name, values, |out, v| {
+                            let _ = write!(out, "{:.4e}", finite(v));
+                        });
+                    }
+                }
+                out.push('}');
+            }
+        }
+        out.push('}');
+    }
+}
+
+/// A JSON number for `v` (the data hold only finite values; a stray
+/// non-finite one becomes 0 rather than invalid JSON).
+fn finite(v: f64) -> f64 {
+    if v.is_finite() {
+        v
+    } else {
+        0.0
+    }
+}
+
+/// Appends `,"name":[v,v,...]` (without the leading comma when `out` ends
+/// in `{` or `,`).
+fn write_array(out: &mut String, name: &str, values: &[f64], each: impl Fn(&mut String, f64)) {
+    if !(out.ends_with('{') || out.ends_with(',')) {
+        out.push(',');
+    }
+    let _ = write!(out, "\"{name}\":[");
+    for (k, &v) in values.iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        each(out, v);
+    }
+    out.push(']');
+}
+
+/// The HTML page of `runs`, titled `title`: the data, the style and the
+/// script inline.
+pub fn page(title: &str, runs: &[ViewRun]) -> String {
+    let mut data = String::from("{\"version\":1,\"runs\":[");
+    for (k, run) in runs.iter().enumerate() {
+        if k > 0 {
+            data.push(',');
+        }
+        run.write_json(&mut data);
+    }
+    data.push_str("]}");
+    // `<` appears only inside JSON strings, where \u003c is the same text:
+    // no label can end the script element.
+    let data = data.replace('<', "\\u003c");
+    TEMPLATE
+        .replace("{{CSS}}", CSS)
+        .replace("{{SCRIPT}}", SCRIPT)
+        .replace("{{TITLE}}", &html_escape(title))
+        .replace("{{DATA}}", &data)
+}
+
+/// `text` with `&`, `<`, `>` and `"` escaped for HTML.
+pub fn html_escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The page wrapped in an `<iframe srcdoc>`, for a notebook's output
+/// (Jupyter shows HTML but may not run its scripts inline).
+pub fn iframe(page: &str) -> String {
+    format!(
+        "<iframe srcdoc=\"{}\" style=\"width: 100%; height: 900px; border: 0\" \
+         sandbox=\"allow-scripts\"></iframe>",
+        html_escape(page)
+    )
+}
+
+const TEMPLATE: &str = include_str!("viewer/page.html");
+const CSS: &str = include_str!("viewer/viewer.css");
+const SCRIPT: &str = include_str!("viewer/viewer.js");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toy(forces: Option<JointForces>) -> ViewRun {
+        ViewRun {
+            label: "a </script> b".into(),
+            summary: json!({ "status": "ok" }),
+            status: "ok".into(),
+            t_failed: None,
+            links: 2,
+            rod: 0.5,
+            anchor: [0.0, 0.0],
+            samples: 2,
+            stride: 1,
+            t: vec![0.0, 0.1],
+            speed: vec![0.0, 1.0],
+            energy: vec![-1.0, -1.0],
+            dissipated: vec![0.0, 0.0],
+            phi: vec![0.0, -1.0, -0.5, -1.5],
+            forces,
+            source: None,
+        }
+    }
+
+    fn data_of(page: &str) -> Value {
+        let start = page.find("type=\"application/json\">").unwrap() + 24;
+        let end = start + page[start..].find("</script>").unwrap();
+        serde_json::from_str(&page[start..end]).unwrap()
+    }
+
+    #[test]
+    fn the_data_is_json_and_no_label_ends_the_script() {
+        let forces = JointForces {
+            tension: Some(vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+            shear: None,
+        };
+        let page = page("t", &[toy(None), toy(Some(forces))]);
+        let data = data_of(&page);
+        let runs = data["runs"].as_array().unwrap();
+        assert_eq!(runs.len(), 2);
+        assert_eq!(runs[0]["label"], "a </script> b");
+        assert_eq!(runs[0]["forces"], Value::Null);
+        assert_eq!(runs[1]["forces"]["tension"].as_array().unwrap().len(), 6);
+        assert_eq!(runs[1]["phi"][1].as_f64(), Some(-1.0));
+    }
+
+    #[test]
+    fn thinning_keeps_the_budget_the_first_and_the_last_sample() {
+        for (samples, links) in [(801, 50), (801, 400), (100_001, 50), (3, 10_000)] {
+            let budget = DATA_BUDGET_BYTES / 8;
+            let stride = stride_for(samples, links, 0, budget);
+            let kept = (0..samples).filter(|&k| keeps(k, samples, stride)).count();
+            assert!(keeps(0, samples, stride) && keeps(samples - 1, samples, stride));
+            let bytes = kept * (links * ANGLE_BYTES + SCALAR_BYTES);
+            assert!(bytes <= budget || kept == 2.min(samples), "{samples} {links}");
+            // The next smaller stride would not fit.
+            if stride > 1 {
+                let k2 = (0..samples).filter(|&k| keeps(k, samples, stride - 1)).count();
+                assert!(k2 * (links * ANGLE_BYTES + SCALAR_BYTES) > budget);
+            }
+        }
+        assert_eq!(stride_for(801, 50, 0, DATA_BUDGET_BYTES), 1);
+    }
+}
