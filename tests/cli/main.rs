@@ -19,3 +19,4 @@ mod plot;
 mod scenes;
 mod simulate;
 mod sweep;
+mod view;

@@ -96,6 +96,7 @@
   }
 
   const drawnTip = runs.map(() => null);
+  const drawnFrame = runs.map(() => -1);
 
   function drawChain(t) {
     cx.clearRect(0, 0, chain.width, chain.height);
@@ -137,6 +138,7 @@
       }
       const tx = r.xs[base + r.links], ty = r.ys[base + r.links];
       drawnTip[i] = [tx, ty];
+      drawnFrame[i] = f;
       cx.fillStyle = r.color;
       cx.beginPath(); cx.arc(view.px(tx), view.py(ty), 4, 0, 2 * Math.PI); cx.fill();
       if (r.t_failed !== null && t >= r.t[r.frames - 1]) {
@@ -372,6 +374,11 @@
     pause: () => setPlaying(false),
     playing: () => playing,
     drawnTip: (i) => drawnTip[i],
+    // Joint j (0 = P0) of run i as drawn now.
+    joint: (i, j) => {
+      const r = runs[i], f = drawnFrame[i];
+      return f < 0 ? null : [r.xs[f * r.m + j], r.ys[f * r.m + j]];
+    },
     toPixel: (x, y) => [view.px(x), view.py(y)],
     drawTimes: () => drawTimes.slice(),
   };
