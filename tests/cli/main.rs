@@ -10,6 +10,7 @@
     reason = "test code: a failed check panics"
 )]
 
+mod browser;
 mod catenary;
 mod common;
 mod converge;

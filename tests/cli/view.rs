@@ -53,7 +53,12 @@ fn a_page_is_self_contained_and_its_frames_are_the_runs() {
     assert!((num(r, "rod") - 6.0 / 50.0).abs() < 1e-15);
     assert_eq!(pair(r, "anchor"), [0.0, 0.0]);
     let t = r["t"].as_array().unwrap();
-    let phi: Vec<f64> = r["phi"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let phi: Vec<f64> = r["phi"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert_eq!(phi.len(), t.len() * n);
     assert_eq!(r["stride"], 1);
     // The last frame's tip, from the page's 6-decimal angles, is the run's
@@ -61,7 +66,10 @@ fn a_page_is_self_contained_and_its_frames_are_the_runs() {
     let sim = json(&run(&["simulate", &scene("span-d3"), "--json"]));
     let tip = tip_of([0.0, 0.0], 0.12, &phi[phi.len() - n..]);
     let end = pair(&sim, "tip_end");
-    assert!((tip[0] - end[0]).hypot(tip[1] - end[1]) < 3e-6, "{tip:?} {end:?}");
+    assert!(
+        (tip[0] - end[0]).hypot(tip[1] - end[1]) < 3e-6,
+        "{tip:?} {end:?}"
+    );
     // At t = 0 the chain hangs from P0 to P1 = (3, 0).
     let start = tip_of([0.0, 0.0], 0.12, &phi[..n]);
     assert!((start[0] - 3.0).hypot(start[1]) < 3e-6, "{start:?}");
@@ -79,13 +87,25 @@ fn a_50_rod_8_s_run_fits_2_mb_unthinned_and_a_long_run_is_thinned() {
     let bytes = fs::metadata(&page).unwrap().len();
     assert!(bytes <= 2_000_000, "{bytes} bytes");
     let r = &page_data(&page)["runs"][0];
-    assert_eq!((r["stride"].as_u64(), r["samples"].as_u64()), (Some(1), Some(801)));
+    assert_eq!(
+        (r["stride"].as_u64(), r["samples"].as_u64()),
+        (Some(1), Some(801))
+    );
     // 2000 rods over 801 samples cannot fit: every k-th sample and the last.
     let (page, o) = view(
         &dir,
         "long.html",
-        &[&scene("span-d3"), "--set", "chain.links=2000", "--set", "run.t_end=0.05",
-          "--set", "run.output_dt=0.0001", "--set", "run.dt=0.0001"],
+        &[
+            &scene("span-d3"),
+            "--set",
+            "chain.links=2000",
+            "--set",
+            "run.t_end=0.05",
+            "--set",
+            "run.output_dt=0.0001",
+            "--set",
+            "run.dt=0.0001",
+        ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let bytes = fs::metadata(&page).unwrap().len();
@@ -93,7 +113,12 @@ fn a_50_rod_8_s_run_fits_2_mb_unthinned_and_a_long_run_is_thinned() {
     let r = &page_data(&page)["runs"][0];
     let stride = r["stride"].as_u64().unwrap();
     let samples = r["samples"].as_u64().unwrap();
-    let t: Vec<f64> = r["t"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let t: Vec<f64> = r["t"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert!(stride > 1 && samples == 501, "{stride} {samples}");
     assert_eq!(t.len() as u64, (samples - 1).div_ceil(stride) + 1);
     assert!((t[1] - stride as f64 * 1e-4).abs() < 1e-12 && (t[t.len() - 1] - 0.05).abs() < 1e-12);
@@ -104,8 +129,13 @@ fn a_run_read_from_its_csv_recovers_the_chain_and_its_forces() {
     let dir = scratch("view-from");
     let csv = dir.join("run.csv");
     let o = run(&[
-        "simulate", &scene("span-d3"), "--json", "--set", "run.output_dt=0.01",
-        "--out", csv.to_str().unwrap(),
+        "simulate",
+        &scene("span-d3"),
+        "--json",
+        "--set",
+        "run.output_dt=0.01",
+        "--out",
+        csv.to_str().unwrap(),
     ]);
     assert!(o.status.success());
     let sim = json(&o);
@@ -121,7 +151,10 @@ fn a_run_read_from_its_csv_recovers_the_chain_and_its_forces() {
     // The maximum over samples 0.01 apart is at most the continuous one,
     // and within 1% of it (the whip's peak is 10.6 at t = 2.76).
     let (sampled, continuous) = (num(s, "tip_speed_max"), num(&sim, "tip_speed_max"));
-    assert!(sampled <= continuous && sampled > 0.99 * continuous, "{sampled} {continuous}");
+    assert!(
+        sampled <= continuous && sampled > 0.99 * continuous,
+        "{sampled} {continuous}"
+    );
     assert_eq!(r["forces"], Value::Null);
 
     // Joint forces as extra columns: tension_j = j + k (row k), shear = -j.
@@ -166,7 +199,12 @@ fn a_failed_run_is_written_with_its_status_and_exit_1() {
     let r = &page_data(&page)["runs"][0];
     assert_ne!(r["status"], "ok");
     let t_failed = num(r, "t_failed");
-    let t: Vec<f64> = r["t"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let t: Vec<f64> = r["t"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert!(t_failed < 4.157 && *t.last().unwrap() <= t_failed);
 }
 
@@ -174,7 +212,14 @@ fn a_failed_run_is_written_with_its_status_and_exit_1() {
 fn bad_input_is_one_line_exit_2_and_no_file() {
     let dir = scratch("view-bad");
     let sim = dir.join("run.csv");
-    assert!(run(&["simulate", &scene("span-d3"), "--out", sim.to_str().unwrap()]).status.success());
+    assert!(run(&[
+        "simulate",
+        &scene("span-d3"),
+        "--out",
+        sim.to_str().unwrap()
+    ])
+    .status
+    .success());
     let good = fs::read_to_string(&sim).unwrap();
     let header = good.lines().next().unwrap().to_string();
     let row = |k: usize| good.lines().nth(k).unwrap().to_string();
@@ -190,20 +235,103 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         cells.join(",")
     };
     let cases: Vec<(Vec<String>, &str, &str)> = vec![
-        (vec!["--from".into(), dir.join("absent.csv").to_str().unwrap().into()], "--from", "absent"),
-        (vec!["--from".into(), write("empty.csv", String::new())], "--from", "empty"),
-        (vec!["--from".into(), write("header.csv", "t,x\n1,2\n".into())], "--from", "header"),
-        (vec!["--from".into(), write("nan.csv", format!("{header}\n{}\n{}\n", row(1), row(2).replacen(',', ",nan,", 1)))], "--from", "finite"),
-        (vec!["--from".into(), write("short.csv", format!("{header}\n{}\n1,2\n", row(1)))], "--from", "cells"),
-        (vec!["--from".into(), write("back.csv", format!("{header}\n{}\n{}\n", row(2), row(1)))], "--from", "increase"),
-        (vec!["--from".into(), write("moved.csv", format!("{header}\n{}\n{}\n{moved}\n", row(1), row(2)))], "--from", "do not match"),
-        (vec!["--from".into(), write("one.csv", format!("{header}\n{}\n", row(1)))], "--from", "at least 2"),
-        (vec!["--from".into(), write("extra.csv", format!("{header},x\n{},1\n", row(1)))], "--from", "unexpected column"),
-        (vec!["--from".into(), dir.to_str().unwrap().into()], "--from", "regular file"),
-        ((0..9).map(|_| scene("span-d3")).collect(), "SCENE.toml/--from", "1 to 8"),
+        (
+            vec![
+                "--from".into(),
+                dir.join("absent.csv").to_str().unwrap().into(),
+            ],
+            "--from",
+            "absent",
+        ),
+        (
+            vec!["--from".into(), write("empty.csv", String::new())],
+            "--from",
+            "empty",
+        ),
+        (
+            vec!["--from".into(), write("header.csv", "t,x\n1,2\n".into())],
+            "--from",
+            "header",
+        ),
+        (
+            vec![
+                "--from".into(),
+                write(
+                    "nan.csv",
+                    format!(
+                        "{header}\n{}\n{}\n",
+                        row(1),
+                        row(2).replacen(',', ",nan,", 1)
+                    ),
+                ),
+            ],
+            "--from",
+            "finite",
+        ),
+        (
+            vec![
+                "--from".into(),
+                write("short.csv", format!("{header}\n{}\n1,2\n", row(1))),
+            ],
+            "--from",
+            "cells",
+        ),
+        (
+            vec![
+                "--from".into(),
+                write("back.csv", format!("{header}\n{}\n{}\n", row(2), row(1))),
+            ],
+            "--from",
+            "increase",
+        ),
+        (
+            vec![
+                "--from".into(),
+                write(
+                    "moved.csv",
+                    format!("{header}\n{}\n{}\n{moved}\n", row(1), row(2)),
+                ),
+            ],
+            "--from",
+            "do not match",
+        ),
+        (
+            vec![
+                "--from".into(),
+                write("one.csv", format!("{header}\n{}\n", row(1))),
+            ],
+            "--from",
+            "at least 2",
+        ),
+        (
+            vec![
+                "--from".into(),
+                write("extra.csv", format!("{header},x\n{},1\n", row(1))),
+            ],
+            "--from",
+            "unexpected column",
+        ),
+        (
+            vec!["--from".into(), dir.to_str().unwrap().into()],
+            "--from",
+            "regular file",
+        ),
+        (
+            (0..9).map(|_| scene("span-d3")).collect(),
+            "SCENE.toml/--from",
+            "1 to 8",
+        ),
         (vec![], "SCENE.toml/--from", "1 to 8"),
-        (vec![scene("span-d3"), "--method".into(), "rk4,nonesuch".into()], "run.method", "one of"),
-        (vec![scene("span-d3"), "--set".into(), "chain.links=20000".into()], "chain.links", "10000"),
+        (
+            vec![scene("span-d3"), "--method".into(), "rk4,nonesuch".into()],
+            "run.method",
+            "one of",
+        ),
+        (
+            vec![scene("span-d3"), "--set".into(), "chain.links=20000".into()],
+            "chain.links",
+            "10000",
+        ),
     ];
     for (args, field, says) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

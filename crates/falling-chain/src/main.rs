@@ -530,9 +530,11 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
 
 fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     use falling_chain::viewer::{self, ViewRun, DATA_BUDGET_BYTES};
-    if !args.out.extension().is_some_and(|e| {
-        e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm")
-    }) {
+    if !args
+        .out
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
+    {
         return Err(Error::field(
             "--out",
             format!("must end in .html (got '{}')", echo_path(&args.out)),

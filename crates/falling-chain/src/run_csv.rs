@@ -27,7 +27,15 @@ use crate::Error;
 pub const MAX_RUN_CSV_BYTES: u64 = 2 << 30;
 
 /// The leading columns, in order.
-const LEADING: [&str; 7] = ["t", "tip_x", "tip_y", "tip_vx", "tip_vy", "energy", "dissipated"];
+const LEADING: [&str; 7] = [
+    "t",
+    "tip_x",
+    "tip_y",
+    "tip_vx",
+    "tip_vy",
+    "energy",
+    "dissipated",
+];
 
 /// The columns of one file: n, and which force arrays follow the angles.
 struct Columns {
@@ -38,7 +46,9 @@ struct Columns {
 
 impl Columns {
     fn count(&self) -> usize {
-        LEADING.len() + self.links + (usize::from(self.tension) + usize::from(self.shear)) * (self.links + 1)
+        LEADING.len()
+            + self.links
+            + (usize::from(self.tension) + usize::from(self.shear)) * (self.links + 1)
     }
 }
 
@@ -69,7 +79,10 @@ impl Row {
 /// file's stem. Every error names `--from`.
 pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
     let bad = |line: usize, what: String| {
-        Error::field("--from", format!("'{}' line {line}: {what}", echo_path(path)))
+        Error::field(
+            "--from",
+            format!("'{}' line {line}: {what}", echo_path(path)),
+        )
     };
     // Pass 1: the number of rows and the means of the tip and the reach.
     let mut rows = 0usize;
@@ -223,7 +236,10 @@ fn for_each_row(
 ) -> Result<Columns, Error> {
     let read = |e| Error::read("--from", path, e);
     let bad = |line: usize, what: String| {
-        Error::field("--from", format!("'{}' line {line}: {what}", echo_path(path)))
+        Error::field(
+            "--from",
+            format!("'{}' line {line}: {what}", echo_path(path)),
+        )
     };
     let meta = std::fs::metadata(path).map_err(read)?;
     if !meta.is_file() {
@@ -240,7 +256,12 @@ fn for_each_row(
     let mut lines = BufReader::new(file.take(MAX_RUN_CSV_BYTES + 1)).lines();
     let header = match lines.next() {
         Some(line) => line.map_err(read)?,
-        None => return Err(bad(1, "the file is empty: expected simulate --out's CSV".into())),
+        None => {
+            return Err(bad(
+                1,
+                "the file is empty: expected simulate --out's CSV".into(),
+            ))
+        }
     };
     let columns = parse_header(&header).map_err(|what| bad(1, what))?;
     check_links("--from", columns.links)?;
@@ -284,7 +305,10 @@ fn for_each_row(
         if row.t() <= previous {
             return Err(bad(
                 line_no,
-                format!("t must increase from row to row (got {} after {previous})", row.t()),
+                format!(
+                    "t must increase from row to row (got {} after {previous})",
+                    row.t()
+                ),
             ));
         }
         previous = row.t();

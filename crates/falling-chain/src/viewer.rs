@@ -157,8 +157,11 @@ impl ViewRun {
             let v = tip_velocity(&traj.chain, s.angles, s.rates);
             run.t.push(s.t);
             run.speed.push(v[0].hypot(v[1]));
-            run.energy
-                .push(chain_ode::kinematics::energy(&traj.chain, s.angles, s.rates));
+            run.energy.push(chain_ode::kinematics::energy(
+                &traj.chain,
+                s.angles,
+                s.rates,
+            ));
             run.dissipated.push(s.dissipated);
             run.phi.extend_from_slice(s.angles);
         }
@@ -344,10 +347,15 @@ mod tests {
             let kept = (0..samples).filter(|&k| keeps(k, samples, stride)).count();
             assert!(keeps(0, samples, stride) && keeps(samples - 1, samples, stride));
             let bytes = kept * (links * ANGLE_BYTES + SCALAR_BYTES);
-            assert!(bytes <= budget || kept == 2.min(samples), "{samples} {links}");
+            assert!(
+                bytes <= budget || kept == 2.min(samples),
+                "{samples} {links}"
+            );
             // The next smaller stride would not fit.
             if stride > 1 {
-                let k2 = (0..samples).filter(|&k| keeps(k, samples, stride - 1)).count();
+                let k2 = (0..samples)
+                    .filter(|&k| keeps(k, samples, stride - 1))
+                    .count();
                 assert!(k2 * (links * ANGLE_BYTES + SCALAR_BYTES) > budget);
             }
         }
