@@ -17,6 +17,7 @@ mod report;
 mod runs;
 mod study;
 mod timing;
+mod viewer_shot;
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;

@@ -332,6 +332,15 @@ pub static FIGURES: &[Figure] = &[
         timing: Timing::None,
         make: &study::validation_folded::SupportForce,
     },
+    Figure {
+        id: "viewer-peak",
+        report: None,
+        what: "`falling-chain view`'s page for the folded chain (n = 50, r = 0.001) at its peak \
+               tip speed, as headless Chromium draws it (skipped, and kept, without Chromium)",
+        data: &["viewer-peak.csv", "viewer-peak-summary.csv"],
+        timing: Timing::None,
+        make: &crate::viewer_shot::ViewerPeak,
+    },
 ];
 
 /// The figure called `id`.
@@ -442,6 +451,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 34);
+        assert_eq!(FIGURES.len(), 35);
     }
 }
