@@ -5,7 +5,8 @@ Load a scene (``Scene.load("scenes/span-d3.toml")``), change it
 (``scene.set("chain.links", 100)``), run it (``simulate(scene)`` returns a
 ``Run`` whose arrays are numpy), sweep a key
 (``sweep(scene, {"start.p1.0": [1, 2, 3]})``) or solve the hanging chain
-(``catenary``). Errors are ValueErrors with the CLI's one-line message
+(``catenary``); ``view(runs, path)`` writes runs as one HTML page that
+plays them (a ``Run`` shows as that page in Jupyter). Errors are ValueErrors with the CLI's one-line message
 naming the field. Runs and sweeps release the GIL, and Ctrl-C stops them:
 they raise KeyboardInterrupt within a fraction of a second.
 """
@@ -111,6 +112,10 @@ class Run:
     def joints(self, k: int) -> _Float:
         """The joints r_0 = P0 .. r_n (the tip) at sample ``k``, shape (n + 1, 2)."""
     def __len__(self) -> int: ...
+    def _repr_html_(self) -> str:
+        """The run as ``falling-chain view``'s page (play, scrub, the tip
+        speed and energy balance, the summary) in an ``<iframe srcdoc>``:
+        what Jupyter shows for a ``Run``."""
 
 def simulate(
     scene: Scene,
@@ -162,3 +167,11 @@ def catenary(
 
 def methods() -> List[str]:
     """The names of the integration methods ``run.method`` accepts."""
+
+def view(runs: Union[Run, Sequence[Run]], path: Union[str, os.PathLike[str]]) -> os.PathLike[str]:
+    """Writes ``runs`` (one ``Run`` or 1 to 8) as one self-contained HTML page
+    at ``path`` (``FILE.html``), as ``falling-chain view`` does: the chains to
+    scale and overlaid, play, pause and scrub, the tip speed and the energy
+    balance, each run's summary. Long runs are thinned (the page says so).
+    Returns ``path`` as a ``pathlib.Path``. Bad input raises ValueError naming
+    ``runs`` or ``path``, and nothing is written."""

@@ -17,6 +17,7 @@ mod interrupt;
 mod run;
 mod scene;
 mod sweep;
+mod view;
 
 /// The names of the integration methods a scene's `run.method` accepts.
 #[pyfunction]
@@ -30,7 +31,8 @@ fn methods() -> Vec<&'static str> {
 /// released. Load a scene (`Scene.load("scenes/span-d3.toml")`), change
 /// it (`scene.set("chain.links", 100)`), run it (`simulate(scene)` returns
 /// a `Run` whose arrays are numpy), sweep a key (`sweep(scene,
-/// {"start.p1.0": [1, 2, 3]})`) or solve the hanging chain (`catenary`).
+/// {"start.p1.0": [1, 2, 3]})`) or solve the hanging chain (`catenary`); `view(runs, path)` writes
+/// runs as one HTML page that plays them (a `Run` shows as it in Jupyter).
 /// Errors are ValueErrors with the CLI's one-line message naming the field;
 /// Ctrl-C stops a run or a sweep with KeyboardInterrupt.
 #[pymodule]
@@ -43,9 +45,12 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(catenary::catenary, m)?)?;
     m.add_function(wrap_pyfunction!(methods, m)?)?;
+    m.add_function(wrap_pyfunction!(view::view, m)?)?;
     m.add(
         "__all__",
-        ["Scene", "Run", "simulate", "sweep", "catenary", "methods"],
+        [
+            "Scene", "Run", "simulate", "sweep", "catenary", "methods", "view",
+        ],
     )?;
     Ok(())
 }

@@ -108,6 +108,9 @@ pub struct Run {
     scene: Scene,
     /// The `simulate --json` line, parsed on each access (a fresh dict).
     summary: String,
+    /// The same summary as a JSON value, for the viewer's page (serde_json's
+    /// parser is not exact to the last bit, so it is kept, not re-parsed).
+    summary_value: serde_json::Value,
     t: Py<PyArray1<f64>>,
     phi: Py<PyArray2<f64>>,
     w: Py<PyArray2<f64>>,
@@ -218,6 +221,16 @@ impl Run {
         self.head.samples
     }
 
+    /// The run as `falling-chain view`'s page, in an `<iframe srcdoc>`:
+    /// what Jupyter shows for a `Run`.
+    fn _repr_html_(&self, py: Python<'_>) -> PyResult<String> {
+        let run = self.view_run(py, ::falling_chain::viewer::DATA_BUDGET_BYTES)?;
+        let title = run.label.clone();
+        Ok(::falling_chain::viewer::iframe(
+            &::falling_chain::viewer::page(&title, &[run]),
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Run(scene={:?}, method={:?}, links={}, status={:?}, t_reached={}, samples={})",
@@ -228,6 +241,67 @@ impl Run {
             self.head.t_reached,
             self.head.samples
         )
+    }
+}
+
+impl Run {
+    /// The run as the viewer's page holds it, thinned to `budget` bytes
+    /// (`falling_chain::viewer`), from the arrays this run holds.
+    pub(crate) fn view_run(
+        &self,
+        py: Python<'_>,
+        budget: usize,
+    ) -> PyResult<::falling_chain::viewer::ViewRun> {
+        use ::falling_chain::viewer::{keeps, stride_for, ViewRun};
+        let (samples, n) = (self.head.samples, self.head.chain.links());
+        let broken = |what: &str| {
+            PyIndexError::new_err(format!("the run's {what} array is not C-contiguous"))
+        };
+        let t = self.t.bind(py).readonly();
+        let phi = self.phi.bind(py).readonly();
+        let v = self.tip_velocity.bind(py).readonly();
+        let e = self.energy.bind(py).readonly();
+        let d = self.dissipated.bind(py).readonly();
+        let (t, phi, v, e, d) = (
+            t.as_slice().map_err(|_| broken("t"))?,
+            phi.as_slice().map_err(|_| broken("phi"))?,
+            v.as_slice().map_err(|_| broken("tip_velocity"))?,
+            e.as_slice().map_err(|_| broken("energy"))?,
+            d.as_slice().map_err(|_| broken("dissipated"))?,
+        );
+        if [t.len(), e.len(), d.len(), phi.len() / n.max(1), v.len() / 2] != [samples; 5] {
+            return Err(PyIndexError::new_err(
+                "the run's arrays disagree on the sample count",
+            ));
+        }
+        let summary = self.summary_value.clone();
+        let stride = stride_for(samples, n, 0, budget);
+        let mut run = ViewRun {
+            label: self.scene.name().to_string(),
+            status: self.head.status.as_str().to_string(),
+            t_failed: summary["t_failed"].as_f64(),
+            summary,
+            links: n,
+            rod: self.head.chain.length() / n as f64,
+            anchor: self.head.anchor,
+            samples,
+            stride,
+            t: Vec::new(),
+            speed: Vec::new(),
+            energy: Vec::new(),
+            dissipated: Vec::new(),
+            phi: Vec::new(),
+            forces: None,
+            source: None,
+        };
+        for k in (0..samples).filter(|&k| keeps(k, samples, stride)) {
+            run.t.push(t[k]);
+            run.speed.push(v[2 * k].hypot(v[2 * k + 1]));
+            run.energy.push(e[k]);
+            run.dissipated.push(d[k]);
+            run.phi.extend_from_slice(&phi[k * n..(k + 1) * n]);
+        }
+        Ok(run)
     }
 }
 
@@ -269,17 +343,20 @@ pub fn simulate(
     )
     .map_err(value_error)?;
     let mut prepared = scene.prepare().map_err(value_error)?;
-    let (head, series, json) = run_interruptible(py, |cancel| -> Result<_, Error> {
-        prepared.options.cancel = Some(cancel.clone());
-        let traj = prepared.solve()?;
-        let series = Series::of(&traj);
-        let json = RunSummary::from_trajectory(scene.name(), &traj).to_json();
-        Ok((Head::of(&traj), series, json))
-    })?
-    .map_err(value_error)?;
+    let (head, series, (json, summary_value)) =
+        run_interruptible(py, |cancel| -> Result<_, Error> {
+            prepared.options.cancel = Some(cancel.clone());
+            let traj = prepared.solve()?;
+            let series = Series::of(&traj);
+            let summary = RunSummary::from_trajectory(scene.name(), &traj);
+            let value = serde_json::to_value(&summary).unwrap_or(serde_json::Value::Null);
+            Ok((Head::of(&traj), series, (summary.to_json(), value)))
+        })?
+        .map_err(value_error)?;
     let (s, n) = (series.samples, series.links);
     Ok(Run {
         summary: json,
+        summary_value,
         t: array1(py, series.t)?,
         phi: array2(py, series.phi, s, n)?,
         w: array2(py, series.w, s, n)?,

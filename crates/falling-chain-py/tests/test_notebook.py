@@ -43,4 +43,7 @@ def test_the_notebook_runs(monkeypatch, capsys):
     # The law and the chain agree within a few percent over most of the fall.
     half = namespace["half"]
     assert abs(namespace["speed"][half] / namespace["law"][half] - 1) < 0.05
+    # The viewer: a page of two runs, and a Run that shows as one.
+    assert "folded.html" in out
+    assert namespace["watched"]._repr_html_().startswith("<iframe srcdoc=")
     plt.close("all")

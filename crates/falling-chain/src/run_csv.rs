@@ -201,7 +201,7 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
     let anchor = [means[0] - rod * means[2], means[1] - rod * means[3]];
     for (line, tip, [c, s]) in tips {
         let off = (tip[0] - anchor[0] - rod * c).hypot(tip[1] - anchor[1] - rod * s);
-        if !(off <= 1e-6 * length) {
+        if off.is_nan() || off > 1e-6 * length {
             return Err(bad(
                 line,
                 format!(

@@ -90,7 +90,7 @@ pub fn stride_for(samples: usize, links: usize, force_arrays: usize, budget: usi
 
 /// Whether sample `k` of `samples` is kept at `stride`.
 pub fn keeps(k: usize, samples: usize, stride: usize) -> bool {
-    k % stride == 0 || k + 1 == samples
+    k.is_multiple_of(stride) || k + 1 == samples
 }
 
 /// Checks the number of runs of one page: 1..=[`MAX_RUNS`]; the error
