@@ -610,7 +610,10 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         }
     );
     if failed > 0 {
-        eprintln!("{failed} of {} runs failed (see their status)", runs.len());
+        eprintln!(
+            "{failed} of {} runs failed (see their status on the page)",
+            runs.len()
+        );
         return Ok(ExitCode::FAILURE);
     }
     Ok(ExitCode::SUCCESS)
