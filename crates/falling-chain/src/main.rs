@@ -600,8 +600,9 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     out.write(|w| w.write_all(page.as_bytes()))?;
     let thinned = runs.iter().filter(|r| r.stride > 1).count();
     eprintln!(
-        "wrote {shown} ({} runs, {} bytes{})",
+        "wrote {shown} ({} run{}, {} bytes{})",
         runs.len(),
+        if runs.len() == 1 { "" } else { "s" },
         page.len(),
         if thinned > 0 {
             format!(", {thinned} thinned")
