@@ -2,7 +2,8 @@
 //! distribution's package), driven over the DevTools pipe by the
 //! `browser` crate. Each test opens a page that `view` wrote and checks
 //! what was drawn against the run: no console error, a canvas that is not
-//! blank, a slider and arrow keys that move the chain and the shown time,
+//! blank, a slider and arrow keys that move the chain and the shown time, a
+//! click on a curve that jumps there, space that plays and pauses,
 //! the tip drawn at the last frame at `simulate --json`'s `tip_end`, the
 //! summary equal to `simulate --json`'s, two runs in two colours, a failed
 //! run in red, and joint forces as colour along the chain.
@@ -157,7 +158,54 @@ fn the_page_draws_and_the_slider_and_keys_move_the_chain_and_the_time() {
         let i = usize::try_from(after).unwrap();
         assert!((shown(&mut b) - times[i]).abs() < 5e-4);
     }
+    // A click on the tip-speed curve at the x of t = 2 jumps to the
+    // sample nearest t = 2 (samples 0.08 apart).
+    let at = b
+        .eval(
+            "(() => { const c = document.getElementById('speed').getBoundingClientRect(); \
+             return [c.left, c.top, c.width]; })()",
+        )
+        .unwrap();
+    // The plot box spans x = 62 .. width - 12 for t = 0 .. the last time.
+    let (left, top, width) = (num_at_f(&at, 0), num_at_f(&at, 1), num_at_f(&at, 2));
+    let last = times[times.len() - 1];
+    let x = left + 62.0 + 2.0 / last * (width - 74.0);
+    for kind in ["mousePressed", "mouseReleased"] {
+        b.call(
+            "Input.dispatchMouseEvent",
+            serde_json::json!({ "type": kind, "x": x, "y": top + 100.0, "button": "left",
+                "clickCount": 1 }),
+        )
+        .unwrap();
+    }
+    assert!(
+        (shown(&mut b) - 2.0).abs() <= 0.04 + 1e-9,
+        "{}",
+        shown(&mut b)
+    );
+    // Space plays: the time moves on by itself, then stops on space again.
+    let space = |b: &mut Browser| {
+        for kind in ["keyDown", "keyUp"] {
+            b.call(
+                "Input.dispatchKeyEvent",
+                serde_json::json!({ "type": kind, "key": " ", "code": "Space", "text": " ",
+                    "windowsVirtualKeyCode": 32 }),
+            )
+            .unwrap();
+        }
+    };
+    let before = shown(&mut b);
+    space(&mut b);
+    assert_eq!(b.eval("fallingChain.playing()").unwrap(), true);
+    b.eval("new Promise((r) => setTimeout(r, 400))").unwrap();
+    space(&mut b);
+    assert_eq!(b.eval("fallingChain.playing()").unwrap(), false);
+    assert!(shown(&mut b) > before, "playing did not move the time");
     no_errors(&mut b);
+}
+
+fn num_at_f(v: &Value, k: usize) -> f64 {
+    v[k].as_f64().unwrap()
 }
 
 #[test]
