@@ -288,9 +288,9 @@ pub fn iframe(page: &str) -> String {
     )
 }
 
-const TEMPLATE: &str = include_str!("viewer/page.html");
-const CSS: &str = include_str!("viewer/viewer.css");
-const SCRIPT: &str = include_str!("viewer/viewer.js");
+const TEMPLATE: &str = include_str!("../viewer/page.html");
+const CSS: &str = include_str!("../viewer/viewer.css");
+const SCRIPT: &str = include_str!("../viewer/viewer.js");
 
 #[cfg(test)]
 mod tests {

@@ -1,5 +1,5 @@
 // The falling-chain viewer: draws the runs embedded in #fc-data (written by
-// `falling-chain view`; the data model is described in viewer.rs) and lets
+// `falling-chain view`; the data model is described in src/viewer.rs) and lets
 // the reader play, scrub and step through them. No network, no library.
 // Lengths are the scene's length unit, times its time unit.
 "use strict";
