@@ -274,7 +274,7 @@
     });
     const notes = [];
     runs.forEach((r) => {
-      if (r.stride > 1) notes.push(r.label + ": thinned to every " + r.stride + "th of its " + r.samples + " samples (" + r.frames + " shown)");
+      if (r.stride > 1) notes.push(r.label + ": thinned to one sample in " + r.stride + " of its " + r.samples + ", and the last (" + r.frames + " shown)");
       if (r.source) notes.push(r.label + ": read from " + r.source + " (method, status and steps are not in that file; the maximum tip speed is over its samples)");
     });
     if (forceKinds.length) notes.push("chain colour: joint " + forceKinds.join(" / ") + ", mean of each rod's two joints, one scale over all runs");
