@@ -13,6 +13,7 @@
 pub mod budget;
 pub mod format;
 pub mod needs;
+pub mod plot;
 pub mod precision;
 pub mod shard;
 pub mod stability;

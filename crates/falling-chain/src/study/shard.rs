@@ -286,7 +286,10 @@ mod tests {
 
     #[test]
     fn the_hash_sees_scene_and_options() {
-        let s = Scene::from_toml_str("[chain]\nlinks = 4\n[start]\nkind = \"folded\"\n[run]\nt_end = 1\n").unwrap();
+        let s = Scene::from_toml_str(
+            "[chain]\nlinks = 4\n[start]\nkind = \"folded\"\n[run]\nt_end = 1\n",
+        )
+        .unwrap();
         let p = |s: &Scene, o: &str| Provenance::new(s, "sweep", &[o.to_string()], 3);
         assert_eq!(p(&s, "a"), p(&s, "a"));
         assert_ne!(p(&s, "a").hash, p(&s, "b").hash);
