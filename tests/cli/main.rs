@@ -18,4 +18,5 @@ mod hostile;
 mod plot;
 mod scenes;
 mod simulate;
+mod study;
 mod sweep;

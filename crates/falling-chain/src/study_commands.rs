@@ -293,8 +293,14 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     if !skipped.is_empty() {
         println!("  not run for --budget: {}", skipped.join(", "));
     }
-    if failures.is_empty() && completed == 0 && !points.is_empty() {
+    let ran = points
+        .iter()
+        .filter(|r| r.plan == precision::Plan::Run)
+        .count();
+    if failures.is_empty() && completed == 0 && ran > 0 {
         failures.push("every method failed on this scene (see the statuses)".into());
+    } else if failures.is_empty() && ran == 0 && !skipped.is_empty() {
+        failures.push("no point ran within --budget".into());
     }
     let csv = precision::csv_text(scene.name(), t_end, &reference, &rows, Some(&provenance));
     if let Some(out) = out {
