@@ -4,15 +4,14 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use chain_ode::Method;
 use clap::Args;
 use falling_chain::atomic::{begin, check_writable};
 use falling_chain::error::echo_path;
 use falling_chain::study::budget::{check_budget, Budget};
 use falling_chain::study::format::exp;
-use falling_chain::study::shard::{self, Provenance};
+use falling_chain::study::shard;
 use falling_chain::study::{self, needs, plot, precision, stability};
-use falling_chain::sweep::{self as sweep_mod, Shard, Vary};
+use falling_chain::sweep::{Shard, Vary};
 use falling_chain::Error;
 
 use crate::{JobsArgs, SceneArgs};
@@ -109,11 +108,6 @@ pub struct MergeArgs {
     out: PathBuf,
 }
 
-/// The most rows of `stability --vary`.
-const MAX_ROWS: usize = 1000;
-/// A reference is confirmed when one check agrees with it to this.
-const CONFIRMED: f64 = 1e-6;
-
 fn progress_bar(quiet: bool, total: usize) -> indicatif::ProgressBar {
     if quiet {
         return indicatif::ProgressBar::hidden();
@@ -153,94 +147,38 @@ fn budget_of(what: &str, b: Option<f64>) -> Result<Option<f64>, Error> {
     b.map(|s| check_budget(what, s)).transpose()
 }
 
-fn pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
-        .build()
-        .map_err(|e| Error::field("--jobs", e))
-}
-
-fn method_names(methods: &[Method]) -> String {
-    methods
-        .iter()
-        .map(|m| m.as_str())
-        .collect::<Vec<_>>()
-        .join(",")
-}
-
 pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
     let scene = args.scene.load()?;
-    let methods = study::parse_methods("--methods", a.methods.as_deref())?;
-    let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
-    let budget = budget_of("--budget", a.budget)?;
-    let jobs = a.jobs.threads()?;
-    let mut p = scene.prepare()?;
-    p.options.output_dt = None;
-    let t_end = p.options.t_end;
-    if !(args.check_dt.is_finite() && args.check_dt > 0.0 && args.check_dt <= t_end) {
-        return Err(Error::field(
-            "--check-dt",
-            format!(
-                "must be a step in (0, run.t_end = {t_end}] (got {})",
-                args.check_dt
-            ),
-        ));
-    }
+    let options = precision::Options {
+        methods: study::parse_methods("--methods", a.methods.as_deref())?,
+        checks: precision::Checks {
+            check_dt: precision::check_check_dt(
+                "--check-dt",
+                args.check_dt,
+                scene.options()?.t_end,
+            )?,
+            richardson: args.richardson,
+        },
+        budget: budget_of("--budget", a.budget)?,
+        shard: a.shard.as_deref().map(Shard::parse).transpose()?,
+        jobs: a.jobs.threads()?,
+    };
+    scene.prepare()?;
     check_plot(a.plot.as_deref())?;
     let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
-    let ladder = precision::ladder(&methods);
-    let provenance = Provenance::new(
-        &scene,
-        "precision",
-        &[
-            method_names(&methods),
-            exp(args.check_dt),
-            args.richardson.to_string(),
-        ],
-        ladder.len(),
+    let total = precision::ladder(&options.methods).len();
+    let bar = progress_bar(
+        a.quiet,
+        options.shard.map_or(total, |s| total.div_ceil(s.count)),
     );
-    let checks = precision::Checks {
-        check_dt: args.check_dt,
-        richardson: args.richardson,
-    };
-    let bar = progress_bar(a.quiet, ladder.len());
-    bar.set_message("reference");
-    let (reference, mut rows) = precision::reference(&p, t_end, checks)?;
-    let mut failures = vec![];
-    let reference = match reference {
-        Some(r) => r,
-        None => {
-            failures.push(format!(
-                "the reference run (DOPRI5 rtol {}) ended {}: no errors can be measured",
-                exp(precision::REF_RTOL),
-                rows[0].status
-            ));
-            precision::Reference {
-                tip: [f64::NAN; 2],
-                vmax: f64::NAN,
-                length: p.chain.length(),
-            }
-        }
-    };
-    if failures.is_empty() {
-        bar.set_message("points");
-        let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
-        // The floor rule needs the coarser points of RK4's line: a shard
-        // runs its points without it.
-        let stop = |pt: &precision::Point| shard.is_none() && precision::rk4_floor(pt);
-        let lines = Budget::run(budget, None, |b| {
-            pool(jobs)?.install(|| {
-                precision::run_lines(&p, &methods, &reference, &take, b, &stop, &|| bar.inc(1))
-            })
-        })?;
-        rows.extend(lines);
-    }
+    bar.set_message("points");
+    let s = precision::study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let (a_rk4, a_bdf) = precision::agreement(&rows);
+    let (a_rk4, a_bdf) = precision::agreement(&s.rows);
     println!(
-        "{}: work-precision at t = {t_end}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
-        scene.name()
+        "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
+        s.name, s.t_eval
     );
     println!(
         "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {:.1e} and with BDF rtol {} to {:.1e}",
@@ -251,18 +189,9 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         exp(precision::CHECK_BDF_RTOL),
         a_bdf
     );
-    let confirmed = [a_rk4, a_bdf].iter().any(|&a| a <= CONFIRMED);
-    if failures.is_empty() && !confirmed {
-        failures.push(format!(
-            "the reference is not confirmed: neither check agrees with it to {}",
-            exp(CONFIRMED)
-        ));
-    }
-    let points: Vec<&precision::Point> = rows.iter().filter(|r| r.run.is_some()).collect();
-    let completed = points.iter().filter(|r| r.ok()).count();
     let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
-    let by_wall = precision::fastest(&rows, &levels, |pt| study::median(&pt.walls));
-    let by_work = precision::fastest(&rows, &levels, |pt| pt.rhs_equiv() as f64);
+    let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
+    let by_work = precision::fastest(&s.rows, &levels, |pt| pt.rhs_equiv() as f64);
     println!(
         "  {:>7}  {:<26} {:<26}",
         "error", "fastest (wall time)", "least work (RHS + JVP)"
@@ -285,34 +214,20 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
             show(k, format!("{}", k.map_or(0, precision::Point::rhs_equiv)))
         );
     }
-    let skipped: Vec<String> = points
-        .iter()
-        .filter(|r| r.plan == precision::Plan::Budget)
-        .map(|r| format!("{} {} {}", r.method, r.param_name, exp(r.param)))
-        .collect();
+    let skipped = s.skipped();
     if !skipped.is_empty() {
         println!("  not run for --budget: {}", skipped.join(", "));
     }
-    let ran = points
-        .iter()
-        .filter(|r| r.plan == precision::Plan::Run)
-        .count();
-    if failures.is_empty() && completed == 0 && ran > 0 {
-        failures.push("every method failed on this scene (see the statuses)".into());
-    } else if failures.is_empty() && ran == 0 && !skipped.is_empty() {
-        failures.push("no point ran within --budget".into());
-    }
-    let csv = precision::csv_text(scene.name(), t_end, &reference, &rows, Some(&provenance));
     if let Some(out) = out {
         let shown = echo_path(out.path());
-        out.write(|w| w.write_all(csv.as_bytes()))?;
-        eprintln!("wrote {} rows to {shown}", rows.len());
+        out.write(|w| w.write_all(s.csv().as_bytes()))?;
+        eprintln!("wrote {} rows to {shown}", s.rows.len());
     }
     if let Some(path) = &a.plot {
-        let title = format!("Work-precision: {} (n = {})", scene.name(), p.chain.links());
-        draw(path, plot::precision(&title, &rows, path))?;
+        let title = format!("Work-precision: {} (n = {})", s.name, s.links);
+        draw(path, plot::precision(&title, &s.rows, path))?;
     }
-    Ok(report_failures(&failures))
+    Ok(report_failures(&s.failures))
 }
 
 /// Prints each failure on one line and returns exit 1, or exit 0 if none.
@@ -330,66 +245,32 @@ fn report_failures(failures: &[String]) -> ExitCode {
 pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
     let scene = args.scene.load()?;
-    let methods = study::parse_methods("--methods", a.methods.as_deref())?;
-    let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
-    let budget = budget_of("--budget", a.budget)?;
-    let jobs = a.jobs.threads()?;
-    let vary = args.vary.as_deref().map(Vary::parse).transpose()?;
-    let mut rows = vec![];
-    match &vary {
-        None => rows.push(stability::Row {
-            key: scene.name().to_string(),
-            label: scene.name().to_string(),
-            prepared: scene.prepare()?,
-        }),
-        Some(v) => {
-            if v.values.len() > MAX_ROWS {
-                return Err(Error::field(
-                    "--vary",
-                    format!("at most {MAX_ROWS} values (got {})", v.values.len()),
-                ));
-            }
-            for x in &v.values {
-                let s =
-                    sweep_mod::scene_for(&scene, std::slice::from_ref(v), std::slice::from_ref(x))?;
-                let cell = match x {
-                    toml::Value::String(t) => t.clone(),
-                    other => other.to_string(),
-                };
-                rows.push(stability::Row {
-                    key: format!("{}={cell}", v.key),
-                    label: format!("{} = {cell}", v.key),
-                    prepared: s.prepare()?,
-                });
-            }
-        }
-    }
+    let options = stability::Options {
+        methods: study::parse_methods("--methods", a.methods.as_deref())?,
+        vary: args.vary.as_deref().map(Vary::parse).transpose()?,
+        budget: budget_of("--budget", a.budget)?,
+        shard: a.shard.as_deref().map(Shard::parse).transpose()?,
+        jobs: a.jobs.threads()?,
+    };
+    // Every row's scene is checked before any output is begun.
+    let rows = stability::rows_of(&scene, options.vary.as_ref())?;
     check_plot(a.plot.as_deref())?;
     let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
-    let total = stability::jobs(rows.len(), &methods).len();
-    let keys: Vec<String> = rows.iter().map(|r| r.key.clone()).collect();
-    let provenance = Provenance::new(
-        &scene,
-        "stability",
-        &[method_names(&methods), keys.join(";")],
-        total,
+    let total = stability::jobs(rows.len(), &options.methods).len();
+    let bar = progress_bar(
+        a.quiet,
+        options.shard.map_or(total, |s| total.div_ceil(s.count)),
     );
-    let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
-    let bar = progress_bar(a.quiet, shard.map_or(total, |s| total.div_ceil(s.count)));
     bar.set_message("cells");
-    let cells = Budget::run(budget, None, |b| {
-        Ok::<_, Error>(pool(jobs)?.install(|| {
-            stability::study(&rows, &methods, &take, budget.map(|_| b), &|_| bar.inc(1))
-        }))
-    })??;
+    let s = stability::run_study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
     println!(
         "{}: where each method fails (step budget {}, energy limit {} of M g L)",
-        scene.name(),
+        s.name,
         exp(stability::MAX_STEPS as f64),
         stability::ENERGY_LIMIT
     );
-    for (m, ok, failed) in stability::limits(&cells, &methods) {
+    for (m, ok, failed) in stability::limits(&s.cells, &options.methods) {
         let name = m.accuracy_name();
         println!(
             "  {:>9}: completes every row at {name} {}; fails {}",
@@ -398,44 +279,20 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
             failed.map_or("nowhere".into(), |x| format!("at {name} >= {}", exp(x))),
         );
     }
-    let skipped: Vec<String> = cells
-        .iter()
-        .filter_map(|c| match &c.run {
-            Err(why) if why.starts_with("budget") => Some(format!(
-                "{} {} {} ({})",
-                c.method,
-                c.method.accuracy_name(),
-                exp(c.param),
-                rows[c.row].key
-            )),
-            _ => None,
-        })
-        .collect();
+    let skipped = s.skipped();
     if !skipped.is_empty() {
         println!("  not run for --budget: {}", skipped.join(", "));
     }
-    let csv = stability::csv_text(&rows, &cells, Some(&provenance));
     if let Some(out) = out {
         let shown = echo_path(out.path());
-        out.write(|w| w.write_all(csv.as_bytes()))?;
-        eprintln!("wrote {} rows to {shown}", cells.len());
+        out.write(|w| w.write_all(s.csv().as_bytes()))?;
+        eprintln!("wrote {} rows to {shown}", s.cells.len());
     }
     if let Some(path) = &a.plot {
-        let title = format!("Where each method fails: {}", scene.name());
-        draw(path, plot::stability(&title, &rows, &cells, path))?;
+        let title = format!("Where each method fails: {}", s.name);
+        draw(path, plot::stability(&title, &s.rows, &s.cells, path))?;
     }
-    let ran: Vec<&stability::Cell> = cells.iter().filter(|c| c.run.is_ok()).collect();
-    let mut failures = vec![];
-    if !ran.is_empty()
-        && ran.iter().all(|c| {
-            c.run
-                .as_ref()
-                .is_ok_and(|t| stability::Outcome::of(t).failed())
-        })
-    {
-        failures.push("every method failed on this scene at every step and tolerance".to_string());
-    }
-    Ok(report_failures(&failures))
+    Ok(report_failures(&s.failures))
 }
 
 pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {

@@ -727,3 +727,160 @@ pub fn fastest<'a>(
         })
         .collect()
 }
+
+/// A reference is confirmed when one check agrees with it to this.
+pub const CONFIRMED: f64 = 1e-6;
+
+/// Checks the RK4 step of the reference's check: in `(0, t_end]`; `what`
+/// names it (`--check-dt`, Python's `check_dt`).
+pub fn check_check_dt(what: &str, dt: f64, t_end: f64) -> Result<f64, Error> {
+    if dt.is_finite() && dt > 0.0 && dt <= t_end {
+        Ok(dt)
+    } else {
+        Err(Error::field(
+            what,
+            format!("must be a step in (0, run.t_end = {t_end}] (got {dt})"),
+        ))
+    }
+}
+
+/// What the CLI's `precision` and Python's `precision` run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub methods: Vec<Method>,
+    pub checks: Checks,
+    /// Seconds (checked: [`super::budget::check_budget`]).
+    pub budget: Option<f64>,
+    pub shard: Option<crate::sweep::Shard>,
+    /// Threads, 1..=256 (checked: [`crate::sweep::check_jobs`]).
+    pub jobs: usize,
+}
+
+/// A finished precision study: the table's rows and what went wrong.
+#[derive(Clone, Debug)]
+pub struct Study {
+    pub name: String,
+    pub links: usize,
+    pub t_eval: f64,
+    /// NaN values when the reference failed.
+    pub reference: Reference,
+    /// The reference and its checks, then the points in run order.
+    pub rows: Vec<Point>,
+    pub provenance: Provenance,
+    /// One line per reason for exit status 1 (the reference failed or is
+    /// not confirmed, every method failed, nothing ran within the budget).
+    pub failures: Vec<String>,
+}
+
+impl Study {
+    /// The table, with the wall time, run and provenance columns.
+    pub fn csv(&self) -> String {
+        csv_text(
+            &self.name,
+            self.t_eval,
+            &self.reference,
+            &self.rows,
+            Some(&self.provenance),
+        )
+    }
+
+    /// The points not run (or stopped) for the budget, `method param value`.
+    pub fn skipped(&self) -> Vec<String> {
+        self.rows
+            .iter()
+            .filter(|r| r.plan == Plan::Budget)
+            .map(|r| format!("{} {} {}", r.method, r.param_name, exp(r.param)))
+            .collect()
+    }
+}
+
+/// Runs the work-precision study of `scene` at its `t_end`: the reference
+/// and its checks, then the lines of `options.methods` (the shard's
+/// points) within the budget, on `options.jobs` threads. `outer` stops it
+/// from outside ([`Error::Interrupted`]); `progress` hears of each point.
+pub fn study(
+    scene: &crate::scene::Scene,
+    options: &Options,
+    outer: Option<&chain_ode::Cancel>,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Study, Error> {
+    let mut p = scene.prepare()?;
+    p.options.output_dt = None;
+    let t_eval = p.options.t_end;
+    let methods = &options.methods;
+    let provenance = Provenance::new(
+        scene,
+        "precision",
+        &[
+            methods
+                .iter()
+                .map(|m| m.as_str())
+                .collect::<Vec<_>>()
+                .join(","),
+            exp(options.checks.check_dt),
+            options.checks.richardson.to_string(),
+        ],
+        ladder(methods).len(),
+    );
+    let (reference, mut rows) = reference(&p, t_eval, options.checks)?;
+    let mut failures = vec![];
+    let reference = match reference {
+        Some(r) => {
+            let shard = options.shard;
+            let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
+            // The floor rule needs the coarser points of RK4's line: a
+            // shard runs its points without it.
+            let stop = |pt: &Point| shard.is_none() && rk4_floor(pt);
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(options.jobs.max(1))
+                .build()
+                .map_err(|e| Error::field("--jobs", e))?;
+            let lines = Budget::run(options.budget, outer, |b| {
+                let lines = pool.install(|| run_lines(&p, methods, &r, &take, b, &stop, progress));
+                if b.interrupted() {
+                    return Err(Error::Interrupted);
+                }
+                lines
+            })?;
+            rows.extend(lines);
+            r
+        }
+        None => {
+            failures.push(format!(
+                "the reference run (DOPRI5 rtol {}) ended {}: no errors can be measured",
+                exp(REF_RTOL),
+                rows[0].status
+            ));
+            Reference {
+                tip: [f64::NAN; 2],
+                vmax: f64::NAN,
+                length: p.chain.length(),
+            }
+        }
+    };
+    let (a_rk4, a_bdf) = agreement(&rows);
+    if failures.is_empty() && ![a_rk4, a_bdf].iter().any(|&a| a <= CONFIRMED) {
+        failures.push(format!(
+            "the reference is not confirmed: neither check agrees with it to {}",
+            exp(CONFIRMED)
+        ));
+    }
+    let points = || rows.iter().filter(|r| r.run.is_some());
+    let ran = points().filter(|r| r.plan == Plan::Run).count();
+    let completed = points().filter(|r| r.ok()).count();
+    let skipped = points().filter(|r| r.plan == Plan::Budget).count();
+    if failures.is_empty() && completed == 0 && ran > 0 {
+        failures.push("every method failed on this scene (see the statuses)".into());
+    } else if failures.is_empty() && ran == 0 && skipped > 0 {
+        failures.push("no point ran within --budget".into());
+    }
+    Ok(Study {
+        name: scene.name().to_string(),
+        links: p.chain.links(),
+        t_eval,
+        reference,
+        rows,
+        provenance,
+        failures,
+    })
+}

@@ -338,3 +338,150 @@ pub fn study(
         },
     ))
 }
+
+/// The most rows of a study with a varied key.
+pub const MAX_ROWS: usize = 1000;
+
+/// What the CLI's `stability` and Python's `stability` run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub methods: Vec<Method>,
+    /// A row per value of this key (else one row, the scene).
+    pub vary: Option<crate::sweep::Vary>,
+    /// Seconds (checked: [`super::budget::check_budget`]).
+    pub budget: Option<f64>,
+    pub shard: Option<crate::sweep::Shard>,
+    /// Threads, 1..=256 (checked: [`crate::sweep::check_jobs`]).
+    pub jobs: usize,
+}
+
+/// A finished stability study.
+pub struct Study {
+    pub name: String,
+    pub rows: Vec<Row>,
+    pub cells: Vec<Cell>,
+    pub provenance: Provenance,
+    /// One line per reason for exit status 1 (every run failed).
+    pub failures: Vec<String>,
+}
+
+impl Study {
+    /// The table, with the wall time, run and provenance columns.
+    pub fn csv(&self) -> String {
+        csv_text(&self.rows, &self.cells, Some(&self.provenance))
+    }
+
+    /// The cells not run (or stopped) for the budget.
+    pub fn skipped(&self) -> Vec<String> {
+        self.cells
+            .iter()
+            .filter_map(|c| match &c.run {
+                Err(why) if why.starts_with("budget") => Some(format!(
+                    "{} {} {} ({})",
+                    c.method,
+                    c.method.accuracy_name(),
+                    exp(c.param),
+                    self.rows[c.row].key
+                )),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// The rows of a study of `scene`: the scene, or one per value of `vary`
+/// (at most [`MAX_ROWS`], each scene checked), named `KEY=VALUE`.
+pub fn rows_of(
+    scene: &crate::scene::Scene,
+    vary: Option<&crate::sweep::Vary>,
+) -> Result<Vec<Row>, Error> {
+    let Some(v) = vary else {
+        return Ok(vec![Row {
+            key: scene.name().to_string(),
+            label: scene.name().to_string(),
+            prepared: scene.prepare()?,
+        }]);
+    };
+    if v.values.len() > MAX_ROWS {
+        return Err(Error::field(
+            "--vary",
+            format!("at most {MAX_ROWS} values (got {})", v.values.len()),
+        ));
+    }
+    v.values
+        .iter()
+        .map(|x| {
+            let s =
+                crate::sweep::scene_for(scene, std::slice::from_ref(v), std::slice::from_ref(x))?;
+            let cell = match x {
+                toml::Value::String(t) => t.clone(),
+                other => other.to_string(),
+            };
+            Ok(Row {
+                key: format!("{}={cell}", v.key),
+                label: format!("{} = {cell}", v.key),
+                prepared: s.prepare()?,
+            })
+        })
+        .collect()
+}
+
+/// Runs the stability study of `scene` (its rows: [`rows_of`]) with
+/// `options`: every cell of the shard, within the budget, on
+/// `options.jobs` threads. `outer` stops it from outside
+/// ([`Error::Interrupted`]); `progress` hears of each cell.
+pub fn run_study(
+    scene: &crate::scene::Scene,
+    options: &Options,
+    outer: Option<&chain_ode::Cancel>,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Study, Error> {
+    let rows = rows_of(scene, options.vary.as_ref())?;
+    let methods = &options.methods;
+    let total = jobs(rows.len(), methods).len();
+    let keys: Vec<String> = rows.iter().map(|r| r.key.clone()).collect();
+    let provenance = Provenance::new(
+        scene,
+        "stability",
+        &[
+            methods
+                .iter()
+                .map(|m| m.as_str())
+                .collect::<Vec<_>>()
+                .join(","),
+            keys.join(";"),
+        ],
+        total,
+    );
+    let shard = options.shard;
+    let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs.max(1))
+        .build()
+        .map_err(|e| Error::field("--jobs", e))?;
+    let limited = options.budget.is_some() || outer.is_some();
+    let cells = Budget::run(options.budget, outer, |b| {
+        let cells =
+            pool.install(|| study(&rows, methods, &take, limited.then_some(b), &|_| progress()));
+        if b.interrupted() {
+            return Err(Error::Interrupted);
+        }
+        cells
+    })?;
+    let ran: Vec<&Cell> = cells.iter().filter(|c| c.run.is_ok()).collect();
+    let mut failures = vec![];
+    if !ran.is_empty()
+        && ran
+            .iter()
+            .all(|c| c.run.as_ref().is_ok_and(|t| Outcome::of(t).failed()))
+    {
+        failures.push("every method failed on this scene at every step and tolerance".to_string());
+    }
+    Ok(Study {
+        name: scene.name().to_string(),
+        rows,
+        cells,
+        provenance,
+        failures,
+    })
+}
