@@ -16,6 +16,7 @@ mod convert;
 mod interrupt;
 mod run;
 mod scene;
+mod study;
 mod sweep;
 
 /// The names of the integration methods a scene's `run.method` accepts.
@@ -42,10 +43,25 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(catenary::catenary, m)?)?;
+    m.add_function(wrap_pyfunction!(study::precision, m)?)?;
+    m.add_function(wrap_pyfunction!(study::stability, m)?)?;
+    m.add_function(wrap_pyfunction!(study::needs, m)?)?;
+    m.add_function(wrap_pyfunction!(study::merge, m)?)?;
     m.add_function(wrap_pyfunction!(methods, m)?)?;
     m.add(
         "__all__",
-        ["Scene", "Run", "simulate", "sweep", "catenary", "methods"],
+        [
+            "Scene",
+            "Run",
+            "simulate",
+            "sweep",
+            "catenary",
+            "methods",
+            "precision",
+            "stability",
+            "needs",
+            "merge",
+        ],
     )?;
     Ok(())
 }

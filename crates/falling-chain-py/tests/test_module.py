@@ -7,7 +7,7 @@ from pathlib import Path
 
 import falling_chain as fc
 
-CONTRACT = ["Scene", "Run", "simulate", "sweep", "catenary"]
+CONTRACT = ["Scene", "Run", "simulate", "sweep", "catenary", "precision", "stability", "needs", "merge"]
 
 
 def stub():

@@ -342,32 +342,7 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
 }
 
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
-    if args.shards.len() > shard::MAX_SHARDS {
-        return Err(Error::field(
-            "merge",
-            format!(
-                "at most {} shard files (got {})",
-                shard::MAX_SHARDS,
-                args.shards.len()
-            ),
-        ));
-    }
-    let mut texts = vec![];
-    for path in &args.shards {
-        let meta = std::fs::metadata(path).map_err(|e| Error::read("shard", path, e))?;
-        if !meta.is_file() || meta.len() > shard::MAX_SHARD_BYTES {
-            return Err(Error::field(
-                "shard",
-                format!(
-                    "'{}' is not a regular file of at most {} bytes",
-                    echo_path(path),
-                    shard::MAX_SHARD_BYTES
-                ),
-            ));
-        }
-        let text = std::fs::read_to_string(path).map_err(|e| Error::read("shard", path, e))?;
-        texts.push((path.display().to_string(), text));
-    }
+    let texts = shard::read(&args.shards)?;
     let out = begin("--out", &args.out)?;
     let merged = shard::merge(&texts)?;
     let rows = merged.lines().count().saturating_sub(1);

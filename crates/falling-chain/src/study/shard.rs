@@ -72,6 +72,34 @@ pub const MAX_SHARD_BYTES: u64 = 1 << 30;
 /// The most shard files [`merge`] joins.
 pub const MAX_SHARDS: usize = 100_000;
 
+/// Reads the shard files `paths` (each a regular file of at most
+/// [`MAX_SHARD_BYTES`], at most [`MAX_SHARDS`] of them) as `(name, text)`.
+pub fn read(paths: &[std::path::PathBuf]) -> Result<Vec<(String, String)>, Error> {
+    if paths.len() > MAX_SHARDS {
+        return Err(Error::field(
+            "merge",
+            format!("at most {MAX_SHARDS} shard files (got {})", paths.len()),
+        ));
+    }
+    paths
+        .iter()
+        .map(|path| {
+            let meta = std::fs::metadata(path).map_err(|e| Error::read("shard", path, e))?;
+            if !meta.is_file() || meta.len() > MAX_SHARD_BYTES {
+                return Err(Error::field(
+                    "shard",
+                    format!(
+                        "'{}' is not a regular file of at most {MAX_SHARD_BYTES} bytes",
+                        crate::error::echo_path(path)
+                    ),
+                ));
+            }
+            let text = std::fs::read_to_string(path).map_err(|e| Error::read("shard", path, e))?;
+            Ok((path.display().to_string(), text))
+        })
+        .collect()
+}
+
 /// Joins the tables of shards `(name, text)` into the table of the whole
 /// study: the header, the rows without a run number (a study's shared rows,
 /// such as precision's reference, computed by every shard: the first shard's

@@ -413,8 +413,10 @@ pub fn rows_of(
         .map(|x| {
             let s =
                 crate::sweep::scene_for(scene, std::slice::from_ref(v), std::slice::from_ref(x))?;
+            // A number as `{}` prints it: 1 and 1.0 are the same row.
             let cell = match x {
                 toml::Value::String(t) => t.clone(),
+                toml::Value::Float(f) => format!("{f}"),
                 other => other.to_string(),
             };
             Ok(Row {
