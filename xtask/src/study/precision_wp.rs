@@ -13,11 +13,9 @@
 
 use std::fmt::Write as _;
 
-use chain_ode::kinematics::tip;
-use chain_ode::{solve, Method, Status};
-use falling_chain::study::precision::{
-    self, params, reference_options, Checks, Plan, Point, Reference,
-};
+use chain_ode::{Method, Status};
+use falling_chain::study::divergence::{divergence, separation, AMPLIFICATION_MAX, PERTURBATION};
+use falling_chain::study::precision::{self, params, Checks, Plan, Point, Reference};
 use falling_chain::Prepared;
 use figures::{palette, LinePlot, Series, Style};
 
@@ -87,8 +85,9 @@ impl Make for Spec {
                 (p, t_eval)
             }
             Eval::BeforeSeparation => {
-                let div = divergence(&p)?;
-                let undamped = divergence(&ctx.prepare(self.scene, &["chain.damping=0"])?)?;
+                let div = divergence(&p).map_err(|e| e.to_string())?;
+                let undamped = divergence(&ctx.prepare(self.scene, &["chain.damping=0"])?)
+                    .map_err(|e| e.to_string())?;
                 let mut csv = String::from("damping,t,tip_separation,amplification\n");
                 for (r, d) in [(p.chain.damping(), &div), (0.0, &undamped)] {
                     for &(t, sep) in &d.curve {
@@ -134,66 +133,6 @@ impl Make for Spec {
         let out = draw(ctx, fig, self, &rows, notes)?;
         Ok(ctx.drawn(&out))
     }
-}
-
-/// Size of the perturbation of the initial angles in the divergence test.
-const PERTURBATION: f64 = 1e-10;
-/// Two runs have separated once their tips are this many times further
-/// apart than the perturbation.
-const AMPLIFICATION_MAX: f64 = 1e3;
-
-struct Divergence {
-    /// `(t, |tip - tip'|)` of two reference-accuracy runs, every 0.01.
-    curve: Vec<(f64, f64)>,
-    /// The reference run's maximum tip speed: the whip.
-    t_whip: f64,
-    /// The last sample time before they separate, or the end.
-    t_eval: f64,
-}
-
-/// When two runs' tips first separate (see [`AMPLIFICATION_MAX`]), if they
-/// do: the index into `curve` of `(t, |tip - tip'|)`.
-fn separation(curve: &[(f64, f64)]) -> Option<usize> {
-    let limit = AMPLIFICATION_MAX * PERTURBATION;
-    curve.iter().position(|c| c.1 > limit)
-}
-
-/// Two DOPRI5 runs at the reference tolerance, one from angles perturbed by
-/// [`PERTURBATION`]: how far apart their tips are over the scene's time.
-fn divergence(p: &Prepared) -> Result<Divergence, String> {
-    let mut opts = reference_options(p.options.t_end);
-    opts.output_dt = Some(0.01);
-    let a = solve(&p.chain, &p.state, Method::Dopri5, &opts).map_err(|e| e.to_string())?;
-    let mut state = p.state.clone();
-    for (i, phi) in state.angles.iter_mut().enumerate() {
-        *phi += PERTURBATION * ((i + 1) as f64).sin();
-    }
-    let b = solve(&p.chain, &state, Method::Dopri5, &opts).map_err(|e| e.to_string())?;
-    if !a.status.is_ok() || !b.status.is_ok() {
-        return Err(format!(
-            "divergence runs ended {} and {}",
-            a.status, b.status
-        ));
-    }
-    let curve: Vec<(f64, f64)> = a
-        .samples()
-        .zip(b.samples())
-        .map(|(sa, sb)| {
-            let ta = tip(&p.chain, a.anchor, sa.angles);
-            let tb = tip(&p.chain, b.anchor, sb.angles);
-            (sa.t, (ta[0] - tb[0]).hypot(ta[1] - tb[1]))
-        })
-        .collect();
-    let t_eval = match separation(&curve) {
-        // Round the sample time to the 0.01 grid it sits on.
-        Some(k) => (curve[k.saturating_sub(1)].0 * 100.0).round() / 100.0,
-        None => p.options.t_end,
-    };
-    Ok(Divergence {
-        t_whip: a.summary.t_tip_speed_max,
-        t_eval,
-        curve,
-    })
 }
 
 /// The legend line of `<id>-divergence.csv`: how far the scene's runs (its

@@ -1,7 +1,9 @@
 //! The study on any scene: work-precision ([`precision`]), where each
 //! method fails ([`stability`]), and what a scene needs ([`needs`]: rods,
 //! method and tolerance, physical terms), with their time budget
-//! ([`budget`]) and shards ([`shard`]).
+//! ([`budget`]) and shards ([`shard`]); the tables of the convergence in
+//! n ([`convergence`]), of matched accuracy ([`matched`]) and of when two
+//! runs separate ([`divergence`]), which the paper's figures use.
 //!
 //! Each takes a prepared scene (or a scene) and options and returns rows of
 //! plain data, with the text of its CSV table; it knows nothing of figure
@@ -11,7 +13,10 @@
 //! these.
 
 pub mod budget;
+pub mod convergence;
+pub mod divergence;
 pub mod format;
+pub mod matched;
 pub mod needs;
 pub mod plot;
 pub mod precision;

@@ -71,6 +71,8 @@ impl Provenance {
 pub const MAX_SHARD_BYTES: u64 = 1 << 30;
 /// The most shard files [`merge`] joins.
 pub const MAX_SHARDS: usize = 100_000;
+/// The most bytes of all shard files together (merge holds them in memory).
+pub const MAX_TOTAL_BYTES: u64 = 4 << 30;
 
 /// Reads the shard files `paths` (each a regular file of at most
 /// [`MAX_SHARD_BYTES`], at most [`MAX_SHARDS`] of them) as `(name, text)`.
@@ -81,10 +83,18 @@ pub fn read(paths: &[std::path::PathBuf]) -> Result<Vec<(String, String)>, Error
             format!("at most {MAX_SHARDS} shard files (got {})", paths.len()),
         ));
     }
+    let mut total = 0u64;
     paths
         .iter()
         .map(|path| {
             let meta = std::fs::metadata(path).map_err(|e| Error::read("shard", path, e))?;
+            total = total.saturating_add(meta.len());
+            if total > MAX_TOTAL_BYTES {
+                return Err(Error::field(
+                    "merge",
+                    format!("the shard files hold more than {MAX_TOTAL_BYTES} bytes together"),
+                ));
+            }
             if !meta.is_file() || meta.len() > MAX_SHARD_BYTES {
                 return Err(Error::field(
                     "shard",
