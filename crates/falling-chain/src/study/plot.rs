@@ -57,9 +57,22 @@ pub fn precision(title: &str, rows: &[Point], path: &Path) -> Result<(), FigureE
             .series
             .push(Series::new("", work, style).with_color(palette(i)));
     }
+    // Fitted to the errors drawn, a third of a decade to spare below and
+    // room above for the legend (30% of the height).
+    let errs = rows
+        .iter()
+        .filter(|p| p.run.is_some() && p.ok())
+        .map(|p| p.err().max(DRAW_FLOOR));
+    let (lo, hi) = errs.fold((f64::INFINITY, 0.0_f64), |(a, b), e| (a.min(e), b.max(e)));
     for plot in [&mut left, &mut right] {
         plot.log_x = true;
         plot.log_y = true;
+        if lo.is_finite() && hi > 0.0 {
+            let margin = 10f64.powf(1.0 / 3.0);
+            let (a, b) = ((lo / margin).log10(), (hi * margin).log10());
+            let top = b + (b - a) * 0.3 / 0.7;
+            plot.y_range = Some((10f64.powf(a), 10f64.powf(top)));
+        }
     }
     figures::line_plot_pair_to(&left, &right, title, path)
 }
