@@ -165,6 +165,65 @@ def catenary(
     1000000, as ``chain.links``), ``angles`` (numpy), ``joints`` (numpy),
     ``end_error``, ``alpha``, ``beta``. Raises ValueError naming the input."""
 
+def precision(
+    scene: Scene,
+    *,
+    methods: Optional[Union[str, Sequence[str]]] = None,
+    check_dt: Optional[float] = None,
+    richardson: bool = False,
+    budget: Optional[float] = None,
+    shard: Optional[Union[str, Tuple[int, int]]] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, np.ndarray]:
+    """The work-precision table of ``scene`` (the columns of ``falling-chain
+    precision --out``): the DOPRI5 reference (rtol 1e-13) and its RK4 and BDF
+    checks first (``run`` NaN), then every method (or ``methods``) across
+    tolerances, RK4 across steps: ``status``, the work (``steps``,
+    ``rhs_evals``, ``rhs_equiv``, ...), ``err_tip`` (over L) and ``err_vmax``
+    (relative), ``wall_seconds``. ``check_dt`` (default 1e-4) and
+    ``richardson`` set the RK4 check; ``budget`` (seconds) skips or stops
+    the points past it; ``shard`` runs only its points (join with
+    ``merge``); ``jobs`` is 1 to 256. Releases the GIL; Ctrl-C raises
+    KeyboardInterrupt; bad input raises ValueError naming the argument."""
+
+def stability(
+    scene: Scene,
+    *,
+    methods: Optional[Union[str, Sequence[str]]] = None,
+    vary: Optional[Dict[str, Union[str, Sequence[Any], npt.ArrayLike]]] = None,
+    budget: Optional[float] = None,
+    shard: Optional[Union[str, Tuple[int, int]]] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, np.ndarray]:
+    """Where each method fails on ``scene`` (the columns of ``falling-chain
+    stability --out``): every method (or ``methods``) at every step or
+    tolerance, run to the end with at most 2e5 steps: ``outcome``,
+    ``status``, ``t_reached``, ``energy_error_rel``, ``wall_seconds``.
+    ``vary`` (one key: at most 1000 values) makes a row per value.
+    ``budget``, ``shard`` and ``jobs`` as in ``precision``."""
+
+def needs(
+    scene: Scene,
+    tol: float,
+    *,
+    links: Optional[Union[str, Sequence[int]]] = None,
+    methods: Optional[Union[str, Sequence[str]]] = None,
+    budget: Optional[float] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, Any]:
+    """What ``scene`` needs at ``tol`` (``falling-chain needs --json``):
+    ``links`` (the smallest n whose tip path, tip end and maximum tip speed
+    agree with the finest of the ``links`` ladder, default 25 to 400, or
+    None), ``fastest`` and ``least_work`` (method, ``param_name``, ``param``,
+    ``error``, ``rhs_equiv``, ``wall_seconds``), ``methods``, ``terms`` (per
+    optional term: ``on``, ``needed``, ``tip_path``, ``tip_speed_max``) and
+    ``ladder`` (converge's report). Releases the GIL."""
+
+def merge(paths: Sequence[Union[str, "os.PathLike[str]"]]) -> Dict[str, np.ndarray]:
+    """Joins the ``--out`` tables of a sharded sweep, precision or stability
+    into the whole table, as numpy columns; ValueError (``merge: ...``) for
+    a missing or repeated run, or shards of another scene or options."""
+
 def methods() -> List[str]:
     """The names of the integration methods ``run.method`` accepts."""
 

@@ -19,5 +19,6 @@ mod hostile;
 mod plot;
 mod scenes;
 mod simulate;
+mod study;
 mod sweep;
 mod view;

@@ -16,6 +16,7 @@ mod convert;
 mod interrupt;
 mod run;
 mod scene;
+mod study;
 mod sweep;
 mod view;
 
@@ -44,12 +45,26 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(catenary::catenary, m)?)?;
+    m.add_function(wrap_pyfunction!(study::precision, m)?)?;
+    m.add_function(wrap_pyfunction!(study::stability, m)?)?;
+    m.add_function(wrap_pyfunction!(study::needs, m)?)?;
+    m.add_function(wrap_pyfunction!(study::merge, m)?)?;
     m.add_function(wrap_pyfunction!(methods, m)?)?;
     m.add_function(wrap_pyfunction!(view::view, m)?)?;
     m.add(
         "__all__",
         [
-            "Scene", "Run", "simulate", "sweep", "catenary", "methods", "view",
+            "Scene",
+            "Run",
+            "simulate",
+            "sweep",
+            "catenary",
+            "methods",
+            "precision",
+            "stability",
+            "needs",
+            "merge",
+            "view",
         ],
     )?;
     Ok(())

@@ -1,5 +1,6 @@
 //! `falling_chain.sweep`: the CLI's `sweep`, with numpy columns for its CSV.
 
+use ::falling_chain::study::shard::Provenance;
 use ::falling_chain::sweep as core;
 use ::falling_chain::sweep::{Shard, SweepRow, Vary};
 use ::falling_chain::Error;
@@ -21,7 +22,7 @@ use ::falling_chain::sweep::{MAX_JOBS, MAX_RUNS};
 /// One key of `vary`: a `str` is the right-hand side of `--vary KEY=...`
 /// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values
 /// (at most [`MAX_RUNS`], read lazily: an endless iterator fails at the cap).
-fn vary_of(key: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Vary> {
+pub(crate) fn vary_of(key: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Vary> {
     let key: String = key
         .extract()
         .map_err(|_| PyTypeError::new_err(format!("vary: keys must be str (got {})", echo(key))))?;
@@ -47,7 +48,7 @@ fn vary_of(key: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Vary> 
 }
 
 /// `None`, `"I/N"` or `(I, N)`.
-fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
+pub(crate) fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
     let Some(shard) = shard else {
         return Ok(None);
     };
@@ -67,7 +68,7 @@ fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shard>> {
 }
 
 /// Splits one CSV line of ours into its cells (RFC 4180 quoting).
-fn csv_cells(line: &str) -> Vec<String> {
+pub(crate) fn csv_cells(line: &str) -> Vec<String> {
     let mut cells = vec![];
     let mut cell = String::new();
     let mut quoted = false;
@@ -157,9 +158,17 @@ fn column<'py>(py: Python<'py>, kind: Kind, cells: Vec<String>) -> PyResult<Boun
 
 /// The rows as the columns of `sweep --out`'s CSV: the cells are those of
 /// the CSV, typed by the summary's JSON fields.
-fn columns<'py>(py: Python<'py>, vary: &[Vary], rows: &[SweepRow]) -> PyResult<Bound<'py, PyDict>> {
-    let header = csv_cells(&core::csv_header(vary));
-    let table: Vec<Vec<String>> = rows.iter().map(|r| csv_cells(&core::csv_row(r))).collect();
+fn columns<'py>(
+    py: Python<'py>,
+    vary: &[Vary],
+    rows: &[SweepRow],
+    provenance: &Provenance,
+) -> PyResult<Bound<'py, PyDict>> {
+    let header = csv_cells(&(core::csv_header(vary) + &Provenance::header_suffix()));
+    let table: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| csv_cells(&(core::csv_row(r) + &provenance.cells())))
+        .collect();
     let json = rows
         .first()
         .map(|r| serde_json::to_value(&r.summary))
@@ -168,8 +177,10 @@ fn columns<'py>(py: Python<'py>, vary: &[Vary], rows: &[SweepRow]) -> PyResult<B
         .unwrap_or(serde_json::Value::Null);
     let out = PyDict::new(py);
     for (i, name) in header.iter().enumerate() {
-        let kind = if i == 0 {
+        let kind = if i == 0 || name == "runs" {
             Kind::Int
+        } else if name == "scene_hash" {
+            Kind::Text
         } else if i <= vary.len() {
             value_kind(
                 &rows
@@ -193,7 +204,7 @@ fn columns<'py>(py: Python<'py>, vary: &[Vary], rows: &[SweepRow]) -> PyResult<B
 
 /// The threads of `jobs=`: an int in `1..=MAX_JOBS`; by default the
 /// machine's cores (at most [`MAX_JOBS`]). Never more than `runs`.
-fn jobs_of(jobs: Option<&Bound<'_, PyAny>>, runs: usize) -> PyResult<usize> {
+pub(crate) fn jobs_of(jobs: Option<&Bound<'_, PyAny>>, runs: usize) -> PyResult<usize> {
     let wanted = match jobs {
         None => std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_JOBS)),
         Some(j) => {
@@ -309,5 +320,6 @@ pub fn sweep<'py>(
         core::run_cancellable(&scene, &vary, shard, jobs, &|_, _| {}, Some(cancel))
     })?
     .map_err(value_error)?;
-    columns(py, &vary, &rows)
+    let provenance = core::provenance(&scene, &vary).map_err(value_error)?;
+    columns(py, &vary, &rows, &provenance)
 }

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import falling_chain as fc
 
-CONTRACT = ["Scene", "Run", "simulate", "sweep", "catenary", "view"]
+CONTRACT = ["Scene", "Run", "simulate", "sweep", "catenary", "precision", "stability", "needs", "merge", "view"]
 
 
 def stub():

@@ -46,4 +46,7 @@ def test_the_notebook_runs(monkeypatch, capsys):
     # The viewer: a page of two runs, and a Run that shows as one.
     assert "folded.html" in out
     assert namespace["watched"]._repr_html_().startswith("<iframe srcdoc=")
+    # needs answered on its ladder; precision's table has the reference rows.
+    assert namespace["need"]["links"] in (10, 20, 40)
+    assert namespace["wp"]["method"][0] == "reference-dopri5"
     plt.close("all")

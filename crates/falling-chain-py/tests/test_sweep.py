@@ -9,8 +9,8 @@ import falling_chain as fc
 from conftest import best_time, cli, require_two_free_cores, scene_path
 
 INT = {"run", "links", "steps", "rejected_steps", "rhs_evals", "jacobian_evals",
-       "lu_factorizations", "stiffness_detections"}
-TEXT = {"name", "status", "method", "segments"}
+       "lu_factorizations", "stiffness_detections", "runs"}
+TEXT = {"name", "status", "method", "segments", "scene_hash"}
 WALL = {"wall_seconds"}
 
 

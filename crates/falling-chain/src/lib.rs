@@ -18,6 +18,7 @@ pub mod render;
 pub mod run_csv;
 pub mod scene;
 pub mod schema;
+pub mod study;
 pub mod summary;
 pub mod sweep;
 pub mod viewer;

@@ -18,6 +18,7 @@
 
 use std::fmt::Write as _;
 
+use falling_chain::study::matched;
 use figures::{palette, LinePlot, Series, Style};
 
 use crate::ctx::Ctx;
@@ -33,8 +34,6 @@ const PAIRS: [(&str, &str); 4] = [
     ("bdf", "bdf-dense"),
     ("explicit-best", "bdf"),
 ];
-/// The explicit methods `explicit-best` chooses from.
-const EXPLICIT: [&str; 3] = ["rk4", "dopri5", "dop853"];
 /// The error levels.
 const LEVELS: [f64; 5] = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12];
 
@@ -70,36 +69,9 @@ fn runs(ctx: &Ctx, scene: &str, method: &str) -> Result<Vec<(f64, f64)>, String>
     Ok(out.into_iter().map(|(_, e, w)| (e, w)).collect())
 }
 
-/// The wall time at error `level`, log-log between the first bracketing pair.
-fn time_at(runs: &[(f64, f64)], level: f64) -> Option<f64> {
-    runs.windows(2).find_map(|w| {
-        let ((e0, t0), (e1, t1)) = (w[0], w[1]);
-        let (lo, hi) = (e0.min(e1), e0.max(e1));
-        if !(lo <= level && level <= hi) {
-            return None;
-        }
-        if hi == lo {
-            return Some(t0.min(t1));
-        }
-        let s = (level.ln() - e0.ln()) / (e1.ln() - e0.ln());
-        Some((t0.ln() + s * (t1.ln() - t0.ln())).exp())
-    })
-}
-
 /// `(method, wall)` of `name` at `level` (`explicit-best` resolved).
 fn at(ctx: &Ctx, scene: &str, name: &str, level: f64) -> Result<Option<(String, f64)>, String> {
-    if name == "explicit-best" {
-        let mut best: Option<(String, f64)> = None;
-        for m in EXPLICIT {
-            if let Some(t) = time_at(&runs(ctx, scene, m)?, level) {
-                if best.as_ref().is_none_or(|b| t < b.1) {
-                    best = Some((m.to_string(), t));
-                }
-            }
-        }
-        return Ok(best);
-    }
-    Ok(time_at(&runs(ctx, scene, name)?, level).map(|t| (name.to_string(), t)))
+    matched::at(name, level, |m| runs(ctx, scene, m))
 }
 
 pub struct MatchedTiming;

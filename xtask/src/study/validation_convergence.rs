@@ -12,7 +12,8 @@
 
 use std::fmt::Write as _;
 
-use falling_chain::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
+use falling_chain::converge::{run_level, Level, SCALING};
+use falling_chain::study::convergence;
 use figures::{palette, LinePlot, RGBColor, Series, Style};
 use rayon::prelude::*;
 
@@ -92,11 +93,7 @@ impl Make for Convergence {
         }
 
         // The data.
-        let mut csv = String::from(
-            "scene,links,mass,damping,bending_viscosity,damping_rate,status,tip_speed_max,\
-         t_tip_speed_max,tip_end_x,tip_end_y,reference_links,dev_tip_speed_max,dev_tip_end,\
-         dev_tip_path,rhs_evals\n",
-        );
+        let mut csv = format!("{}\n", convergence::COLUMNS);
         let mut summary = String::from(
             "scene,reference_links,last_doubling_change,n_vmax_1pct,n_vmax_0.1pct,n_path_1pct,\
          n_path_0.1pct,n_vmax_and_tip_end_1pct,n_vmax_and_tip_end_0.1pct,total_mass,\
@@ -104,35 +101,10 @@ impl Make for Convergence {
         );
         for (s, ladder) in ladders.iter().enumerate() {
             let reference = ladder.last().expect("a ladder");
-            for l in ladder {
-                let d = Deviation::between(l, reference);
-                let c = &l.chain;
-                writeln!(
-                    csv,
-                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    SCENES[s],
-                    c.links(),
-                    num(c.mass()),
-                    num(c.damping()),
-                    num(c.damping() * c.rod_length()),
-                    num(c.damping_rate()),
-                    l.summary.status,
-                    num(l.summary.tip_speed_max),
-                    num(l.summary.t_tip_speed_max),
-                    num(l.summary.tip_end[0]),
-                    num(l.summary.tip_end[1]),
-                    reference.links(),
-                    num(d.tip_speed_max),
-                    num(d.tip_end),
-                    num(d.tip_path),
-                    l.summary.rhs_evals
-                )
-                .unwrap();
-            }
-            let at = |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol);
-            let path = |tol: f64| smallest_adequate(ladder, |d| d.tip_path < tol);
-            let both =
-                |tol: f64| smallest_adequate(ladder, |d| d.tip_speed_max < tol && d.tip_end < tol);
+            csv.push_str(&convergence::rows(SCENES[s], ladder));
+            let at = |tol: f64| convergence::adequate(ladder, tol)[0];
+            let path = |tol: f64| convergence::adequate(ladder, tol)[1];
+            let both = |tol: f64| convergence::adequate(ladder, tol)[2];
             // The continuum held fixed: the scene's own chain.
             let base = ctx
                 .scene::<&str>(SCENES[s], &[])?

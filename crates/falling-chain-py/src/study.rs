@@ -1,0 +1,265 @@
+//! `falling_chain.precision`, `stability`, `needs` and `merge`: the CLI's
+//! commands of the same names, returning the tables of their `--out` as
+//! dicts of numpy columns (`needs`: its `--json` object as a dict).
+
+use ::falling_chain::study::budget::check_budget;
+use ::falling_chain::study::{self, needs as core_needs, precision as core_precision};
+use ::falling_chain::study::{shard, stability as core_stability};
+use ::falling_chain::Error;
+use numpy::IntoPyArray;
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString};
+
+use crate::convert::{echo, json_to_dict, read_only, value_error};
+use crate::interrupt::run_interruptible;
+use crate::scene::PyScene;
+use crate::sweep::{csv_cells, jobs_of, shard_of, vary_of};
+
+/// Columns that hold text whatever their cells look like.
+const TEXT: [&str; 10] = [
+    "scene",
+    "label",
+    "method",
+    "param_name",
+    "status",
+    "outcome",
+    "note",
+    "name",
+    "segments",
+    "scene_hash",
+];
+
+/// A table of ours (header, then rows) as a dict of read-only numpy
+/// columns: int64 where every cell is an integer, float64 where every cell
+/// is a number or empty (NaN), str otherwise and for the columns of
+/// [`TEXT`].
+fn table<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDict>> {
+    let mut lines = text.lines();
+    let header = csv_cells(lines.next().unwrap_or_default());
+    let rows: Vec<Vec<String>> = lines.filter(|l| !l.is_empty()).map(csv_cells).collect();
+    let out = PyDict::new(py);
+    for (i, name) in header.iter().enumerate() {
+        let cells: Vec<String> = rows
+            .iter()
+            .map(|r| r.get(i).cloned().unwrap_or_default())
+            .collect();
+        let ints: Option<Vec<i64>> = cells.iter().map(|c| c.parse::<i64>().ok()).collect();
+        let floats: Option<Vec<f64>> = cells
+            .iter()
+            .map(|c| {
+                if c.is_empty() {
+                    Some(f64::NAN)
+                } else {
+                    c.parse::<f64>().ok()
+                }
+            })
+            .collect();
+        let column = match (TEXT.contains(&name.as_str()), ints, floats) {
+            (false, Some(v), _) if !cells.is_empty() => v.into_pyarray(py).into_any(),
+            (false, _, Some(v)) => v.into_pyarray(py).into_any(),
+            _ => {
+                let np = py.import("numpy")?;
+                np.call_method1("array", (PyList::new(py, cells)?, "str"))?
+            }
+        };
+        out.set_item(name, read_only(column)?)?;
+    }
+    Ok(out)
+}
+
+/// `methods=`: `None`, `"rk4,dop853"` or a sequence of names.
+fn methods_of(methods: Option<&Bound<'_, PyAny>>) -> PyResult<Option<String>> {
+    let Some(m) = methods else {
+        return Ok(None);
+    };
+    if let Ok(s) = m.cast::<PyString>() {
+        return Ok(Some(s.to_cow()?.into_owned()));
+    }
+    let names: Vec<String> = m
+        .try_iter()
+        .and_then(|it| it.take(64).map(|x| x?.extract::<String>()).collect())
+        .map_err(|_| {
+            PyTypeError::new_err(format!(
+                "methods: expected a str \"rk4,dop853\" or a list of names (got {})",
+                echo(m)
+            ))
+        })?;
+    Ok(Some(names.join(",")))
+}
+
+fn budget_of(budget: Option<f64>) -> PyResult<Option<f64>> {
+    budget
+        .map(|b| check_budget("budget", b))
+        .transpose()
+        .map_err(value_error)
+}
+
+/// The work-precision table of `scene` (`falling-chain precision --out`'s
+/// columns): every method (or `methods`) across tolerances (RK4 across
+/// steps), the errors against the DOPRI5 reference at rtol 1e-13 and its
+/// RK4 and BDF checks (the first rows, whose `run` is NaN), the work and
+/// `wall_seconds`. `check_dt` and `richardson` set the RK4 check;
+/// `budget` (seconds) skips or stops points past it (`plan` budget in the
+/// `note`); `shard` ("I/N" or (I, N)) runs only its points (join with
+/// `merge`); `jobs` threads (1 to 256). Releases the GIL; Ctrl-C raises
+/// KeyboardInterrupt. Bad input raises ValueError naming the argument.
+#[pyfunction]
+#[pyo3(signature = (scene, *, methods=None, check_dt=None, richardson=false, budget=None, shard=None, jobs=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn precision<'py>(
+    py: Python<'py>,
+    scene: &Bound<'_, PyScene>,
+    methods: Option<&Bound<'_, PyAny>>,
+    check_dt: Option<f64>,
+    richardson: bool,
+    budget: Option<f64>,
+    shard: Option<&Bound<'_, PyAny>>,
+    jobs: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene.get().inner.clone();
+    let t_end = scene.options().map_err(value_error)?.t_end;
+    let methods = methods_of(methods)?;
+    let options = core_precision::Options {
+        methods: study::parse_methods("methods", methods.as_deref()).map_err(value_error)?,
+        checks: core_precision::Checks {
+            check_dt: core_precision::check_check_dt(
+                "check_dt",
+                check_dt.unwrap_or(core_precision::CHECK_DT),
+                t_end,
+            )
+            .map_err(value_error)?,
+            richardson,
+        },
+        budget: budget_of(budget)?,
+        shard: shard_of(shard)?,
+        jobs: jobs_of(jobs, usize::MAX)?,
+    };
+    scene.prepare().map_err(value_error)?;
+    let s = run_interruptible(py, |cancel| {
+        core_precision::study(&scene, &options, Some(cancel), &|| {})
+    })?
+    .map_err(value_error)?;
+    table(py, &s.csv())
+}
+
+/// Where each method fails on `scene` (`falling-chain stability --out`'s
+/// columns): every method (or `methods`) at every step or tolerance, run to
+/// the end with at most 2e5 steps: `outcome`, `status`, `t_reached`, the
+/// energy-balance error, `wall_seconds`. `vary` ({key: values}, one key, at
+/// most 1000 values, or a str in `--vary` syntax) makes a row per value;
+/// `budget`, `shard` and `jobs` as in `precision`. Releases the GIL;
+/// Ctrl-C raises KeyboardInterrupt. Bad input raises ValueError.
+#[pyfunction]
+#[pyo3(signature = (scene, *, methods=None, vary=None, budget=None, shard=None, jobs=None))]
+pub fn stability<'py>(
+    py: Python<'py>,
+    scene: &Bound<'_, PyScene>,
+    methods: Option<&Bound<'_, PyAny>>,
+    vary: Option<&Bound<'_, PyDict>>,
+    budget: Option<f64>,
+    shard: Option<&Bound<'_, PyAny>>,
+    jobs: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene.get().inner.clone();
+    let methods = methods_of(methods)?;
+    let vary = match vary {
+        None => None,
+        Some(d) => {
+            let items = d.items();
+            if items.len() != 1 {
+                return Err(value_error(Error::field(
+                    "vary",
+                    format!("give one key and its values (got {} keys)", items.len()),
+                )));
+            }
+            let (k, v) = items
+                .get_item(0)?
+                .extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()?;
+            Some(vary_of(&k, &v)?)
+        }
+    };
+    let options = core_stability::Options {
+        methods: study::parse_methods("methods", methods.as_deref()).map_err(value_error)?,
+        vary,
+        budget: budget_of(budget)?,
+        shard: shard_of(shard)?,
+        jobs: jobs_of(jobs, usize::MAX)?,
+    };
+    core_stability::rows_of(&scene, options.vary.as_ref()).map_err(value_error)?;
+    let s = run_interruptible(py, |cancel| {
+        core_stability::run_study(&scene, &options, Some(cancel), &|| {})
+    })?
+    .map_err(value_error)?;
+    table(py, &s.csv())
+}
+
+/// What `scene` needs at tolerance `tol` (`falling-chain needs --json` as a
+/// dict): `links`, the smallest n whose tip path, tip end and maximum tip
+/// speed agree with the finest of `links_ladder` (default 25 to 400) within
+/// `tol`; `fastest` and `least_work`, the method and tolerance reaching
+/// `tol` at that n; `terms`, whether each optional term the scene turns on
+/// (joint friction) is `needed`; `ladder`, converge's report. `methods`,
+/// `budget` (seconds for the methods) and `jobs` as in `precision`.
+/// Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scene, tol, *, links=None, methods=None, budget=None, jobs=None))]
+pub fn needs<'py>(
+    py: Python<'py>,
+    scene: &Bound<'_, PyScene>,
+    tol: f64,
+    links: Option<&Bound<'_, PyAny>>,
+    methods: Option<&Bound<'_, PyAny>>,
+    budget: Option<f64>,
+    jobs: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene.get().inner.clone();
+    ::falling_chain::converge::check_tol(tol).map_err(value_error)?;
+    let links = match links {
+        None => ::falling_chain::converge::DEFAULT_LINKS.to_vec(),
+        Some(l) => {
+            let text = if let Ok(s) = l.cast::<PyString>() {
+                s.to_cow()?.into_owned()
+            } else {
+                let v: Vec<String> = l
+                    .try_iter()
+                    .and_then(|it| it.take(64).map(|x| Ok(x?.str()?.to_string())).collect())
+                    .map_err(|_| {
+                        PyTypeError::new_err(format!("links: expected ints (got {})", echo(l)))
+                    })?;
+                v.join(",")
+            };
+            ::falling_chain::converge::parse_links(&text).map_err(value_error)?
+        }
+    };
+    let methods = match methods_of(methods)? {
+        Some(m) => study::parse_methods("methods", Some(&m)).map_err(value_error)?,
+        None => core_needs::default_methods(),
+    };
+    let options = core_needs::NeedsOptions {
+        tol,
+        links,
+        methods,
+        jobs: jobs_of(jobs, usize::MAX)?,
+    };
+    let budget = budget_of(budget)?;
+    let answer = run_interruptible(py, |cancel| {
+        study::budget::Budget::run(budget, Some(cancel), |b| {
+            core_needs::run(&scene, &options, b, &|_, _, _| {})
+        })
+    })?
+    .map_err(value_error)?;
+    json_to_dict(py, &answer.to_json())
+}
+
+/// Joins the tables of a sharded sweep, precision or stability (files
+/// written with `--shard I/N --out`, or tables saved from Python) into the
+/// table of the whole run, as numpy columns: `falling-chain merge`, with
+/// its checks (ValueError for a missing or repeated run, or shards of
+/// another scene or options).
+#[pyfunction]
+pub fn merge<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<Bound<'py, PyDict>> {
+    let texts = shard::read(&paths).map_err(value_error)?;
+    let merged = shard::merge(&texts).map_err(value_error)?;
+    table(py, &merged)
+}

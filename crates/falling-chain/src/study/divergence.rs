@@ -1,0 +1,73 @@
+//! When two runs of a scene separate: two DOPRI5 runs at the reference
+//! tolerance, one from angles perturbed by [`PERTURBATION`], and the last
+//! time before their tips are [`AMPLIFICATION_MAX`] times further apart
+//! (the work-precision figure of the folded chain evaluates its errors
+//! there, before chaos amplifies every error alike).
+
+use chain_ode::kinematics::tip;
+use chain_ode::{solve, Method};
+
+use super::precision::reference_options;
+use crate::error::Error;
+use crate::scene::Prepared;
+
+/// Size of the perturbation of the initial angles in the divergence test.
+pub const PERTURBATION: f64 = 1e-10;
+/// Two runs have separated once their tips are this many times further
+/// apart than the perturbation.
+pub const AMPLIFICATION_MAX: f64 = 1e3;
+
+/// How two runs from nearly the same start drift apart.
+pub struct Divergence {
+    /// `(t, |tip - tip'|)` of two reference-accuracy runs, every 0.01.
+    pub curve: Vec<(f64, f64)>,
+    /// The reference run's maximum tip speed: the whip.
+    pub t_whip: f64,
+    /// The last sample time before they separate, or the end.
+    pub t_eval: f64,
+}
+
+/// When two runs' tips first separate (see [`AMPLIFICATION_MAX`]), if they
+/// do: the index into `curve` of `(t, |tip - tip'|)`.
+pub fn separation(curve: &[(f64, f64)]) -> Option<usize> {
+    let limit = AMPLIFICATION_MAX * PERTURBATION;
+    curve.iter().position(|c| c.1 > limit)
+}
+
+/// Two DOPRI5 runs at the reference tolerance, one from angles perturbed by
+/// [`PERTURBATION`]: how far apart their tips are over the scene's time.
+pub fn divergence(p: &Prepared) -> Result<Divergence, Error> {
+    let mut opts = reference_options(p.options.t_end);
+    opts.output_dt = Some(0.01);
+    let a = solve(&p.chain, &p.state, Method::Dopri5, &opts)?;
+    let mut state = p.state.clone();
+    for (i, phi) in state.angles.iter_mut().enumerate() {
+        *phi += PERTURBATION * ((i + 1) as f64).sin();
+    }
+    let b = solve(&p.chain, &state, Method::Dopri5, &opts)?;
+    if !a.status.is_ok() || !b.status.is_ok() {
+        return Err(Error::field(
+            "divergence",
+            format!("the runs ended {} and {}", a.status, b.status),
+        ));
+    }
+    let curve: Vec<(f64, f64)> = a
+        .samples()
+        .zip(b.samples())
+        .map(|(sa, sb)| {
+            let ta = tip(&p.chain, a.anchor, sa.angles);
+            let tb = tip(&p.chain, b.anchor, sb.angles);
+            (sa.t, (ta[0] - tb[0]).hypot(ta[1] - tb[1]))
+        })
+        .collect();
+    let t_eval = match separation(&curve) {
+        // Round the sample time to the 0.01 grid it sits on.
+        Some(k) => (curve[k.saturating_sub(1)].0 * 100.0).round() / 100.0,
+        None => p.options.t_end,
+    };
+    Ok(Divergence {
+        t_whip: a.summary.t_tip_speed_max,
+        t_eval,
+        curve,
+    })
+}
