@@ -11,6 +11,7 @@
 )]
 
 mod catenary;
+mod cluster;
 mod common;
 mod converge;
 mod fuzz;
