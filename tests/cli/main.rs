@@ -19,4 +19,5 @@ mod hostile;
 mod plot;
 mod scenes;
 mod simulate;
+mod study;
 mod sweep;

@@ -17,15 +17,7 @@
 use std::fs;
 use std::path::Path;
 
-/// `x` in the shortest text that reads back to `x`: `0.0005`, `4.157`, `NaN`.
-pub fn num(x: f64) -> String {
-    format!("{x}")
-}
-
-/// `x` in the shortest exponent text that reads back to `x`: `1e-3`, `2.5e-5`.
-pub fn exp(x: f64) -> String {
-    format!("{x:e}")
-}
+pub use falling_chain::study::format::{exp, num, opt, text};
 
 /// `x` with `decimals` decimals.
 pub fn fixed(x: f64, decimals: usize) -> String {
@@ -35,16 +27,6 @@ pub fn fixed(x: f64, decimals: usize) -> String {
 /// `x` in exponent form with `digits` decimals: `1.23e-5`.
 pub fn exp_digits(x: f64, digits: usize) -> String {
     format!("{x:.digits$e}")
-}
-
-/// An optional number: empty when absent.
-pub fn opt(x: Option<f64>, f: fn(f64) -> String) -> String {
-    x.map_or_else(String::new, f)
-}
-
-/// A text cell: commas (the separator) become semicolons.
-pub fn text(s: &str) -> String {
-    s.replace(',', ";")
 }
 
 /// A short relative-error text for legends, e.g. `3e-12` (the leading digit

@@ -283,6 +283,22 @@ pub fn run(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, Error> {
     check_tol(tol)?;
+    let levels = run_levels(scene, links, method, rtol, jobs, progress)?;
+    report(scene, &levels, tol)
+}
+
+/// Runs the ladder `links` (sorted, each once; 2 to [`MAX_LEVELS`] of them)
+/// of `scene` on `jobs` threads, finest first, every scene checked before
+/// any run starts: the levels, coarse to fine. `converge` and `needs` share
+/// it.
+pub fn run_levels(
+    scene: &Scene,
+    links: &[usize],
+    method: Option<&str>,
+    rtol: Option<f64>,
+    jobs: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Vec<Level>, Error> {
     let jobs = crate::sweep::check_jobs("--jobs", jobs)?;
     let mut links = links.to_vec();
     links.sort_unstable();
@@ -327,12 +343,19 @@ pub fn run(
             .collect::<Result<Vec<_>, Error>>()
     })?;
     levels.sort_by_key(Level::links);
+    Ok(levels)
+}
+
+/// The `converge` report of a finished ladder `levels` (coarse to fine, the
+/// last the reference): the smallest `n` whose tip_speed_max and tip end
+/// agree with the finest to `tol` from it on, if every run ended `ok`.
+pub fn report(scene: &Scene, levels: &[Level], tol: f64) -> Result<Report, Error> {
     let reference = levels
         .last()
         .ok_or_else(|| Error::field("--links", "no level ran"))?;
     let base = scene.chain()?;
     let adequate = if levels.iter().all(|l| l.summary.is_ok()) {
-        smallest_adequate(&levels, |d| d.tip_speed_max < tol && d.tip_end < tol)
+        smallest_adequate(levels, |d| d.tip_speed_max < tol && d.tip_end < tol)
     } else {
         None
     };

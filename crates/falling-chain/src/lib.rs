@@ -16,6 +16,7 @@ pub mod overrides;
 pub mod render;
 pub mod scene;
 pub mod schema;
+pub mod study;
 pub mod summary;
 pub mod sweep;
 

@@ -13,8 +13,11 @@ use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
 use falling_chain::atomic::{begin, check_writable};
 use falling_chain::error::{echo, echo_path, escape};
+use falling_chain::study::shard::Provenance;
 use falling_chain::summary::stiffness_hint_for;
 use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
+
+mod study_commands;
 
 #[derive(Parser)]
 #[command(
@@ -55,12 +58,42 @@ enum Command {
     /// unit at g = 0), so a speed that is zero at every level agrees.
     /// Exit 0 with the answer (or "refine further"), 1 if a run failed.
     Converge(ConvergeArgs),
+    /// The work-precision diagram of a scene: error against work and wall
+    /// time for every method across tolerances.
+    ///
+    /// Every method (or --methods) across tolerances (RK4 across steps), the error of the tip position
+    /// at the end and of the maximum tip speed against a reference (DOPRI5,
+    /// rtol 1e-13) checked by RK4 and BDF, the work and the wall time; prints
+    /// how well the checks agree and the fastest method at each error level.
+    /// Exit 1 if the reference failed or is not confirmed, or every method
+    /// failed (what ran is still written).
+    Precision(study_commands::PrecisionArgs),
+    /// Where each method fails on a scene (or on each value of --vary).
+    ///
+    /// Per method and step or tolerance, the status, the time it stopped and the energy-balance error (rows:
+    /// the scene, or one per value of --vary). Exit 1 if every run failed.
+    Stability(study_commands::StabilityArgs),
+    /// What a scene needs at --tol: rods, method and tolerance, physical
+    /// terms.
+    ///
+    /// The smallest n (converge's ladder, on tip
+    /// path, tip end and maximum tip speed), the fastest method and
+    /// tolerance reaching --tol at that n (precision's lines), and which
+    /// optional physical terms (joint friction) change those quantities by
+    /// more than --tol. Exit 1 if no n or no method meets --tol.
+    Needs(study_commands::NeedsArgs),
+    /// Join the tables of a sharded sweep, precision or stability.
+    ///
+    /// The --out tables of --shard I/N runs become the table of the whole
+    /// run; merge refuses a missing or
+    /// repeated run and shards of another scene or options.
+    Merge(study_commands::MergeArgs),
 }
 
 /// What every scene-taking command (simulate, sweep, converge, plot,
 /// animate) reads: the scene file and its `--set` overrides.
 #[derive(Args)]
-struct SceneArgs {
+pub(crate) struct SceneArgs {
     /// The scene file (its keys: scenes/README.md).
     #[arg(value_name = "SCENE.toml")]
     scene: PathBuf,
@@ -74,14 +107,14 @@ struct SceneArgs {
 
 impl SceneArgs {
     /// The scene file with the overrides applied.
-    fn load(&self) -> Result<Scene, Error> {
+    pub(crate) fn load(&self) -> Result<Scene, Error> {
         Scene::load(&self.scene)?.with_overrides(&self.set)
     }
 }
 
 /// `--jobs` of the commands that run scenes in parallel (sweep, converge).
 #[derive(Args)]
-struct JobsArgs {
+pub(crate) struct JobsArgs {
     /// Worker threads, 1..=256 (default: all cores, at most 256); never
     /// more threads than runs.
     #[arg(long, value_name = "N")]
@@ -90,7 +123,7 @@ struct JobsArgs {
 
 impl JobsArgs {
     /// The number of threads: `--jobs` (1..=256), else every core.
-    fn threads(&self) -> Result<usize, Error> {
+    pub(crate) fn threads(&self) -> Result<usize, Error> {
         match self.jobs {
             Some(n) => falling_chain::sweep::check_jobs("--jobs", n),
             None => Ok(std::thread::available_parallelism()
@@ -333,11 +366,16 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
         eprintln!("{hint}");
     }
     let failed = rows.iter().filter(|r| !r.summary.is_ok()).count();
+    // Every row ends with the sweep's provenance (its number of runs and
+    // the hash of its scene and values), which `merge` checks.
+    let provenance = sweep::provenance(&scene, &vary)?;
     let csv_text = || {
         let mut text = sweep::csv_header(&vary);
+        text.push_str(&Provenance::header_suffix());
         text.push('\n');
         for r in &rows {
             text.push_str(&sweep::csv_row(r));
+            text.push_str(&provenance.cells());
             text.push('\n');
         }
         text
@@ -594,6 +632,10 @@ fn main() -> ExitCode {
         Command::Plot(args) => plot(args),
         Command::Animate(args) => animate(args),
         Command::Converge(args) => converge(args),
+        Command::Precision(args) => study_commands::precision(args),
+        Command::Stability(args) => study_commands::stability(args),
+        Command::Needs(args) => study_commands::needs(args),
+        Command::Merge(args) => study_commands::merge(args),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e}");

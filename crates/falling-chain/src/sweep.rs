@@ -21,6 +21,7 @@ use crate::csv::field as csv_field;
 use crate::error::{echo, Error};
 use crate::overrides::parse_value;
 use crate::scene::Scene;
+use crate::study::shard::Provenance;
 use crate::summary::RunSummary;
 
 /// The most runs a sweep may have (the product of the `--vary` counts).
@@ -362,6 +363,21 @@ fn value_cell(v: &toml::Value) -> String {
         toml::Value::Float(x) => x.to_string(),
         other => csv_field(&other.to_string()).into_owned(),
     }
+}
+
+/// Where a sweep's rows come from ([`crate::study::shard`]): its number of
+/// runs and the hash of its scene and varied values (each key and value as
+/// its CSV cell), the same from the CLI and from Python.
+pub fn provenance(scene: &Scene, vary: &[Vary]) -> Result<Provenance, Error> {
+    let runs = grid_size(vary)?;
+    let options: Vec<String> = vary
+        .iter()
+        .map(|v| {
+            let values: Vec<String> = v.values.iter().map(value_cell).collect();
+            format!("{}={}", v.key, values.join(","))
+        })
+        .collect();
+    Ok(Provenance::new(scene, "sweep", &options, runs))
 }
 
 /// The CSV header: `run`, the varied keys, then the summary columns.

@@ -44,6 +44,15 @@ pub struct CategoryMap<'a> {
 
 /// Draw `map` to `<stem>.png` and `<stem>.svg`.
 pub fn category_map(map: &CategoryMap, stem: &Path) -> Result<Output, FigureError> {
+    output::save(&figure(map)?, stem)
+}
+
+/// As [`category_map`], to the one file `path` (`.png` or `.svg`).
+pub fn category_map_to(map: &CategoryMap, path: &Path) -> Result<(), FigureError> {
+    output::save_one(&figure(map)?, path)
+}
+
+fn figure<'m, 'a>(map: &'m CategoryMap<'a>) -> Result<Figure<'m, 'a>, FigureError> {
     font::ensure_registered()?;
     validate(map)?;
     // As many panels per row as give the shape closest to a page's 4:3.
@@ -51,7 +60,7 @@ pub fn category_map(map: &CategoryMap, stem: &Path) -> Result<Output, FigureErro
         .map(|per_row| Plan::new(map, Sizes::STANDARD, per_row))
         .min_by(|a, b| a.misfit().total_cmp(&b.misfit()))
         .ok_or_else(|| FigureError::Data("category map without panels".into()))?;
-    output::save(&Figure { map, plan }, stem)
+    Ok(Figure { map, plan })
 }
 
 fn validate(map: &CategoryMap) -> Result<(), FigureError> {

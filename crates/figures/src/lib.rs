@@ -40,12 +40,15 @@ mod snapshots;
 mod ticks;
 
 pub use animation::{chain_animation, ANIMATION_HEIGHT};
-pub use category::{category_map, CategoryMap, CategoryPanel};
+pub use category::{category_map, category_map_to, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
 pub use format::format_number;
 pub use line_layout::{line_plot_boxes, LinePlotBoxes};
-pub use lines::{line_plot, line_plot_pair, LinePlot, Series, Style, LINE_PLOT_SIZE, PAIR_SIZE};
+pub use lines::{
+    line_plot, line_plot_pair, line_plot_pair_to, LinePlot, Series, Style, LINE_PLOT_SIZE,
+    PAIR_SIZE,
+};
 pub use output::{FigureError, Output};
 pub use placement::PixelRect;
 pub use plotters::style::RGBColor;

@@ -118,6 +118,16 @@ pub fn line_plot_pair(
     output::save(&Pair { left, right, title }, stem)
 }
 
+/// As [`line_plot_pair`], to the one file `path` (`.png` or `.svg`).
+pub fn line_plot_pair_to(
+    left: &LinePlot,
+    right: &LinePlot,
+    title: &str,
+    path: &Path,
+) -> Result<(), FigureError> {
+    output::save_one(&Pair { left, right, title }, path)
+}
+
 struct Single<'p, 'a>(&'p LinePlot<'a>);
 
 impl Draw for Single<'_, '_> {

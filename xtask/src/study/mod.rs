@@ -18,20 +18,6 @@ pub mod validation_energy;
 pub mod validation_folded;
 pub mod validation_modes;
 
-use chain_ode::{Method, SolveOptions};
-
-/// The name of the accuracy parameter of `method`: RK4's step `dt`, the
-/// adaptive methods' `rtol`.
-pub fn accuracy_name(method: Method) -> &'static str {
-    method.accuracy_name()
-}
-
-/// `options` with the accuracy of `method` set to `x`: RK4's step, or the
-/// adaptive methods' `rtol` (with `atol = rtol / 100`).
-pub fn at_accuracy(options: &SolveOptions, method: Method, x: f64) -> SolveOptions {
-    options.clone().at_accuracy(method, x)
-}
-
 /// Least-squares intercept and slope of `y = a + b x`.
 pub fn linear_fit(pts: &[(f64, f64)]) -> (f64, f64) {
     let k = pts.len() as f64;
@@ -62,15 +48,5 @@ mod tests {
         assert!((log_slope(&pts) - 3.0).abs() < 1e-12);
         let (a, b) = linear_fit(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]);
         assert!((a - 1.0).abs() < 1e-12 && (b - 2.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn accuracy_is_dt_or_rtol() {
-        let o = SolveOptions::default();
-        assert_eq!(at_accuracy(&o, Method::Rk4, 1e-3).dt, 1e-3);
-        let a = at_accuracy(&o, Method::Dopri5, 1e-6);
-        assert_eq!((a.rtol, a.atol), (1e-6, 1e-6 * 1e-2));
-        assert_eq!(accuracy_name(Method::Rk4), "dt");
-        assert_eq!(accuracy_name(Method::Bdf), "rtol");
     }
 }

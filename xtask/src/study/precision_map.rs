@@ -8,25 +8,13 @@
 //! wall time; with `--timings` each run's wall time (measured beside
 //! another run) goes to `stability-map-timing.csv`.
 
-use std::fmt::Write as _;
-
-use chain_ode::{solve, Method, Status, Trajectory};
-use falling_chain::Prepared;
+use chain_ode::{Method, Status};
+use falling_chain::study::stability::{self, Outcome, Row, MAX_STEPS};
 use figures::{CategoryMap, CategoryPanel, RGBColor};
-use rayon::prelude::*;
 
-use super::{accuracy_name, at_accuracy};
 use crate::ctx::Ctx;
-use crate::data::{distinct, exp, num, opt, parse_num, text};
+use crate::data::{distinct, exp, parse_num};
 use crate::registry::{Figure, Make};
-/// The step budget of every run (accepted and rejected steps).
-const MAX_STEPS: u64 = 200_000;
-/// The energy-balance error allowed, as a fraction of `M g L`.
-const ENERGY_LIMIT: f64 = 0.01;
-/// RK4's steps.
-const DTS: [f64; 8] = [0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 2e-4, 1e-4];
-/// The adaptive methods' relative tolerances (atol = rtol / 100).
-const RTOLS: [f64; 7] = [1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12];
 
 /// One row of every panel.
 struct MapScene {
@@ -91,109 +79,26 @@ const AUTO_MARK_LEGEND: [(&str, RGBColor); 1] = [(
     RGBColor(255, 255, 255),
 )];
 
-/// The categories, in legend order.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-enum Outcome {
-    Completed,
-    EnergyError,
-    Diverged,
-    StepSizeTooSmall,
-    MaxSteps,
-}
-
-impl Outcome {
-    const ALL: [Outcome; 5] = [
-        Outcome::Completed,
-        Outcome::EnergyError,
-        Outcome::Diverged,
-        Outcome::StepSizeTooSmall,
-        Outcome::MaxSteps,
-    ];
-
-    fn parse(s: &str) -> Option<Outcome> {
-        Outcome::ALL.into_iter().find(|o| o.as_str() == s)
-    }
-
-    fn of(t: &Trajectory) -> Outcome {
-        match t.status {
-            Status::Ok => {
-                if relative_energy_error(t) <= ENERGY_LIMIT {
-                    Outcome::Completed
-                } else {
-                    Outcome::EnergyError
-                }
-            }
-            // Past the energy scale: already more than the map's 1% limit.
-            Status::Inaccurate => Outcome::EnergyError,
-            Status::Diverged => Outcome::Diverged,
-            // A Newton matrix that cannot be factorised even at smaller
-            // steps is, for the map, a step that could not be made.
-            Status::StepSizeTooSmall | Status::LinearSolveFailed => Outcome::StepSizeTooSmall,
-            // The map never cancels a run; a run stopped from outside
-            // would, like a spent budget, not have reached t_end.
-            Status::MaxSteps | Status::Interrupted => Outcome::MaxSteps,
-        }
-    }
-
-    fn as_str(self) -> &'static str {
-        match self {
-            Outcome::Completed => "completed",
-            Outcome::EnergyError => "energy_error",
-            Outcome::Diverged => "diverged",
-            Outcome::StepSizeTooSmall => "step_size_too_small",
-            Outcome::MaxSteps => "max_steps",
-        }
-    }
-
-    fn legend(self) -> String {
-        match self {
-            Outcome::Completed => "completed, energy error ≤ 1% MgL".into(),
-            Outcome::EnergyError => "completed, energy error > 1% MgL".into(),
-            Outcome::Diverged => "diverged (non-finite)".into(),
-            Outcome::StepSizeTooSmall => "step size too small".into(),
-            Outcome::MaxSteps => format!("step budget ({}) used up", exp(MAX_STEPS as f64)),
-        }
-    }
-
-    /// Okabe & Ito's colour-blind-safe palette.
-    fn color(self) -> RGBColor {
-        match self {
-            Outcome::Completed => RGBColor(0, 158, 115),
-            Outcome::EnergyError => RGBColor(230, 159, 0),
-            Outcome::Diverged => RGBColor(213, 94, 0),
-            Outcome::StepSizeTooSmall => RGBColor(204, 121, 167),
-            Outcome::MaxSteps => RGBColor(0, 114, 178),
-        }
+/// The legend line of an outcome.
+fn legend(o: Outcome) -> String {
+    match o {
+        Outcome::Completed => "completed, energy error ≤ 1% MgL".into(),
+        Outcome::EnergyError => "completed, energy error > 1% MgL".into(),
+        Outcome::Diverged => "diverged (non-finite)".into(),
+        Outcome::StepSizeTooSmall => "step size too small".into(),
+        Outcome::MaxSteps => format!("step budget ({}) used up", exp(MAX_STEPS as f64)),
     }
 }
 
-/// `max |E + W - E(0)| / E_s`, with `E_s` the chain's energy scale
-/// ([`chain_ode::Chain::energy_scale`]: `M g L`, or `M L^2` per time unit squared at `g = 0`).
-fn relative_energy_error(t: &Trajectory) -> f64 {
-    t.summary.energy_balance_error / t.chain.energy_scale()
-}
-
-/// One cell: a run, or the reason it was not made.
-struct Cell {
-    scene: usize,
-    method: Method,
-    param: f64,
-    run: Result<Trajectory, String>,
-}
-
-fn params(m: Method) -> &'static [f64] {
-    if accuracy_name(m) == "dt" {
-        &DTS
-    } else {
-        &RTOLS
+/// Okabe & Ito's colour-blind-safe palette.
+fn color(o: Outcome) -> RGBColor {
+    match o {
+        Outcome::Completed => RGBColor(0, 158, 115),
+        Outcome::EnergyError => RGBColor(230, 159, 0),
+        Outcome::Diverged => RGBColor(213, 94, 0),
+        Outcome::StepSizeTooSmall => RGBColor(204, 121, 167),
+        Outcome::MaxSteps => RGBColor(0, 114, 178),
     }
-}
-
-fn run_cell(p: &Prepared, method: Method, param: f64) -> Result<Trajectory, String> {
-    let mut o = at_accuracy(&p.options, method, param);
-    o.output_dt = None;
-    o.max_steps = MAX_STEPS;
-    solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())
 }
 
 /// Cell text: the energy error's power of ten for a completed run, the
@@ -216,101 +121,32 @@ pub struct StabilityMap;
 
 impl Make for StabilityMap {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let prepared: Vec<Prepared> = SCENES
+        let rows: Vec<Row> = SCENES
             .iter()
-            .map(|s| ctx.prepare(s.scene, s.overrides))
-            .collect::<Result<_, _>>()?;
-        let mut jobs: Vec<(usize, Method, f64)> = vec![];
-        for s in 0..SCENES.len() {
-            for m in Method::ALL {
-                for &x in params(m) {
-                    jobs.push((s, m, x));
-                }
-            }
-        }
+            .map(|s| {
+                Ok(Row {
+                    key: s.key.into(),
+                    label: s.label.into(),
+                    prepared: ctx.prepare(s.scene, s.overrides)?,
+                })
+            })
+            .collect::<Result<_, String>>()?;
+        let jobs = stability::jobs(rows.len(), &Method::ALL);
+        let skip = |row: usize, method: Method, param: f64| {
+            SCENES[row]
+                .skip
+                .filter(|(ms, below, _)| ms.contains(&method) && param < *below)
+                .map(|(_, _, why)| why.to_string())
+        };
         // Untimed runs: in parallel, at most `ctx.jobs` at once (the order
         // of `jobs` is kept).
-        let cells: Vec<Cell> = ctx.pool()?.install(|| {
-            jobs.par_iter()
-                .map(|&(s, method, param)| {
-                    let skipped = SCENES[s]
-                        .skip
-                        .filter(|(ms, below, _)| ms.contains(&method) && param < *below)
-                        .map(|(_, _, why)| why.to_string());
-                    let run = match skipped {
-                        Some(why) => Err(why),
-                        None => run_cell(&prepared[s], method, param),
-                    };
-                    Cell {
-                        scene: s,
-                        method,
-                        param,
-                        run,
-                    }
-                })
-                .collect()
-        });
-
-        let mut csv = String::from(
-            "scene,label,links,damping,damping_rate,t_end,method,param_name,param,outcome,status,\
-             t_reached,t_failed,steps,rejected_steps,rhs_evals,energy_balance_error,\
-             energy_scale_mgl,energy_error_rel,bdf_from,note\n",
-        );
-        let mut timing = String::from("scene,method,param_name,param,wall_seconds\n");
-        for c in &cells {
-            let p = &prepared[c.scene];
-            let ch = &p.chain;
-            let mgl = ch.energy_scale();
-            let key = format!("{},{},{}", c.method, accuracy_name(c.method), exp(c.param));
-            write!(
-                csv,
-                "{},{},{},{},{},{},{key},",
-                SCENES[c.scene].key,
-                text(SCENES[c.scene].label),
-                ch.links(),
-                num(ch.damping()),
-                num(ch.damping_rate()),
-                num(p.options.t_end),
-            )
-            .unwrap();
-            match &c.run {
-                Ok(t) => {
-                    writeln!(
-                        csv,
-                        "{},{},{},{},{},{},{},{},{},{},{},",
-                        Outcome::of(t).as_str(),
-                        t.status,
-                        num(t.t_reached),
-                        opt(t.t_failed, num),
-                        t.stats.steps,
-                        t.stats.rejected_steps,
-                        t.stats.rhs_evals,
-                        exp(t.summary.energy_balance_error),
-                        num(mgl),
-                        exp(relative_energy_error(t)),
-                        // auto: when it switched to BDF.
-                        opt(
-                            t.segments
-                                .iter()
-                                .find(|g| g.method == Method::Bdf && c.method == Method::Auto)
-                                .map(|g| g.t_start),
-                            num
-                        ),
-                    )
-                    .unwrap();
-                    writeln!(
-                        timing,
-                        "{},{key},{}",
-                        SCENES[c.scene].key,
-                        exp(t.summary.wall_seconds)
-                    )
-                    .unwrap();
-                }
-                Err(why) => writeln!(csv, "not_run,,,,,,,,{},,,{}", num(mgl), text(why)).unwrap(),
-            }
-        }
+        let cells = ctx
+            .pool()?
+            .install(|| stability::run_cells(&rows, &jobs, &|_| true, &skip, None, &|| {}));
+        let csv = stability::csv_text(&rows, &cells, None);
         let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
         if ctx.timings {
+            let timing = stability::timing_text(&rows, &cells);
             files.push(ctx.write(&format!("{}-timing.csv", fig.id), &timing)?);
         }
         Ok(files)
@@ -393,7 +229,7 @@ impl Make for StabilityMap {
             y_label: "scene",
             categories: used
                 .iter()
-                .map(|o| (o.legend(), o.color()))
+                .map(|&o| (legend(o), color(o)))
                 .chain(AUTO_MARK_LEGEND.iter().map(|&(l, c)| (l.to_string(), c)))
                 .collect(),
             panels,

@@ -14,43 +14,18 @@
 use std::fmt::Write as _;
 
 use chain_ode::kinematics::tip;
-use chain_ode::{solve, Method, SolveOptions, Stats, Status, Trajectory};
+use chain_ode::{solve, Method, Status};
+use falling_chain::study::precision::{
+    self, params, reference_options, Checks, Plan, Point, Reference,
+};
 use falling_chain::Prepared;
 use figures::{palette, LinePlot, Series, Style};
-use rayon::prelude::*;
 
-use super::{accuracy_name, at_accuracy};
 use crate::ctx::Ctx;
 use crate::data::{distinct, exp, exp_digits, num, short_err, text, Table};
 use crate::registry::{Figure, Make};
 use crate::timing::median;
 
-/// The reference: DOPRI5 at these tolerances.
-const REF_RTOL: f64 = 1e-13;
-const REF_ATOL: f64 = 1e-15;
-/// The second check of the reference: BDF at these tolerances.
-const CHECK_BDF_RTOL: f64 = 1e-12;
-const CHECK_BDF_ATOL: f64 = 1e-14;
-
-/// RK4's steps, coarse to fine (a sweep stops early, see [`sweep`]).
-const RK4_DTS: [f64; 11] = [
-    0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 2e-4, 1e-4, 5e-5, 3e-5, 2e-5,
-];
-/// The adaptive methods' relative tolerances, loose to tight (atol = rtol / 100).
-const RTOLS: [f64; 10] = [
-    1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12,
-];
-/// A point whose single run is predicted to take longer (s) is not run.
-const MAX_RUN: f64 = 2.0;
-/// Seconds of timed repeats one method's line may spend.
-const LINE_BUDGET: f64 = 8.0;
-/// A line whose first run takes longer (s) runs every third tolerance only.
-const THIN_ABOVE: f64 = 0.5;
-/// RK4's sweep stops once both errors are below this (the reference's level).
-const ERR_FLOOR: f64 = 1e-12;
-/// Repeats of a timed run: more for cheap runs, whose times are noisier.
-const REPEATS_CHEAP: usize = 5;
-const REPEATS: usize = 3;
 /// Errors below this are drawn at it (a log axis cannot show 0).
 const DRAW_FLOOR: f64 = 1e-16;
 
@@ -249,278 +224,6 @@ fn divergence_note(t: &Table) -> Result<String, String> {
     }
 }
 
-fn reference_options(t_end: f64) -> SolveOptions {
-    SolveOptions {
-        t_end,
-        rtol: REF_RTOL,
-        atol: REF_ATOL,
-        output_dt: None,
-        ..SolveOptions::default()
-    }
-}
-
-/// The reference values the errors are measured against.
-struct Reference {
-    tip: [f64; 2],
-    vmax: f64,
-    length: f64,
-}
-
-impl Reference {
-    /// Relative errors `(|tip - tip_ref| / L, |vmax - vmax_ref| / vmax_ref)`.
-    fn errors(&self, t: &Trajectory) -> (f64, f64) {
-        let s = &t.summary;
-        let e_tip = (s.tip_end[0] - self.tip[0]).hypot(s.tip_end[1] - self.tip[1]) / self.length;
-        let e_v = (s.tip_speed_max - self.vmax).abs() / self.vmax;
-        (e_tip, e_v)
-    }
-}
-
-/// Whether a point of a line runs, and if not, why: the plan that
-/// `--timings` makes from wall times and records in `<id>-timing.csv`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Plan {
-    Run,
-    /// Predicted too costly (see [`MAX_RUN`], [`LINE_BUDGET`]).
-    Cost,
-    /// Thinned: the line's first run took more than [`THIN_ABOVE`].
-    Thinned,
-    /// RK4 only: a coarser step already reached [`ERR_FLOOR`].
-    Floor,
-}
-
-impl Plan {
-    fn as_str(self) -> &'static str {
-        match self {
-            Plan::Run => "run",
-            Plan::Cost => "cost",
-            Plan::Thinned => "thinned",
-            Plan::Floor => "floor",
-        }
-    }
-
-    fn parse(s: &str) -> Result<Plan, String> {
-        [Plan::Run, Plan::Cost, Plan::Thinned, Plan::Floor]
-            .into_iter()
-            .find(|p| p.as_str() == s)
-            .ok_or_else(|| format!("unknown plan '{s}'"))
-    }
-
-    /// Why the point was not run, without wall times (those are in the
-    /// timing file's note).
-    fn note(self) -> String {
-        match self {
-            Plan::Run => String::new(),
-            Plan::Cost => format!(
-                "cost: predicted above {MAX_RUN} s per run or {LINE_BUDGET} s per line when timed"
-            ),
-            Plan::Thinned => format!("thinned: a run took > {THIN_ABOVE} s when timed"),
-            Plan::Floor => format!(
-                "a coarser dt is already at the reference's level (< {})",
-                exp(ERR_FLOOR)
-            ),
-        }
-    }
-}
-
-/// One row of the CSV: a run (or a point not run) and its errors.
-struct Point {
-    method: String,
-    param_name: &'static str,
-    param: f64,
-    plan: Plan,
-    status: String,
-    t_reached: f64,
-    stats: Stats,
-    dim: usize,
-    err_tip: f64,
-    err_vmax: f64,
-    /// For `auto`: whether it switched to BDF.
-    switched: bool,
-    /// Why it failed or was not run (no wall times).
-    note: String,
-    /// Wall times of the runs so far (with `--timings`).
-    walls: Vec<f64>,
-    /// The timing file's note (with wall times).
-    timing_note: String,
-    /// How to run it again (completed, timed points only).
-    rerun: Option<(Method, SolveOptions)>,
-}
-
-impl Point {
-    /// RHS evaluations plus one per Jacobian-vector product.
-    fn rhs_equiv(&self) -> u64 {
-        self.stats.rhs_evals + self.stats.jacobian_evals * self.dim as u64
-    }
-
-    fn not_run(method: Method, param: f64, plan: Plan, timing_note: String) -> Point {
-        Point {
-            method: method.as_str().into(),
-            param_name: accuracy_name(method),
-            param,
-            plan,
-            status: "not_run".into(),
-            t_reached: f64::NAN,
-            stats: Stats::default(),
-            dim: 0,
-            err_tip: f64::NAN,
-            err_vmax: f64::NAN,
-            switched: false,
-            note: plan.note(),
-            walls: vec![],
-            timing_note,
-            rerun: None,
-        }
-    }
-
-    fn from_run(
-        method: String,
-        param_name: &'static str,
-        param: f64,
-        t: &Trajectory,
-        reference: &Reference,
-    ) -> Point {
-        let (err_tip, err_vmax) = if t.status.is_ok() {
-            reference.errors(t)
-        } else {
-            (f64::NAN, f64::NAN)
-        };
-        let note = match t.t_failed {
-            Some(tf) => format!("failed at t = {tf:.4}"),
-            None => String::new(),
-        };
-        Point {
-            method,
-            param_name,
-            param,
-            plan: Plan::Run,
-            status: t.status.as_str().into(),
-            t_reached: t.t_reached,
-            stats: t.stats,
-            dim: 2 * t.chain.links() + 1,
-            err_tip,
-            err_vmax,
-            switched: t.segments.len() > 1,
-            note,
-            walls: vec![t.summary.wall_seconds],
-            timing_note: String::new(),
-            rerun: None,
-        }
-    }
-}
-
-/// The accuracies a method's line runs over: RK4's steps, the others'
-/// tolerances.
-fn params(method: Method) -> &'static [f64] {
-    if accuracy_name(method) == "dt" {
-        &RK4_DTS
-    } else {
-        &RTOLS
-    }
-}
-
-fn options_for(p: &Prepared, method: Method, param: f64) -> SolveOptions {
-    let mut o = at_accuracy(&p.options, method, param);
-    o.output_dt = None;
-    o
-}
-
-/// Repeats of a point whose first run took `wall` seconds.
-fn repeats_for(wall: f64) -> usize {
-    if wall < 0.2 {
-        REPEATS_CHEAP
-    } else {
-        REPEATS
-    }
-}
-
-/// Runs every timed point again until it has its repeats, a round over all
-/// points at a time (so that a burst of load elsewhere on the machine falls
-/// on many points once rather than on one point every time).
-fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), String> {
-    for _ in 1..REPEATS_CHEAP.max(REPEATS) {
-        for pt in rows.iter_mut() {
-            let Some((method, o)) = &pt.rerun else {
-                continue;
-            };
-            if pt.walls.len() >= repeats_for(pt.walls[0]) {
-                continue;
-            }
-            let t = solve(&p.chain, &p.state, *method, o).map_err(|e| e.to_string())?;
-            pt.walls.push(t.summary.wall_seconds);
-        }
-    }
-    Ok(())
-}
-
-/// One method's line, timed (`--timings`): RK4 over [`RK4_DTS`], the
-/// others over [`RTOLS`].
-///
-/// Points are run once each, from cheap to costly (their repeats come
-/// later, see [`repeat_interleaved`]). A point whose single run is
-/// predicted (from the last completed point) to exceed [`MAX_RUN`] s, or to
-/// overrun the line's [`LINE_BUDGET`], is not run, nor is any point after
-/// it; RK4 stops once its errors reach [`ERR_FLOOR`]; an adaptive line whose
-/// first run exceeds [`THIN_ABOVE`] s runs every third tolerance only.
-fn sweep(p: &Prepared, method: Method, reference: &Reference) -> Result<Vec<Point>, String> {
-    let rk4 = accuracy_name(method) == "dt";
-    let mut out = vec![];
-    let mut spent = 0.0;
-    let mut done: Vec<(f64, f64)> = vec![]; // (param, single-run wall) of completed points
-    let mut stop: Option<(Plan, String)> = None;
-    let mut thin = false;
-    for (k, &x) in params(method).iter().enumerate() {
-        if let Some((plan, why)) = &stop {
-            out.push(Point::not_run(method, x, *plan, why.clone()));
-            continue;
-        }
-        if thin && k % 3 != 0 {
-            out.push(Point::not_run(method, x, Plan::Thinned, String::new()));
-            continue;
-        }
-        let predicted = match done.as_slice() {
-            [] => 0.0,
-            [.., (px, pw)] if rk4 => pw * px / x,
-            [(_, w0)] => w0 * 1.6,
-            [.., (_, w1), (_, w2)] => w2 * (w2 / w1).clamp(1.0, 4.0),
-        };
-        let reps = repeats_for(predicted) as f64;
-        if predicted > MAX_RUN || spent + reps * predicted > LINE_BUDGET {
-            let why = format!(
-                "cost: predicted {predicted:.1} s per run (limit {MAX_RUN} s per run; \
-                 {LINE_BUDGET} s per line)"
-            );
-            out.push(Point::not_run(method, x, Plan::Cost, why.clone()));
-            stop = Some((Plan::Cost, why));
-            continue;
-        }
-        let o = options_for(p, method, x);
-        let t = solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())?;
-        let wall = t.summary.wall_seconds;
-        let mut pt = Point::from_run(
-            method.as_str().into(),
-            accuracy_name(method),
-            x,
-            &t,
-            reference,
-        );
-        if t.status.is_ok() {
-            // The repeats come later (see `repeat_interleaved`); count them now.
-            spent += wall * repeats_for(wall) as f64;
-            pt.rerun = Some((method, o));
-            if done.is_empty() && !rk4 && wall > THIN_ABOVE {
-                thin = true;
-            }
-            done.push((x, wall));
-            if rk4 && pt.err_tip.max(pt.err_vmax) < ERR_FLOOR {
-                stop = Some((Plan::Floor, String::new()));
-            }
-        }
-        out.push(pt);
-    }
-    Ok(out)
-}
-
 /// Every line as the plan in `<id>-timing.csv` says, each point run once,
 /// untimed, in parallel.
 fn planned(
@@ -541,7 +244,7 @@ fn planned(
                     format!(
                         "figures/data/{file} has no plan for {m} at {} {}: run \
                          `cargo xtask figures --only {} --timings`",
-                        accuracy_name(m),
+                        m.accuracy_name(),
                         exp(x),
                         fig.id
                     )
@@ -549,24 +252,9 @@ fn planned(
             jobs.push((m, x, Plan::parse(plan[k])?));
         }
     }
-    ctx.pool()?.install(|| {
-        jobs.par_iter()
-            .map(|&(m, x, plan)| {
-                if plan != Plan::Run {
-                    return Ok(Point::not_run(m, x, plan, String::new()));
-                }
-                let t = solve(&p.chain, &p.state, m, &options_for(p, m, x))
-                    .map_err(|e| e.to_string())?;
-                Ok(Point::from_run(
-                    m.as_str().into(),
-                    accuracy_name(m),
-                    x,
-                    &t,
-                    reference,
-                ))
-            })
-            .collect()
-    })
+    ctx.pool()?
+        .install(|| precision::run_planned(p, &jobs, reference))
+        .map_err(|e| e.to_string())
 }
 
 fn study(
@@ -576,158 +264,33 @@ fn study(
     p: Prepared,
     t_eval: f64,
 ) -> Result<Vec<String>, String> {
-    // The reference and its checks.
-    let ref_opts = reference_options(t_eval);
-    let run = |method: Method, o: &SolveOptions| -> Result<Trajectory, String> {
-        solve(&p.chain, &p.state, method, o).map_err(|e| e.to_string())
+    let checks = Checks {
+        check_dt: spec.check_dt,
+        richardson: spec.richardson,
     };
-    let r = run(Method::Dopri5, &ref_opts)?;
-    if !r.status.is_ok() {
-        return Err(format!("{}: the reference run ended {}", fig.id, r.status));
-    }
-    let reference = Reference {
-        tip: r.summary.tip_end,
-        vmax: r.summary.tip_speed_max,
-        length: p.chain.length(),
-    };
-    let mut rows = vec![Point::from_run(
-        "reference-dopri5".into(),
-        "rtol",
-        REF_RTOL,
-        &r,
-        &reference,
-    )];
-    // RK4 with a small step, and (where that alone is not close enough)
-    // Richardson's extrapolation from it and its half: (16 y(h/2) - y(h)) / 15.
-    let coarse = run(
-        Method::Rk4,
-        &SolveOptions {
-            dt: spec.check_dt,
-            ..ref_opts.clone()
-        },
-    )?;
-    rows.push(Point::from_run(
-        "check-rk4".into(),
-        "dt",
-        spec.check_dt,
-        &coarse,
-        &reference,
-    ));
-    if spec.richardson {
-        let h2 = spec.check_dt / 2.0;
-        let fine = run(
-            Method::Rk4,
-            &SolveOptions {
-                dt: h2,
-                ..ref_opts.clone()
-            },
-        )?;
-        rows.push(Point::from_run(
-            "check-rk4".into(),
-            "dt",
-            h2,
-            &fine,
-            &reference,
+    let (reference, mut rows) =
+        precision::reference(&p, t_eval, checks).map_err(|e| e.to_string())?;
+    let Some(reference) = reference else {
+        return Err(format!(
+            "{}: the reference run ended {}",
+            fig.id, rows[0].status
         ));
-        let x = |f: f64, c: f64| (16.0 * f - c) / 15.0;
-        let (sf, sc) = (&fine.summary, &coarse.summary);
-        let tip = [
-            x(sf.tip_end[0], sc.tip_end[0]),
-            x(sf.tip_end[1], sc.tip_end[1]),
-        ];
-        let vmax = x(sf.tip_speed_max, sc.tip_speed_max);
-        rows.push(Point {
-            method: "check-rk4-richardson".into(),
-            err_tip: (tip[0] - reference.tip[0]).hypot(tip[1] - reference.tip[1])
-                / reference.length,
-            err_vmax: (vmax - reference.vmax).abs() / reference.vmax,
-            note: format!(
-                "(16 y(dt/2) - y(dt)) / 15 from dt {} and {}",
-                exp(spec.check_dt),
-                exp(h2)
-            ),
-            status: "ok".into(),
-            plan: Plan::Run,
-            walls: vec![coarse.summary.wall_seconds + fine.summary.wall_seconds],
-            ..Point::not_run(Method::Rk4, spec.check_dt, Plan::Run, String::new())
-        });
-    }
-    let bdf = run(
-        Method::Bdf,
-        &SolveOptions {
-            rtol: CHECK_BDF_RTOL,
-            atol: CHECK_BDF_ATOL,
-            ..ref_opts.clone()
-        },
-    )?;
-    rows.push(Point::from_run(
-        "check-bdf".into(),
-        "rtol",
-        CHECK_BDF_RTOL,
-        &bdf,
-        &reference,
-    ));
-
+    };
     // The lines: timed, or as the timing file's plan says.
     if ctx.timings {
         for method in Method::ALL {
-            rows.extend(sweep(&p, method, &reference)?);
+            rows.extend(precision::timed_line(&p, method, &reference).map_err(|e| e.to_string())?);
         }
-        repeat_interleaved(&p, &mut rows)?;
+        precision::repeat_interleaved(&p, &mut rows).map_err(|e| e.to_string())?;
     } else {
         rows.extend(planned(ctx, fig, &p, &reference)?);
     }
-
-    let mut files = vec![write_csv(ctx, fig, spec, t_eval, &reference, &rows)?];
+    let csv = precision::csv_text(spec.scene, t_eval, &reference, &rows, None);
+    let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
     if ctx.timings {
         files.push(write_timing(ctx, fig, &rows)?);
     }
     Ok(files)
-}
-
-/// `<id>.csv`: every run's steps, evaluations and errors (no wall time).
-fn write_csv(
-    ctx: &Ctx,
-    fig: &Figure,
-    spec: &Spec,
-    t_eval: f64,
-    reference: &Reference,
-    rows: &[Point],
-) -> Result<String, String> {
-    let mut csv = String::from(
-        "scene,t_eval,method,param_name,param,status,t_reached,steps,rejected_steps,rhs_evals,\
-         jacobian_evals,lu_factorizations,rhs_equiv,switched,err_tip,err_vmax,\
-         tip_ref_x,tip_ref_y,vmax_ref,note\n",
-    );
-    for pt in rows {
-        let s = &pt.stats;
-        writeln!(
-            csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            spec.scene,
-            num(t_eval),
-            pt.method,
-            pt.param_name,
-            exp(pt.param),
-            pt.status,
-            num(pt.t_reached),
-            s.steps,
-            s.rejected_steps,
-            s.rhs_evals,
-            s.jacobian_evals,
-            s.lu_factorizations,
-            pt.rhs_equiv(),
-            u8::from(pt.switched),
-            exp(pt.err_tip),
-            exp(pt.err_vmax),
-            num(reference.tip[0]),
-            num(reference.tip[1]),
-            num(reference.vmax),
-            text(&pt.note)
-        )
-        .unwrap();
-    }
-    ctx.write(&format!("{}.csv", fig.id), &csv)
 }
 
 /// `<id>-timing.csv`: the plan, and the median wall time of each run.

@@ -1,0 +1,410 @@
+//! "Model no more than this scene needs": the smallest number of rods, the
+//! fastest method and tolerance at that number, and the optional physical
+//! terms whose effect stays below the tolerance.
+//!
+//! * Rods: `converge`'s ladder ([`crate::converge::run_levels`]: the scene
+//!   refined at fixed total mass and bending viscosity), the smallest `n`
+//!   from which on the maximum tip speed, the tip end and the tip path
+//!   (`max_t |tip - tip_ref| / L`) all agree with the finest within `tol`.
+//! * Method: `precision`'s lines ([`super::precision::run_lines`]) at that
+//!   `n`, each method from loose to tight until its error is below `tol`;
+//!   the fastest (least wall time) of those that get there, and the one of
+//!   least work.
+//! * Terms: for each term of [`TERMS`] the scene turns on, the run at that
+//!   `n` with the term switched off, against the same run with it on: the
+//!   term is needed if the tip path or the maximum tip speed moves by more
+//!   than `tol`.
+
+use chain_ode::Method;
+use serde::Serialize;
+
+use super::budget::Budget;
+use super::precision::{self, Checks, Point};
+use crate::converge::{self, Deviation, Level};
+use crate::error::Error;
+use crate::scene::Scene;
+
+/// An optional physical term of the model: its name, the scene key that
+/// switches it, whether the scene has it on, and the scene with it off.
+pub struct Term {
+    pub name: &'static str,
+    /// The scene key that sets it.
+    pub key: &'static str,
+    pub is_on: fn(&Scene) -> bool,
+    pub off: fn(&Scene) -> Result<Scene, Error>,
+}
+
+/// The optional terms, one entry each (elastic links and bending stiffness
+/// join here when the model has them).
+pub const TERMS: &[Term] = &[Term {
+    name: "joint friction",
+    key: "chain.damping",
+    is_on: |s| s.chain_params().damping > 0.0,
+    off: |s| s.with_value("chain.damping", toml::Value::Float(0.0)),
+}];
+
+/// The ladder's method and its tolerance for `tol`: `auto` (the fine
+/// levels are stiff: the damping rate grows like `n^4`) at
+/// `rtol = tol / 1000`, within `[1e-10, 1e-6]`.
+pub const LADDER_METHOD: &str = "auto";
+
+/// The relative tolerance of the ladder's runs for `tol`.
+pub fn ladder_rtol(tol: f64) -> f64 {
+    (tol * 1e-3).clamp(1e-10, 1e-6)
+}
+
+/// The methods `needs` tries by default: every method but `bdf-dense`,
+/// the O(n^3) reference, which is never the fastest past a few rods.
+pub fn default_methods() -> Vec<Method> {
+    Method::ALL
+        .into_iter()
+        .filter(|&m| m != Method::BdfDense)
+        .collect()
+}
+
+/// What the term study found.
+#[derive(Clone, Debug, Serialize)]
+pub struct TermNeed {
+    pub term: &'static str,
+    pub key: &'static str,
+    /// Whether the scene turns it on (terms it leaves off are not run).
+    pub on: bool,
+    /// `max_t |tip - tip_on| / L` with the term off.
+    pub tip_path: Option<f64>,
+    /// The relative change of the maximum tip speed with the term off.
+    pub tip_speed_max: Option<f64>,
+    /// Whether switching it off moves either by more than `tol`.
+    pub needed: Option<bool>,
+}
+
+/// A method's cheapest point at or below `tol`.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodChoice {
+    pub method: String,
+    pub param_name: &'static str,
+    pub param: f64,
+    pub error: f64,
+    pub rhs_equiv: u64,
+    pub wall_seconds: f64,
+}
+
+impl MethodChoice {
+    fn of(p: &Point) -> Self {
+        Self {
+            method: p.method.clone(),
+            param_name: p.param_name,
+            param: p.param,
+            error: p.err(),
+            rhs_equiv: p.rhs_equiv(),
+            wall_seconds: super::median(&p.walls),
+        }
+    }
+}
+
+/// The answer of `needs`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Needs {
+    pub name: String,
+    pub tol: f64,
+    /// The ladder: `converge`'s report (levels, deviations, its own answer
+    /// on tip_speed_max and tip end).
+    pub ladder: converge::Report,
+    /// The smallest adequate `n` on tip path, tip end and tip speed.
+    pub links: Option<usize>,
+    /// How well the reference of the precision study agrees with its checks
+    /// (larger error of RK4, of BDF).
+    pub reference_agreement: [f64; 2],
+    /// The fastest method (wall time) reaching `tol` at `links`.
+    pub fastest: Option<MethodChoice>,
+    /// The method of least work (RHS evaluations + JVPs) reaching `tol`.
+    pub least_work: Option<MethodChoice>,
+    /// Every method's first point at or below `tol` (none: not reached).
+    pub methods: Vec<(String, Option<MethodChoice>)>,
+    pub terms: Vec<TermNeed>,
+    /// Points of the precision study not run for the budget.
+    pub skipped: Vec<String>,
+}
+
+impl Needs {
+    /// Whether every question got an answer (exit 0).
+    pub fn answered(&self) -> bool {
+        self.links.is_some() && self.fastest.is_some()
+    }
+
+    /// One line of JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|e| {
+            serde_json::json!({ "error": format!("the answer did not serialise: {e}") }).to_string()
+        })
+    }
+}
+
+/// The options of [`run`].
+pub struct NeedsOptions {
+    pub tol: f64,
+    /// The ladder of `n` (the last the reference).
+    pub links: Vec<usize>,
+    pub methods: Vec<Method>,
+    pub jobs: usize,
+}
+
+/// The phases `progress` reports: `(phase, done, total)`.
+pub type Progress<'a> = &'a (dyn Fn(&str, usize, usize) + Sync);
+
+/// The smallest `n` of `levels` (coarse to fine, the last the reference)
+/// from which on tip speed, tip end and tip path agree within `tol`.
+pub fn adequate_links(levels: &[Level], tol: f64) -> Option<usize> {
+    if !levels.iter().all(|l| l.summary.is_ok()) {
+        return None;
+    }
+    converge::smallest_adequate(levels, |d| {
+        d.tip_speed_max < tol && d.tip_end < tol && d.tip_path < tol
+    })
+}
+
+/// Answers the question for `scene` (see the module's doc).
+pub fn run(
+    scene: &Scene,
+    options: &NeedsOptions,
+    budget: &Budget,
+    progress: Progress,
+) -> Result<Needs, Error> {
+    let tol = options.tol;
+    converge::check_tol(tol)?;
+    let rtol = ladder_rtol(tol);
+    // The scene must be one that sampling can compare: its output_dt is
+    // the tip path's grid.
+    let levels = converge::run_levels(
+        scene,
+        &options.links,
+        Some(LADDER_METHOD),
+        Some(rtol),
+        options.jobs,
+        &|d, t| progress("rods", d, t),
+    )?;
+    let ladder = converge::report(scene, &levels, tol)?;
+    let links = adequate_links(&levels, tol);
+    let mut needs = Needs {
+        name: scene.name().to_string(),
+        tol,
+        ladder,
+        links,
+        reference_agreement: [f64::NAN; 2],
+        fastest: None,
+        least_work: None,
+        methods: vec![],
+        terms: vec![],
+        skipped: vec![],
+    };
+    let Some(n) = links else {
+        return Ok(needs);
+    };
+    let refined = converge::refined_scene(scene, n)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs.max(1))
+        .build()
+        .map_err(|e| Error::field("--jobs", e))?;
+
+    // The method, at n.
+    let mut prepared = refined.prepare()?;
+    prepared.options.output_dt = None;
+    let t_eval = prepared.options.t_end;
+    let (reference, ref_rows) = precision::reference(&prepared, t_eval, Checks::default())?;
+    let (a_rk4, a_bdf) = precision::agreement(&ref_rows);
+    needs.reference_agreement = [a_rk4, a_bdf];
+    if let Some(reference) = reference {
+        let total: usize = options
+            .methods
+            .iter()
+            .map(|&m| precision::params(m).len())
+            .sum();
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let rows = pool.install(|| {
+            precision::run_lines(
+                &prepared,
+                &options.methods,
+                &reference,
+                &|_| true,
+                budget,
+                &|p: &Point| p.ok() && p.err() <= tol,
+                &|| {
+                    let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                    progress("methods", d, total);
+                },
+            )
+        })?;
+        for &m in &options.methods {
+            let first = rows
+                .iter()
+                .find(|p| p.method == m.as_str() && p.ok() && p.err() <= tol);
+            needs
+                .methods
+                .push((m.as_str().to_string(), first.map(MethodChoice::of)));
+        }
+        let reached: Vec<&MethodChoice> = needs
+            .methods
+            .iter()
+            .filter_map(|(_, c)| c.as_ref())
+            .collect();
+        needs.fastest = reached
+            .iter()
+            .min_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds))
+            .map(|c| (*c).clone());
+        needs.least_work = reached
+            .iter()
+            .min_by_key(|c| c.rhs_equiv)
+            .map(|c| (*c).clone());
+        needs.skipped = rows
+            .iter()
+            .filter(|p| p.plan == precision::Plan::Budget)
+            .map(|p| {
+                format!(
+                    "{} {} {}",
+                    p.method,
+                    p.param_name,
+                    super::format::exp(p.param)
+                )
+            })
+            .collect();
+    }
+
+    // The terms, at n, with the ladder's method and tolerance.
+    let on_level = levels
+        .iter()
+        .find(|l| l.links() == n)
+        .ok_or_else(|| Error::field("--links", "the adequate n is not a level of the ladder"))?;
+    for (k, term) in TERMS.iter().enumerate() {
+        progress("terms", k, TERMS.len());
+        let on = (term.is_on)(scene);
+        let mut need = TermNeed {
+            term: term.name,
+            key: term.key,
+            on,
+            tip_path: None,
+            tip_speed_max: None,
+            needed: None,
+        };
+        if on {
+            let off = converge::run_level(&(term.off)(scene)?, n, Some(LADDER_METHOD), Some(rtol))?;
+            if off.summary.is_ok() {
+                let d = Deviation::between(&off, on_level);
+                need.tip_path = Some(d.tip_path);
+                need.tip_speed_max = Some(d.tip_speed_max);
+                need.needed = Some(d.tip_path >= tol || d.tip_speed_max >= tol);
+            }
+        }
+        needs.terms.push(need);
+    }
+    progress("terms", TERMS.len(), TERMS.len());
+    Ok(needs)
+}
+
+impl std::fmt::Display for Needs {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{}: what the scene needs at tolerance {}",
+            self.name, self.tol
+        )?;
+        let l = &self.ladder;
+        writeln!(
+            f,
+            "  rods: ladder n = {} (reference {}), refined at fixed M and eta = r l, {} rtol {:e}",
+            l.levels
+                .iter()
+                .map(|x| x.links.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            l.reference_links,
+            LADDER_METHOD,
+            ladder_rtol(self.tol)
+        )?;
+        for x in &l.levels {
+            writeln!(
+                f,
+                "    n {:>6}  {:>9}  d(vmax) {:>9.2e}  d(tip_end) {:>9.2e}  d(path) {:>9.2e}",
+                x.links,
+                x.status,
+                x.deviation.tip_speed_max,
+                x.deviation.tip_end,
+                x.deviation.tip_path
+            )?;
+        }
+        match self.links {
+            Some(n) => writeln!(
+                f,
+                "  n = {n}: the smallest n whose tip path, tip end and maximum tip speed agree \
+                 with n = {} within {} (converge's answer on speed and tip end: {})",
+                l.reference_links,
+                self.tol,
+                l.adequate_links.map_or("none".into(), |n| n.to_string())
+            )?,
+            None => {
+                return write!(
+                    f,
+                    "  no n below {} meets {} (or a run failed): refine further (--links)",
+                    l.reference_links, self.tol
+                )
+            }
+        }
+        writeln!(
+            f,
+            "  methods at n = {}: error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|); \
+             reference DOPRI5 rtol 1e-13 agrees with RK4 to {:.0e}, BDF to {:.0e}",
+            self.links.unwrap_or(0),
+            self.reference_agreement[0],
+            self.reference_agreement[1]
+        )?;
+        for (m, c) in &self.methods {
+            match c {
+                Some(c) => writeln!(
+                    f,
+                    "    {m:>9}: {} {:e}, error {:.1e}, {} RHS, {:.3} s",
+                    c.param_name, c.param, c.error, c.rhs_equiv, c.wall_seconds
+                )?,
+                None => writeln!(f, "    {m:>9}: does not reach {} on its ladder", self.tol)?,
+            }
+        }
+        if !self.skipped.is_empty() {
+            writeln!(f, "  not run for the budget: {}", self.skipped.join(", "))?;
+        }
+        match (&self.fastest, &self.least_work) {
+            (Some(a), Some(b)) => writeln!(
+                f,
+                "  fastest: {} at {} {:e} ({:.3} s); least work: {} at {} {:e} ({} RHS)",
+                a.method,
+                a.param_name,
+                a.param,
+                a.wall_seconds,
+                b.method,
+                b.param_name,
+                b.param,
+                b.rhs_equiv
+            )?,
+            _ => writeln!(
+                f,
+                "  no method reaches {} at n = {}",
+                self.tol,
+                self.links.unwrap_or(0)
+            )?,
+        }
+        write!(f, "  terms:")?;
+        for t in &self.terms {
+            write!(f, "\n    {} ({}): ", t.term, t.key)?;
+            match (t.on, t.needed, t.tip_path, t.tip_speed_max) {
+                (false, ..) => write!(f, "off in this scene")?,
+                (true, Some(needed), Some(p), Some(v)) => write!(
+                    f,
+                    "{} (off: d(path) {p:.2e}, d(vmax) {v:.2e})",
+                    if needed {
+                        "needed"
+                    } else {
+                        "NOT needed: its effect is below the tolerance"
+                    }
+                )?,
+                (true, ..) => write!(f, "unknown: the run without it failed")?,
+            }
+        }
+        Ok(())
+    }
+}

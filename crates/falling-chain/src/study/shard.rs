@@ -1,0 +1,300 @@
+//! Runs split across machines and joined again: a study's runs are numbered,
+//! `--shard I/N` takes runs `I, I + N, ...` ([`crate::sweep::Shard`]), and
+//! every row records where it comes from ([`Provenance`]: the number of runs
+//! of the whole study and a hash of its scene and options), so that
+//! [`merge`] can refuse shards of different studies, a missing run and a
+//! run given twice.
+//!
+//! The hash is FNV-1a (64 bits) of the scene's TOML text (after `--set`),
+//! the command and its options that change what is computed (not `--jobs`,
+//! `--shard`, `--out` or `--budget`), written as 16 hex digits: the same on
+//! every machine and every build.
+
+use std::collections::BTreeMap;
+
+use crate::error::{echo, Error};
+use crate::scene::Scene;
+use crate::sweep::MAX_RUNS;
+
+/// The columns a study's table ends with.
+pub const COLUMNS: [&str; 2] = ["runs", "scene_hash"];
+
+/// Where a row comes from: the study's size and the hash of what it ran.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Provenance {
+    /// The number of numbered runs of the whole (unsharded) study.
+    pub runs: usize,
+    /// 16 hex digits of FNV-1a over the scene and options.
+    pub hash: String,
+}
+
+/// FNV-1a, 64 bits, over `parts`, each followed by a zero byte (so that
+/// `["ab", "c"]` and `["a", "bc"]` differ).
+fn fnv1a(parts: &[&str]) -> u64 {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    let mut h = OFFSET;
+    for part in parts {
+        for &b in part.as_bytes().iter().chain(&[0u8]) {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(PRIME);
+        }
+    }
+    h
+}
+
+impl Provenance {
+    /// The provenance of a study of `runs` runs of `command` on `scene` with
+    /// `options` (each option as text, in a fixed order).
+    pub fn new(scene: &Scene, command: &str, options: &[String], runs: usize) -> Self {
+        let toml = scene.to_toml_string();
+        let mut parts: Vec<&str> = vec![command, &toml];
+        parts.extend(options.iter().map(String::as_str));
+        Self {
+            runs,
+            hash: format!("{:016x}", fnv1a(&parts)),
+        }
+    }
+
+    /// `,runs,scene_hash` for the end of a header line.
+    pub fn header_suffix() -> String {
+        format!(",{}", COLUMNS.join(","))
+    }
+
+    /// `,<runs>,<hash>` for the end of a row.
+    pub fn cells(&self) -> String {
+        format!(",{},{}", self.runs, self.hash)
+    }
+}
+
+/// The largest shard file [`merge`] reads (bytes).
+pub const MAX_SHARD_BYTES: u64 = 1 << 30;
+/// The most shard files [`merge`] joins.
+pub const MAX_SHARDS: usize = 100_000;
+
+/// Joins the tables of shards `(name, text)` into the table of the whole
+/// study: the header, the rows without a run number (a study's shared rows,
+/// such as precision's reference, computed by every shard: the first shard's
+/// are kept), then every run in run order. Refused, with one line naming
+/// the file, when the headers differ, a table lacks the `run`, `runs` or
+/// `scene_hash` column, two shards come from different studies (scene,
+/// options or size), a run is missing or given twice, or shards disagree on
+/// the shared rows (wall times aside).
+pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
+    let err = |what: &str, why: String| Error::field("merge", format!("{}: {why}", echo(what)));
+    if shards.is_empty() {
+        return Err(Error::field("merge", "no shard files given"));
+    }
+    if shards.len() > MAX_SHARDS {
+        return Err(Error::field(
+            "merge",
+            format!("at most {MAX_SHARDS} shard files (got {})", shards.len()),
+        ));
+    }
+    let (first_name, first_text) = &shards[0];
+    let header = first_text.lines().next().unwrap_or_default().to_string();
+    let cols: Vec<&str> = header.split(',').collect();
+    let col = |c: &str| {
+        cols.iter().position(|h| *h == c).ok_or_else(|| {
+            err(
+                first_name,
+                format!("no '{c}' column: not a table of sweep, precision or stability"),
+            )
+        })
+    };
+    let (c_run, c_runs, c_hash) = (col("run")?, col(COLUMNS[0])?, col(COLUMNS[1])?);
+    let c_wall = cols.iter().position(|h| *h == "wall_seconds");
+    let mut study: Option<(String, String)> = None; // (runs, hash)
+    let mut shared: Option<Vec<String>> = None;
+    let mut rows: BTreeMap<usize, (String, &str)> = BTreeMap::new();
+    let mut total = 0usize;
+    for (name, text) in shards {
+        let mut lines = text.lines();
+        if lines.next() != Some(header.as_str()) {
+            return Err(err(
+                name,
+                format!("its header differs from '{}'s", echo(first_name)),
+            ));
+        }
+        let mut mine_shared = vec![];
+        for (k, line) in lines.enumerate().filter(|(_, l)| !l.is_empty()) {
+            let cells: Vec<&str> = line.split(',').collect();
+            if cells.len() != cols.len() {
+                return Err(err(
+                    name,
+                    format!(
+                        "line {} has {} cells, the header {}",
+                        k + 2,
+                        cells.len(),
+                        cols.len()
+                    ),
+                ));
+            }
+            let id = (cells[c_runs].to_string(), cells[c_hash].to_string());
+            match &study {
+                None => {
+                    let n: usize =
+                        id.0.parse()
+                            .ok()
+                            .filter(|&n| n <= MAX_RUNS)
+                            .ok_or_else(|| {
+                                err(
+                                    name,
+                                    format!(
+                                        "'runs' is not an integer in 0..={MAX_RUNS} (line {})",
+                                        k + 2
+                                    ),
+                                )
+                            })?;
+                    total = n;
+                    study = Some(id);
+                }
+                Some(s) if *s != id => {
+                    return Err(err(
+                        name,
+                        format!(
+                            "a shard of another study (runs {}, scene_hash {}; '{}' has runs {}, \
+                             scene_hash {}): different scene or options",
+                            echo(&id.0),
+                            echo(&id.1),
+                            echo(first_name),
+                            echo(&s.0),
+                            echo(&s.1)
+                        ),
+                    ))
+                }
+                Some(_) => {}
+            }
+            let run = cells[c_run];
+            if run.is_empty() {
+                let mut c = cells.clone();
+                if let Some(w) = c_wall {
+                    c[w] = "";
+                }
+                mine_shared.push(c.join(","));
+                continue;
+            }
+            let run: usize = run.parse().ok().filter(|&r| r < total).ok_or_else(|| {
+                err(
+                    name,
+                    format!(
+                        "run '{}' (line {}) is not an integer below the study's {total} runs",
+                        echo(run),
+                        k + 2
+                    ),
+                )
+            })?;
+            if let Some((other, _)) = rows.insert(run, (name.clone(), line)) {
+                return Err(err(
+                    name,
+                    format!("run {run} is given twice (also in '{}')", echo(&other)),
+                ));
+            }
+        }
+        match &shared {
+            None => shared = Some(mine_shared),
+            Some(s) if *s != mine_shared => {
+                return Err(err(
+                    name,
+                    format!(
+                        "its shared rows (no run number) differ from '{}'s",
+                        echo(first_name)
+                    ),
+                ))
+            }
+            Some(_) => {}
+        }
+    }
+    if let Some(missing) = (0..total).find(|r| !rows.contains_key(r)) {
+        return Err(Error::field(
+            "merge",
+            format!(
+                "run {missing} is missing: {} of the study's {total} runs are given",
+                rows.len()
+            ),
+        ));
+    }
+    let mut out = header;
+    out.push('\n');
+    // The first shard's shared rows, with their wall times.
+    for line in first_text
+        .lines()
+        .skip(1)
+        .filter(|l| !l.is_empty() && l.split(',').nth(c_run).is_some_and(str::is_empty))
+    {
+        out.push_str(line);
+        out.push('\n');
+    }
+    for (_, (_, line)) in rows {
+        out.push_str(line);
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(rows: &[&str]) -> String {
+        let mut t = String::from("run,x,wall_seconds,runs,scene_hash\n");
+        for r in rows {
+            t.push_str(r);
+            t.push('\n');
+        }
+        t
+    }
+
+    #[test]
+    fn shards_join_in_run_order_and_bad_sets_are_refused() {
+        let a = (
+            "a.csv".to_string(),
+            table(&[",ref,0.1,3,h", "0,p,0.5,3,h", "2,r,0.2,3,h"]),
+        );
+        let b = ("b.csv".to_string(), table(&[",ref,0.3,3,h", "1,q,0.7,3,h"]));
+        let merged = merge(&[a.clone(), b.clone()]).unwrap();
+        assert_eq!(
+            merged,
+            table(&[",ref,0.1,3,h", "0,p,0.5,3,h", "1,q,0.7,3,h", "2,r,0.2,3,h"])
+        );
+        let missing = merge(std::slice::from_ref(&a)).unwrap_err().to_string();
+        assert!(missing.starts_with("merge: run 1 is missing"), "{missing}");
+        let twice = merge(&[a.clone(), b.clone(), b.clone()])
+            .unwrap_err()
+            .to_string();
+        assert!(twice.contains("run 1 is given twice"), "{twice}");
+        let other = ("c.csv".to_string(), table(&[",ref,0.3,3,k", "1,q,0.7,3,k"]));
+        let e = merge(&[a.clone(), other]).unwrap_err().to_string();
+        assert!(e.contains("another study"), "{e}");
+        let bigger = ("d.csv".to_string(), table(&[",ref,0.3,4,h", "1,q,0.7,4,h"]));
+        assert!(merge(&[a.clone(), bigger]).is_err());
+        let reference = ("e.csv".to_string(), table(&[",REF,0.3,3,h", "1,q,0.7,3,h"]));
+        assert!(merge(&[a.clone(), reference])
+            .unwrap_err()
+            .to_string()
+            .contains("shared rows"));
+        let header = (
+            "f.csv".to_string(),
+            "run,y,wall_seconds,runs,scene_hash\n".to_string(),
+        );
+        assert!(merge(&[a, header])
+            .unwrap_err()
+            .to_string()
+            .contains("header differs"));
+        assert!(merge(&[]).is_err());
+    }
+
+    #[test]
+    fn the_hash_sees_scene_and_options() {
+        let s = Scene::from_toml_str(
+            "[chain]\nlinks = 4\n[start]\nkind = \"folded\"\n[run]\nt_end = 1\n",
+        )
+        .unwrap();
+        let p = |s: &Scene, o: &str| Provenance::new(s, "sweep", &[o.to_string()], 3);
+        assert_eq!(p(&s, "a"), p(&s, "a"));
+        assert_ne!(p(&s, "a").hash, p(&s, "b").hash);
+        let t = s.with_overrides(&["chain.links=5"]).unwrap();
+        assert_ne!(p(&s, "a").hash, p(&t, "a").hash);
+        assert_eq!(p(&s, "a").hash.len(), 16);
+    }
+}

@@ -1,0 +1,378 @@
+//! The study's commands: `precision`, `stability`, `needs` and `merge`
+//! (the computations are the library's `falling_chain::study`).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Args;
+use falling_chain::atomic::{begin, check_writable};
+use falling_chain::error::echo_path;
+use falling_chain::study::budget::{check_budget, Budget};
+use falling_chain::study::format::exp;
+use falling_chain::study::shard;
+use falling_chain::study::{self, needs, plot, precision, stability};
+use falling_chain::sweep::{Shard, Vary};
+use falling_chain::Error;
+
+use crate::{JobsArgs, SceneArgs};
+
+/// The flags the study's table commands share.
+#[derive(Args)]
+pub struct StudyArgs {
+    /// Only these methods, M1,M2,... (default: every method).
+    #[arg(long, value_name = "M1,M2,...")]
+    methods: Option<String>,
+    /// Write the table as CSV (the columns of the study's data files, then
+    /// wall_seconds, run, runs, scene_hash).
+    #[arg(long, value_name = "FILE.csv")]
+    out: Option<PathBuf>,
+    /// Draw the figure to FILE.png or FILE.svg.
+    #[arg(long, value_name = "FILE.svg|FILE.png")]
+    plot: Option<PathBuf>,
+    /// Stop after this many seconds of wall time: points that would not
+    /// fit are not run, runs still going are stopped, and all are listed.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    budget: Option<f64>,
+    /// Run only runs I, I+N, ... of the study (0 <= I < N); join the
+    /// tables with `merge`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
+    #[command(flatten)]
+    jobs: JobsArgs,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Args)]
+pub struct PrecisionArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    study: StudyArgs,
+    /// RK4's step in the check of the reference.
+    #[arg(long = "check-dt", value_name = "DT", default_value_t = precision::CHECK_DT, allow_negative_numbers = true)]
+    check_dt: f64,
+    /// Check the reference with RK4 at --check-dt and its half,
+    /// extrapolated (Richardson).
+    #[arg(long)]
+    richardson: bool,
+}
+
+#[derive(Args)]
+pub struct StabilityArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    study: StudyArgs,
+    /// A row per value: KEY=V1,V2,... or KEY=START:STOP:COUNT (at most
+    /// 1000 values), e.g. chain.damping=0,1e-3,1e-2.
+    #[arg(long, value_name = "KEY=VALUES", allow_hyphen_values = true)]
+    vary: Option<String>,
+}
+
+#[derive(Args)]
+pub struct NeedsArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// The tolerance, in (0, 1): relative on the maximum tip speed and the
+    /// method's error, over L on the tip end and path.
+    #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
+    tol: f64,
+    /// The ladder of n, N1,N2,... (the largest is the reference).
+    #[arg(long, value_name = "N1,N2,...", default_value = "25,50,100,200,400")]
+    links: String,
+    /// The methods tried at the answer's n (default: all but bdf-dense).
+    #[arg(long, value_name = "M1,M2,...")]
+    methods: Option<String>,
+    /// Seconds for the methods' lines (the ladder and the terms always run).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    budget: Option<f64>,
+    #[command(flatten)]
+    jobs: JobsArgs,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Args)]
+pub struct MergeArgs {
+    /// The shards' tables (written by --shard I/N --out).
+    #[arg(value_name = "SHARD.csv", required = true)]
+    shards: Vec<PathBuf>,
+    /// The joined table.
+    #[arg(long, value_name = "ALL.csv", required = true)]
+    out: PathBuf,
+}
+
+fn progress_bar(quiet: bool, total: usize) -> indicatif::ProgressBar {
+    if quiet {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(total as u64),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    match indicatif::ProgressStyle::with_template("{msg} {bar:40} {pos}/{len}, {elapsed}") {
+        Ok(style) => bar.with_style(style),
+        Err(_) => bar,
+    }
+}
+
+fn check_plot(plot: Option<&Path>) -> Result<(), Error> {
+    if let Some(p) = plot {
+        let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if !matches!(ext.to_ascii_lowercase().as_str(), "png" | "svg") {
+            return Err(Error::field(
+                "--plot",
+                format!("must end in .png or .svg (got '{}')", echo_path(p)),
+            ));
+        }
+        check_writable("--plot", p)?;
+    }
+    Ok(())
+}
+
+fn draw(path: &Path, result: Result<(), figures::FigureError>) -> Result<(), Error> {
+    result
+        .map_err(|e| Error::field("--plot", format!("cannot write '{}': {e}", echo_path(path))))?;
+    eprintln!("wrote {}", echo_path(path));
+    Ok(())
+}
+
+fn budget_of(what: &str, b: Option<f64>) -> Result<Option<f64>, Error> {
+    b.map(|s| check_budget(what, s)).transpose()
+}
+
+pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
+    let a = &args.study;
+    let scene = args.scene.load()?;
+    let options = precision::Options {
+        methods: study::parse_methods("--methods", a.methods.as_deref())?,
+        checks: precision::Checks {
+            check_dt: precision::check_check_dt(
+                "--check-dt",
+                args.check_dt,
+                scene.options()?.t_end,
+            )?,
+            richardson: args.richardson,
+        },
+        budget: budget_of("--budget", a.budget)?,
+        shard: a.shard.as_deref().map(Shard::parse).transpose()?,
+        jobs: a.jobs.threads()?,
+    };
+    scene.prepare()?;
+    check_plot(a.plot.as_deref())?;
+    let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
+    let total = precision::ladder(&options.methods).len();
+    let bar = progress_bar(
+        a.quiet,
+        options.shard.map_or(total, |s| total.div_ceil(s.count)),
+    );
+    bar.set_message("points");
+    let s = precision::study(&scene, &options, None, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let (a_rk4, a_bdf) = precision::agreement(&s.rows);
+    println!(
+        "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
+        s.name, s.t_eval
+    );
+    println!(
+        "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {:.1e} and with BDF rtol {} to {:.1e}",
+        exp(precision::REF_RTOL),
+        exp(args.check_dt),
+        if args.richardson { " (extrapolated)" } else { "" },
+        a_rk4,
+        exp(precision::CHECK_BDF_RTOL),
+        a_bdf
+    );
+    let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
+    let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
+    let by_work = precision::fastest(&s.rows, &levels, |pt| pt.rhs_equiv() as f64);
+    println!(
+        "  {:>7}  {:<26} {:<26}",
+        "error", "fastest (wall time)", "least work (RHS + JVP)"
+    );
+    for ((level, w), (_, k)) in by_wall.iter().zip(&by_work) {
+        let show = |pt: &Option<&precision::Point>, cost: String| match pt {
+            Some(pt) => format!("{} {} {} ({cost})", pt.method, pt.param_name, exp(pt.param)),
+            None => "-".into(),
+        };
+        if w.is_none() && k.is_none() {
+            continue;
+        }
+        println!(
+            "  {:>7}  {:<26} {:<26}",
+            exp(*level),
+            show(
+                w,
+                format!("{:.2e} s", w.map_or(f64::NAN, |p| study::median(&p.walls)))
+            ),
+            show(k, format!("{}", k.map_or(0, precision::Point::rhs_equiv)))
+        );
+    }
+    let skipped = s.skipped();
+    if !skipped.is_empty() {
+        println!("  not run for --budget: {}", skipped.join(", "));
+    }
+    if let Some(out) = out {
+        let shown = echo_path(out.path());
+        out.write(|w| w.write_all(s.csv().as_bytes()))?;
+        eprintln!("wrote {} rows to {shown}", s.rows.len());
+    }
+    if let Some(path) = &a.plot {
+        let title = format!("Work-precision: {} (n = {})", s.name, s.links);
+        draw(path, plot::precision(&title, &s.rows, path))?;
+    }
+    Ok(report_failures(&s.failures))
+}
+
+/// Prints each failure on one line and returns exit 1, or exit 0 if none.
+fn report_failures(failures: &[String]) -> ExitCode {
+    for f in failures {
+        eprintln!("{f}");
+    }
+    if failures.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
+    let a = &args.study;
+    let scene = args.scene.load()?;
+    let options = stability::Options {
+        methods: study::parse_methods("--methods", a.methods.as_deref())?,
+        vary: args.vary.as_deref().map(Vary::parse).transpose()?,
+        budget: budget_of("--budget", a.budget)?,
+        shard: a.shard.as_deref().map(Shard::parse).transpose()?,
+        jobs: a.jobs.threads()?,
+    };
+    // Every row's scene is checked before any output is begun.
+    let rows = stability::rows_of(&scene, options.vary.as_ref())?;
+    check_plot(a.plot.as_deref())?;
+    let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
+    let total = stability::jobs(rows.len(), &options.methods).len();
+    let bar = progress_bar(
+        a.quiet,
+        options.shard.map_or(total, |s| total.div_ceil(s.count)),
+    );
+    bar.set_message("cells");
+    let s = stability::run_study(&scene, &options, None, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    println!(
+        "{}: where each method fails (step budget {}, energy limit {} of M g L)",
+        s.name,
+        exp(stability::MAX_STEPS as f64),
+        stability::ENERGY_LIMIT
+    );
+    for (m, ok, failed) in stability::limits(&s.cells, &options.methods) {
+        let name = m.accuracy_name();
+        println!(
+            "  {:>9}: completes every row at {name} {}; fails {}",
+            m.as_str(),
+            ok.map_or("none tried".into(), |x| format!("<= {}", exp(x))),
+            failed.map_or("nowhere".into(), |x| format!("at {name} >= {}", exp(x))),
+        );
+    }
+    let skipped = s.skipped();
+    if !skipped.is_empty() {
+        println!("  not run for --budget: {}", skipped.join(", "));
+    }
+    if let Some(out) = out {
+        let shown = echo_path(out.path());
+        out.write(|w| w.write_all(s.csv().as_bytes()))?;
+        eprintln!("wrote {} rows to {shown}", s.cells.len());
+    }
+    if let Some(path) = &a.plot {
+        let title = format!("Where each method fails: {}", s.name);
+        draw(path, plot::stability(&title, &s.rows, &s.cells, path))?;
+    }
+    Ok(report_failures(&s.failures))
+}
+
+pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
+    falling_chain::converge::check_tol(args.tol)?;
+    let links = falling_chain::converge::parse_links(&args.links)?;
+    let methods = match &args.methods {
+        Some(m) => study::parse_methods("--methods", Some(m))?,
+        None => needs::default_methods(),
+    };
+    let budget = budget_of("--budget", args.budget)?;
+    let jobs = args.jobs.threads()?;
+    let scene = args.scene.load()?;
+    let bar = progress_bar(args.quiet, 0);
+    let options = needs::NeedsOptions {
+        tol: args.tol,
+        links,
+        methods,
+        jobs,
+    };
+    let answer = Budget::run(budget, None, |b| {
+        needs::run(&scene, &options, b, &|phase, done, total| {
+            bar.set_message(phase.to_string());
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        })
+    })?;
+    bar.finish_and_clear();
+    if args.json {
+        println!("{}", answer.to_json());
+    } else {
+        println!("{answer}");
+    }
+    let mut failures = vec![];
+    if answer.links.is_none() {
+        failures.push(format!(
+            "no n up to {} meets --tol {} (or a run failed): try a longer --links ladder",
+            answer.ladder.reference_links, args.tol
+        ));
+    } else if answer.fastest.is_none() {
+        failures.push(format!(
+            "no method reaches --tol {} at n = {} on its ladder",
+            args.tol,
+            answer.links.unwrap_or(0)
+        ));
+    }
+    Ok(report_failures(&failures))
+}
+
+pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
+    if args.shards.len() > shard::MAX_SHARDS {
+        return Err(Error::field(
+            "merge",
+            format!(
+                "at most {} shard files (got {})",
+                shard::MAX_SHARDS,
+                args.shards.len()
+            ),
+        ));
+    }
+    let mut texts = vec![];
+    for path in &args.shards {
+        let meta = std::fs::metadata(path).map_err(|e| Error::read("shard", path, e))?;
+        if !meta.is_file() || meta.len() > shard::MAX_SHARD_BYTES {
+            return Err(Error::field(
+                "shard",
+                format!(
+                    "'{}' is not a regular file of at most {} bytes",
+                    echo_path(path),
+                    shard::MAX_SHARD_BYTES
+                ),
+            ));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| Error::read("shard", path, e))?;
+        texts.push((path.display().to_string(), text));
+    }
+    let out = begin("--out", &args.out)?;
+    let merged = shard::merge(&texts)?;
+    let rows = merged.lines().count().saturating_sub(1);
+    let shown = echo_path(out.path());
+    out.write(|w| w.write_all(merged.as_bytes()))?;
+    eprintln!("wrote {rows} rows from {} shards to {shown}", texts.len());
+    Ok(ExitCode::SUCCESS)
+}
