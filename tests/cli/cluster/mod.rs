@@ -72,7 +72,11 @@ fn without_wall_times(text: &str) -> String {
 
 /// Runs the CLI in `dir` and requires exit 0.
 fn cli_in(dir: &Path, args: &[&str]) -> Output {
-    let o = Command::new(BIN).args(args).current_dir(dir).output().unwrap();
+    let o = Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{args:?}: {}", stderr(&o));
     o
 }
@@ -134,20 +138,27 @@ fn strs(v: &[String]) -> Vec<&str> {
     v.iter().map(String::as_str).collect()
 }
 
-/// Submits the README's array script for `study` with `--array=<array>`,
+/// Submits the README's array script for `study` in `shards` shards with
+/// `--array=<array>`,
 /// waits for it (bounded), and returns sbatch's output.
-fn submit(cluster: &slurm::Slurm, dir: &Path, array: &str, study: &[&str]) -> Output {
+fn submit(
+    cluster: &slurm::Slurm,
+    dir: &Path,
+    array: &str,
+    shards: usize,
+    study: &[&str],
+) -> Output {
     let mut sbatch = cluster.client("sbatch");
     sbatch
         .arg("--wait")
         .arg(format!("--array={array}"))
         .arg(dir.join("shard-array.sh"))
+        .arg(shards.to_string())
         .args(study)
         .current_dir(dir)
         .env("PATH", path_with_binary());
-    slurm::run_within(sbatch, Duration::from_secs(60)).unwrap_or_else(|e| {
-        panic!("{e}\nslurmctld.log:\n{}", cluster.log("slurmctld"))
-    })
+    slurm::run_within(sbatch, Duration::from_secs(60))
+        .unwrap_or_else(|e| panic!("{e}\nslurmctld.log:\n{}", cluster.log("slurmctld")))
 }
 
 #[test]
@@ -162,21 +173,21 @@ fn the_readme_job_array_runs_on_a_real_slurm_and_merges_to_the_whole_run() {
 
     // A sweep in three shards, and stability in two, as the README submits.
     let sweep = small_sweep(&span);
-    let o = submit(&cluster, &dir, "0-2", &strs(&sweep));
+    let o = submit(&cluster, &dir, "0-2", 3, &strs(&sweep));
     assert!(o.status.success(), "sweep array: {}", stderr(&o));
     assert_merge_equals_whole(&dir, &strs(&sweep), 3);
     let stability = small_stability(&span);
-    let o = submit(&cluster, &dir, "0-1", &strs(&stability));
+    let o = submit(&cluster, &dir, "0-1", 2, &strs(&stability));
     assert!(o.status.success(), "stability array: {}", stderr(&o));
     assert_merge_equals_whole(&dir, &strs(&stability), 2);
 
-    // A failed task: indices 0, 1 and 3 of three make shard 3/3, out of
-    // range; the array fails, and merge refuses the two shards it has,
-    // naming the runs of the missing shard 2 (2, 5, 8, 11).
+    // A failed task: indices 0, 1 and 3 with three shards make shard 3/3,
+    // out of range; the array fails, and merge refuses the two shards it
+    // has, naming the runs of the missing shard 2 (2, 5, 8, 11).
     let failed = dir.join("failed");
     fs::create_dir_all(&failed).unwrap();
     fs::copy(dir.join("shard-array.sh"), failed.join("shard-array.sh")).unwrap();
-    let o = submit(&cluster, &failed, "0,1,3", &strs(&sweep));
+    let o = submit(&cluster, &failed, "0,1,3", 3, &strs(&sweep));
     assert!(!o.status.success(), "an array with a failed task passed");
     let o = Command::new(BIN)
         .args(["merge", "sweep-0.csv", "sweep-1.csv", "--out", "all.csv"])
@@ -186,7 +197,10 @@ fn the_readme_job_array_runs_on_a_real_slurm_and_merges_to_the_whole_run() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains("2, 5, 8, 11"), "the missing runs are not named: {err}");
+    assert!(
+        err.contains("2, 5, 8, 11"),
+        "the missing runs are not named: {err}"
+    );
     assert!(!failed.join("all.csv").exists());
 
     // A shard of another scene joins nothing.
@@ -195,7 +209,14 @@ fn the_readme_job_array_runs_on_a_real_slurm_and_merges_to_the_whole_run() {
     args.extend(["--quiet", "--shard", "2/3", "--out", "sweep-2.csv"]);
     cli_in(&failed, &args);
     let o = Command::new(BIN)
-        .args(["merge", "sweep-0.csv", "sweep-1.csv", "sweep-2.csv", "--out", "all.csv"])
+        .args([
+            "merge",
+            "sweep-0.csv",
+            "sweep-1.csv",
+            "sweep-2.csv",
+            "--out",
+            "all.csv",
+        ])
         .current_dir(&failed)
         .output()
         .unwrap();

@@ -19,8 +19,12 @@ pub fn recipe(readme: &str, name: &str) -> String {
         .split_once(&marker)
         .unwrap_or_else(|| panic!("README.md has no '{marker}'"))
         .1;
-    let mut lines = after.lines().skip_while(|l| !l.trim_start().starts_with("```"));
-    let fence = lines.next().unwrap_or_else(|| panic!("no code block after '{marker}'"));
+    let mut lines = after
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("```"));
+    let fence = lines
+        .next()
+        .unwrap_or_else(|| panic!("no code block after '{marker}'"));
     assert!(fence.trim_start().starts_with("```"), "{marker}");
     let mut code = String::new();
     for line in lines {

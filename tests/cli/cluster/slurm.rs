@@ -154,7 +154,9 @@ impl Slurm {
     }
 
     fn write_conf(&self) -> Result<(), String> {
-        let host = must(Command::new("hostname").arg("-s"), Duration::from_secs(5))?;
+        let mut hostname = Command::new("hostname");
+        hostname.arg("-s");
+        let host = must(hostname, Duration::from_secs(5))?;
         let host = String::from_utf8_lossy(&host.stdout).trim().to_string();
         let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
         let d = self.dir.display();
@@ -258,7 +260,9 @@ impl Drop for Slurm {
                 std::thread::sleep(Duration::from_millis(50));
             }
             if alive(pid) {
-                let _ = Command::new("kill").args(["-KILL", &pid.to_string()]).status();
+                let _ = Command::new("kill")
+                    .args(["-KILL", &pid.to_string()])
+                    .status();
             }
         }
     }
