@@ -12,6 +12,7 @@
 
 mod browser;
 mod catenary;
+mod cluster;
 mod common;
 mod converge;
 mod fuzz;

@@ -266,7 +266,7 @@ fn a_sweep_in_three_shards_merges_to_the_unsharded_sweep() {
     let o = run(&[&other[..], &["--shard", "1/3", "--out", &p("other1.csv")]].concat());
     assert!(o.status.success());
     for (files, why) in [
-        (vec![p("s0.csv"), p("s1.csv")], "run 2 is missing"),
+        (vec![p("s0.csv"), p("s1.csv")], "runs 2, 5 are missing"),
         (
             vec![p("s0.csv"), p("s1.csv"), p("s2.csv"), p("s1.csv")],
             "given twice",
@@ -414,4 +414,59 @@ fn a_spent_budget_skips_and_lists_the_points() {
         .filter(|r| r["note"] == "budget: not run within --budget")
         .collect();
     assert_eq!(budget.len(), 10);
+}
+
+/// precision in three shards, merged, is the unsharded table but for wall
+/// times, RK4's floor rule included: a shard decides it from the coarser
+/// steps it does not own, so its later points are `not_run` as in the
+/// whole (a scene where RK4 reaches the reference's level early).
+#[test]
+fn precision_in_three_shards_merges_to_the_unsharded_table_floor_included() {
+    let dir = scratch("precision-shards");
+    let p = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let span = scene("span-d3");
+    let common = [
+        "precision",
+        &span,
+        "--set",
+        "chain.links=10",
+        "--set",
+        "run.t_end=1",
+        "--methods",
+        "rk4,dopri5",
+        "--quiet",
+    ];
+    let o = run(&[&common[..], &["--out", &p("whole.csv")]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut merge = vec!["merge".to_string()];
+    for i in 0..3 {
+        let (shard, out) = (format!("{i}/3"), p(&format!("s{i}.csv")));
+        let o = run(&[&common[..], &["--shard", &shard, "--out", &out]].concat());
+        assert!(o.status.success(), "{}", stderr(&o));
+        merge.push(out);
+    }
+    merge.extend(["--out".to_string(), p("all.csv")]);
+    let o = run(&merge.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let blank_walls = |text: String| -> Vec<String> {
+        let (header, _) = table(&text);
+        let w = header.iter().position(|c| c == "wall_seconds").unwrap();
+        text.lines()
+            .map(|l| {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c[w] = "";
+                c.join(",")
+            })
+            .collect()
+    };
+    let whole = blank_walls(fs::read_to_string(p("whole.csv")).unwrap());
+    let floored = whole.iter().filter(|l| l.contains("a coarser dt")).count();
+    assert!(
+        floored >= 3,
+        "RK4 never reached the floor: the test tests nothing"
+    );
+    assert_eq!(
+        blank_walls(fs::read_to_string(p("all.csv")).unwrap()),
+        whole
+    );
 }

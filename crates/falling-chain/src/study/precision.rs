@@ -564,7 +564,10 @@ pub fn timed_line(
 /// `floor`; the CLI's [`rk4_floor`]); a point that the budget cannot fit (predicted from the line's
 /// last point as [`timed_line`] does, or not started before the deadline)
 /// is `budget`, and so is a run the deadline stops. `progress` is called
-/// after each point.
+/// after each point. On RK4's line a shard runs the coarser points it does
+/// not own, unrecorded, while they can still fire `stop`, so that its rows
+/// are the whole run's rows of its run numbers (`merge` gives the
+/// unsharded table).
 pub fn run_lines(
     p: &Prepared,
     methods: &[Method],
@@ -590,9 +593,34 @@ pub fn run_lines(
             let mut out = vec![];
             let mut done: Vec<(f64, f64)> = vec![];
             let mut floor = false;
-            for (k, &x) in params(method).iter().enumerate() {
+            let xs = params(method);
+            for (k, &x) in xs.iter().enumerate() {
                 let run = start + k;
                 if !take(run) {
+                    // A shard decides RK4's stop rule as the whole run does:
+                    // while the rule has not fired and a finer point of the
+                    // line is its own, it runs the coarser point it does not
+                    // own (cheaper than its own, RK4's cost being 1/dt) and
+                    // records nothing of it but the rule's answer.
+                    let finer_own = (k + 1..xs.len()).any(|j| take(start + j));
+                    if rk4 && !floor && finer_own && budget.fits(predict(rk4, x, &done)) {
+                        let mut o = options_for(p, method, x);
+                        o.cancel = Some(budget.cancel().clone());
+                        let t = solve(&p.chain, &p.state, method, &o)?;
+                        if t.status != chain_ode::Status::Interrupted {
+                            let pt = Point::from_run(
+                                method.as_str().into(),
+                                method.accuracy_name(),
+                                x,
+                                &t,
+                                reference,
+                            );
+                            if pt.ok() {
+                                done.push((x, t.summary.wall_seconds));
+                                floor = stop(&pt);
+                            }
+                        }
+                    }
                     continue;
                 }
                 let plan = if floor {
@@ -829,8 +857,8 @@ pub fn study(
             let shard = options.shard;
             let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
             // The floor rule needs the coarser points of RK4's line: a
-            // shard runs its points without it.
-            let stop = |pt: &Point| shard.is_none() && rk4_floor(pt);
+            // shard runs those it does not own to decide it (`run_lines`).
+            let stop = |pt: &Point| rk4_floor(pt);
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(options.jobs.max(1))
                 .build()

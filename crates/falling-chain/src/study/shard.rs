@@ -67,6 +67,21 @@ impl Provenance {
     }
 }
 
+/// How many run numbers a message names before it says "and K more".
+const NAMED_RUNS: usize = 20;
+
+/// "run 3 is" or "runs 2, 5, 8 are", naming at most [`NAMED_RUNS`] of
+/// `runs` (ascending) and counting the rest: what a user resubmits.
+fn runs_named(runs: &[usize]) -> String {
+    let shown: Vec<String> = runs.iter().take(NAMED_RUNS).map(usize::to_string).collect();
+    let more = runs.len().saturating_sub(NAMED_RUNS);
+    match (runs.len(), more) {
+        (1, _) => format!("run {} is", shown.join("")),
+        (_, 0) => format!("runs {} are", shown.join(", ")),
+        _ => format!("runs {} and {more} more are", shown.join(", ")),
+    }
+}
+
 /// The largest shard file [`merge`] reads (bytes).
 pub const MAX_SHARD_BYTES: u64 = 1 << 30;
 /// The most shard files [`merge`] joins.
@@ -243,11 +258,13 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
             Some(_) => {}
         }
     }
-    if let Some(missing) = (0..total).find(|r| !rows.contains_key(r)) {
+    let missing: Vec<usize> = (0..total).filter(|r| !rows.contains_key(r)).collect();
+    if !missing.is_empty() {
         return Err(Error::field(
             "merge",
             format!(
-                "run {missing} is missing: {} of the study's {total} runs are given",
+                "{} missing: {} of the study's {total} runs are given",
+                runs_named(&missing),
                 rows.len()
             ),
         ));
@@ -297,6 +314,17 @@ mod tests {
         );
         let missing = merge(std::slice::from_ref(&a)).unwrap_err().to_string();
         assert!(missing.starts_with("merge: run 1 is missing"), "{missing}");
+        let only_first = (
+            "g.csv".to_string(),
+            table(&[",ref,0.1,5,h", "0,p,0.5,5,h", "3,s,0.5,5,h"]),
+        );
+        let several = merge(&[only_first]).unwrap_err().to_string();
+        assert!(
+            several.starts_with("merge: runs 1, 2, 4 are missing"),
+            "{several}"
+        );
+        let many: Vec<usize> = (0..25).collect();
+        assert!(runs_named(&many).ends_with("19 and 5 more are"));
         let twice = merge(&[a.clone(), b.clone(), b.clone()])
             .unwrap_err()
             .to_string();
