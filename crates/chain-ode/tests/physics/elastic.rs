@@ -1,0 +1,388 @@
+//! The elastic chain (`chain.axial_stiffness`) and the bending springs
+//! (`chain.bending_stiffness`): statics, linearisation, the rigid limit and
+//! the energy, against closed forms and independent formulations.
+
+use chain_ode::elastic::{self, ElasticDae, ElasticSystem};
+use chain_ode::{solve, Chain, ChainParams, Method, SolveOptions, Start, State, Status};
+use faer::{Mat, Side};
+
+use crate::{dist, max_abs, tolerances};
+
+/// A chain of `n` rods (`L = 6`, `m = 0.2`, `g = 1`) with axial stiffness
+/// `ea` and bending stiffness `ei`.
+pub fn elastic_chain(n: usize, ea: f64, ei: f64) -> Chain {
+    Chain::new(ChainParams {
+        links: n,
+        axial_stiffness: Some(ea),
+        bending_stiffness: ei,
+        ..ChainParams::default()
+    })
+    .unwrap()
+}
+
+/// `chain` with rigid links (every other field kept).
+pub fn rigid_of(chain: &Chain) -> Chain {
+    Chain::new(ChainParams {
+        axial_stiffness: None,
+        ..chain.params().clone()
+    })
+    .unwrap()
+}
+
+/// The chain hanging straight down from the origin, at rest.
+fn hanging(chain: &Chain) -> State {
+    Start::Angles {
+        p0: [0.0, 0.0],
+        angles: vec![-std::f64::consts::FRAC_PI_2; chain.links()],
+        rates: None,
+    }
+    .state(chain)
+    .unwrap()
+}
+
+/// A deterministic pseudo-random number in [-1, 1].
+fn noise(k: usize) -> f64 {
+    let x = (k as f64 * 12.9898 + 78.233).sin() * 43758.5453;
+    2.0 * (x - x.floor()) - 1.0
+}
+
+/// The straight hanging chain is the elastic chain's own equilibrium (each
+/// joint pre-stretched by the weight below it): every method keeps it at
+/// rest to rounding, with bending springs, friction and dashpots on. A
+/// start without the pre-stretch (or with the wrong one) sags and bounces
+/// by `M g / K`, 2.4e-3 here.
+#[test]
+fn the_hanging_elastic_chain_stays_at_rest_under_every_method() {
+    let chain = Chain::new(ChainParams {
+        links: 8,
+        damping: 1e-3,
+        axial_stiffness: Some(500.0),
+        axial_damping: 0.02,
+        bending_stiffness: 0.05,
+        ..ChainParams::default()
+    })
+    .unwrap();
+    let s = hanging(&chain);
+    let y0 = elastic::start_state(&chain, &s);
+    // The pre-stretch: the pivot's gap carries the whole weight.
+    let k = chain.joint_stiffness().unwrap();
+    // Rod 0 starts at its centre minus h u_0, u_0 = (0, -1).
+    let gap0 = y0[3 * 8 + 1] + 0.5 * chain.rod_length();
+    assert!((gap0 + chain.weight() / k).abs() < 1e-15, "{gap0}");
+    for method in Method::ALL {
+        let opts = SolveOptions {
+            output_dt: Some(0.25),
+            ..tolerances(2.0, 1e-8, 1e-10)
+                .at_accuracy(method, if method == Method::Rk4 { 0.005 } else { 1e-8 })
+        };
+        let tr = solve(&chain, &s, method, &opts).unwrap();
+        assert_eq!(tr.status, Status::Ok, "{method}");
+        for k in 0..tr.len() {
+            let y = tr.state(k);
+            let moved = y
+                .iter()
+                .zip(&y0)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            // RK4 (at a fixed step within its stability limit) and the BDFs
+            // keep the rest state to rounding; the explicit pairs see only
+            // rounding in their error estimate, so their step grows past
+            // the axial stability limit until the growing rounding error
+            // reaches their tolerance (1e-9 seen at rtol 1e-8), where it
+            // stays bounded.
+            let bound = match method {
+                Method::Rk4 | Method::Bdf | Method::BdfDense => 1e-11,
+                _ => 1e-7,
+            };
+            assert!(
+                moved < bound,
+                "{method}: moved by {moved:e} at t = {}",
+                tr.times[k]
+            );
+        }
+        assert!(tr.summary.energy_balance_error < 1e-12, "{method}");
+    }
+}
+
+/// A catenary start is a static equilibrium held at the tip: released, only
+/// the last rod feels anything at `t = 0`, and exactly the holding force
+/// it lost; every other rod's acceleration vanishes to rounding.
+#[test]
+fn the_catenary_start_is_the_elastic_equilibrium_held_at_the_tip() {
+    for (n, d, ea) in [(12, 3.0, 1e3), (40, 1.0, 1e5), (5, 5.5, 30.0)] {
+        let chain = elastic_chain(n, ea, 0.0);
+        let s = Start::Catenary {
+            p0: [0.0, 0.0],
+            p1: [d, 0.0],
+        }
+        .state(&chain)
+        .unwrap();
+        let y = elastic::start_state(&chain, &s);
+        let mut f = vec![0.0; y.len()];
+        ElasticSystem::new(&chain).rhs(0.0, &y, &mut f);
+        // Rounding: a gap `F / K` is the difference of positions of order
+        // `L`, so each spring force is exact to `eps K L`.
+        let k = chain.joint_stiffness().unwrap();
+        let l = chain.rod_length();
+        let rounding = 1e-14 * k * chain.length() / chain.mass();
+        let (w, vx, vy) = (n, 4 * n + 1, 5 * n + 1);
+        for i in 0..n - 1 {
+            let a = max_abs(&[f[w + i] * l, f[vx + i], f[vy + i]]);
+            assert!(a < rounding, "n = {n}, rod {i}: {a:e} vs {rounding:e}");
+        }
+        // The last rod lost the holder's force H at its end.
+        let h = elastic::holding_force(&chain, &s);
+        let m = chain.mass();
+        let i = n - 1;
+        assert!((m * f[vx + i] + h[0]).abs() < m * rounding, "n = {n}");
+        assert!((m * f[vy + i] + h[1]).abs() < m * rounding, "n = {n}");
+        let (sn, cs) = s.angles[i].sin_cos();
+        let torque = 0.5 * l * (cs * h[1] - sn * h[0]);
+        let j = m * l * l / 12.0;
+        assert!((j * f[w + i] + torque).abs() < m * rounding * l, "n = {n}");
+        // The holder pulls outward and up: the discrete catenary's tension.
+        assert!(h[0] > 0.0 && h[1] > 0.0, "{h:?}");
+    }
+}
+
+/// The exact Jacobian-vector product (dual numbers) and the banded
+/// Jacobian the sparse BDF factorises (18 dual sweeps) are the right-hand
+/// side's derivatives (central differences), and nothing outside the band
+/// depends on anything (the dense row of `W` apart).
+#[test]
+fn the_jvp_and_the_banded_jacobian_are_the_right_hand_sides_derivatives() {
+    for (n, ei, r, eta) in [(1, 0.0, 0.0, 0.0), (2, 0.3, 0.1, 0.05), (7, 0.02, 0.0, 0.5)] {
+        let chain = Chain::new(ChainParams {
+            links: n,
+            damping: r,
+            axial_stiffness: Some(200.0),
+            axial_damping: eta,
+            bending_stiffness: ei,
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let dim = 6 * n + 1;
+        let y: Vec<f64> = (0..dim).map(|k| 2.0 * noise(k + 17 * n)).collect();
+        let mut sys = ElasticSystem::new(&chain);
+        let dae = ElasticDae::new(&chain);
+        let mut jac = vec![f64::NAN; dim * dim];
+        chain_ode_dae_entries(&dae, &y, &mut jac, dim);
+        let (mut fp, mut fm, mut jv) = (vec![0.0; dim], vec![0.0; dim], vec![0.0; dim]);
+        sys.rhs(0.0, &y, &mut fp);
+        // Central differences lose `eps |f| / h` to rounding.
+        let rounding = 1e-9 * max_abs(&fp);
+        let w_row = 2 * n;
+        for c in 0..dim {
+            let h = 1e-6 * (1.0 + y[c].abs());
+            let (mut yp, mut ym) = (y.clone(), y.clone());
+            yp[c] += h;
+            ym[c] -= h;
+            sys.rhs(0.0, &yp, &mut fp);
+            sys.rhs(0.0, &ym, &mut fm);
+            let mut e = vec![0.0; dim];
+            e[c] = 1.0;
+            sys.jvp(0.0, &y, &e, &mut jv);
+            for r in 0..dim {
+                let fd = (fp[r] - fm[r]) / (2.0 * h);
+                let scale = 1.0 + fd.abs() + rounding * 1e6;
+                assert!(
+                    (jv[r] - fd).abs() < 1e-6 * scale,
+                    "n = {n}: jvp ({r}, {c}) {} vs {fd}",
+                    jv[r]
+                );
+                if r == w_row {
+                    continue;
+                }
+                let b = jac[r * dim + c];
+                if b.is_nan() {
+                    assert!(
+                        fd.abs() < 1e-8 + rounding,
+                        "n = {n}: ({r}, {c}) = {fd} outside the band"
+                    );
+                } else {
+                    assert!(
+                        (b - fd).abs() < 1e-6 * scale,
+                        "n = {n}: band ({r}, {c}) {b} vs {fd}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The entries of `dae`'s Jacobian at `y` into a dense row-major `jac`
+/// (entries outside the pattern stay NaN); each emitted once.
+fn chain_ode_dae_entries(dae: &ElasticDae, y: &[f64], jac: &mut [f64], dim: usize) {
+    dae.jacobian_entries(y, &mut |r, c, v| {
+        assert!(jac[r * dim + c].is_nan(), "({r}, {c}) emitted twice");
+        jac[r * dim + c] = v;
+    });
+}
+
+/// Linearised about the hanging equilibrium, the rods' vertical motion is
+/// the chain of masses `m` and springs `K`, fixed at the top and free at the
+/// bottom: `omega_j = 2 sqrt(K/m) sin((2j - 1) pi / (2 (2n + 1)))`. The
+/// block of the exact Jacobian (the right-hand side's own derivatives),
+/// solved as a symmetric eigenproblem, gives them to rounding. A spring
+/// constant off by any factor, a missing pivot spring (a free-free chain,
+/// with a zero frequency) or a wrong mass fails it.
+#[test]
+fn axial_frequencies_of_the_hanging_chain_are_the_spring_chains() {
+    for (n, ea) in [(1, 50.0), (10, 1e3), (40, 2e5)] {
+        let chain = elastic_chain(n, ea, 0.3);
+        let y = elastic::start_state(&chain, &hanging(&chain));
+        let mut sys = ElasticSystem::new(&chain);
+        let (oy, ovy) = (3 * n + 1, 5 * n + 1);
+        let mut jv = vec![0.0; y.len()];
+        let mut block = Mat::<f64>::zeros(n, n);
+        for j in 0..n {
+            let mut e = vec![0.0; y.len()];
+            e[oy + j] = 1.0;
+            sys.jvp(0.0, &y, &e, &mut jv);
+            for i in 0..n {
+                block[(i, j)] = -jv[ovy + i];
+            }
+        }
+        let mut omega2: Vec<f64> = block.self_adjoint_eigenvalues(Side::Lower).unwrap();
+        omega2.sort_by(f64::total_cmp);
+        let k_over_m = chain.joint_stiffness().unwrap() / chain.mass();
+        for (j, w2) in omega2.iter().enumerate() {
+            let x = (2 * j + 1) as f64 * std::f64::consts::PI / (2.0 * (2 * n + 1) as f64);
+            let exact = 2.0 * k_over_m.sqrt() * x.sin();
+            let got = w2.sqrt();
+            assert!(
+                (got - exact).abs() < 1e-9 * exact,
+                "n = {n}, j = {}: {got} vs {exact}",
+                j + 1
+            );
+        }
+    }
+}
+
+/// The largest distance between the tips of two runs sampled alike.
+fn tip_path_error(a: &chain_ode::Trajectory, b: &chain_ode::Trajectory) -> f64 {
+    (0..a.len().min(b.len()))
+        .map(|k| dist(a.tip(k), b.tip(k)))
+        .fold(0.0, f64::max)
+}
+
+/// As `EA` grows at fixed `n`, the elastic chain's tip path converges to the
+/// rigid chain's at first order in `1/EA` (the static stretch and the
+/// axial ringing both move the tip by `O(F / K)`), on the span d = 3 and
+/// the folded start, before the snap. Measured (DOP853 at rtol 1e-11,
+/// n = 20, t = 1.5): span d = 3, 4.0e-3, 3.6e-4, 4.1e-5 at EA = 1e3, 1e4,
+/// 1e5: ratios 11.0 and 8.9 per decade. The band [6, 16] per decade (order
+/// 0.78 to 1.2) fails a limit that is not the rigid chain (no convergence:
+/// ratio ~1) and a second-order one (ratio ~100).
+#[test]
+fn the_rigid_limit_is_first_order_in_one_over_ea() {
+    let starts = [
+        (
+            "span d = 3",
+            Start::Catenary {
+                p0: [0.0, 0.0],
+                p1: [3.0, 0.0],
+            },
+            1.5,
+        ),
+        (
+            "folded",
+            Start::Folded {
+                p0: [0.0, 0.0],
+                down: None,
+            },
+            1.0,
+        ),
+    ];
+    for (label, start, t_end) in starts {
+        let rigid = rigid_of(&elastic_chain(20, 1.0, 0.0));
+        let s = start.state(&rigid).unwrap();
+        let opts = SolveOptions {
+            output_dt: Some(0.05),
+            ..tolerances(t_end, 1e-11, 1e-13)
+        };
+        let r = solve(&rigid, &s, Method::Dop853, &opts).unwrap();
+        assert_eq!(r.status, Status::Ok);
+        let errors: Vec<f64> = [1e3, 1e4, 1e5]
+            .iter()
+            .map(|&ea| {
+                let e = solve(&elastic_chain(20, ea, 0.0), &s, Method::Dop853, &opts).unwrap();
+                assert_eq!(e.status, Status::Ok, "{label} EA {ea}");
+                tip_path_error(&r, &e)
+            })
+            .collect();
+        eprintln!("rigid limit, {label}: tip path errors {errors:?}");
+        for pair in errors.windows(2) {
+            let ratio = pair[0] / pair[1];
+            assert!((6.0..=16.0).contains(&ratio), "{label}: {errors:?}");
+        }
+        assert!(errors[2] < 1e-4 * rigid.length(), "{label}: {errors:?}");
+    }
+}
+
+/// Along runs of every method from random states, with random `EA`, axial
+/// damping, friction and `EI`, the balance `E + W = E(0)` holds to the
+/// method's accuracy and `W` never falls.
+#[test]
+fn energy_balance_holds_for_random_elastic_chains_under_every_method() {
+    for case in 0..6 {
+        let n = 6 + case;
+        let chain = Chain::new(ChainParams {
+            links: n,
+            damping: if case % 2 == 0 {
+                0.0
+            } else {
+                0.01 * (1.0 + noise(case))
+            },
+            axial_stiffness: Some(10f64.powf(2.0 + 1.5 * (1.0 + noise(case + 100)))),
+            axial_damping: if case % 3 == 0 {
+                0.0
+            } else {
+                0.05 * (1.0 + noise(case + 200))
+            },
+            bending_stiffness: if case < 2 {
+                0.0
+            } else {
+                0.1 * (1.0 + noise(case + 300))
+            },
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let s = Start::Angles {
+            p0: [0.0, 0.0],
+            angles: (0..n).map(|i| 3.0 * noise(i + 10 * case)).collect(),
+            rates: Some((0..n).map(|i| noise(i + 10 * case + 500)).collect()),
+        }
+        .state(&chain)
+        .unwrap();
+        let scale = chain.energy_scale();
+        for method in Method::ALL {
+            let opts = SolveOptions {
+                output_dt: Some(0.02),
+                ..tolerances(0.3, 1e-8, 1e-10)
+                    .at_accuracy(method, if method == Method::Rk4 { 2e-5 } else { 1e-8 })
+            };
+            let tr = solve(&chain, &s, method, &opts).unwrap();
+            assert_eq!(tr.status, Status::Ok, "{method}, case {case}");
+            let e0 = tr.energy(0);
+            let mut w_prev = 0.0;
+            let mut worst: f64 = 0.0;
+            for k in 0..tr.len() {
+                let w = tr.sample(k).dissipated;
+                assert!(w >= w_prev, "{method}, case {case}: W fell");
+                w_prev = w;
+                worst = worst.max((tr.energy(k) + w - e0).abs());
+            }
+            let bound = 1e-6 * scale;
+            assert!(
+                worst < bound && tr.summary.energy_balance_error < bound,
+                "{method}, case {case}: {worst:e} / {:e}",
+                tr.summary.energy_balance_error
+            );
+            eprintln!(
+                "elastic balance: {method} case {case} {:.2e}",
+                worst / scale
+            );
+        }
+    }
+}
