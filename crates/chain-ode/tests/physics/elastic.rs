@@ -4,6 +4,7 @@
 
 use chain_ode::elastic::{self, ElasticDae, ElasticSystem};
 use chain_ode::{solve, Chain, ChainParams, Method, SolveOptions, Start, State, Status};
+use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use crate::{dist, max_abs, tolerances};
@@ -385,4 +386,163 @@ fn energy_balance_holds_for_random_elastic_chains_under_every_method() {
             );
         }
     }
+}
+
+/// The hanging chain's joint forces are the weight below each joint, for
+/// rigid and elastic links alike: tension `(n - k) m g` at joint `k`, no
+/// shear, nothing at the free tip (joint `n`).
+#[test]
+fn joint_forces_of_the_hanging_chain_carry_the_weight_below() {
+    for ea in [None, Some(300.0)] {
+        let chain = Chain::new(ChainParams {
+            links: 9,
+            axial_stiffness: ea,
+            bending_stiffness: 0.02,
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let opts = SolveOptions {
+            output_dt: Some(0.5),
+            ..tolerances(1.0, 1e-8, 1e-10)
+        };
+        // BDF keeps the rest state to rounding (an explicit pair lets it
+        // drift to its tolerance: see the test above).
+        let tr = solve(&chain, &hanging(&chain), Method::Bdf, &opts).unwrap();
+        let mg = chain.mass() * chain.gravity();
+        for k in [0, tr.len() - 1] {
+            let f = tr.joint_forces(k);
+            assert_eq!(f.len(), 10);
+            for (j, [tension, shear]) in f.iter().enumerate() {
+                let want = (9 - j) as f64 * mg;
+                assert!(
+                    (tension - want).abs() < 1e-9 * mg,
+                    "{ea:?} joint {j}: {tension} vs {want}"
+                );
+                assert!(shear.abs() < 1e-9 * mg, "{ea:?} joint {j}: shear {shear}");
+            }
+        }
+    }
+}
+
+/// The rigid chain's joint forces come from its banded DAE (the rods'
+/// translational balances summed from the tip); at the pivot they are the
+/// O(n) recursion's pivot force, turned into the first rod's frame, along
+/// a whole folded fall.
+#[test]
+fn the_rigid_chains_pivot_force_is_the_recursions() {
+    let chain = Chain::new(ChainParams {
+        links: 30,
+        damping: 1e-3,
+        bending_stiffness: 0.01,
+        ..ChainParams::default()
+    })
+    .unwrap();
+    let s = Start::Folded {
+        p0: [0.0, 0.0],
+        down: None,
+    }
+    .state(&chain)
+    .unwrap();
+    let opts = SolveOptions {
+        output_dt: Some(0.1),
+        ..tolerances(3.0, 1e-8, 1e-10)
+    };
+    let tr = solve(&chain, &s, Method::Dop853, &opts).unwrap();
+    let recursion = chain_ode::analysis::pivot_forces(&tr);
+    for (k, (_, [fx, fy])) in recursion.iter().enumerate() {
+        let [tension, shear] = tr.joint_forces(k)[0];
+        let (sn, c) = tr.sample(k).angles[0].sin_cos();
+        // F = -tension u + shear v.
+        let (gx, gy) = (-tension * c - shear * sn, -tension * sn + shear * c);
+        let scale = fx.hypot(*fy).max(chain.weight());
+        assert!(
+            (gx - fx).abs() + (gy - fy).abs() < 1e-9 * scale,
+            "t = {}: ({gx}, {gy}) vs ({fx}, {fy})",
+            tr.times[k]
+        );
+    }
+}
+
+/// Small oscillations of a bending-stiff hanging chain: the O(n)
+/// recursion's own linearisation (its exact Jacobian, by dual numbers)
+/// has the frequencies of the dense generalised eigenproblem
+/// `A theta'' = -(G + kappa S) theta` assembled here from `docs/model.md`
+/// (`G = (g/l) diag(q_i)`, `S` the Hessian of `U_b` over `m l^2`); and as
+/// `EI` grows the lowest frequency tends to the closed form of the rigid
+/// rod, `sqrt(3 g / 2 L)`, at first order in `1/EI`. A bending torque of
+/// the wrong sign or size fails the first; one that acts at the pivot, or
+/// not at all, fails the second.
+#[test]
+fn a_bending_stiff_hanging_chain_oscillates_as_its_dense_eigenproblem_and_stiffens_into_a_rod() {
+    use chain_ode::dense::mt;
+    use chain_ode::kinematics::lever_arm;
+    use chain_ode::ChainSystem;
+    let n = 12;
+    let lowest = |ei: f64| -> (f64, Vec<f64>, Vec<f64>) {
+        let chain = Chain::new(ChainParams {
+            links: n,
+            bending_stiffness: ei,
+            ..ChainParams::default()
+        })
+        .unwrap();
+        // The recursion's linearisation: d(phi'')/d(phi) at rest.
+        let phi = vec![-std::f64::consts::FRAC_PI_2; n];
+        let y = ChainSystem::pack(&phi, &vec![0.0; n], 0.0);
+        let mut sys = ChainSystem::new(&chain);
+        let mut jv = vec![0.0; y.len()];
+        let mut b = Mat::<f64>::zeros(n, n);
+        for j in 0..n {
+            let mut v = vec![0.0; y.len()];
+            v[j] = 1.0;
+            sys.jvp(0.0, &y, &v, &mut jv);
+            for i in 0..n {
+                b[(i, j)] = -jv[n + i];
+            }
+        }
+        let mut fast: Vec<f64> = b
+            .eigenvalues()
+            .unwrap()
+            .iter()
+            .map(|z| z.re.sqrt())
+            .collect();
+        fast.sort_by(f64::total_cmp);
+        // The dense eigenproblem, assembled independently.
+        let (g, kappa) = (chain.gravity_rate(), chain.bending_rate());
+        let a = Mat::from_fn(n, n, |i, j| mt(n, i, j));
+        let k = Mat::from_fn(n, n, |i, j| {
+            let lap = if i == j {
+                ((i > 0) as u8 + (i + 1 < n) as u8) as f64
+            } else if i.abs_diff(j) == 1 {
+                -1.0
+            } else {
+                0.0
+            };
+            kappa * lap + if i == j { g * lever_arm(n, i) } else { 0.0 }
+        });
+        let ainv_k = a.llt(Side::Lower).unwrap().solve(&k);
+        let mut dense: Vec<f64> = ainv_k
+            .eigenvalues()
+            .unwrap()
+            .iter()
+            .map(|z| z.re.sqrt())
+            .collect();
+        dense.sort_by(f64::total_cmp);
+        (fast[0], fast, dense)
+    };
+    for ei in [0.0, 0.05, 3.0] {
+        let (_, fast, dense) = lowest(ei);
+        for (a, b) in fast.iter().zip(&dense) {
+            assert!((a - b).abs() < 1e-9 * b, "EI = {ei}: {a} vs {b}");
+        }
+    }
+    let rod = (3.0 * 1.0 / (2.0 * 6.0f64)).sqrt();
+    let errors: Vec<f64> = [1e1, 1e2, 1e3]
+        .iter()
+        .map(|&ei| (lowest(ei).0 - rod).abs() / rod)
+        .collect();
+    eprintln!("bending: lowest frequency against the rigid rod's: {errors:?}");
+    for pair in errors.windows(2) {
+        assert!((6.0..=16.0).contains(&(pair[0] / pair[1])), "{errors:?}");
+    }
+    assert!(errors[2] < 1e-3, "{errors:?}");
 }
