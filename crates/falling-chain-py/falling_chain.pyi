@@ -92,7 +92,13 @@ class Run:
         """Velocity of the free end, shape (samples, 2)."""
     @property
     def energy(self) -> _Float:
-        """Energy T + V, shape (samples,)."""
+        """Energy T + V (+ U_bend, + U_elastic), shape (samples,)."""
+    @property
+    def forces(self) -> _Float:
+        """Joint forces, shape (samples, n + 1, 2): joint 0 is the pivot,
+        joint n the free tip (zero); each [tension, shear] in the frame of
+        the rod after the joint (tension > 0 pulls it back toward the
+        pivot; shear along its normal). Force units."""
     @property
     def dissipated(self) -> _Float:
         """Work dissipated by joint friction since t = 0, shape (samples,)."""

@@ -108,6 +108,12 @@ struct Case {
     h_min: f64,
     extra: i128,
     with_out: bool,
+    /// `chain.axial_stiffness` (written only when `elastic`),
+    /// `chain.axial_damping`, `chain.bending_stiffness`.
+    axial_stiffness: f64,
+    axial_damping: f64,
+    bending_stiffness: f64,
+    elastic: bool,
 }
 
 const COMMANDS: [&str; 6] = [
@@ -143,12 +149,19 @@ fn case() -> impl Strategy<Value = Case> {
             count(1, 6),
             any::<bool>(),
         ),
+        (
+            number(1e2, 1e5, &[0.0, -1.0, 1e300, f64::NAN, f64::INFINITY]),
+            number(0.0, 1.0, &[-1.0, 1e300, f64::NAN]),
+            number(0.0, 0.1, &[-1.0, 1e300, f64::INFINITY, f64::NAN]),
+            any::<bool>(),
+        ),
     )
         .prop_map(
             |(
                 (command, length, links, mass, gravity, damping, kind),
                 (p1, p1_on_circle, down, t_end, method, dt),
                 (rtol, atol, output_dt, h_min, extra, with_out),
+                (axial_stiffness, axial_damping, bending_stiffness, elastic),
             )| Case {
                 command,
                 length,
@@ -169,6 +182,10 @@ fn case() -> impl Strategy<Value = Case> {
                 h_min,
                 extra,
                 with_out,
+                axial_stiffness,
+                axial_damping,
+                bending_stiffness,
+                elastic,
             },
         )
 }
@@ -205,6 +222,11 @@ impl Case {
         writeln!(t, "mass = {}", toml_f(self.mass)).unwrap();
         writeln!(t, "gravity = {}", toml_f(self.gravity)).unwrap();
         writeln!(t, "damping = {}", toml_f(self.damping)).unwrap();
+        if self.elastic {
+            writeln!(t, "axial_stiffness = {}", toml_f(self.axial_stiffness)).unwrap();
+        }
+        writeln!(t, "axial_damping = {}", toml_f(self.axial_damping)).unwrap();
+        writeln!(t, "bending_stiffness = {}", toml_f(self.bending_stiffness)).unwrap();
         let kind = KINDS[self.kind];
         writeln!(t, "[start]\nkind = \"{kind}\"").unwrap();
         match kind {
@@ -465,6 +487,10 @@ fn the_fuzzer_draws_every_scene_key() {
             h_min: 0.0,
             extra: 1,
             with_out: false,
+            axial_stiffness: 1e4,
+            axial_damping: 0.0,
+            bending_stiffness: 0.0,
+            elastic: true,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

@@ -1,5 +1,6 @@
-//! One right-hand-side evaluation vs n: the O(n) recursion and the dense
-//! Cholesky reference side by side. `cargo bench -p chain-ode --bench rhs`.
+//! One right-hand-side evaluation vs n: the O(n) recursion, the elastic
+//! chain's springs (`chain.axial_stiffness`) and the dense Cholesky
+//! reference side by side. `cargo bench -p chain-ode --bench rhs`.
 
 #![allow(
     clippy::unwrap_used,
@@ -9,7 +10,8 @@
 )]
 
 use chain_ode::dense;
-use chain_ode::{Chain, ChainSystem, Start};
+use chain_ode::elastic;
+use chain_ode::{Chain, ChainParams, ChainSystem, ElasticSystem, Start, State};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 
 fn state(n: usize) -> (Chain, Vec<f64>) {
@@ -33,6 +35,23 @@ fn rhs(c: &mut Criterion) {
         let mut dy = vec![0.0; y.len()];
         group.bench_with_input(BenchmarkId::new("fast", n), &n, |b, _| {
             b.iter(|| sys.rhs(0.0, black_box(&y), black_box(&mut dy)))
+        });
+        // The elastic chain in the same shape and motion (EA = 1e4).
+        let elastic_chain = Chain::new(ChainParams {
+            axial_stiffness: Some(1e4),
+            ..chain.params().clone()
+        })
+        .unwrap();
+        let start = State {
+            anchor: [0.0, 0.0],
+            angles: y[..n].to_vec(),
+            rates: y[n..2 * n].to_vec(),
+        };
+        let ye = elastic::start_state(&elastic_chain, &start);
+        let mut esys = ElasticSystem::new(&elastic_chain);
+        let mut dye = vec![0.0; ye.len()];
+        group.bench_with_input(BenchmarkId::new("elastic", n), &n, |b, _| {
+            b.iter(|| esys.rhs(0.0, black_box(&ye), black_box(&mut dye)))
         });
         if n <= 1000 {
             let (phi, w) = (&y[..n], &y[n..2 * n]);

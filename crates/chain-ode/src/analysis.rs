@@ -5,7 +5,8 @@
 //! chain.
 
 use crate::chain::{Chain, InvalidParameter};
-use crate::kinematics::{tip, tip_velocity, Vec2};
+use crate::elastic;
+use crate::kinematics::Vec2;
 use crate::solve::Trajectory;
 use crate::system::ChainSystem;
 
@@ -45,24 +46,31 @@ pub fn pivot_force(sys: &mut ChainSystem, angles: &[f64], rates: &[f64]) -> Vec2
     sys.rhs_with_reactions(&y, &mut dy).pivot_force
 }
 
-/// `(t, pivot force on rod 1)` at every sample of `traj`.
+/// `(t, pivot force on rod 1)` at every sample of `traj`: the recursion's
+/// for rigid links, the pivot spring's for elastic ones.
 pub fn pivot_forces(traj: &Trajectory) -> Vec<(f64, Vec2)> {
+    if traj.chain.is_elastic() {
+        return (0..traj.len())
+            .map(|k| {
+                (
+                    traj.times[k],
+                    elastic::joint_forces(&traj.chain, traj.state(k))[0],
+                )
+            })
+            .collect();
+    }
     let mut sys = ChainSystem::new(&traj.chain);
     traj.samples()
         .map(|s| (s.t, pivot_force(&mut sys, s.angles, s.rates)))
         .collect()
 }
 
-/// The tip's position and velocity at every sample: `(t, tip, v_tip)`.
+/// The tip's position and velocity at every sample: `(t, tip, v_tip)`, for
+/// either model (`Trajectory::tip`, `Trajectory::tip_velocity`).
 pub fn tip_track(traj: &Trajectory) -> Vec<(f64, Vec2, Vec2)> {
     traj.samples()
-        .map(|s| {
-            (
-                s.t,
-                tip(&traj.chain, traj.anchor, s.angles),
-                tip_velocity(&traj.chain, s.angles, s.rates),
-            )
-        })
+        .enumerate()
+        .map(|(k, s)| (s.t, traj.tip(k), traj.tip_velocity(k)))
         .collect()
 }
 

@@ -28,6 +28,20 @@ pub struct ChainParams {
     pub gravity: f64,
     /// Joint friction coefficient `r` (>= 0): torque `r (w_{i+1} - w_i)` between neighbours.
     pub damping: f64,
+    /// Axial stiffness `EA` of the rope (force; finite, > 0), or `None` for
+    /// rigid links (the default: the pinned chain of rigid rods). With
+    /// `Some(EA)` every joint, the pivot included, is a spring of stiffness
+    /// `K = EA / l` (`n` of them in series give the rope `EA / L`), and the
+    /// chain is the elastic model of `docs/model.md`.
+    pub axial_stiffness: Option<f64>,
+    /// Axial (Kelvin–Voigt) viscosity `eta` of the rope (force x time,
+    /// at least 0): each joint spring has a dashpot `C = eta / l` in
+    /// parallel. Acts only with `axial_stiffness`; a rigid chain ignores it.
+    pub axial_damping: f64,
+    /// Bending stiffness `EI` (force x length^2, at least 0): a torque
+    /// `(EI / l) (phi_{i+1} - phi_i)` between neighbouring rods (the pivot
+    /// is free). Default 0. Works with rigid and elastic links.
+    pub bending_stiffness: f64,
 }
 
 impl Default for ChainParams {
@@ -39,6 +53,9 @@ impl Default for ChainParams {
             mass: 0.2,
             gravity: 1.0,
             damping: 0.0,
+            axial_stiffness: None,
+            axial_damping: 0.0,
+            bending_stiffness: 0.0,
         }
     }
 }
@@ -129,6 +146,26 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         "chain.damping",
         "a finite number >= 0",
         p.damping,
+    )?;
+    if let Some(ea) = p.axial_stiffness {
+        check(
+            finite_pos(ea),
+            "chain.axial_stiffness",
+            "a finite number > 0",
+            ea,
+        )?;
+    }
+    check(
+        finite_nonneg(p.axial_damping),
+        "chain.axial_damping",
+        "a finite number >= 0",
+        p.axial_damping,
+    )?;
+    check(
+        finite_nonneg(p.bending_stiffness),
+        "chain.bending_stiffness",
+        "a finite number >= 0",
+        p.bending_stiffness,
     )
 }
 
@@ -179,6 +216,47 @@ impl Chain {
         self.params.damping
     }
 
+    /// Axial stiffness `EA` (force), `None` for rigid links.
+    pub fn axial_stiffness(&self) -> Option<f64> {
+        self.params.axial_stiffness
+    }
+
+    /// Axial viscosity `eta` (force x time); acts only on elastic links.
+    pub fn axial_damping(&self) -> f64 {
+        self.params.axial_damping
+    }
+
+    /// Bending stiffness `EI` (force x length^2).
+    pub fn bending_stiffness(&self) -> f64 {
+        self.params.bending_stiffness
+    }
+
+    /// True for elastic links (`axial_stiffness` given).
+    pub fn is_elastic(&self) -> bool {
+        self.params.axial_stiffness.is_some()
+    }
+
+    /// The joint spring `K = EA / l` (force / length), `None` for rigid links.
+    pub fn joint_stiffness(&self) -> Option<f64> {
+        self.params.axial_stiffness.map(|ea| ea / self.rod_length())
+    }
+
+    /// The joint dashpot `C = eta / l` (force x time / length).
+    pub fn joint_damping(&self) -> f64 {
+        self.params.axial_damping / self.rod_length()
+    }
+
+    /// The bending spring between neighbouring rods, `EI / l` (torque per radian).
+    pub fn bending_spring(&self) -> f64 {
+        self.params.bending_stiffness / self.rod_length()
+    }
+
+    /// The bending rate `kappa = EI / (l m l^2)` (1/time^2): the bending
+    /// spring in rod units, as `damping_rate` is the friction's.
+    pub fn bending_rate(&self) -> f64 {
+        self.bending_spring() / (self.params.mass * self.rod_length().powi(2))
+    }
+
     /// The same continuous chain cut into `links` rods: this chain refined
     /// (or coarsened) at fixed continuum properties. Every other field is
     /// carried unchanged. The one refinement: `analysis::refined` and
@@ -191,6 +269,11 @@ impl Chain {
     ///   `r sum (w_{i+1} - w_i)^2` tends to `r l * integral (d(omega)/ds)^2 ds`,
     ///   so `eta = r l` ([`Chain::bending_viscosity`]) is the continuum
     ///   quantity and `r' = eta / l' = r n' / n` (rounded as `(r n') / n`).
+    ///
+    /// * The axial stiffness `EA`, the axial viscosity `eta` and the bending
+    ///   stiffness `EI` are continuum properties of the rope: carried as
+    ///   they are (the joint spring `K = EA / l`, dashpot `eta / l` and
+    ///   bending spring `EI / l` follow the new `l`).
     ///
     /// The damping rate `r / (m l^2) = eta n^4 / (M L^3)` then grows like
     /// `n^4`: the grid-scale bending modes of a viscous rope are damped that
@@ -258,12 +341,16 @@ mod tests {
             mass: 1.0,
             gravity: 1.0,
             damping: 0.0,
+            ..ChainParams::default()
         };
         match field {
             "chain.length" => p.length = x,
             "chain.links" => p.links = x as usize,
             "chain.mass" => p.mass = x,
             "chain.gravity" => p.gravity = x,
+            "chain.axial_stiffness" => p.axial_stiffness = Some(x),
+            "chain.axial_damping" => p.axial_damping = x,
+            "chain.bending_stiffness" => p.bending_stiffness = x,
             _ => p.damping = x,
         }
         p
@@ -279,6 +366,16 @@ mod tests {
             ("chain.gravity", f64::INFINITY),
             ("chain.damping", -1e-3),
             ("chain.damping", f64::NAN),
+            ("chain.axial_stiffness", 0.0),
+            ("chain.axial_stiffness", -1e4),
+            ("chain.axial_stiffness", f64::NAN),
+            ("chain.axial_stiffness", f64::INFINITY),
+            ("chain.axial_damping", -1.0),
+            ("chain.axial_damping", f64::NAN),
+            ("chain.axial_damping", f64::INFINITY),
+            ("chain.bending_stiffness", -1e-3),
+            ("chain.bending_stiffness", f64::NAN),
+            ("chain.bending_stiffness", f64::INFINITY),
         ];
         for (field, x) in bad {
             let e = Chain::new(with(field, x)).unwrap_err();
@@ -302,6 +399,9 @@ mod tests {
             mass: 0.35,
             gravity: 9.81,
             damping: 3e-3,
+            axial_stiffness: Some(2.5e4),
+            axial_damping: 0.7,
+            bending_stiffness: 0.03,
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -312,10 +412,20 @@ mod tests {
             mass,
             gravity,
             damping,
+            axial_stiffness,
+            axial_damping,
+            bending_stiffness,
         } = refined.params().clone();
         // Carried as they are.
         assert_eq!(length.to_bits(), given.length.to_bits());
         assert_eq!(gravity.to_bits(), given.gravity.to_bits());
+        // Continuum properties of the rope: carried.
+        assert_eq!(axial_stiffness, given.axial_stiffness);
+        assert_eq!(axial_damping.to_bits(), given.axial_damping.to_bits());
+        assert_eq!(
+            bending_stiffness.to_bits(),
+            given.bending_stiffness.to_bits()
+        );
         // Refined: the continuum's total mass and bending viscosity kept.
         assert_eq!(links, 160);
         assert_eq!(mass.to_bits(), (0.35 * 40.0 / 160.0_f64).to_bits());

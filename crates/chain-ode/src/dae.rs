@@ -11,7 +11,7 @@
 //!
 //! ```text
 //! phi_i' = w_i,   w_i' = alpha_i,   W' = 2R = r sum_i (w_i - w_{i-1})^2
-//! 0 = -alpha_i / 12 - v_i . (f_i + f_{i+1}) / 2 + gamma D_i(w)      moment about the centre
+//! 0 = -alpha_i / 12 - v_i . (f_i + f_{i+1}) / 2 + gamma D_i(w) + kappa D_i(phi)   moment
 //! 0 = f_0 - f_1 + (0, -g/l) - h_0                                   translation of rod 0
 //! 0 = -f_{i-1} + 2 f_i - f_{i+1} - h_{i-1} - h_i      (i >= 1)      rod i minus rod i-1
 //! ```
@@ -45,6 +45,8 @@ pub struct ChainDae {
     gl: f64,
     /// `gamma = r / (m l^2)` (1/time).
     gamma: f64,
+    /// `kappa = EI / (l m l^2)` (1/time^2), the bending springs.
+    kappa: f64,
 }
 
 impl ChainDae {
@@ -55,6 +57,7 @@ impl ChainDae {
             n: chain.links(),
             gl: chain.gravity_rate(),
             gamma: chain.damping_rate(),
+            kappa: chain.bending_rate(),
         }
     }
 
@@ -147,6 +150,9 @@ impl ChainDae {
             );
             moment[i] = -alpha[i] / 12.0 - 0.5 * (-s * (fx + gx) + c * (fy + gy))
                 + self.gamma * damping_stencil(w, i);
+            if self.kappa != 0.0 {
+                moment[i] += self.kappa * damping_stencil(phi, i);
+            }
             if i == 0 {
                 trans[0] = fx - gx - hx;
                 trans[1] = fy - gy - self.gl - hy;
@@ -192,11 +198,26 @@ impl ChainDae {
                 (f[2 * i], f[2 * i + 1])
             };
             let m = row_m(i);
-            emit(m, i, 0.5 * (c * sx + s * sy));
+            let neighbours = (i > 0) as u8 + (i + 1 < n) as u8;
+            if self.kappa != 0.0 {
+                // The bending springs: kappa D_i(phi).
+                if i > 0 {
+                    emit(m, i - 1, self.kappa);
+                }
+                emit(
+                    m,
+                    i,
+                    0.5 * (c * sx + s * sy) - self.kappa * f64::from(neighbours),
+                );
+                if i + 1 < n {
+                    emit(m, i + 1, self.kappa);
+                }
+            } else {
+                emit(m, i, 0.5 * (c * sx + s * sy));
+            }
             if i > 0 {
                 emit(m, n + i - 1, self.gamma);
             }
-            let neighbours = (i > 0) as u8 + (i + 1 < n) as u8;
             emit(m, n + i, -self.gamma * f64::from(neighbours));
             if i + 1 < n {
                 emit(m, n + i + 1, self.gamma);

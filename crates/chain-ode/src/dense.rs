@@ -26,18 +26,26 @@ pub fn mass_matrix(phi: &[f64]) -> Mat<f64> {
     Mat::from_fn(n, n, |i, j| mt(n, i, j) * (phi[i] - phi[j]).cos())
 }
 
-/// The right-hand side `b_i = -sum_j mt_ij s_ij w_j^2 - (g/l) q_i cos phi_i + gamma D_i`.
+/// The right-hand side
+/// `b_i = -sum_j mt_ij s_ij w_j^2 - (g/l) q_i cos phi_i + gamma D_i(w) + kappa D_i(phi)`
+/// (`kappa = EI / (l m l^2)`, the bending springs).
 pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
     let n = phi.len();
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
+    let kappa = chain.bending_rate();
     (0..n)
         .map(|i| {
             let centripetal: f64 = (0..n)
                 .map(|j| mt(n, i, j) * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
             let q = lever_arm(n, i);
-            -centripetal - g * q * phi[i].cos() + gamma * damping_stencil(w, i)
+            let bending = if kappa != 0.0 {
+                kappa * damping_stencil(phi, i)
+            } else {
+                0.0
+            };
+            -centripetal - g * q * phi[i].cos() + gamma * damping_stencil(w, i) + bending
         })
         .collect()
 }

@@ -63,6 +63,8 @@ pub struct Reactions<T> {
 
 /// Generalized damping force of rod `i` over `r`: `D_i(w)` of `docs/model.md`
 /// (friction in the `n - 1` joints between rods; the pivot is frictionless).
+/// The same stencil of the angles, `D_i(phi)`, times `EI / l` is the bending
+/// spring's generalised force (the pivot has no bending spring either).
 #[inline(always)]
 pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
     let n = w.len();
@@ -93,6 +95,10 @@ pub fn accelerations<T: Scalar>(
     assert!(phi.len() == n && w.len() == n && acc.len() == n && ws.len() == n);
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
+    // Bending: the generalised force `(EI / l) D_i(phi)` in rod units. Only
+    // a chain with EI > 0 pays for it, and one without keeps its arithmetic.
+    let kappa = chain.bending_rate();
+    let bend = kappa != 0.0;
     let zero = T::cst(0.0);
     let one = T::cst(1.0);
     let (mut mxx, mut mxy, mut myy) = (zero, zero, zero);
@@ -117,7 +123,12 @@ pub fn accelerations<T: Scalar>(
         let mux = mxx * c + mxy * s;
         let muy = mxy * c + myy * s;
         let dinv = one / d;
-        let e_fixed = damping_stencil(w, i) * gamma - c * (0.5 * g) + w2 * (nx * mux + ny * muy);
+        let joint_torques = if bend {
+            damping_stencil(w, i) * gamma + damping_stencil(phi, i) * kappa
+        } else {
+            damping_stencil(w, i) * gamma
+        };
+        let e_fixed = joint_torques - c * (0.5 * g) + w2 * (nx * mux + ny * muy);
         let e = e_fixed - (nx * bx + ny * by);
         let qi = e * dinv;
         let (gx, gy) = (hx * dinv, hy * dinv);
@@ -174,6 +185,7 @@ mod tests {
             mass: 1.0,
             gravity: 9.81,
             damping: 0.3,
+            ..ChainParams::default()
         })
         .unwrap();
         let mut ws = Workspace::new(1);

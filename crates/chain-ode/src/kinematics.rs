@@ -107,9 +107,25 @@ pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
     chain.mass() * chain.gravity() * chain.rod_length() * sum
 }
 
-/// Total mechanical energy `T + V`.
+/// Energy of the bending springs `U_b = (EI / 2l) sum_{i>=2} (phi_i - phi_{i-1})^2`
+/// (0 for `EI = 0`).
+pub fn bending_energy(chain: &Chain, phi: &[f64]) -> f64 {
+    let k = chain.bending_spring();
+    if k == 0.0 {
+        return 0.0;
+    }
+    0.5 * k * phi.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
+}
+
+/// Total mechanical energy `T + V` of the rigid chain, `+ U_b` when it has
+/// bending stiffness.
 pub fn energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    kinetic_energy(chain, phi, w) + potential_energy(chain, phi)
+    let e = kinetic_energy(chain, phi, w) + potential_energy(chain, phi);
+    if chain.bending_spring() != 0.0 {
+        e + bending_energy(chain, phi)
+    } else {
+        e
+    }
 }
 
 /// Dissipation rate `2R = r sum_{i>=2} (w_i - w_{i-1})^2 = -dE/dt` (power, >= 0).

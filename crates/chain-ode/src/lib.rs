@@ -37,6 +37,7 @@ mod chain;
 pub mod dae;
 pub mod dense;
 pub mod dynamics;
+pub mod elastic;
 pub mod kinematics;
 pub mod modes;
 mod ode;
@@ -46,11 +47,13 @@ mod state;
 mod system;
 
 pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
+pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use solve::{
     bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
-    Trajectory, ATOL_RANGE, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES, RTOL_RANGE,
+    Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES,
+    RTOL_RANGE,
 };
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

@@ -3,8 +3,8 @@
 
 use ::falling_chain::overrides::parse_value;
 use ::falling_chain::Error;
-use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -431,6 +431,17 @@ pub fn array2(
     cols: usize,
 ) -> PyResult<Py<PyArray2<f64>>> {
     let a = Array2::from_shape_vec((rows, cols), data)
+        .map_err(|e| PyValueError::new_err(format!("array shape: {e}")))?;
+    Ok(read_only(a.into_pyarray(py))?.unbind())
+}
+
+/// A read-only `(a, b, c)` float64 array over `data`, row-major (no copy).
+pub fn array3(
+    py: Python<'_>,
+    data: Vec<f64>,
+    shape: (usize, usize, usize),
+) -> PyResult<Py<PyArray3<f64>>> {
+    let a = Array3::from_shape_vec(shape, data)
         .map_err(|e| PyValueError::new_err(format!("array shape: {e}")))?;
     Ok(read_only(a.into_pyarray(py))?.unbind())
 }

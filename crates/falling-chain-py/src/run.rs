@@ -1,14 +1,14 @@
 //! `falling_chain.simulate` and the `Run` it returns.
 
 use ::falling_chain::{Error, RunSummary, Scene};
-use chain_ode::kinematics::{energy, joints, tip, tip_velocity};
+use chain_ode::kinematics::joints;
 use chain_ode::{Chain, Method, Status, Trajectory, Vec2};
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{array1, array2, bound, json_to_dict, points, value_error};
+use crate::convert::{array1, array2, array3, bound, json_to_dict, points, value_error};
 use crate::interrupt::run_interruptible;
 use crate::scene::PyScene;
 
@@ -59,6 +59,11 @@ struct Series {
     tip_velocity: Vec<f64>,
     energy: Vec<f64>,
     dissipated: Vec<f64>,
+    /// Joint forces `[tension, shear]`, `n + 1` per sample.
+    forces: Vec<f64>,
+    /// The joints of every sample, `n + 1` points each, kept for an elastic
+    /// chain only (a rigid chain's follow from its angles, as always).
+    joints: Option<Vec<f64>>,
 }
 
 impl Series {
@@ -74,17 +79,24 @@ impl Series {
             tip_velocity: Vec::with_capacity(samples * 2),
             energy: Vec::with_capacity(samples),
             dissipated: Vec::with_capacity(samples),
+            forces: Vec::with_capacity(samples * 2 * (n + 1)),
+            joints: traj
+                .chain
+                .is_elastic()
+                .then(|| Vec::with_capacity(samples * 2 * (n + 1))),
         };
-        for sample in traj.samples() {
+        for (k, sample) in traj.samples().enumerate() {
             s.t.push(sample.t);
             s.phi.extend_from_slice(sample.angles);
             s.w.extend_from_slice(sample.rates);
-            s.tip.extend(tip(&traj.chain, traj.anchor, sample.angles));
-            s.tip_velocity
-                .extend(tip_velocity(&traj.chain, sample.angles, sample.rates));
-            s.energy
-                .push(energy(&traj.chain, sample.angles, sample.rates));
+            s.tip.extend(traj.tip(k));
+            s.tip_velocity.extend(traj.tip_velocity(k));
+            s.energy.push(traj.energy(k));
             s.dissipated.push(sample.dissipated);
+            s.forces.extend(traj.joint_forces(k).into_iter().flatten());
+            if let Some(j) = s.joints.as_mut() {
+                j.extend(traj.joints(k).into_iter().flatten());
+            }
         }
         s
     }
@@ -118,6 +130,9 @@ pub struct Run {
     tip_velocity: Py<PyArray2<f64>>,
     energy: Py<PyArray1<f64>>,
     dissipated: Py<PyArray1<f64>>,
+    forces: Py<PyArray3<f64>>,
+    /// An elastic chain's joints, `n + 1` points per sample (`None`: rigid).
+    joints: Option<Vec<f64>>,
 }
 
 #[pymethods]
@@ -158,10 +173,20 @@ impl Run {
         bound(py, &self.tip_velocity)
     }
 
-    /// Energy T + V, shape (samples,).
+    /// Energy T + V (+ the bending and the elastic links' energy), shape (samples,).
     #[getter]
     fn energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         bound(py, &self.energy)
+    }
+
+    /// Joint forces at every sample, shape (samples, n + 1, 2): joint 0 is
+    /// the pivot, joint n the free tip (zero); each `[tension, shear]` in
+    /// the frame of the rod after the joint (tension > 0 pulls that rod
+    /// back toward the pivot; shear along the rod's normal, its direction
+    /// turned +90 degrees). Force units.
+    #[getter]
+    fn forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        bound(py, &self.forces)
     }
 
     /// Work dissipated by joint friction since t = 0, shape (samples,).
@@ -206,6 +231,12 @@ impl Run {
             )));
         };
         let n = self.head.chain.links();
+        if let Some(all) = &self.joints {
+            let rows = all.get(row * 2 * (n + 1)..(row + 1) * 2 * (n + 1));
+            let rows =
+                rows.ok_or_else(|| PyIndexError::new_err(format!("sample {k}: no joints stored")))?;
+            return array2(py, rows.to_vec(), n + 1, 2);
+        }
         let phi = self.phi.bind(py).readonly();
         let angles = phi
             .as_slice()
@@ -364,6 +395,8 @@ pub fn simulate(
         tip_velocity: array2(py, series.tip_velocity, s, 2)?,
         energy: array1(py, series.energy)?,
         dissipated: array1(py, series.dissipated)?,
+        forces: array3(py, series.forces, (s, n + 1, 2))?,
+        joints: series.joints,
         head,
         scene,
     })

@@ -16,6 +16,7 @@ ARRAYS = {
     "tip_velocity": lambda s, n: (s, 2),
     "energy": lambda s, n: (s,),
     "dissipated": lambda s, n: (s,),
+    "forces": lambda s, n: (s, n + 1, 2),
 }
 
 
@@ -89,3 +90,54 @@ def test_a_failed_run_keeps_what_it_computed(span, tmp_path):
     csv_t = np.loadtxt(out, delimiter=",", skiprows=1, usecols=0)
     np.testing.assert_array_equal(run.t, csv_t)
     assert all(np.isfinite(getattr(run, name)).all() for name in ARRAYS)
+
+
+def forces_csv(tmp_path, *args):
+    out = tmp_path / "forces.csv"
+    cli("simulate", scene_path("span-d3"), *args, "--forces", out, check=0)
+    with open(out, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array([[float(x) for x in r] for r in rows[1:]])
+
+
+ELASTIC = {
+    "chain.links": 12,
+    "chain.axial_stiffness": 2e3,
+    "chain.axial_damping": 0.01,
+    "chain.bending_stiffness": 0.01,
+}
+
+
+@pytest.mark.parametrize("elastic", [False, True])
+def test_forces_are_the_csv_of_forces(span, tmp_path, elastic):
+    scene, args = span, ["--method", "dopri5", "--t-end", "0.5"]
+    if elastic:
+        for key, value in ELASTIC.items():
+            scene = scene.set(key, value)
+            args += ["--set", f"{key}={value}"]
+    run = fc.simulate(scene, method="dopri5", t_end=0.5)
+    n = run.links
+    assert run.forces.shape == (len(run), n + 1, 2)
+    assert run.forces.dtype == np.float64 and not run.forces.flags.writeable
+    header, cells = forces_csv(tmp_path, *args)
+    assert header[:3] == ["t", "tension_0", "shear_0"] and len(header) == 1 + 2 * (n + 1)
+    np.testing.assert_array_equal(run.t, cells[:, 0])
+    np.testing.assert_array_equal(run.forces.reshape(len(run), -1), cells[:, 1:])
+    # The free tip carries nothing.
+    assert (run.forces[:, -1, :] == 0.0).all()
+
+
+def test_an_elastic_run_has_its_own_joints_tip_and_energy(span):
+    scene = span
+    for key, value in ELASTIC.items():
+        scene = scene.set(key, value)
+    run = fc.simulate(scene, method="dopri5", t_end=0.5, output_dt=0.05)
+    for k in (0, 5, -1):
+        j = run.joints(k)
+        assert j.shape == (run.links + 1, 2)
+        np.testing.assert_array_equal(j[0], [0.0, 0.0])
+        np.testing.assert_array_equal(j[-1], run.tip[k])
+    # The elastic energy (with the springs' stretch) balances the work.
+    drift = np.abs(run.energy + run.dissipated - run.energy[0]).max()
+    assert drift <= run.summary["energy_balance_error"] * (1 + 1e-9) + 1e-12
+    assert drift < 1e-5 * abs(run.energy[0])

@@ -3,7 +3,6 @@
 use std::borrow::Cow;
 use std::io::{self, Write};
 
-use chain_ode::kinematics::{energy, tip, tip_velocity};
 use chain_ode::Trajectory;
 
 /// A text cell, quoted (RFC 4180) if it holds a comma, a quote or a line break.
@@ -27,14 +26,15 @@ pub fn trajectory_header(links: usize) -> String {
 
 /// Writes the header and one row per sample of `traj`. Numbers are written
 /// with `{}`, which round-trips every `f64`. Tip position, tip velocity and
-/// energy are computed exactly from each sample's angles and rates.
+/// energy are computed exactly from each sample's state, for either model
+/// (the trajectory's accessors); `phi_i` are the rods' angles.
 pub fn write_trajectory<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
     writeln!(w, "{}", trajectory_header(traj.chain.links()))?;
     let mut line = String::new();
-    for s in traj.samples() {
-        let p = tip(&traj.chain, traj.anchor, s.angles);
-        let v = tip_velocity(&traj.chain, s.angles, s.rates);
-        let e = energy(&traj.chain, s.angles, s.rates);
+    for (k, s) in traj.samples().enumerate() {
+        let p = traj.tip(k);
+        let v = traj.tip_velocity(k);
+        let e = traj.energy(k);
         line.clear();
         line.push_str(&format!(
             "{},{},{},{},{},{},{}",
@@ -43,6 +43,34 @@ pub fn write_trajectory<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::
         for a in s.angles {
             line.push(',');
             line.push_str(&a.to_string());
+        }
+        writeln!(w, "{line}")?;
+    }
+    Ok(())
+}
+
+/// The header of a joint-force CSV for `links` rods:
+/// `t,tension_0,shear_0,...,tension_n,shear_n` (joint 0 is the pivot,
+/// joint n the free tip).
+pub fn forces_header(links: usize) -> String {
+    let mut h = String::from("t");
+    for k in 0..=links {
+        h.push_str(&format!(",tension_{k},shear_{k}"));
+    }
+    h
+}
+
+/// Writes the header and one row per sample of `traj`: its time and the
+/// joint forces ([`Trajectory::joint_forces`]: the rigid chain's from its
+/// banded DAE, the elastic chain's from its springs).
+pub fn write_forces<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
+    writeln!(w, "{}", forces_header(traj.chain.links()))?;
+    let mut line = String::new();
+    for k in 0..traj.len() {
+        line.clear();
+        line.push_str(&traj.times[k].to_string());
+        for [tension, shear] in traj.joint_forces(k) {
+            line.push_str(&format!(",{tension},{shear}"));
         }
         writeln!(w, "{line}")?;
     }

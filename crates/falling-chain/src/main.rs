@@ -291,6 +291,12 @@ struct SimulateArgs {
     /// dissipated, phi_1..phi_n.
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
+    /// Write the joint forces at every sample as CSV: t, then for each
+    /// joint k = 0 (the pivot) .. n (the free tip) its tension_k and
+    /// shear_k in the frame of the rod after it (tension > 0 pulls that rod
+    /// back toward the pivot; force units).
+    #[arg(long, value_name = "FILE.csv")]
+    forces: Option<PathBuf>,
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     json: bool,
@@ -340,6 +346,11 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     }
     let run = scene.prepare()?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
+    let forces = args
+        .forces
+        .as_deref()
+        .map(|o| begin("--forces", o))
+        .transpose()?;
     let traj = run.solve()?;
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
@@ -352,6 +363,9 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     }
     if let Some(out) = out {
         out.write(|w| csv::write_trajectory(w, &traj))?;
+    }
+    if let Some(forces) = forces {
+        forces.write(|w| csv::write_forces(w, &traj))?;
     }
     Ok(if summary.is_ok() {
         ExitCode::SUCCESS

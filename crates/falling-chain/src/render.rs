@@ -1,7 +1,6 @@
 //! From finished trajectories to the figures crate's plain data: chain
 //! frames, tip speed and tip velocity series. Nothing here runs a simulation.
 
-use chain_ode::kinematics::{joints, tip_velocity};
 use chain_ode::{Trajectory, Vec2};
 use figures::ChainSnapshots;
 
@@ -18,7 +17,7 @@ pub fn frames(traj: &Trajectory, spacing: Option<f64>) -> Vec<(f64, Vec<[f64; 2]
                     (q - q.round()).abs() < 1e-6
                 })
         })
-        .map(|(_, s)| (s.t, joints(&traj.chain, traj.anchor, s.angles)))
+        .map(|(k, s)| (s.t, traj.joints(k)))
         .collect()
 }
 
@@ -38,8 +37,9 @@ pub fn snapshots<'a>(
 /// `(t, |v_tip|)` at every sample.
 pub fn tip_speed(traj: &Trajectory) -> Vec<(f64, f64)> {
     traj.samples()
-        .map(|s| {
-            let v = tip_velocity(&traj.chain, s.angles, s.rates);
+        .enumerate()
+        .map(|(k, s)| {
+            let v = traj.tip_velocity(k);
             (s.t, v[0].hypot(v[1]))
         })
         .collect()
@@ -47,9 +47,9 @@ pub fn tip_speed(traj: &Trajectory) -> Vec<(f64, f64)> {
 
 /// `(v_x, v_y)` of the tip at every sample.
 pub fn tip_velocity_path(traj: &Trajectory) -> Vec<(f64, f64)> {
-    traj.samples()
-        .map(|s| {
-            let v = tip_velocity(&traj.chain, s.angles, s.rates);
+    (0..traj.len())
+        .map(|k| {
+            let v = traj.tip_velocity(k);
             (v[0], v[1])
         })
         .collect()

@@ -55,6 +55,9 @@ struct ChainSection {
     mass: f64,
     gravity: f64,
     damping: f64,
+    axial_stiffness: Option<f64>,
+    axial_damping: f64,
+    bending_stiffness: f64,
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -159,6 +162,9 @@ impl Scene {
             mass,
             gravity,
             damping,
+            axial_stiffness,
+            axial_damping,
+            bending_stiffness,
         } = chain;
         let chain = ChainParams {
             length,
@@ -166,6 +172,9 @@ impl Scene {
             mass,
             gravity,
             damping,
+            axial_stiffness,
+            axial_damping,
+            bending_stiffness,
         };
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
@@ -266,6 +275,9 @@ impl Scene {
             mass,
             gravity,
             damping,
+            axial_stiffness,
+            axial_damping,
+            bending_stiffness,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
@@ -276,8 +288,24 @@ impl Scene {
             ("chain.mass", toml::Value::Float(mass)),
             ("chain.gravity", toml::Value::Float(gravity)),
             ("chain.damping", toml::Value::Float(damping)),
+            ("chain.axial_damping", toml::Value::Float(axial_damping)),
+            (
+                "chain.bending_stiffness",
+                toml::Value::Float(bending_stiffness),
+            ),
         ] {
             overrides::set_path(&mut tree, path, value)?;
+        }
+        // Absent is rigid links: the key goes when the chain has none.
+        match axial_stiffness {
+            Some(ea) => {
+                overrides::set_path(&mut tree, "chain.axial_stiffness", toml::Value::Float(ea))?
+            }
+            None => {
+                if let Some(toml::Value::Table(section)) = tree.get_mut("chain") {
+                    section.remove("axial_stiffness");
+                }
+            }
         }
         Self::from_tree(tree)
     }

@@ -30,7 +30,8 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use crate::chain::{check, Chain, InvalidParameter};
-use crate::kinematics::{tip, tip_velocity, Vec2};
+use crate::elastic::{self, ElasticSystem};
+use crate::kinematics::{energy, joints, tip, tip_velocity, Vec2};
 use crate::ode::{Cancel, Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
@@ -204,7 +205,8 @@ impl SolveOptions {
     /// and `chain`, each stated with the numbers of this run:
     /// * RK4: `run.dt <= run.t_end`, and `ceil(t_end / dt) <= run.max_steps`
     ///   (the smallest step accepted is `t_end / max_steps`);
-    /// * the recorded samples, `t_end / output_dt` of `2 n + 2` numbers
+    /// * the recorded samples, `t_end / output_dt` of
+    ///   [`SolveOptions::sample_numbers`] numbers
     ///   each, within [`MAX_OUTPUT_BYTES`] (the smallest `run.output_dt`
     ///   accepted is [`SolveOptions::min_output_dt`]);
     /// * `bdf-dense`: at most [`BDF_DENSE_MAX_LINKS`] rods (`bdf` runs any).
@@ -232,7 +234,7 @@ impl SolveOptions {
             )?;
         }
         if let Some(o) = self.output_dt {
-            let o_min = Self::min_output_dt(self.t_end, chain.links());
+            let o_min = Self::min_output_dt_for(self.t_end, chain);
             check(
                 o >= o_min,
                 "run.output_dt",
@@ -241,10 +243,22 @@ impl SolveOptions {
                      ({} numbers each) must fit in {} MiB",
                     self.t_end,
                     chain.links(),
-                    2 * chain.links() + 2,
+                    Self::sample_numbers(chain),
                     MAX_OUTPUT_BYTES >> 20
                 ),
                 o,
+            )?;
+        }
+        if method == Method::BdfDense && chain.is_elastic() {
+            check(
+                chain.links() <= BDF_DENSE_MAX_ELASTIC_LINKS,
+                "chain.links",
+                format!(
+                    "at most {BDF_DENSE_MAX_ELASTIC_LINKS} for bdf-dense with chain.axial_stiffness \
+                     (its dense Jacobian of 6 n + 1 unknowns grows like n^2 in memory and n^3 in \
+                     time); run.method = \"bdf\" is the same method in O(n)"
+                ),
+                chain.links(),
             )?;
         }
         if method == Method::BdfDense {
@@ -263,12 +277,37 @@ impl SolveOptions {
     }
 
     /// The smallest `output_dt` (time units) whose samples over `t_end` fit
-    /// in [`MAX_OUTPUT_BYTES`] for a chain of `links` rods: each sample
-    /// holds its time and the `2 n + 1` state values (`f64`), and a run
-    /// records `t_end / output_dt + 2` samples at most (the start, and the
-    /// end when it is not on the grid).
+    /// in [`MAX_OUTPUT_BYTES`] for a chain of `links` rigid rods: each
+    /// sample holds its time and the `2 n + 1` state values (`f64`), and
+    /// the `2 (n + 1)` joint forces an output may derive from it
+    /// ([`SolveOptions::sample_numbers`]); a run records
+    /// `t_end / output_dt + 2` samples at most (the start, and the end when
+    /// it is not on the grid).
     pub fn min_output_dt(t_end: f64, links: usize) -> f64 {
-        let per_sample = 8 * (2 * links as u64 + 2);
+        Self::min_output_dt_of(t_end, 4 * links as u64 + 4)
+    }
+
+    /// Numbers a recorded sample of `chain` may take in memory: its time,
+    /// its state (`2 n + 1` rigid, `6 n + 1` elastic), the joint forces an
+    /// output may derive from it (`2 (n + 1)`) and, for an elastic chain,
+    /// its joints (`2 (n + 1)`, which Python keeps).
+    pub fn sample_numbers(chain: &Chain) -> u64 {
+        let n = chain.links() as u64;
+        if chain.is_elastic() {
+            (6 * n + 2) + 4 * (n + 1)
+        } else {
+            (2 * n + 2) + 2 * (n + 1)
+        }
+    }
+
+    /// [`SolveOptions::min_output_dt`] for `chain`'s model
+    /// ([`SolveOptions::sample_numbers`] each).
+    pub fn min_output_dt_for(t_end: f64, chain: &Chain) -> f64 {
+        Self::min_output_dt_of(t_end, Self::sample_numbers(chain))
+    }
+
+    fn min_output_dt_of(t_end: f64, numbers: u64) -> f64 {
+        let per_sample = 8 * numbers;
         let samples = MAX_OUTPUT_BYTES / per_sample;
         t_end / samples.saturating_sub(2).max(1) as f64
     }
@@ -290,6 +329,10 @@ pub const MAX_OUTPUT_BYTES: u64 = 1 << 30;
 /// The largest chain `bdf-dense` runs: its Jacobian and LU are dense
 /// `(2n + 1)^2` matrices, factorised in O(n^3).
 pub const BDF_DENSE_MAX_LINKS: usize = 500;
+
+/// The largest elastic chain `bdf-dense` runs: `6 n + 1` unknowns, so
+/// about the same dense matrices as [`BDF_DENSE_MAX_LINKS`] rigid rods.
+pub const BDF_DENSE_MAX_ELASTIC_LINKS: usize = 160;
 
 /// The scalar results of a run: what `simulate --json` prints.
 #[derive(Clone, Debug, PartialEq)]
@@ -366,7 +409,8 @@ pub struct Trajectory {
     pub summary: Summary,
     /// Sample times (`output_dt` apart, plus the final time).
     pub times: Vec<f64>,
-    /// Samples, `2 n + 1` numbers each: angles, rates, dissipated work.
+    /// Samples, `2 n + 1` numbers each (angles, rates, dissipated work), or
+    /// `6 n + 1` for elastic links ([`crate::elastic`]).
     states: Vec<f64>,
     /// The state at `t_reached`.
     pub final_state: Vec<f64>,
@@ -395,7 +439,7 @@ impl Trajectory {
     /// Sample `k`.
     pub fn sample(&self, k: usize) -> Sample<'_> {
         let n = self.chain.links();
-        let y = &self.states[k * (2 * n + 1)..(k + 1) * (2 * n + 1)];
+        let y = self.state(k);
         Sample {
             t: self.times[k],
             angles: &y[..n],
@@ -408,6 +452,108 @@ impl Trajectory {
     pub fn samples(&self) -> impl Iterator<Item = Sample<'_>> + '_ {
         (0..self.len()).map(|k| self.sample(k))
     }
+
+    /// The whole state of sample `k`: `[phi, w, W]` for rigid links,
+    /// `[theta, w, W, x, y, vx, vy]` for elastic ones ([`crate::elastic`]).
+    pub fn state(&self, k: usize) -> &[f64] {
+        let d = state_len(&self.chain);
+        &self.states[k * d..(k + 1) * d]
+    }
+
+    /// The joints `r_0 = P0, .., r_n` of sample `k`, for either model (for
+    /// rigid links, `kinematics::joints` of its angles).
+    pub fn joints(&self, k: usize) -> Vec<Vec2> {
+        state_joints(&self.chain, self.anchor, self.state(k))
+    }
+
+    /// The tip of sample `k` (for rigid links, `kinematics::tip`).
+    pub fn tip(&self, k: usize) -> Vec2 {
+        state_tip(&self.chain, self.anchor, self.state(k))
+    }
+
+    /// The tip velocity of sample `k` (for rigid links,
+    /// `kinematics::tip_velocity`).
+    pub fn tip_velocity(&self, k: usize) -> Vec2 {
+        state_tip_velocity(&self.chain, self.state(k))
+    }
+
+    /// The energy of sample `k`: `T + V (+ U_b)` for rigid links
+    /// (`kinematics::energy`), `T + V + U_el + U_b` for elastic ones.
+    pub fn energy(&self, k: usize) -> f64 {
+        state_energy(&self.chain, self.state(k))
+    }
+
+    /// The joint forces of sample `k`, joints `0..=n` (the pivot first, the
+    /// free tip's zero last), each `[tension, shear]` in the frame of the
+    /// rod after the joint: tension `-F_k . u_k`, positive when the joint
+    /// pulls the rod back toward the pivot; shear `F_k . v_k` with `v_k`
+    /// the rod's direction turned by +90 degrees (force units). Rigid
+    /// links: the banded DAE's joint forces, consistent with the sample's
+    /// state; elastic links: the springs' and dashpots' forces.
+    pub fn joint_forces(&self, k: usize) -> Vec<Vec2> {
+        state_joint_forces(&self.chain, self.state(k))
+    }
+}
+
+/// Numbers in a state of `chain`'s model: `2 n + 1` for rigid links
+/// (`[phi, w, W]`), `6 n + 1` for elastic ones (see [`crate::elastic`]).
+pub(crate) fn state_len(chain: &Chain) -> usize {
+    if chain.is_elastic() {
+        6 * chain.links() + 1
+    } else {
+        2 * chain.links() + 1
+    }
+}
+
+/// The energy of a state of either model (the rigid one's as
+/// `kinematics::energy` computes it).
+pub(crate) fn state_energy(chain: &Chain, y: &[f64]) -> f64 {
+    if chain.is_elastic() {
+        elastic::energy(chain, y)
+    } else {
+        let n = chain.links();
+        energy(chain, &y[..n], &y[n..2 * n])
+    }
+}
+
+/// The tip velocity of a state of either model.
+pub(crate) fn state_tip_velocity(chain: &Chain, y: &[f64]) -> Vec2 {
+    if chain.is_elastic() {
+        elastic::tip_velocity(chain, y)
+    } else {
+        let n = chain.links();
+        tip_velocity(chain, &y[..n], &y[n..2 * n])
+    }
+}
+
+/// The tip of a state of either model, the pivot at `p0`.
+pub(crate) fn state_tip(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec2 {
+    if chain.is_elastic() {
+        elastic::tip(chain, p0, y)
+    } else {
+        tip(chain, p0, &y[..chain.links()])
+    }
+}
+
+/// The joints `r_0 .. r_n` of a state of either model, the pivot at `p0`.
+pub(crate) fn state_joints(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
+    if chain.is_elastic() {
+        elastic::joints(chain, p0, y)
+    } else {
+        joints(chain, p0, &y[..chain.links()])
+    }
+}
+
+/// The joint forces `[tension, shear]` of a state of either model, joints
+/// `0..=n` (see [`elastic::tension_shear`] for the frame and signs).
+pub(crate) fn state_joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
+    let n = chain.links();
+    let forces = if chain.is_elastic() {
+        elastic::joint_forces(chain, y)
+    } else {
+        elastic::rigid_joint_forces(chain, y)
+    };
+    elastic::tension_shear(&y[..n], &forces)
 }
 
 /// Runs `method` on `chain` from `start` over `[0, options.t_end]`.
@@ -440,8 +586,11 @@ pub fn solve(
         "a state with chain.links angles and rates",
         start.angles.len(),
     )?;
-    let mut sys = ChainSystem::new(chain);
-    let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
+    let y0 = if chain.is_elastic() {
+        elastic::start_state(chain, start)
+    } else {
+        ChainSystem::pack(&start.angles, &start.rates, 0.0)
+    };
     let mut obs = ChainObserver::new(
         chain,
         options.t_end,
@@ -456,7 +605,12 @@ pub fn solve(
         t_end: options.t_end,
         settings: &settings,
     };
-    let Run { outcome, segments } = registry::run(method, &mut sys, &span, &mut obs);
+    // A rigid chain takes exactly the path it always took.
+    let Run { outcome, segments } = if chain.is_elastic() {
+        registry::run(method, &mut ElasticSystem::new(chain), &span, &mut obs)
+    } else {
+        registry::run(method, &mut ChainSystem::new(chain), &span, &mut obs)
+    };
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
@@ -466,8 +620,8 @@ pub fn solve(
         dissipated: y[2 * n],
         energy_balance_error: obs.energy_balance_error,
         max_energy_rise: obs.max_energy_rise,
-        tip_end: tip(chain, start.anchor, &y[..n]),
-        tip_velocity_end: tip_velocity(chain, &y[..n], &y[n..2 * n]),
+        tip_end: state_tip(chain, start.anchor, y),
+        tip_velocity_end: state_tip_velocity(chain, y),
         tip_speed_max: obs.tip_speed_max,
         t_tip_speed_max: obs.t_tip_speed_max,
         wall_seconds,

@@ -1,8 +1,10 @@
 //! What a chain run records as it goes: output samples, the energy balance,
 //! and the continuous maximum of the tip speed. One O(n) pass per step.
 
+use super::{state_energy, state_len, state_tip_velocity};
 use crate::chain::Chain;
-use crate::kinematics::{energy, lever_arm, tip_velocity, RodSums, Vec2};
+use crate::elastic;
+use crate::kinematics::{bending_energy, lever_arm, RodSums, Vec2};
 use crate::ode::{Cancel, Observer, StepView};
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
@@ -14,6 +16,13 @@ pub(crate) struct Metrics {
 }
 
 pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
+    if chain.is_elastic() {
+        return Metrics {
+            energy: elastic::energy(chain, y),
+            tip_velocity: elastic::tip_velocity(chain, y),
+            tip_acceleration: elastic::tip_acceleration(chain, y, f),
+        };
+    }
     let n = chain.links();
     let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
     // The kinematics' per-rod kernel, the potential's lever arms, and the
@@ -33,8 +42,13 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     // `T + V` as `kinematics::energy` states it; the products are kept in
     // the order the committed data were made with (`m l l`, then 1/2).
     let ml2 = chain.mass() * l * l;
+    let e = 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v;
     Metrics {
-        energy: 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v,
+        energy: if chain.bending_spring() != 0.0 {
+            e + bending_energy(chain, phi)
+        } else {
+            e
+        },
         tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }
@@ -88,7 +102,7 @@ impl ChainObserver {
     /// An observer of a run of `chain` over `[0, t_end]`, recording a sample
     /// every `output_dt` (time units) if given; `cancel` stops the run.
     pub fn new(chain: &Chain, t_end: f64, output_dt: Option<f64>, cancel: Option<Cancel>) -> Self {
-        let dim = 2 * chain.links() + 1;
+        let dim = state_len(chain);
         // Saturating: `solve` has bounded t_end / output_dt already.
         let last_sample = output_dt.map_or(0, |dt| ((t_end / dt).floor() as u64).saturating_add(1));
         Self {
@@ -134,11 +148,9 @@ impl ChainObserver {
             // The method stopped before its first right-hand side was finite:
             // the energies and the speed are the start's, from the state
             // alone (not the zeros the observer was made with).
-            let n = self.chain.links();
-            let (phi, w) = (&y[..n], &y[n..2 * n]);
-            self.energy_start = energy(&self.chain, phi, w);
+            self.energy_start = state_energy(&self.chain, y);
             self.energy_end = self.energy_start;
-            let v = tip_velocity(&self.chain, phi, w);
+            let v = state_tip_velocity(&self.chain, y);
             self.tip_speed_max = v[0].hypot(v[1]);
             self.t_tip_speed_max = t;
             self.check_finite(t, &[self.energy_start, self.tip_speed_max]);
@@ -150,8 +162,7 @@ impl ChainObserver {
 
     fn speed_at(&mut self, step: &StepView<'_>, t: f64) -> f64 {
         step.interpolant.eval(t, &mut self.buf);
-        let n = self.chain.links();
-        let v = tip_velocity(&self.chain, &self.buf[..n], &self.buf[n..2 * n]);
+        let v = state_tip_velocity(&self.chain, &self.buf);
         v[0].hypot(v[1])
     }
 

@@ -120,13 +120,53 @@ fn rk4_steps_are_bounded_by_t_end_and_by_the_step_budget_boundaries_included() {
 }
 
 #[test]
+fn an_elastic_chains_samples_count_its_state_forces_and_joints() {
+    for (t_end, n) in [(4.157, 50), (1.0, 1_000_000)] {
+        let chain = Chain::new(chain_ode::ChainParams {
+            links: n,
+            axial_stiffness: Some(1e4),
+            ..chain_ode::ChainParams::default()
+        })
+        .unwrap();
+        let o_min = SolveOptions::min_output_dt_for(t_end, &chain);
+        // Time and state (6 n + 1), joint forces and joints (2 (n + 1) each).
+        let per_sample = 8.0 * (10 * n + 6) as f64;
+        let samples = (t_end / o_min).floor() + 2.0;
+        assert!(samples * per_sample <= MAX_OUTPUT_BYTES as f64);
+        assert!((samples + 1.0) * per_sample > MAX_OUTPUT_BYTES as f64 - per_sample);
+        // One step at most: a run that the cap failed to stop ends at once
+        // instead of filling the memory (as under the break in .ci/breaks).
+        let o = SolveOptions {
+            t_end,
+            output_dt: Some(o_min * 0.999),
+            max_steps: 1,
+            ..Default::default()
+        };
+        let e = chain_ode::solve(
+            &chain,
+            &chain_ode::Start::Folded {
+                p0: [0.0, 0.0],
+                down: None,
+            }
+            .state(&chain)
+            .unwrap(),
+            Method::Dopri5,
+            &o,
+        )
+        .unwrap_err();
+        assert_eq!(e.field, "run.output_dt", "{e}");
+    }
+}
+
+#[test]
 fn the_samples_must_fit_in_the_memory_cap_boundary_included() {
     for (t_end, n) in [(4.157, 50), (1e6, 1), (1.0, 1_000_000), (3.0, 7)] {
         let chain = Chain::report(n, 0.0).unwrap();
         let o_min = SolveOptions::min_output_dt(t_end, n);
         // At the minimum, the samples a run can record (the start, one per
         // output_dt, the end) fit in the cap.
-        let per_sample = 8.0 * (2 * n + 2) as f64;
+        // Time and state (2 n + 1), and the joint forces (2 (n + 1)).
+        let per_sample = 8.0 * (4 * n + 4) as f64;
         let samples = (t_end / o_min).floor() + 2.0;
         assert!(
             samples * per_sample <= MAX_OUTPUT_BYTES as f64,

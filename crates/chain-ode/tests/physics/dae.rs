@@ -90,8 +90,21 @@ fn noise(k: usize) -> f64 {
 
 #[test]
 fn the_analytic_jacobian_matches_central_differences() {
-    for (n, damping) in [(1, 0.3), (2, 0.0), (5, 0.02), (17, 1.0)] {
-        let chain = Chain::report(n, damping).unwrap();
+    for (n, damping, ei) in [
+        (1, 0.3, 0.0),
+        (2, 0.0, 0.0),
+        (5, 0.02, 0.0),
+        (17, 1.0, 0.0),
+        (2, 0.0, 0.7),
+        (9, 0.05, 0.02),
+    ] {
+        let chain = Chain::new(chain_ode::ChainParams {
+            links: n,
+            damping,
+            bending_stiffness: ei,
+            ..chain_ode::ChainParams::default()
+        })
+        .unwrap();
         let dae = ChainDae::new(&chain);
         let dim = dae.dim();
         // An inconsistent state: every unknown random.

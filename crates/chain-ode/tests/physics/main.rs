@@ -15,6 +15,7 @@ mod bounds;
 mod dae;
 mod dopri5;
 mod dynamics;
+mod elastic;
 mod failures;
 mod methods;
 mod modes;
@@ -106,7 +107,8 @@ pub fn all_finite(y: &[f64]) -> bool {
 }
 
 /// A random chain of 1 to `max_links` rods in a random state: any length,
-/// mass, gravity and friction, angles anywhere, rates up to 3 rad/time.
+/// mass, gravity, friction and bending stiffness (none in a third of the
+/// cases), angles anywhere, rates up to 3 rad/time.
 pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f64>, Vec<f64>)> {
     (
         1usize..=max_links,
@@ -114,14 +116,17 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
         0.01f64..5.0,
         0.0f64..10.0,
         0.0f64..0.5,
+        prop_oneof![Just(0.0), 0.0f64..2.0, 0.0f64..2.0],
     )
-        .prop_flat_map(|(n, length, mass, gravity, damping)| {
+        .prop_flat_map(|(n, length, mass, gravity, damping, bending_stiffness)| {
             let chain = Chain::new(ChainParams {
                 length,
                 links: n,
                 mass,
                 gravity,
                 damping,
+                bending_stiffness,
+                ..ChainParams::default()
             })
             .unwrap();
             (

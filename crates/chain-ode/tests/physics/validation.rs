@@ -268,6 +268,7 @@ fn pivot_force_of_a_chain_hanging_at_rest_is_its_weight() {
             mass,
             gravity: g,
             damping: r,
+            ..ChainParams::default()
         })
         .unwrap();
         let start = State {
