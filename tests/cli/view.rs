@@ -360,3 +360,70 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// `view --forces` carries each run's joint forces, the very ones
+/// `simulate --forces` writes (to the page's 5 significant digits), for
+/// an elastic chain; without the flag a page has none.
+#[test]
+fn view_forces_carries_the_runs_joint_forces() {
+    let dir = scratch("view-forces");
+    let set = [
+        "--set",
+        "chain.links=8",
+        "--set",
+        "chain.axial_stiffness=1e4",
+        "--set",
+        "run.t_end=0.5",
+        "--set",
+        "run.output_dt=0.05",
+        "--set",
+        "run.method=dopri5",
+    ];
+    let span = scene("span-d3");
+    let forces_csv = dir.join("forces.csv");
+    let mut args = vec!["simulate", &span];
+    args.extend(set);
+    args.extend(["--forces", forces_csv.to_str().unwrap()]);
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut args = vec![span.as_str()];
+    args.extend(set);
+    let (plain, o) = view(&dir, "plain.html", &args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(page_data(&plain)["runs"][0]["forces"], Value::Null);
+    args.push("--forces");
+    let (page, o) = view(&dir, "forces.html", &args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = &page_data(&page)["runs"][0];
+    let tension = r["forces"]["tension"].as_array().unwrap();
+    let shear = r["forces"]["shear"].as_array().unwrap();
+    let text = fs::read_to_string(&forces_csv).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(r["t"].as_array().unwrap().len(), rows.len());
+    assert_eq!(tension.len(), rows.len() * 9);
+    let scale = rows
+        .iter()
+        .flat_map(|row| row[1..].iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    for (k, row) in rows.iter().enumerate() {
+        for j in 0..=8 {
+            let (t, s) = (row[1 + 2 * j], row[2 + 2 * j]);
+            let (pt, ps) = (
+                tension[k * 9 + j].as_f64().unwrap(),
+                shear[k * 9 + j].as_f64().unwrap(),
+            );
+            assert!(
+                (pt - t).abs() <= 1e-4 * t.abs() + 1e-9 * scale,
+                "row {k} joint {j}: {pt} {t}"
+            );
+            assert!(
+                (ps - s).abs() <= 1e-4 * s.abs() + 1e-9 * scale,
+                "row {k} joint {j}: {ps} {s}"
+            );
+        }
+    }
+}

@@ -183,6 +183,10 @@ struct ViewArgs {
     /// tension_0..tension_n and shear_0..shear_n.
     #[arg(long, value_name = "RUN.csv")]
     from: Vec<PathBuf>,
+    /// Carry each run's joint forces (tension and shear at the n + 1 joints,
+    /// as simulate --forces writes them) and colour the chain by them.
+    #[arg(long)]
+    forces: bool,
     /// The page, FILE.html.
     #[arg(short = 'o', long = "out", value_name = "FILE.html")]
     out: PathBuf,
@@ -633,7 +637,13 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         let traj = run.solve()?;
         let summary = RunSummary::from_trajectory(scene.name(), &traj);
         failed += usize::from(!summary.is_ok());
-        runs.push(ViewRun::from_trajectory(&label, &traj, &summary, budget));
+        runs.push(ViewRun::from_trajectory(
+            &label,
+            &traj,
+            &summary,
+            budget,
+            args.forces,
+        ));
     }
     runs.extend(from);
     // Two runs of one label are told apart by their number.

@@ -17,7 +17,6 @@
 
 use std::fmt::Write as _;
 
-use chain_ode::kinematics::tip_velocity;
 use chain_ode::Trajectory;
 use serde_json::{json, Value};
 
@@ -122,15 +121,21 @@ pub fn check_links(field: &str, links: usize) -> Result<(), Error> {
 impl ViewRun {
     /// A finished (or failed) run, thinned to `budget` bytes, with its
     /// `simulate --json` summary.
+    ///
+    /// With `forces`, the run's joint forces (tension and shear at the n + 1
+    /// joints, `Trajectory::joint_forces`) go with it, and the page colours
+    /// the chain by them. Speed and energy come from the trajectory's
+    /// accessors, right for rigid and elastic links alike.
     pub fn from_trajectory(
         label: &str,
         traj: &Trajectory,
         summary: &RunSummary,
         budget: usize,
+        forces: bool,
     ) -> Self {
         let links = traj.chain.links();
         let samples = traj.len();
-        let stride = stride_for(samples, links, 0, budget);
+        let stride = stride_for(samples, links, if forces { 2 } else { 0 }, budget);
         let kept = samples.div_ceil(stride) + 1;
         let mut run = Self {
             label: label.to_string(),
@@ -150,20 +155,29 @@ impl ViewRun {
             forces: None,
             source: None,
         };
+        let (mut tension, mut shear) = (Vec::new(), Vec::new());
         for (k, s) in traj.samples().enumerate() {
             if !keeps(k, samples, stride) {
                 continue;
             }
-            let v = tip_velocity(&traj.chain, s.angles, s.rates);
+            let v = traj.tip_velocity(k);
             run.t.push(s.t);
             run.speed.push(v[0].hypot(v[1]));
-            run.energy.push(chain_ode::kinematics::energy(
-                &traj.chain,
-                s.angles,
-                s.rates,
-            ));
+            run.energy.push(traj.energy(k));
             run.dissipated.push(s.dissipated);
             run.phi.extend_from_slice(s.angles);
+            if forces {
+                for f in traj.joint_forces(k) {
+                    tension.push(f[0]);
+                    shear.push(f[1]);
+                }
+            }
+        }
+        if forces {
+            run.forces = Some(JointForces {
+                tension: Some(tension),
+                shear: Some(shear),
+            });
         }
         run
     }
