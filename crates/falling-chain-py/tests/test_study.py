@@ -88,7 +88,7 @@ def test_merge_joins_cli_shards_and_refuses_what_the_cli_refuses(tmp_path):
     want = cli_error("merge", tmp_path / "s0.csv", "--out", tmp_path / "x.csv")
     with pytest.raises(ValueError) as e:
         fc.merge([tmp_path / "s0.csv"])
-    assert str(e.value) == want and want.startswith("merge: run 1 is missing")
+    assert str(e.value) == want and want.startswith("merge: runs 1, 3, 5, 7 are missing")
 
 
 @pytest.mark.parametrize(
