@@ -29,9 +29,15 @@ pub fn mt_tip(n: usize, i: usize, j: usize, mu: f64) -> f64 {
     mt(n, i, j) + mu
 }
 
+/// The mass matrix `A_ij = mt_ij cos(phi_i - phi_j)` (rod units:
+/// `T = m l^2/2 w^T A w`) of a chain without a tip mass.
+pub fn mass_matrix(phi: &[f64]) -> Mat<f64> {
+    mass_matrix_with_tip(phi, 0.0)
+}
+
 /// The mass matrix `A_ij = (mt_ij + mu) cos(phi_i - phi_j)` (rod units:
 /// `T = m l^2/2 w^T A w`), `mu = M_t / m` the tip mass.
-pub fn mass_matrix(phi: &[f64], mu: f64) -> Mat<f64> {
+pub fn mass_matrix_with_tip(phi: &[f64], mu: f64) -> Mat<f64> {
     let n = phi.len();
     Mat::from_fn(n, n, |i, j| mt_tip(n, i, j, mu) * (phi[i] - phi[j]).cos())
 }
@@ -65,7 +71,7 @@ pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
 /// symmetric positive definite for finite angles; if the factorisation
 /// fails all the same (a non-finite angle), every entry is NaN.
 pub fn accelerations(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
-    let a = mass_matrix(phi, chain.tip_mass_ratio());
+    let a = mass_matrix_with_tip(phi, chain.tip_mass_ratio());
     let b = forcing(chain, phi, w);
     let rhs = Mat::from_fn(b.len(), 1, |i, _| b[i]);
     let Ok(llt) = a.llt(Side::Lower) else {
@@ -77,7 +83,7 @@ pub fn accelerations(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
 
 /// Kinetic energy `T = (m l^2 / 2) w^T A w` from the dense matrix.
 pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    let a = mass_matrix(phi, chain.tip_mass_ratio());
+    let a = mass_matrix_with_tip(phi, chain.tip_mass_ratio());
     let n = phi.len();
     let mut q = 0.0;
     for i in 0..n {
