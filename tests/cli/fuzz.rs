@@ -114,6 +114,8 @@ struct Case {
     axial_damping: f64,
     bending_stiffness: f64,
     elastic: bool,
+    /// `chain.tip_mass` (refused with elastic links when > 0).
+    tip_mass: f64,
 }
 
 const COMMANDS: [&str; 6] = [
@@ -154,6 +156,7 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.0, 1.0, &[-1.0, 1e300, f64::NAN]),
             number(0.0, 0.1, &[-1.0, 1e300, f64::INFINITY, f64::NAN]),
             any::<bool>(),
+            number(0.0, 2.0, &[0.0, -1.0, 1e300, f64::INFINITY, f64::NAN]),
         ),
     )
         .prop_map(
@@ -161,7 +164,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (command, length, links, mass, gravity, damping, kind),
                 (p1, p1_on_circle, down, t_end, method, dt),
                 (rtol, atol, output_dt, h_min, extra, with_out),
-                (axial_stiffness, axial_damping, bending_stiffness, elastic),
+                (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass),
             )| Case {
                 command,
                 length,
@@ -186,6 +189,7 @@ fn case() -> impl Strategy<Value = Case> {
                 axial_damping,
                 bending_stiffness,
                 elastic,
+                tip_mass,
             },
         )
 }
@@ -227,6 +231,7 @@ impl Case {
         }
         writeln!(t, "axial_damping = {}", toml_f(self.axial_damping)).unwrap();
         writeln!(t, "bending_stiffness = {}", toml_f(self.bending_stiffness)).unwrap();
+        writeln!(t, "tip_mass = {}", toml_f(self.tip_mass)).unwrap();
         let kind = KINDS[self.kind];
         writeln!(t, "[start]\nkind = \"{kind}\"").unwrap();
         match kind {
@@ -491,6 +496,7 @@ fn the_fuzzer_draws_every_scene_key() {
             axial_damping: 0.0,
             bending_stiffness: 0.0,
             elastic: true,
+            tip_mass: 0.0,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

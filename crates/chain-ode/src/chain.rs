@@ -42,6 +42,10 @@ pub struct ChainParams {
     /// `(EI / l) (phi_{i+1} - phi_i)` between neighbouring rods (the pivot
     /// is free). Default 0. Works with rigid and elastic links.
     pub bending_stiffness: f64,
+    /// A point mass `M_t` (mass, at least 0) at the free end, pinned to the
+    /// last rod's tip. Default 0. Rigid links only: an elastic chain
+    /// refuses `M_t > 0` (`chain.tip_mass`).
+    pub tip_mass: f64,
 }
 
 impl Default for ChainParams {
@@ -56,6 +60,7 @@ impl Default for ChainParams {
             axial_stiffness: None,
             axial_damping: 0.0,
             bending_stiffness: 0.0,
+            tip_mass: 0.0,
         }
     }
 }
@@ -166,6 +171,18 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         "chain.bending_stiffness",
         "a finite number >= 0",
         p.bending_stiffness,
+    )?;
+    check(
+        finite_nonneg(p.tip_mass),
+        "chain.tip_mass",
+        "a finite number >= 0",
+        p.tip_mass,
+    )?;
+    check(
+        p.tip_mass == 0.0 || p.axial_stiffness.is_none(),
+        "chain.tip_mass",
+        "0 with elastic links (chain.axial_stiffness given): a tip mass needs rigid links",
+        p.tip_mass,
     )
 }
 
@@ -231,6 +248,17 @@ impl Chain {
         self.params.bending_stiffness
     }
 
+    /// The point mass `M_t` at the free end (0 for none).
+    pub fn tip_mass(&self) -> f64 {
+        self.params.tip_mass
+    }
+
+    /// The tip mass in rod masses, `mu = M_t / m`: the recursion's and the
+    /// dense reference's unit.
+    pub fn tip_mass_ratio(&self) -> f64 {
+        self.params.tip_mass / self.params.mass
+    }
+
     /// True for elastic links (`axial_stiffness` given).
     pub fn is_elastic(&self) -> bool {
         self.params.axial_stiffness.is_some()
@@ -270,6 +298,7 @@ impl Chain {
     ///   so `eta = r l` ([`Chain::bending_viscosity`]) is the continuum
     ///   quantity and `r' = eta / l' = r n' / n` (rounded as `(r n') / n`).
     ///
+    /// * The tip mass `M_t` is a point mass: carried as it is.
     /// * The axial stiffness `EA`, the axial viscosity `eta` and the bending
     ///   stiffness `EI` are continuum properties of the rope: carried as
     ///   they are (the joint spring `K = EA / l`, dashpot `eta / l` and
@@ -351,6 +380,7 @@ mod tests {
             "chain.axial_stiffness" => p.axial_stiffness = Some(x),
             "chain.axial_damping" => p.axial_damping = x,
             "chain.bending_stiffness" => p.bending_stiffness = x,
+            "chain.tip_mass" => p.tip_mass = x,
             _ => p.damping = x,
         }
         p
@@ -376,6 +406,9 @@ mod tests {
             ("chain.bending_stiffness", -1e-3),
             ("chain.bending_stiffness", f64::NAN),
             ("chain.bending_stiffness", f64::INFINITY),
+            ("chain.tip_mass", -0.1),
+            ("chain.tip_mass", f64::NAN),
+            ("chain.tip_mass", f64::INFINITY),
         ];
         for (field, x) in bad {
             let e = Chain::new(with(field, x)).unwrap_err();
@@ -385,6 +418,13 @@ mod tests {
         }
         assert!(Chain::report(50, 5e-4).is_ok());
         assert!(Chain::new(ChainParams::default()).is_ok());
+        // A tip mass needs rigid links: refused, by name, on an elastic chain.
+        let mut p = with("chain.tip_mass", 0.5);
+        assert!(Chain::new(p.clone()).is_ok());
+        p.axial_stiffness = Some(1e4);
+        let e = Chain::new(p).unwrap_err();
+        assert_eq!(e.field, "chain.tip_mass");
+        assert!(!e.to_string().contains('\n'));
     }
 
     /// The refinement carries every field: each is set to a value no
@@ -402,6 +442,7 @@ mod tests {
             axial_stiffness: Some(2.5e4),
             axial_damping: 0.7,
             bending_stiffness: 0.03,
+            tip_mass: 0.0,
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -415,7 +456,10 @@ mod tests {
             axial_stiffness,
             axial_damping,
             bending_stiffness,
+            tip_mass,
         } = refined.params().clone();
+        // The tip mass is a point mass: carried.
+        assert_eq!(tip_mass.to_bits(), given.tip_mass.to_bits());
         // Carried as they are.
         assert_eq!(length.to_bits(), given.length.to_bits());
         assert_eq!(gravity.to_bits(), given.gravity.to_bits());

@@ -16,6 +16,11 @@
 //! 0 = -f_{i-1} + 2 f_i - f_{i+1} - h_{i-1} - h_i      (i >= 1)      rod i minus rod i-1
 //! ```
 //!
+//! A tip mass `mu = M_t / m` at the free end makes `f_n` nonzero: its
+//! balance `mu a_n = f_n - mu (0, g/l)` less rod `n`'s (`a_n - c_n''/l = h_n`)
+//! gives `f_n = tip (f_{n-1} + h_{n-1})` (0-based rods), `tip = mu / (1 + mu)`,
+//! which is substituted in the last rod's two rows: the unknowns stay the same.
+//!
 //! The last line is the difference of the translational balances of two
 //! neighbours (`m c_i'' = F_i - F_{i+1} + m g`), in which the joint
 //! accelerations cancel: `c_i'' - c_{i-1}'' = l (h_{i-1} + h_i)`. The mass
@@ -47,6 +52,10 @@ pub struct ChainDae {
     gamma: f64,
     /// `kappa = EI / (l m l^2)` (1/time^2), the bending springs.
     kappa: f64,
+    /// The tip mass in rod masses, `mu = M_t / m`.
+    mu: f64,
+    /// `mu / (1 + mu)`: the tip mass's force on its joint, `f_n = tip (f_{n-1} + h_{n-1})`.
+    tip: f64,
 }
 
 impl ChainDae {
@@ -58,6 +67,8 @@ impl ChainDae {
             gl: chain.gravity_rate(),
             gamma: chain.damping_rate(),
             kappa: chain.bending_rate(),
+            mu: chain.tip_mass_ratio(),
+            tip: chain.tip_mass_ratio() / (1.0 + chain.tip_mass_ratio()),
         }
     }
 
@@ -113,8 +124,13 @@ impl ChainDae {
             ax += 2.0 * hx;
             ay += 2.0 * hy;
         }
-        // Backward: f_i = f_{i+1} + c_i'' / l - (0, -g/l), with f_n = 0.
-        let (mut fx, mut fy) = (0.0, 0.0);
+        // Backward: f_i = f_{i+1} + c_i'' / l - (0, -g/l), with f_n = 0, or
+        // `mu (a_n + (0, g/l))` that the tip mass needs (a_n = (ax, ay)).
+        let (mut fx, mut fy) = if self.mu != 0.0 {
+            (self.mu * ax, self.mu * (ay + self.gl))
+        } else {
+            (0.0, 0.0)
+        };
         for i in (0..n).rev() {
             fx += f[2 * i];
             fy += f[2 * i + 1] + self.gl;
@@ -138,16 +154,19 @@ impl ChainDae {
         for i in 0..n {
             let (s, c) = sin_cos(phi[i]);
             let (fx, fy) = (f[2 * i], f[2 * i + 1]);
-            let (gx, gy) = if i + 1 < n {
-                (f[2 * i + 2], f[2 * i + 3])
-            } else {
-                (0.0, 0.0)
-            };
             let w2 = w[i] * w[i];
             let (hx, hy) = (
                 0.5 * (-alpha[i] * s - w2 * c),
                 0.5 * (alpha[i] * c - w2 * s),
             );
+            let (gx, gy) = if i + 1 < n {
+                (f[2 * i + 2], f[2 * i + 3])
+            } else if self.tip != 0.0 {
+                // The tip mass's joint: `f_n = tip (f_{n-1} + h_{n-1})`.
+                (self.tip * (fx + hx), self.tip * (fy + hy))
+            } else {
+                (0.0, 0.0)
+            };
             moment[i] = -alpha[i] / 12.0 - 0.5 * (-s * (fx + gx) + c * (fy + gy))
                 + self.gamma * damping_stencil(w, i);
             if self.kappa != 0.0 {
@@ -191,9 +210,14 @@ impl ChainDae {
         for i in 0..n {
             let (s, c) = sin_cos(phi[i]);
             let w2 = w[i] * w[i];
+            // The tip mass enters the last rod's rows through
+            // `f_n = tip (f_i + h_i)`: `f_i` and `h_i` weigh `1 + tip` there.
+            let tipped = i + 1 == n && self.tip != 0.0;
             // Moment of rod i.
             let (sx, sy) = if i + 1 < n {
                 (f[2 * i] + f[2 * i + 2], f[2 * i + 1] + f[2 * i + 3])
+            } else if tipped {
+                ((1.0 + self.tip) * f[2 * i], (1.0 + self.tip) * f[2 * i + 1])
             } else {
                 (f[2 * i], f[2 * i + 1])
             };
@@ -222,10 +246,17 @@ impl ChainDae {
             if i + 1 < n {
                 emit(m, n + i + 1, self.gamma);
             }
-            emit(m, self.alpha(i), -1.0 / 12.0);
             let k = self.force(i);
-            emit(m, k, 0.5 * s);
-            emit(m, k + 1, -0.5 * c);
+            if tipped {
+                // v_i . h_i = alpha_i / 2.
+                emit(m, self.alpha(i), -1.0 / 12.0 - 0.25 * self.tip);
+                emit(m, k, 0.5 * s * (1.0 + self.tip));
+                emit(m, k + 1, -0.5 * c * (1.0 + self.tip));
+            } else {
+                emit(m, self.alpha(i), -1.0 / 12.0);
+                emit(m, k, 0.5 * s);
+                emit(m, k + 1, -0.5 * c);
+            }
             if i + 1 < n {
                 emit(m, k + 2, 0.5 * s);
                 emit(m, k + 3, -0.5 * c);
@@ -237,6 +268,16 @@ impl ChainDae {
                 let (sj, cj) = if j == i { (s, c) } else { sin_cos(phi[j]) };
                 let wj2 = if j == i { w2 } else { w[j] * w[j] };
                 let a = alpha[j];
+                if tipped && j == i {
+                    let k1 = 1.0 + self.tip;
+                    emit(t, j, k1 * (0.5 * (a * cj - wj2 * sj)));
+                    emit(t + 1, j, k1 * (0.5 * (a * sj + wj2 * cj)));
+                    emit(t, n + j, k1 * (w[j] * cj));
+                    emit(t + 1, n + j, k1 * (w[j] * sj));
+                    emit(t, self.alpha(j), k1 * (0.5 * sj));
+                    emit(t + 1, self.alpha(j), k1 * (-0.5 * cj));
+                    continue;
+                }
                 // d(-h_j)/dphi_j = (alpha u_j + w^2 v_j) / 2.
                 emit(t, j, 0.5 * (a * cj - wj2 * sj));
                 emit(t + 1, j, 0.5 * (a * sj + wj2 * cj));
@@ -253,6 +294,7 @@ impl ChainDae {
                 emit(t + 1, k - 1, -1.0);
             }
             let own = if i == 0 { 1.0 } else { 2.0 };
+            let own = if tipped { own - self.tip } else { own };
             emit(t, k, own);
             emit(t + 1, k + 1, own);
             if i + 1 < n {

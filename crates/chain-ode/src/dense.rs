@@ -9,7 +9,9 @@ use crate::chain::Chain;
 use crate::dynamics::damping_stencil;
 use crate::kinematics::lever_arm;
 
-/// `mt_ij`: `n - i + 1/3` on the diagonal, `n - max(i,j) + 1/2` off it (1-based).
+/// `mt_ij`: `n - i + 1/3` on the diagonal, `n - max(i,j) + 1/2` off it (1-based),
+/// for a chain without a tip mass. A tip mass `mu = M_t / m` adds `mu` to
+/// every entry ([`mt_tip`]).
 pub fn mt(n: usize, i: usize, j: usize) -> f64 {
     // 0-based i, j here: 1-based index k is k0 + 1.
     let k = i.max(j) + 1;
@@ -20,26 +22,41 @@ pub fn mt(n: usize, i: usize, j: usize) -> f64 {
     }
 }
 
-/// The mass matrix `A_ij = mt_ij cos(phi_i - phi_j)` (rod units: `T = m l^2/2 w^T A w`).
+/// `mt_ij + mu`: the tip mass `M_t = mu m` at `r_n = l sum_j u_j` adds
+/// `(M_t l^2 / 2) sum_ij w_i w_j cos(phi_i - phi_j)` to `T` and
+/// `M_t g l sum_i sin phi_i` to `V`.
+pub fn mt_tip(n: usize, i: usize, j: usize, mu: f64) -> f64 {
+    mt(n, i, j) + mu
+}
+
+/// The mass matrix `A_ij = mt_ij cos(phi_i - phi_j)` (rod units:
+/// `T = m l^2/2 w^T A w`) of a chain without a tip mass.
 pub fn mass_matrix(phi: &[f64]) -> Mat<f64> {
+    mass_matrix_with_tip(phi, 0.0)
+}
+
+/// The mass matrix `A_ij = (mt_ij + mu) cos(phi_i - phi_j)` (rod units:
+/// `T = m l^2/2 w^T A w`), `mu = M_t / m` the tip mass.
+pub fn mass_matrix_with_tip(phi: &[f64], mu: f64) -> Mat<f64> {
     let n = phi.len();
-    Mat::from_fn(n, n, |i, j| mt(n, i, j) * (phi[i] - phi[j]).cos())
+    Mat::from_fn(n, n, |i, j| mt_tip(n, i, j, mu) * (phi[i] - phi[j]).cos())
 }
 
 /// The right-hand side
-/// `b_i = -sum_j mt_ij s_ij w_j^2 - (g/l) q_i cos phi_i + gamma D_i(w) + kappa D_i(phi)`
-/// (`kappa = EI / (l m l^2)`, the bending springs).
+/// `b_i = -sum_j (mt_ij + mu) s_ij w_j^2 - (g/l) (q_i + mu) cos phi_i + gamma D_i(w) + kappa D_i(phi)`
+/// (`kappa = EI / (l m l^2)`, the bending springs; `mu = M_t / m`, the tip mass).
 pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
     let n = phi.len();
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
     let kappa = chain.bending_rate();
+    let mu = chain.tip_mass_ratio();
     (0..n)
         .map(|i| {
             let centripetal: f64 = (0..n)
-                .map(|j| mt(n, i, j) * (phi[i] - phi[j]).sin() * w[j] * w[j])
+                .map(|j| mt_tip(n, i, j, mu) * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
-            let q = lever_arm(n, i);
+            let q = lever_arm(n, i) + mu;
             let bending = if kappa != 0.0 {
                 kappa * damping_stencil(phi, i)
             } else {
@@ -54,7 +71,7 @@ pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
 /// symmetric positive definite for finite angles; if the factorisation
 /// fails all the same (a non-finite angle), every entry is NaN.
 pub fn accelerations(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
-    let a = mass_matrix(phi);
+    let a = mass_matrix_with_tip(phi, chain.tip_mass_ratio());
     let b = forcing(chain, phi, w);
     let rhs = Mat::from_fn(b.len(), 1, |i, _| b[i]);
     let Ok(llt) = a.llt(Side::Lower) else {
@@ -66,7 +83,7 @@ pub fn accelerations(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
 
 /// Kinetic energy `T = (m l^2 / 2) w^T A w` from the dense matrix.
 pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    let a = mass_matrix(phi);
+    let a = mass_matrix_with_tip(phi, chain.tip_mass_ratio());
     let n = phi.len();
     let mut q = 0.0;
     for i in 0..n {

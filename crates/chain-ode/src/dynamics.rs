@@ -3,7 +3,8 @@
 //! Each rod `k` sees the rods beyond it (`k+1..n`) as an articulated body whose
 //! reaction at joint `k` is `f_k = M_k a_k + beta_k`: a 2x2 symmetric
 //! "articulated mass" `M_k` times the joint's acceleration, plus a bias.
-//! A backward sweep from the free tip (`M_n = 0`, `beta_n = 0`) builds them; a
+//! A backward sweep from the free tip (`M_n = mu I`, `beta_n = mu (0, g/l)`
+//! for a tip mass `mu = M_t / m`, zero without one) builds them; a
 //! forward sweep from the fixed pivot (`a_0 = 0`) then gives every angular
 //! acceleration. Both sweeps are O(n) and allocate nothing: all per-rod storage
 //! lives in a [`Workspace`]. The sweeps work in rod units (`m = l = 1`, gravity
@@ -101,8 +102,12 @@ pub fn accelerations<T: Scalar>(
     let bend = kappa != 0.0;
     let zero = T::cst(0.0);
     let one = T::cst(1.0);
-    let (mut mxx, mut mxy, mut myy) = (zero, zero, zero);
-    let (mut bx, mut by) = (zero, zero);
+    // The tip mass `mu = M_t / m` is the articulated body beyond the last
+    // rod: `M_n = mu I`, `beta_n = mu (0, g/l)` (zero without one, the
+    // same arithmetic as before).
+    let mu = chain.tip_mass_ratio();
+    let (mut mxx, mut mxy, mut myy) = (T::cst(mu), zero, T::cst(mu));
+    let (mut bx, mut by) = (zero, T::cst(mu * g));
 
     // Independent per-rod work first, so that it overlaps freely.
     T::sin_cos_all(phi, &mut ws.sc);

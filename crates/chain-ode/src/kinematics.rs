@@ -89,14 +89,22 @@ pub fn tip_velocity(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec2 {
     RodSums::of(phi, w).tip_velocity(chain.rod_length())
 }
 
-/// Kinetic energy: `sum_k (m/2)|v_ck|^2 + (J/2) w_k^2`, `J = m l^2 / 12`
-/// (equal to `(m l^2 / 2) w^T A w`).
+/// Kinetic energy: `sum_k (m/2)|v_ck|^2 + (J/2) w_k^2`, `J = m l^2 / 12`,
+/// plus `(M_t / 2) |v_tip|^2` for a tip mass (equal to `(m l^2 / 2) w^T A w`).
 pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    0.5 * chain.mass() * chain.rod_length().powi(2) * RodSums::of(phi, w).twice_kinetic
+    let sums = RodSums::of(phi, w);
+    let t = 0.5 * chain.mass() * chain.rod_length().powi(2) * sums.twice_kinetic;
+    if chain.tip_mass() != 0.0 {
+        let v = sums.tip_velocity(chain.rod_length());
+        t + 0.5 * chain.tip_mass() * (v[0] * v[0] + v[1] * v[1])
+    } else {
+        t
+    }
 }
 
-/// Potential energy `m g l sum_i q_i sin phi_i` ([`lever_arm`] `q_i`), zero
-/// at the height of `P0`.
+/// Potential energy `m g l sum_i q_i sin phi_i` ([`lever_arm`] `q_i`), plus
+/// `M_t g y_tip = M_t g l sum_i sin phi_i` for a tip mass; zero at the
+/// height of `P0`.
 pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
     let n = phi.len();
     let sum: f64 = phi
@@ -104,7 +112,13 @@ pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
         .enumerate()
         .map(|(i, p)| lever_arm(n, i) * p.sin())
         .sum();
-    chain.mass() * chain.gravity() * chain.rod_length() * sum
+    let v = chain.mass() * chain.gravity() * chain.rod_length() * sum;
+    if chain.tip_mass() != 0.0 {
+        let y: f64 = phi.iter().map(|p| p.sin()).sum();
+        v + chain.tip_mass() * chain.gravity() * chain.rod_length() * y
+    } else {
+        v
+    }
 }
 
 /// Energy of the bending springs `U_b = (EI / 2l) sum_{i>=2} (phi_i - phi_{i-1})^2`

@@ -58,6 +58,7 @@ struct ChainSection {
     axial_stiffness: Option<f64>,
     axial_damping: f64,
     bending_stiffness: f64,
+    tip_mass: f64,
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -165,6 +166,7 @@ impl Scene {
             axial_stiffness,
             axial_damping,
             bending_stiffness,
+            tip_mass,
         } = chain;
         let chain = ChainParams {
             length,
@@ -175,6 +177,7 @@ impl Scene {
             axial_stiffness,
             axial_damping,
             bending_stiffness,
+            tip_mass,
         };
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
@@ -278,6 +281,7 @@ impl Scene {
             axial_stiffness,
             axial_damping,
             bending_stiffness,
+            tip_mass,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
@@ -295,6 +299,13 @@ impl Scene {
             ),
         ] {
             overrides::set_path(&mut tree, path, value)?;
+        }
+        // The tip mass is written only when there is one, so that a scene
+        // without it reads as it did before the key existed.
+        if tip_mass != 0.0 {
+            overrides::set_path(&mut tree, "chain.tip_mass", toml::Value::Float(tip_mass))?;
+        } else if let Some(toml::Value::Table(section)) = tree.get_mut("chain") {
+            section.remove("tip_mass");
         }
         // Absent is rigid links: the key goes when the chain has none.
         match axial_stiffness {

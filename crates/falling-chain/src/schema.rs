@@ -232,6 +232,15 @@ pub static KEYS: &[Key] = &[
         out_of_range: Some("-0.01"),
     },
     Key {
+        path: "chain.tip_mass",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.0)),
+        kinds: Kinds::Any,
+        doc: "a point mass `M_t` (mass) at the free end, finite and >= 0; rigid links only (0 with `chain.axial_stiffness`)",
+        example: "1.0",
+        out_of_range: Some("-1"),
+    },
+    Key {
         path: "start.kind",
         ty: Type::OneOf(&StartKind::NAMES),
         default: DefaultValue::Required,

@@ -42,7 +42,15 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     // `T + V` as `kinematics::energy` states it; the products are kept in
     // the order the committed data were made with (`m l l`, then 1/2).
     let ml2 = chain.mass() * l * l;
-    let e = 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v;
+    let mut e = 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v;
+    if chain.tip_mass() != 0.0 {
+        // The tip mass: `(M_t / 2) |v_tip|^2 + M_t g y_tip`, `y_tip = l sum sin phi`
+        // (a second pass, only for a chain that has one).
+        let [vx, vy] = sums.tip_velocity(l);
+        let y_tip: f64 = phi.iter().map(|p| l * p.sin()).sum();
+        e += 0.5 * chain.tip_mass() * (vx * vx + vy * vy)
+            + chain.tip_mass() * chain.gravity() * y_tip;
+    }
     Metrics {
         energy: if chain.bending_spring() != 0.0 {
             e + bending_energy(chain, phi)

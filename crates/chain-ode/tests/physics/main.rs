@@ -20,6 +20,7 @@ mod failures;
 mod methods;
 mod modes;
 mod rk4;
+mod tip_mass;
 mod validation;
 
 use chain_ode::{
