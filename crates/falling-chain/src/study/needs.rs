@@ -34,14 +34,68 @@ pub struct Term {
     pub off: fn(&Scene) -> Result<Scene, Error>,
 }
 
-/// The optional terms, one entry each (elastic links and bending stiffness
-/// join here when the model has them).
-pub const TERMS: &[Term] = &[Term {
-    name: "joint friction",
-    key: "chain.damping",
-    is_on: |s| s.chain_params().damping > 0.0,
-    off: |s| s.with_value("chain.damping", toml::Value::Float(0.0)),
-}];
+/// The optional terms, one entry each: the joint friction, the elastic
+/// links (off: rigid links, `chain.axial_stiffness` absent, so its
+/// `chain.axial_damping` no longer acts) and the bending stiffness (off:
+/// `chain.bending_stiffness = 0`).
+pub const TERMS: &[Term] = &[
+    Term {
+        name: "joint friction",
+        key: "chain.damping",
+        is_on: |s| s.chain_params().damping > 0.0,
+        off: |s| s.with_value("chain.damping", toml::Value::Float(0.0)),
+    },
+    Term {
+        name: "elastic links",
+        key: "chain.axial_stiffness",
+        is_on: |s| s.chain_params().axial_stiffness.is_some(),
+        off: |s| {
+            let mut params = s.chain_params().clone();
+            params.axial_stiffness = None;
+            s.with_chain(&chain_ode::Chain::new(params)?)
+        },
+    },
+    Term {
+        name: "bending stiffness",
+        key: "chain.bending_stiffness",
+        is_on: |s| s.chain_params().bending_stiffness > 0.0,
+        off: |s| s.with_value("chain.bending_stiffness", toml::Value::Float(0.0)),
+    },
+];
+
+/// Whether `term` is needed in `scene` at `n` rods: the run with it off
+/// against `on_level` (the same run with it on, from the ladder), both with
+/// the ladder's method at `rtol`. Needed when the tip path (relative to the
+/// length) or the maximum tip speed moves by `tol` or more; a term the scene
+/// leaves off is not run (`needed: None`), nor is one whose off run fails.
+pub fn judge_term(
+    term: &Term,
+    scene: &Scene,
+    n: usize,
+    on_level: &Level,
+    tol: f64,
+    rtol: f64,
+) -> Result<TermNeed, Error> {
+    let on = (term.is_on)(scene);
+    let mut need = TermNeed {
+        term: term.name,
+        key: term.key,
+        on,
+        tip_path: None,
+        tip_speed_max: None,
+        needed: None,
+    };
+    if on {
+        let off = converge::run_level(&(term.off)(scene)?, n, Some(LADDER_METHOD), Some(rtol))?;
+        if off.summary.is_ok() {
+            let d = Deviation::between(&off, on_level);
+            need.tip_path = Some(d.tip_path);
+            need.tip_speed_max = Some(d.tip_speed_max);
+            need.needed = Some(d.tip_path >= tol || d.tip_speed_max >= tol);
+        }
+    }
+    Ok(need)
+}
 
 /// The ladder's method and its tolerance for `tol`: `auto` (the fine
 /// levels are stiff: the damping rate grows like `n^4`) at
@@ -275,24 +329,7 @@ pub fn run(
         .ok_or_else(|| Error::field("--links", "the adequate n is not a level of the ladder"))?;
     for (k, term) in TERMS.iter().enumerate() {
         progress("terms", k, TERMS.len());
-        let on = (term.is_on)(scene);
-        let mut need = TermNeed {
-            term: term.name,
-            key: term.key,
-            on,
-            tip_path: None,
-            tip_speed_max: None,
-            needed: None,
-        };
-        if on {
-            let off = converge::run_level(&(term.off)(scene)?, n, Some(LADDER_METHOD), Some(rtol))?;
-            if off.summary.is_ok() {
-                let d = Deviation::between(&off, on_level);
-                need.tip_path = Some(d.tip_path);
-                need.tip_speed_max = Some(d.tip_speed_max);
-                need.needed = Some(d.tip_path >= tol || d.tip_speed_max >= tol);
-            }
-        }
+        let need = judge_term(term, scene, n, on_level, tol, rtol)?;
         needs.terms.push(need);
     }
     progress("terms", TERMS.len(), TERMS.len());
@@ -406,5 +443,88 @@ impl std::fmt::Display for Needs {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A folded chain of 10 rods for 1 time unit (before its snap), with
+    /// `extra` chain keys (the joint friction at its default).
+    fn folded(extra: &str) -> Scene {
+        let text = format!(
+            "[chain]\nlength = 6.0\nlinks = 10\nmass = 0.2\n{extra}\n\
+             [start]\nkind = \"folded\"\ndown = 5\n[run]\nt_end = 1.0\noutput_dt = 0.05\n"
+        );
+        Scene::from_toml_str(&text).unwrap()
+    }
+
+    fn term(key: &str) -> &'static Term {
+        TERMS.iter().find(|t| t.key == key).unwrap()
+    }
+
+    /// The term's judgement for `scene` at `tol = 1e-3`.
+    fn judge(key: &str, scene: &Scene) -> TermNeed {
+        let tol = 1e-3;
+        let rtol = ladder_rtol(tol);
+        let on = converge::run_level(scene, 10, Some(LADDER_METHOD), Some(rtol)).unwrap();
+        judge_term(term(key), scene, 10, &on, tol, rtol).unwrap()
+    }
+
+    /// Every term's `off` scene has it off, and keeps the chain otherwise.
+    #[test]
+    fn each_term_switches_off() {
+        let s = folded(
+            "damping = 0.01\naxial_stiffness = 1e4\naxial_damping = 0.5\nbending_stiffness = 0.1",
+        );
+        assert_eq!(TERMS.len(), 3);
+        for t in TERMS {
+            assert!((t.is_on)(&s), "{}", t.key);
+            let off = (t.off)(&s).unwrap();
+            assert!(!(t.is_on)(&off), "{}", t.key);
+            for u in TERMS.iter().filter(|u| u.key != t.key) {
+                assert!((u.is_on)(&off), "{} lost {}", t.key, u.key);
+            }
+        }
+    }
+
+    /// Soft links (EA = 10 stretch a chain of weight 2 by about 20%) are
+    /// needed; stiff ones (EA = 1e7: a stretch of about 2e-7, the rigid
+    /// limit) are not. A judgement that ignored the links, or inverted the
+    /// test, fails one of the two.
+    #[test]
+    fn elastic_links_judged_by_their_stretch() {
+        let soft = judge(
+            "chain.axial_stiffness",
+            &folded("axial_stiffness = 10.0\naxial_damping = 1.0"),
+        );
+        assert_eq!(soft.needed, Some(true), "{soft:?}");
+        assert!(soft.tip_path.unwrap() > 1e-2, "{soft:?}");
+        let stiff = judge(
+            "chain.axial_stiffness",
+            &folded("axial_stiffness = 1e7\naxial_damping = 1.0"),
+        );
+        assert_eq!(stiff.needed, Some(false), "{stiff:?}");
+        assert!(stiff.tip_path.unwrap() < 1e-4, "{stiff:?}");
+        let rigid = judge("chain.axial_stiffness", &folded(""));
+        assert_eq!((rigid.on, rigid.needed), (false, None));
+    }
+
+    /// A stiff rope (EI = 1: the bending length (EI / (mu g))^(1/3) = 1.8
+    /// is a third of the chain) is needed; EI = 1e-9 (a bending length of
+    /// 3e-3, far below a rod) is not.
+    #[test]
+    fn bending_judged_by_its_bending_length() {
+        let stiff = judge(
+            "chain.bending_stiffness",
+            &folded("bending_stiffness = 1.0"),
+        );
+        assert_eq!(stiff.needed, Some(true), "{stiff:?}");
+        let weak = judge(
+            "chain.bending_stiffness",
+            &folded("bending_stiffness = 1e-9"),
+        );
+        assert_eq!(weak.needed, Some(false), "{weak:?}");
     }
 }
