@@ -594,6 +594,32 @@ pub fn run_lines(
             let mut done: Vec<(f64, f64)> = vec![];
             let mut floor = false;
             let xs = params(method);
+            // One run of the line at `x` within the budget: its point, or
+            // `Err(t_reached)` if the deadline stopped it. A completed
+            // point joins `done` and tells whether `stop` fired.
+            let run_at = |x: f64,
+                          done: &mut Vec<(f64, f64)>,
+                          floor: &mut bool|
+             -> Result<Result<Point, f64>, Error> {
+                let mut o = options_for(p, method, x);
+                o.cancel = Some(budget.cancel().clone());
+                let t = solve(&p.chain, &p.state, method, &o)?;
+                if t.status == chain_ode::Status::Interrupted {
+                    return Ok(Err(t.t_reached));
+                }
+                let pt = Point::from_run(
+                    method.as_str().into(),
+                    method.accuracy_name(),
+                    x,
+                    &t,
+                    reference,
+                );
+                if pt.ok() {
+                    done.push((x, t.summary.wall_seconds));
+                    *floor = stop(&pt);
+                }
+                Ok(Ok(pt))
+            };
             for (k, &x) in xs.iter().enumerate() {
                 let run = start + k;
                 if !take(run) {
@@ -604,22 +630,7 @@ pub fn run_lines(
                     // records nothing of it but the rule's answer.
                     let finer_own = (k + 1..xs.len()).any(|j| take(start + j));
                     if rk4 && !floor && finer_own && budget.fits(predict(rk4, x, &done)) {
-                        let mut o = options_for(p, method, x);
-                        o.cancel = Some(budget.cancel().clone());
-                        let t = solve(&p.chain, &p.state, method, &o)?;
-                        if t.status != chain_ode::Status::Interrupted {
-                            let pt = Point::from_run(
-                                method.as_str().into(),
-                                method.accuracy_name(),
-                                x,
-                                &t,
-                                reference,
-                            );
-                            if pt.ok() {
-                                done.push((x, t.summary.wall_seconds));
-                                floor = stop(&pt);
-                            }
-                        }
+                        run_at(x, &mut done, &mut floor)?.ok();
                     }
                     continue;
                 }
@@ -631,31 +642,18 @@ pub fn run_lines(
                     Plan::Run
                 };
                 let mut pt = if plan == Plan::Run {
-                    let mut o = options_for(p, method, x);
-                    o.cancel = Some(budget.cancel().clone());
                     let started = Instant::now();
-                    let t = solve(&p.chain, &p.state, method, &o)?;
-                    if t.status == chain_ode::Status::Interrupted {
-                        let mut pt = Point::not_run(method, x, Plan::Budget, String::new());
-                        pt.note = format!(
-                            "budget: stopped at t = {} after {:.1} s",
-                            num(t.t_reached),
-                            started.elapsed().as_secs_f64()
-                        );
-                        pt
-                    } else {
-                        let pt = Point::from_run(
-                            method.as_str().into(),
-                            method.accuracy_name(),
-                            x,
-                            &t,
-                            reference,
-                        );
-                        if pt.ok() {
-                            done.push((x, t.summary.wall_seconds));
-                            floor = stop(&pt);
+                    match run_at(x, &mut done, &mut floor)? {
+                        Ok(pt) => pt,
+                        Err(t_reached) => {
+                            let mut pt = Point::not_run(method, x, Plan::Budget, String::new());
+                            pt.note = format!(
+                                "budget: stopped at t = {} after {:.1} s",
+                                num(t_reached),
+                                started.elapsed().as_secs_f64()
+                            );
+                            pt
                         }
-                        pt
                     }
                 } else {
                     Point::not_run(method, x, plan, String::new())
