@@ -12,6 +12,7 @@
 mod ctx;
 mod data;
 mod paper;
+mod pdf;
 mod registry;
 mod report;
 mod runs;
@@ -34,7 +35,7 @@ use registry::{Figure, Timing, FIGURES};
 
 const USAGE: &str =
     "usage: cargo xtask figures [--only ID...] [--no-anim] [--draw-only | --timings]
-       cargo xtask paper [--check]
+       cargo xtask paper [--check | --pdf]
 
   figures              compute every figure's data into figures/data/ (reading the
                        committed wall times, never rewriting them), draw every figure
@@ -49,7 +50,10 @@ const USAGE: &str =
                        (figures/data/*-timing.csv, machine-timing.csv, and with no
                        --only run-timing.csv)
   paper [--check]      fill paper/paper.tmpl.md from figures/data/; --check fails
-                       if paper/paper.md is stale";
+                       if paper/paper.md is stale
+  paper --pdf          fill the paper, then typeset paper/*.md as paper/*.pdf with
+                       pandoc and headless Chromium (apt-get install pandoc chromium);
+                       the PDFs are not committed";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -337,6 +341,9 @@ fn main() -> ExitCode {
         Some("paper") => match &args[1..] {
             [] => paper::run(&root(), false),
             [c] if c == "--check" => paper::run(&root(), true),
+            [c] if c == "--pdf" => {
+                paper::run(&root(), false).and_then(|()| pdf::build(&root()).map(|_| ()))
+            }
             _ => Err(USAGE.to_string()),
         },
         Some("scene-keys") => match &args[1..] {

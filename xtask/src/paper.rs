@@ -191,12 +191,24 @@ pub fn missing_links(paper: &str, paper_dir: &Path) -> Vec<String> {
         .collect()
 }
 
+/// The template without its leading comment (`<!-- ... -->`, a note to
+/// the template's editors that the generated paper must not carry).
+fn source(template: &str) -> &str {
+    match template
+        .strip_prefix("<!--")
+        .and_then(|rest| rest.split_once("-->"))
+    {
+        Some((_, body)) => body.trim_start_matches(['\r', '\n']),
+        None => template,
+    }
+}
+
 /// `cargo xtask paper [--check]`.
 pub fn run(root: &Path, check: bool) -> Result<(), String> {
     let dir = root.join("paper");
     let template = fs::read_to_string(dir.join("paper.tmpl.md"))
         .map_err(|e| format!("paper/paper.tmpl.md: {e}"))?;
-    let text = render(&template, &root.join("figures").join("data"))?;
+    let text = render(source(&template), &root.join("figures").join("data"))?;
     let missing = missing_links(&text, &dir);
     if !missing.is_empty() {
         return Err(format!(
@@ -243,5 +255,11 @@ mod tests {
             .contains("2 rows"));
         assert!(render("{{b.csv:*:x:s3}}", &dir).is_err());
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_generated_paper_drops_the_template_note() {
+        assert_eq!(source("<!-- note\n -->\n# Title\ntext"), "# Title\ntext");
+        assert_eq!(source("# Title\n<!-- kept -->"), "# Title\n<!-- kept -->");
     }
 }

@@ -221,6 +221,29 @@ impl Browser {
         base64::decode(data).ok_or_else(|| "Page.captureScreenshot: bad base64".to_string())
     }
 
+    /// The page printed to PDF: A4 portrait, margins of 18 mm (0.7 in),
+    /// backgrounds printed, the page's own `@page` rules honoured, no
+    /// browser header or footer.
+    pub fn print_pdf(&mut self) -> Result<Vec<u8>, String> {
+        let pdf = self.call(
+            "Page.printToPDF",
+            json!({
+                "paperWidth": 8.27, "paperHeight": 11.69,
+                "marginTop": 0.7, "marginBottom": 0.7,
+                "marginLeft": 0.7, "marginRight": 0.7,
+                "printBackground": true, "preferCSSPageSize": true,
+                "displayHeaderFooter": false,
+            }),
+        )?;
+        let data = pdf["data"].as_str().ok_or("Page.printToPDF gave no data")?;
+        let bytes =
+            base64::decode(data).ok_or_else(|| "Page.printToPDF: bad base64".to_string())?;
+        if !bytes.starts_with(b"%PDF-") {
+            return Err("Page.printToPDF: the answer is not a PDF".into());
+        }
+        Ok(bytes)
+    }
+
     /// Every console error, failed `console.assert`, uncaught exception and
     /// browser log entry of level error seen so far, one line each.
     pub fn errors(&mut self) -> Vec<String> {
