@@ -288,4 +288,56 @@ mod tests {
             );
         }
     }
+
+    /// `y' = lambda y` for a complex `lambda = a + i b`, as a real 2-vector.
+    struct Linear {
+        a: f64,
+        b: f64,
+    }
+
+    impl crate::ode::OdeSystem for Linear {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = self.a * y[0] - self.b * y[1];
+            dy[1] = self.b * y[0] + self.a * y[1];
+        }
+        fn jvp(&mut self, t: f64, _y: &[f64], v: &[f64], jv: &mut [f64]) {
+            self.rhs(t, v, jv);
+        }
+    }
+
+    /// `|R(h lambda)|`: the growth of one step of `h` on `y' = lambda y`.
+    fn growth(lambda: (f64, f64), h: f64) -> f64 {
+        let mut sys = Linear {
+            a: lambda.0,
+            b: lambda.1,
+        };
+        let y = [1.0, 0.0];
+        let mut k = vec![vec![0.0; 2]; 7];
+        crate::ode::OdeSystem::rhs(&mut sys, 0.0, &y, &mut k[0]);
+        let (mut ys, mut y1, mut err) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+        attempt(&mut sys, 0.0, h, h, &y, &mut k, &mut ys, &mut y1, &mut err);
+        y1[0].hypot(y1[1])
+    }
+
+    /// Where DOPRI5 is stable, from its own steps: `R(z) = sum_{k<=5} z^k/k!
+    /// + z^6/600`. On the negative real axis to `z = -3.307`; on the
+    /// imaginary axis only to `|z| = 0.997`, so an undamped oscillation of
+    /// frequency `omega` holds the step below about `1/omega`, not `3.3 /
+    /// omega`; and a lightly damped mode such as the chain's
+    /// `lambda = -24 + 1117 i` (n = 800, `docs/model.md`) to `h |lambda| =
+    /// 2.10`. A wrong tableau moves these limits.
+    #[test]
+    fn the_stability_limits_on_the_real_and_imaginary_axes() {
+        assert!(growth((-1.0, 0.0), 3.30) <= 1.0);
+        assert!(growth((-1.0, 0.0), 3.31) > 1.0);
+        assert!(growth((0.0, 1.0), 0.99) <= 1.0);
+        assert!(growth((0.0, 1.0), 1.0) > 1.0);
+        let lambda = (-24.0, 1117.0);
+        let size = f64::hypot(lambda.0, lambda.1);
+        assert!(growth(lambda, 2.09 / size) <= 1.0);
+        assert!(growth(lambda, 2.12 / size) > 1.0);
+    }
 }
