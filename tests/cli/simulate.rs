@@ -14,10 +14,10 @@ fn simulate_json_keeps_the_contract_and_balances_energy() {
         assert!(v.get(key).is_some(), "missing '{key}' in {v}");
     }
     assert_eq!(v["status"], "ok");
-    assert_eq!(v["method"], "rk4");
+    assert_eq!(v["method"], "dopri5");
     assert_eq!(v["links"], 50);
     assert_eq!(num(&v, "t_reached"), 0.5);
-    assert!(v["steps"].as_u64().unwrap() >= 50, "dt = 0.01 over 0.5");
+    assert!(v["steps"].as_u64().unwrap() >= 1);
     // Energy: E(0) + 0 = E(t) + W up to the reported balance error, which is
     // small against M g L = n m g L.
     let scale = 50.0 * 0.2 * 1.0 * 6.0;

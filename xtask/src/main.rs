@@ -15,6 +15,7 @@ mod paper;
 mod pdf;
 mod registry;
 mod report;
+mod report_accuracy;
 mod runs;
 mod study;
 mod timing;

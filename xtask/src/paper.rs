@@ -5,7 +5,8 @@
 //! - `FILE`: a CSV in `figures/data/` (`scenes.csv`); wall times only from
 //!   the timing files (`*-timing.csv`, with `machine-timing.csv`);
 //! - `FILTER`: `*`, or `col=value` conditions joined by `&`;
-//! - `EXPR`: `col` (the one matching row's cell), `min(col)`, `max(col)`,
+//! - `EXPR`: `col` (the one matching row's cell), `min(col)`, `max(col)`
+//!   (over the rows whose cell is not empty),
 //!   `maxabs(col)`, `at_max(col,other)` / `at_min(col,other)` (`other` in the row where
 //!   `col` is largest / smallest), `count`, `ratio(a,b)` (`a / b` in the one
 //!   matching row);
@@ -117,13 +118,15 @@ fn evaluate(
     let extreme = |largest: bool| -> Result<&Vec<String>, String> {
         let c = col(t, args[0])?;
         let mut best: Option<(f64, &Vec<String>)> = None;
-        for r in &rows {
+        // Empty cells (a failed run's) take no part.
+        for r in rows.iter().filter(|r| !r[c].is_empty()) {
             let x = num(&r[c])?;
             if best.is_none_or(|(b, _)| if largest { x > b } else { x < b }) {
                 best = Some((x, r));
             }
         }
-        Ok(best.expect("rows is not empty").1)
+        best.map(|b| b.1)
+            .ok_or_else(|| format!("no number in '{}'", args[0]))
     };
     let text = match (name, args.len()) {
         ("", 1) => value(one()?, args[0])?,

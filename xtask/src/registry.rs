@@ -315,6 +315,15 @@ pub static FIGURES: &[Figure] = &[
         make: &study::validation_energy::EnergyBudget,
     },
     Figure {
+        id: "report-scenes-accuracy",
+        report: None,
+        what: "each report scene by RK4 at dt = 0.01 .. 0.00125 and at its own settings, \
+               against DOP853 at rtol 1e-12: is each report figure converged?",
+        data: &["report-scenes-accuracy.csv"],
+        timing: Timing::None,
+        make: &crate::report_accuracy::ReportAccuracy,
+    },
+    Figure {
         id: "normal-modes",
         report: None,
         what: "lowest five frequencies of the linearised hanging chain vs n against \
