@@ -91,6 +91,8 @@ fn plot_and_animate_of_a_failed_run_exit_1_and_still_draw_it() {
             "chain.damping=0.1",
             "--set",
             "run.t_end=1",
+            "--set",
+            "run.method=rk4",
         ]);
         let out = run(&all);
         assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));

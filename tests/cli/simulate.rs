@@ -398,6 +398,8 @@ fn a_diverging_run_exits_1_and_still_writes_what_it_computed() {
         &span,
         "--set",
         "chain.damping=0.1",
+        "--method",
+        "rk4",
         "--dt",
         "0.01",
         "--t-end",

@@ -125,6 +125,8 @@ fn a_sweep_with_a_failed_run_exits_1_and_still_writes_every_row() {
         "chain.damping=0.0005,0.1",
         "--set",
         "run.t_end=1",
+        "--set",
+        "run.method=rk4",
         "--quiet",
         "--out",
         path.to_str().unwrap(),
