@@ -322,13 +322,14 @@ mod tests {
         y1[0].hypot(y1[1])
     }
 
-    /// Where DOPRI5 is stable, from its own steps: `R(z) = sum_{k<=5} z^k/k!
-    /// + z^6/600`. On the negative real axis to `z = -3.307`; on the
-    /// imaginary axis only to `|z| = 0.997`, so an undamped oscillation of
-    /// frequency `omega` holds the step below about `1/omega`, not `3.3 /
-    /// omega`; and a lightly damped mode such as the chain's
-    /// `lambda = -24 + 1117 i` (n = 800, `docs/model.md`) to `h |lambda| =
-    /// 2.10`. A wrong tableau moves these limits.
+    /// Where DOPRI5 is stable, from its own steps. Its stability function
+    /// is `R(z) = 1 + z + ... + z^5/120 + z^6/600`: stable on the negative
+    /// real axis to `z = -3.307`, on the imaginary axis only to
+    /// `|z| = 0.997`. So an undamped oscillation of frequency `omega` holds
+    /// the step below about `1/omega`, not `3.3/omega`; a lightly damped
+    /// mode such as the chain's `lambda = -24 + 1117 i` (n = 800,
+    /// `docs/model.md`) holds it to `h |lambda| = 2.10`. A wrong tableau
+    /// moves these limits.
     #[test]
     fn the_stability_limits_on_the_real_and_imaginary_axes() {
         assert!(growth((-1.0, 0.0), 3.30) <= 1.0);
