@@ -22,6 +22,7 @@ pub mod plot;
 pub mod precision;
 pub mod shard;
 pub mod stability;
+pub mod table;
 
 use chain_ode::Method;
 
