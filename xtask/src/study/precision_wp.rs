@@ -4,25 +4,21 @@
 //! evaluations of each method, relative to a reference computed far tighter
 //! than any plotted point and confirmed by two other methods.
 //!
-//! Which points a line runs is decided by their cost (see [`sweep`]), and
+//! Which points a line runs is decided by their cost (see `falling_chain::study::plan`), and
 //! so by wall times: `--timings` measures them and records the decision,
 //! the plan, with the wall times in `<id>-timing.csv`; without it the
 //! points of the recorded plan are run once each, untimed and in parallel,
 //! so that `<id>.csv` (steps, evaluations, errors: no wall time) is the
 //! same to the byte whenever the physics is.
 
-use std::fmt::Write as _;
-
-use chain_ode::Method;
 use falling_chain::study::divergence::{self, divergence};
 use falling_chain::study::plot;
-use falling_chain::study::precision::{self, params, Checks, Plan, Point, Reference};
+use falling_chain::study::precision::{self, Checks};
+use falling_chain::study::plan;
 use falling_chain::Prepared;
 
 use crate::ctx::Ctx;
-use crate::data::{exp, exp_digits, text};
 use crate::registry::{Figure, Make};
-use crate::timing::median;
 
 /// Where a work-precision figure evaluates its errors.
 pub enum Eval {
@@ -122,39 +118,6 @@ impl Make for Spec {
     }
 }
 
-/// Every line as the plan in `<id>-timing.csv` says, each point run once,
-/// untimed, in parallel.
-fn planned(
-    ctx: &Ctx,
-    fig: &Figure,
-    p: &Prepared,
-    reference: &Reference,
-) -> Result<Vec<Point>, String> {
-    let file = format!("{}-timing.csv", fig.id);
-    let t = ctx.read(&file)?;
-    let (method, param, plan) = (t.strs("method")?, t.strs("param")?, t.strs("plan")?);
-    let mut jobs = vec![];
-    for m in Method::ALL {
-        for &x in params(m) {
-            let k = (0..t.len())
-                .find(|&k| method[k] == m.as_str() && param[k] == exp(x))
-                .ok_or_else(|| {
-                    format!(
-                        "figures/data/{file} has no plan for {m} at {} {}: run \
-                         `cargo xtask figures --only {} --timings`",
-                        m.accuracy_name(),
-                        exp(x),
-                        fig.id
-                    )
-                })?;
-            jobs.push((m, x, Plan::parse(plan[k])?));
-        }
-    }
-    ctx.pool()?
-        .install(|| precision::run_planned(p, &jobs, reference))
-        .map_err(|e| e.to_string())
-}
-
 fn study(
     ctx: &Ctx,
     fig: &Figure,
@@ -166,52 +129,27 @@ fn study(
         check_dt: spec.check_dt,
         richardson: spec.richardson,
     };
-    let (reference, mut rows) =
-        precision::reference(&p, t_eval, checks).map_err(|e| e.to_string())?;
-    let Some(reference) = reference else {
-        return Err(format!(
-            "{}: the reference run ended {}",
-            fig.id, rows[0].status
-        ));
-    };
     // The lines: timed, or as the timing file's plan says.
-    if ctx.timings {
-        for method in Method::ALL {
-            rows.extend(precision::timed_line(&p, method, &reference).map_err(|e| e.to_string())?);
-        }
-        precision::repeat_interleaved(&p, &mut rows).map_err(|e| e.to_string())?;
+    let jobs = if ctx.timings {
+        None
     } else {
-        rows.extend(planned(ctx, fig, &p, &reference)?);
-    }
+        let timing = ctx.read(&format!("{}-timing.csv", fig.id))?;
+        Some(plan::plan_of(&timing).map_err(|e| {
+            format!(
+                "figures/data/{e}: run `cargo xtask figures --only {} --timings`",
+                fig.id
+            )
+        })?)
+    };
+    let (reference, rows) = ctx
+        .pool()?
+        .install(|| plan::rows(&p, t_eval, checks, jobs.as_deref()))
+        .map_err(|e| format!("{}: {e}", fig.id))?;
     let csv = precision::csv_text(spec.scene, t_eval, &reference, &rows, None);
     let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
     if ctx.timings {
-        files.push(write_timing(ctx, fig, &rows)?);
+        let timing = plan::timing_text(&rows);
+        files.push(ctx.write(&format!("{}-timing.csv", fig.id), &timing)?);
     }
     Ok(files)
 }
-
-/// `<id>-timing.csv`: the plan, and the median wall time of each run.
-fn write_timing(ctx: &Ctx, fig: &Figure, rows: &[Point]) -> Result<String, String> {
-    let mut csv = String::from("method,param_name,param,plan,repeats,wall_median,note\n");
-    for pt in rows {
-        let wall = if pt.walls.is_empty() {
-            String::new()
-        } else {
-            exp_digits(median(&mut pt.walls.clone()), 3)
-        };
-        writeln!(
-            csv,
-            "{},{},{},{},{},{wall},{}",
-            pt.method,
-            pt.param_name,
-            exp(pt.param),
-            pt.plan.as_str(),
-            pt.walls.len(),
-            text(&pt.timing_note)
-        )
-        .unwrap();
-    }
-    ctx.write(&format!("{}-timing.csv", fig.id), &csv)
-}
-

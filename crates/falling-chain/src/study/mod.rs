@@ -18,6 +18,7 @@ pub mod divergence;
 pub mod format;
 pub mod matched;
 pub mod needs;
+pub mod plan;
 pub mod plot;
 pub mod precision;
 pub mod shard;
