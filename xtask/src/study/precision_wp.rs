@@ -12,9 +12,9 @@
 //! same to the byte whenever the physics is.
 
 use falling_chain::study::divergence::{self, divergence};
+use falling_chain::study::plan;
 use falling_chain::study::plot;
 use falling_chain::study::precision::{self, Checks};
-use falling_chain::study::plan;
 use falling_chain::Prepared;
 
 use crate::ctx::Ctx;

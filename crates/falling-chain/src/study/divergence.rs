@@ -8,9 +8,9 @@ use chain_ode::kinematics::tip;
 use chain_ode::{solve, Method};
 
 use super::precision::reference_options;
+use super::table::Table;
 use crate::error::Error;
 use crate::scene::Prepared;
-use super::table::Table;
 
 /// Size of the perturbation of the initial angles in the divergence test.
 pub const PERTURBATION: f64 = 1e-10;
@@ -103,7 +103,11 @@ pub fn note(t: &Table) -> Result<String, String> {
             .map(|k| (time[k], sep[k]))
             .collect();
         match separation(&curve) {
-            Some(k) => format!("×{} by t = {:.2}", super::format::short_err(AMPLIFICATION_MAX), curve[k].0),
+            Some(k) => format!(
+                "×{} by t = {:.2}",
+                super::format::short_err(AMPLIFICATION_MAX),
+                curve[k].0
+            ),
             None => format!(
                 "×{:.0}",
                 curve.iter().map(|c| c.1).fold(0.0, f64::max) / PERTURBATION
@@ -120,4 +124,3 @@ pub fn note(t: &Table) -> Result<String, String> {
         _ => Err(format!("{}: expected two dampings", t.name)),
     }
 }
-

@@ -15,6 +15,7 @@
 pub mod budget;
 pub mod convergence;
 pub mod divergence;
+pub mod folded;
 pub mod format;
 pub mod matched;
 pub mod needs;

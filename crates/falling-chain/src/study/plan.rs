@@ -58,9 +58,9 @@ pub fn rows(
             }
             precision::repeat_interleaved(p, &mut rows).map_err(|e| e.to_string())?;
         }
-        Some(jobs) => rows.extend(
-            precision::run_planned(p, jobs, &reference).map_err(|e| e.to_string())?,
-        ),
+        Some(jobs) => {
+            rows.extend(precision::run_planned(p, jobs, &reference).map_err(|e| e.to_string())?)
+        }
     }
     Ok((reference, rows))
 }

@@ -274,9 +274,8 @@ pub fn work_precision(
     }
     text.extend(notes);
     right.annotations = text;
-    let title = format!(
-        "Work-precision: {label}; error: larger of tip position, max tip speed errors"
-    );
+    let title =
+        format!("Work-precision: {label}; error: larger of tip position, max tip speed errors");
     PlotPair { left, right, title }
 }
 
