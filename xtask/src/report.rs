@@ -3,17 +3,13 @@
 //! the registry, never a copy of code: `compute` takes the shared scene
 //! runs to `figures/data/<id>*.csv`, `draw` draws from those files.
 
-use std::fmt::Write as _;
-
-use catenary::Catenary;
-use falling_chain::converge;
-use falling_chain::render;
-use falling_chain::sweep::{self, Vary};
+use falling_chain::study::report;
 use figures::{ChainSnapshots, LinePlot, Series, Style};
 
 use crate::ctx::Ctx;
-use crate::data::{distinct, fixed, num, Table};
+use crate::data::{distinct, Table};
 use crate::registry::{Figure, Make};
+use crate::runs::SceneRun;
 
 fn title(fig: &Figure, title: &str) -> String {
     format!("{}: {title}", fig.label())
@@ -52,33 +48,7 @@ impl Make for Catenaries {
     /// `<id>.csv`: `kind,length,x,y`, kind `p1`, `curve` (201 points per
     /// length) or `lowest`.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let (l0, l1, count) = self.lengths;
-        let p1 = self.p1;
-        let mut csv = format!("kind,length,x,y\np1,,{},{}\n", num(p1[0]), num(p1[1]));
-        for k in 0..count {
-            let length = l0 + (l1 - l0) * k as f64 / (count - 1) as f64;
-            let c = Catenary::through([0.0, 0.0], p1, length).map_err(|e| e.to_string())?;
-            for i in 0..=200 {
-                let x = p1[0] * i as f64 / 200.0;
-                writeln!(
-                    csv,
-                    "curve,{},{},{}",
-                    num(length),
-                    fixed(x, 6),
-                    fixed(c.y(x), 6)
-                )
-                .unwrap();
-            }
-            let low = c.lowest_point();
-            writeln!(
-                csv,
-                "lowest,{},{},{}",
-                num(length),
-                num(low[0]),
-                num(low[1])
-            )
-            .unwrap();
-        }
+        let csv = report::catenaries(self.p1, self.lengths)?;
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
@@ -138,19 +108,7 @@ impl Make for Snapshots {
     /// then joints `0..=n` of each snapshot (the scene's `output_dt` apart).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let run = ctx.run(self.scene)?;
-        let (p0, p1) = (run.traj.anchor, run.release);
-        let mut csv = format!(
-            "point,t,x,y\nP0,,{},{}\nP1,,{},{}\n",
-            num(p0[0]),
-            num(p0[1]),
-            num(p1[0]),
-            num(p1[1])
-        );
-        for (t, joints) in render::frames(&run.traj, Some(run.snapshot_dt)) {
-            for (i, p) in joints.iter().enumerate() {
-                writeln!(csv, "{i},{},{},{}", num(t), fixed(p[0], 6), fixed(p[1], 6)).unwrap();
-            }
-        }
+        let csv = report::snapshots(&run.as_run(), run.snapshot_dt);
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
@@ -189,25 +147,22 @@ impl Make for Snapshots {
     }
 }
 
-/// `<id>-scenes.csv`: `scene,p1_x,p1_y,t_tip_speed_max,tip_speed_max`, one
-/// row per scene (the legend order).
-fn scenes_csv(ctx: &Ctx, fig: &Figure, scenes: &[&str]) -> Result<String, String> {
-    let mut csv = String::from("scene,p1_x,p1_y,t_tip_speed_max,tip_speed_max\n");
-    for s in scenes {
-        let run = ctx.run(s)?;
-        let sm = &run.traj.summary;
-        writeln!(
-            csv,
-            "{},{},{},{},{}",
-            run.scene.name(),
-            num(run.release[0]),
-            num(run.release[1]),
-            num(sm.t_tip_speed_max),
-            num(sm.tip_speed_max)
-        )
-        .unwrap();
-    }
-    ctx.write(&format!("{}-scenes.csv", fig.id), &csv)
+/// `<id>.csv` (`table` of the runs of `scenes`) and `<id>-scenes.csv`
+/// (where each was released, its continuous maximum tip speed).
+fn tip_tables(
+    ctx: &Ctx,
+    fig: &Figure,
+    scenes: &[&str],
+    table: fn(&[report::Run]) -> String,
+) -> Result<Vec<String>, String> {
+    let runs = scenes
+        .iter()
+        .map(|s| ctx.run(s).map(SceneRun::as_run))
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok(vec![
+        ctx.write(&format!("{}.csv", fig.id), &table(&runs))?,
+        ctx.write(&format!("{}-scenes.csv", fig.id), &report::scenes(&runs))?,
+    ])
 }
 
 /// The legend entry of a scene: its name and where it was released.
@@ -271,17 +226,7 @@ impl Make for TipSpeed {
     /// `<id>.csv`: `scene,t,tip_speed` at every sample (32 per snapshot
     /// spacing), and `<id>-scenes.csv` (the continuous maxima).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let mut csv = String::from("scene,t,tip_speed\n");
-        for s in self.scenes {
-            let run = ctx.run(s)?;
-            for (t, v) in render::tip_speed(&run.traj) {
-                writeln!(csv, "{},{},{}", run.scene.name(), fixed(t, 6), fixed(v, 6)).unwrap();
-            }
-        }
-        Ok(vec![
-            ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            scenes_csv(ctx, fig, self.scenes)?,
-        ])
+        tip_tables(ctx, fig, self.scenes, report::tip_speed)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
@@ -319,24 +264,7 @@ impl Make for TipVelocity {
 
     /// `<id>.csv`: `scene,v_x,v_y` at every sample, and `<id>-scenes.csv`.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let mut csv = String::from("scene,v_x,v_y\n");
-        for s in self.scenes {
-            let run = ctx.run(s)?;
-            for (vx, vy) in render::tip_velocity_path(&run.traj) {
-                writeln!(
-                    csv,
-                    "{},{},{}",
-                    run.scene.name(),
-                    fixed(vx, 6),
-                    fixed(vy, 6)
-                )
-                .unwrap();
-            }
-        }
-        Ok(vec![
-            ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            scenes_csv(ctx, fig, self.scenes)?,
-        ])
+        tip_tables(ctx, fig, self.scenes, report::tip_velocity)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
@@ -371,23 +299,6 @@ pub struct VmaxVsSpan {
     pub refined: (usize, f64, f64, usize),
 }
 
-/// A span's `(d, tip_speed_max, t_tip_speed_max)`.
-type SpanMax = (f64, f64, f64);
-
-/// The largest jump of `t_tip_speed_max` between neighbouring spans of
-/// `rows` (`(d, v, t)`, sorted by `d`) at spans above `from`: where the
-/// maximum switches from one whip event to another. Returns the two rows.
-fn whip_switch(rows: &[SpanMax], from: f64) -> Option<(SpanMax, SpanMax)> {
-    rows.windows(2)
-        .filter(|w| w[0].0 >= from && w[0].2.is_finite() && w[1].2.is_finite())
-        .max_by(|a, b| (a[1].2 - a[0].2).abs().total_cmp(&(b[1].2 - b[0].2).abs()))
-        .map(|w| (w[0], w[1]))
-}
-
-/// Spans above which [`whip_switch`] looks for the switch (the curve's
-/// minimum near `d = 5.3`; below it the maximum's time moves smoothly).
-const SWITCH_FROM: f64 = 4.0;
-
 /// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
 /// values from `start` to `stop` (both included), of which those at the
 /// indices `from..to` are kept.
@@ -398,13 +309,6 @@ pub struct LinspaceSlice {
     pub num: usize,
     pub from: usize,
     pub to: usize,
-}
-
-/// `n` points from `a` to `b`.
-fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-        .collect()
 }
 
 impl Make for VmaxVsSpan {
@@ -419,120 +323,20 @@ impl Make for VmaxVsSpan {
     /// `-n200`): the two neighbouring spans of the dense curve between
     /// which the time of the maximum jumps (the whip switch).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let spans = self.report_spans;
-        let report: Vec<f64> =
-            linspace(spans.start, spans.stop, spans.num)[spans.from..spans.to].to_vec();
-        let dense = linspace(self.dense.0, self.dense.1, self.dense.2);
-        // Adaptive DOPRI5 for every span: RK4 at the report's dt diverges near d = 1.
-        let base = ctx.run(self.scene)?;
-        let base = base
-            .scene
-            .with_overrides(&["run.method=dopri5", "run.rtol=1e-8", "run.atol=1e-10"])
-            .map_err(|e| e.to_string())?;
-        let mut csv = String::from("set,d,tip_speed_max,t_tip_speed_max,status\n");
-        for (set, spans) in [("report", &report), ("dense", &dense)] {
-            let vary = [Vary::floats("start.p1.0", spans)];
-            let rows =
-                sweep::run(&base, &vary, None, ctx.jobs, &|_, _| {}).map_err(|e| e.to_string())?;
-            for (r, &d) in rows.iter().zip(spans.iter()) {
-                let s = &r.summary;
-                writeln!(
-                    csv,
-                    "{set},{},{},{},{}",
-                    num(d),
-                    num(s.tip_speed_max),
-                    num(s.t_tip_speed_max),
-                    s.status
-                )
-                .unwrap();
-            }
-        }
-        let full = ctx.run(self.stretched)?;
-        let s = &full.traj.summary;
-        let span_full = full.release[0] - full.traj.anchor[0];
-        writeln!(
-            csv,
-            "stretched,{},{},{},{}",
-            num(span_full),
-            num(s.tip_speed_max),
-            num(s.t_tip_speed_max),
-            full.traj.status
-        )
-        .unwrap();
-        // The refined chain: the n = 50 scene at `links` rods with the
-        // continuum fixed, over fewer spans, and its stretched chain.
+        let r = self.report_spans;
         let (links, a, b, count) = self.refined;
-        let refine = |scene: &falling_chain::Scene| {
-            converge::refined_scene(scene, links)
-                .and_then(|s| {
-                    s.with_overrides(&["run.method=auto", "run.rtol=1e-8", "run.atol=1e-10"])
-                })
-                .map_err(|e| e.to_string())
+        let spans = report::Spans {
+            report: report::linspace(r.start, r.stop, r.num)[r.from..r.to].to_vec(),
+            dense: report::linspace(self.dense.0, self.dense.1, self.dense.2),
+            refined: (links, report::linspace(a, b, count)),
         };
-        let fine_spans = linspace(a, b, count);
-        let fine = refine(&base)?;
-        let rows = sweep::run(
-            &fine,
-            &[Vary::floats("start.p1.0", &fine_spans)],
-            None,
+        let stretched = ctx.run(self.stretched)?;
+        let csv = report::vmax_vs_span(
+            &ctx.run(self.scene)?.scene,
+            (&stretched.scene, &stretched.as_run()),
+            &spans,
             ctx.jobs,
-            &|_, _| {},
-        )
-        .map_err(|e| e.to_string())?;
-        let set = format!("n{links}");
-        for (r, &d) in rows.iter().zip(fine_spans.iter()) {
-            let s = &r.summary;
-            writeln!(
-                csv,
-                "{set},{},{},{},{}",
-                num(d),
-                num(s.tip_speed_max),
-                num(s.t_tip_speed_max),
-                s.status
-            )
-            .unwrap();
-        }
-        let stretched = refine(&full.scene)?;
-        let mut prepared = stretched.prepare().map_err(|e| e.to_string())?;
-        prepared.options.output_dt = None;
-        let traj = prepared.solve().map_err(|e| e.to_string())?;
-        writeln!(
-            csv,
-            "stretched-{set},{},{},{},{}",
-            num(span_full),
-            num(traj.summary.tip_speed_max),
-            num(traj.summary.t_tip_speed_max),
-            traj.status
-        )
-        .unwrap();
-        // The whip switch of each curve, from the data just written.
-        let table = crate::data::Table::parse("fig09", &csv)?;
-        let (tset, td, tv, tt, tst) = (
-            table.strs("set")?,
-            table.nums("d")?,
-            table.nums("tip_speed_max")?,
-            table.nums("t_tip_speed_max")?,
-            table.strs("status")?,
-        );
-        for (which, suffix) in [("dense", String::new()), (set.as_str(), format!("-{set}"))] {
-            let mut pts: Vec<SpanMax> = (0..table.len())
-                .filter(|&k| tset[k] == which && tst[k] == "ok")
-                .map(|k| (td[k], tv[k], tt[k]))
-                .collect();
-            pts.sort_by(|x, y| x.0.total_cmp(&y.0));
-            if let Some((lo, hi)) = whip_switch(&pts, SWITCH_FROM) {
-                for (name, p) in [("switch-before", lo), ("switch-after", hi)] {
-                    writeln!(
-                        csv,
-                        "{name}{suffix},{},{},{},ok",
-                        num(p.0),
-                        num(p.1),
-                        num(p.2)
-                    )
-                    .unwrap();
-                }
-            }
-        }
+        )?;
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 

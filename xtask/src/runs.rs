@@ -23,6 +23,17 @@ pub struct SceneRun {
     pub release: Vec2,
 }
 
+impl SceneRun {
+    /// The run as the report's tables take it.
+    pub fn as_run(&self) -> falling_chain::study::report::Run<'_> {
+        falling_chain::study::report::Run {
+            name: self.scene.name(),
+            traj: &self.traj,
+            release: self.release,
+        }
+    }
+}
+
 /// Samples are recorded this many times finer than the scene's `output_dt`,
 /// so that speed curves are smooth; snapshots keep the scene's spacing.
 pub const FINE: f64 = 32.0;

@@ -22,6 +22,7 @@ pub mod needs;
 pub mod plan;
 pub mod plot;
 pub mod precision;
+pub mod report;
 pub mod shard;
 pub mod stability;
 pub mod table;
