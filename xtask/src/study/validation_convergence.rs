@@ -10,18 +10,13 @@
 //! grows like n^4, so `auto` runs DOP853 on the coarse levels and the O(n)
 //! BDF on the fine ones.
 
-use std::fmt::Write as _;
-
-use falling_chain::converge::{run_level, Level, SCALING};
 use falling_chain::study::convergence;
 use figures::{palette, LinePlot, RGBColor, Series, Style};
-use rayon::prelude::*;
 
 use crate::ctx::Ctx;
-use crate::data::{distinct, num, text};
+use crate::data::distinct;
 use crate::registry::{Figure, Make};
 
-const ID: &str = "convergence-n";
 const SCENES: [&str; 3] = ["span-d1", "span-d3", "span-d5"];
 const LADDER: [usize; 7] = [25, 50, 100, 200, 400, 800, 1600];
 const FINEST: usize = 3200;
@@ -32,109 +27,32 @@ const RTOL: f64 = 1e-9;
 const OUTPUT_DT: f64 = 0.01;
 const TOLS: [f64; 2] = [1e-2, 1e-3];
 
-fn run(ctx: &Ctx, name: &str, links: usize) -> Result<Level, String> {
-    let s = ctx.scene(name, &[format!("run.output_dt={OUTPUT_DT}")])?;
-    let level = run_level(&s, links, Some(METHOD), Some(RTOL)).map_err(|e| e.to_string())?;
-    if !level.summary.is_ok() {
-        return Err(format!(
-            "{name} at n = {links}: status {} at t = {}",
-            level.summary.status, level.summary.t_reached
-        ));
-    }
-    println!(
-        "  {ID}: {name} n = {links}: vmax {:.6}, {} RHS",
-        level.summary.tip_speed_max, level.summary.rhs_evals
-    );
-    Ok(level)
-}
-
-/// The n at which each criterion first holds for good, as a CSV cell.
-fn cell(n: Option<usize>) -> String {
-    n.map_or("none".to_string(), |n| n.to_string())
-}
-
 pub struct Convergence;
 
 impl Make for Convergence {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let pool = ctx.pool()?;
-        let jobs: Vec<(usize, usize)> = (0..SCENES.len())
-            .flat_map(|s| LADDER.iter().rev().map(move |&n| (s, n)))
-            .collect();
-        let first: Vec<(usize, Level)> = pool.install(|| {
-            jobs.par_iter()
-                .map(|&(s, n)| Ok((s, run(ctx, SCENES[s], n)?)))
-                .collect::<Result<Vec<_>, String>>()
-        })?;
-        let mut ladders: Vec<Vec<Level>> = vec![vec![]; SCENES.len()];
-        for (s, level) in first {
-            ladders[s].push(level);
-        }
-        for l in &mut ladders {
-            l.sort_by_key(Level::links);
-        }
-        let change = |l: &[Level]| {
-            let k = l.len();
-            (l[k - 1].summary.tip_speed_max / l[k - 2].summary.tip_speed_max - 1.0).abs()
+        let scenes = SCENES
+            .iter()
+            .map(|&name| {
+                Ok((
+                    name,
+                    ctx.scene(name, &[format!("run.output_dt={OUTPUT_DT}")])?,
+                ))
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        let options = convergence::LadderOptions {
+            ladder: &LADDER,
+            finest: FINEST,
+            go_on: GO_ON,
+            method: METHOD,
+            rtol: RTOL,
+            tols: TOLS,
         };
-        let last_doubling: Vec<f64> = ladders.iter().map(|l| change(l)).collect();
-        let more: Vec<usize> = (0..SCENES.len())
-            .filter(|&s| last_doubling[s] > GO_ON)
-            .collect();
-        let extra: Vec<(usize, Level)> = pool.install(|| {
-            more.par_iter()
-                .map(|&s| Ok((s, run(ctx, SCENES[s], FINEST)?)))
-                .collect::<Result<Vec<_>, String>>()
-        })?;
-        let mut final_change = last_doubling.clone();
-        for (s, level) in extra {
-            ladders[s].push(level);
-            final_change[s] = change(&ladders[s]);
-        }
-
-        // The data.
-        let mut csv = format!("{}\n", convergence::COLUMNS);
-        let mut summary = String::from(
-            "scene,reference_links,last_doubling_change,n_vmax_1pct,n_vmax_0.1pct,n_path_1pct,\
-         n_path_0.1pct,n_vmax_and_tip_end_1pct,n_vmax_and_tip_end_0.1pct,total_mass,\
-         bending_viscosity,scaling\n",
-        );
-        for (s, ladder) in ladders.iter().enumerate() {
-            let reference = ladder.last().expect("a ladder");
-            csv.push_str(&convergence::rows(SCENES[s], ladder));
-            let at = |tol: f64| convergence::adequate(ladder, tol)[0];
-            let path = |tol: f64| convergence::adequate(ladder, tol)[1];
-            let both = |tol: f64| convergence::adequate(ladder, tol)[2];
-            // The continuum held fixed: the scene's own chain.
-            let base = ctx
-                .scene::<&str>(SCENES[s], &[])?
-                .chain()
-                .map_err(|e| e.to_string())?;
-            writeln!(
-                summary,
-                "{},{},{},{},{},{},{},{},{},{},{},{}",
-                SCENES[s],
-                reference.links(),
-                num(final_change[s]),
-                cell(at(TOLS[0])),
-                cell(at(TOLS[1])),
-                cell(path(TOLS[0])),
-                cell(path(TOLS[1])),
-                cell(both(TOLS[0])),
-                cell(both(TOLS[1])),
-                num(base.total_mass()),
-                num(base.damping() * base.rod_length()),
-                text(SCALING)
-            )
-            .unwrap();
-            println!(
-                "  {ID}: {}: n = {} (1%), {} (0.1%); path: {}, {}",
-                SCENES[s],
-                cell(at(TOLS[0])),
-                cell(at(TOLS[1])),
-                cell(path(TOLS[0])),
-                cell(path(TOLS[1])),
-            );
+        let (csv, summary, notes) = ctx
+            .pool()?
+            .install(|| convergence::ladders(&scenes, &options))?;
+        for n in notes {
+            println!("  {}: {n}", fig.id);
         }
         Ok(vec![
             ctx.write(&format!("{}.csv", fig.id), &csv)?,

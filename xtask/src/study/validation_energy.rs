@@ -3,14 +3,12 @@
 //! the span d = 3 scene, for r = 0, the scene's r and a larger r. With the
 //! scene's n = 50 and m = 0.2 per rod, only r changes.
 
-use std::fmt::Write as _;
-
-use chain_ode::kinematics::{kinetic_energy, potential_energy};
+use falling_chain::study::validation;
 use figures::{palette, LinePlot, Series, Style};
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;
-use crate::data::{distinct, num};
+use crate::data::distinct;
 use crate::registry::{Figure, Make};
 
 const DAMPINGS: [f64; 3] = [0.0, 5e-4, 1e-2];
@@ -46,43 +44,9 @@ impl Make for EnergyBudget {
                 .collect::<Result<Vec<_>, String>>()
         })?;
 
-        let mut csv = String::from(
-            "damping,damping_rate,energy_scale,t,kinetic,potential,energy,dissipated,\
-             balance_over_MgL\n",
-        );
-        for traj in &runs {
-            let chain = &traj.chain;
-            let scale = chain.energy_scale();
-            let mut e0 = None;
-            let mut worst: f64 = 0.0;
-            for s in traj.samples() {
-                let t = kinetic_energy(chain, s.angles, s.rates);
-                let v = potential_energy(chain, s.angles);
-                let e = t + v;
-                let e0 = *e0.get_or_insert(e);
-                let b = (e + s.dissipated - e0) / scale;
-                worst = worst.max(b.abs());
-                writeln!(
-                    csv,
-                    "{},{},{},{},{},{},{},{},{}",
-                    num(chain.damping()),
-                    num(chain.damping_rate()),
-                    num(scale),
-                    num(s.t),
-                    num(t),
-                    num(v),
-                    num(e),
-                    num(s.dissipated),
-                    num(b)
-                )
-                .unwrap();
-            }
-            println!(
-                "  {}: r = {} (r/(m l^2) = {:.3}): max |E + W - E(0)| = {worst:.2e} M g L",
-                fig.id,
-                chain.damping(),
-                chain.damping_rate()
-            );
+        let (csv, notes) = validation::energy_budget(&runs);
+        for n in notes {
+            println!("  {}: {n}", fig.id);
         }
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }

@@ -3,16 +3,11 @@
 //! and the convergence order fitted to the relative errors (least squares
 //! in log-log over n >= 40).
 
-use std::fmt::Write as _;
-
-use chain_ode::analysis::bessel_frequencies;
-use chain_ode::modes::hanging_frequencies;
-use chain_ode::Chain;
+use falling_chain::study::validation;
 use figures::{palette, LinePlot, Series, Style};
 
-use super::linear_fit;
 use crate::ctx::Ctx;
-use crate::data::{distinct, num};
+use crate::data::distinct;
 use crate::registry::{Figure, Make};
 
 const LINKS: [usize; 12] = [10, 14, 20, 28, 40, 57, 80, 100, 160, 226, 320, 400];
@@ -25,60 +20,13 @@ impl Make for NormalModes {
     /// `normal-modes.csv` (every n and mode, also in units of `sqrt(g/L)`)
     /// and `normal-modes-fit.csv` (the fitted order of each mode).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let base = Chain::report(LINKS[0], 0.0).map_err(|e| e.to_string())?;
-        let bessel = bessel_frequencies(&base);
-        let unit = (base.length() / base.gravity()).sqrt();
-        let mut csv = String::from(
-            "links,mode,omega,omega_bessel,relative_error,omega_sqrt_L_over_g,\
-             omega_bessel_sqrt_L_over_g\n",
-        );
-        let mut errors = vec![vec![]; MODES];
-        for &n in &LINKS {
-            let chain = Chain::report(n, 0.0).map_err(|e| e.to_string())?;
-            let w = hanging_frequencies(&chain);
-            for k in 0..MODES {
-                let rel = w[k] / bessel[k] - 1.0;
-                writeln!(
-                    csv,
-                    "{n},{},{},{},{},{},{}",
-                    k + 1,
-                    num(w[k]),
-                    num(bessel[k]),
-                    num(rel),
-                    num(w[k] * unit),
-                    num(bessel[k] * unit)
-                )
-                .unwrap();
-                errors[k].push((n as f64, rel));
-            }
-        }
-        let mut fit_csv = String::from("mode,order,coefficient,fit_from_links,fit_to_links\n");
-        for (k, errors) in errors.iter().enumerate() {
-            let logs: Vec<(f64, f64)> = errors
-                .iter()
-                .filter(|p| p.0 >= FIT_FROM as f64 && p.1 > 0.0)
-                .map(|p| (p.0.ln(), p.1.ln()))
-                .collect();
-            let (a, b) = linear_fit(&logs);
-            let (order, coefficient) = (-b, a.exp());
-            writeln!(
-                fit_csv,
-                "{},{},{},{FIT_FROM},{}",
-                k + 1,
-                num(order),
-                num(coefficient),
-                LINKS[LINKS.len() - 1]
-            )
-            .unwrap();
-            println!(
-                "  {}: mode {}: p = {order:.3}, C = {coefficient:.4}",
-                fig.id,
-                k + 1
-            );
+        let (csv, fit, notes) = validation::normal_modes(&LINKS, MODES, FIT_FROM)?;
+        for n in notes {
+            println!("  {}: {n}", fig.id);
         }
         Ok(vec![
             ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            ctx.write(&format!("{}-fit.csv", fig.id), &fit_csv)?,
+            ctx.write(&format!("{}-fit.csv", fig.id), &fit)?,
         ])
     }
 
