@@ -6,5 +6,5 @@
 //! except long per-sample tables, which are `fixed` to a few decimals to
 //! stay small. Timing files use `fixed` and `exp_digits`.
 
-pub use falling_chain::study::format::{exp, exp_digits, fixed, num, text};
-pub use falling_chain::study::table::{distinct, parse_num, Table};
+pub use falling_chain::study::format::{fixed, text};
+pub use falling_chain::study::table::Table;

@@ -17,11 +17,10 @@
 //! All of it is wall times: computed only by `--timings`, into
 //! `stiffness-timing.csv` and `stiffness-crossover-timing.csv`.
 
-use falling_chain::study::stiffness::{self, EXPLICIT_BUDGET};
-use figures::{palette, LinePlot, RGBColor, Series, Style};
+use falling_chain::study::plot;
+use falling_chain::study::stiffness;
 
 use crate::ctx::Ctx;
-use crate::data::distinct;
 use crate::registry::{Figure, Make};
 
 /// Rods.
@@ -41,58 +40,6 @@ impl Make for Stiffness {
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}-timing.csv", fig.id))?;
-        let (n, gamma, ratio) = (
-            t.strs("n")?,
-            t.nums("gamma")?,
-            t.nums("ratio_dopri5_over_bdf")?,
-        );
-        let c = ctx.read(&format!("{}-crossover-timing.csv", fig.id))?;
-        let crossings: Vec<f64> = c
-            .nums("gamma_crossover")?
-            .into_iter()
-            .filter(|g| g.is_finite())
-            .collect();
-        let rods = distinct(&n);
-        let mut plot = LinePlot::new(
-            "Where BDF pays: DOPRI5 wall time over BDF's (span d = 3, t = 1, rtol 1e-6)",
-            "damping rate γ = r / (m l²)",
-            "DOPRI5 time / BDF time",
-        );
-        plot.log_x = true;
-        plot.log_y = true;
-        for (k, rods_n) in rods.iter().enumerate() {
-            let pts = (0..t.len())
-                .filter(|&j| n[j] == *rods_n)
-                .map(|j| (gamma[j], ratio[j]))
-                .collect();
-            plot.series.push(
-                Series::new(format!("n = {rods_n}"), pts, Style::LinePoints).with_color(palette(k)),
-            );
-        }
-        let (g0, g1) = gamma
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &g| {
-                (a.0.min(g), a.1.max(g))
-            });
-        plot.series.push(
-            Series::new("equal cost", vec![(g0, 1.0), (g1, 1.0)], Style::Dashed)
-                .with_color(RGBColor(0, 0, 0)),
-        );
-        if let (Some(lo), Some(hi), [first, .., last]) = (
-            crossings.iter().copied().reduce(f64::min),
-            crossings.iter().copied().reduce(f64::max),
-            &rods[..],
-        ) {
-            plot.annotations.push(format!(
-                "crossover γ from {lo:.3} to {hi:.3} (×{:.1}) over n = {first}..{last}",
-                hi / lo,
-            ));
-        }
-        plot.annotations.push(format!(
-            "DOPRI5 beyond {EXPLICIT_BUDGET} s: extrapolated from the time reached"
-        ));
-        let out = figures::line_plot(&plot, &ctx.stem(fig.id)).map_err(|e| e.to_string())?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, plot::timing::stiffness)
     }
 }

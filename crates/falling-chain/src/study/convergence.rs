@@ -56,6 +56,9 @@ pub fn adequate(ladder: &[Level], tol: f64) -> [Option<usize>; 3] {
     ]
 }
 
+/// The two tolerances of the paper's summary: 1% and 0.1%.
+pub const TOLS: [f64; 2] = [1e-2, 1e-3];
+
 /// The options of [`ladders`].
 pub struct LadderOptions<'a> {
     /// The ladder of `n` every scene runs.

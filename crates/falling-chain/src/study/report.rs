@@ -113,6 +113,41 @@ pub fn tip_velocity(runs: &[Run]) -> String {
     csv
 }
 
+/// A row per named run: its method, chain, status, work, energy balance
+/// and tip (no wall times).
+pub fn summary(runs: &[(&str, &Trajectory)]) -> String {
+    let mut s = String::from(
+        "scene,method,links,damping,t_end,status,steps,rejected_steps,rhs_evals,\
+         energy_start,energy_end,dissipated,energy_balance_error,energy_scale,\
+         tip_speed_max,t_tip_speed_max,tip_end_x,tip_end_y\n",
+    );
+    for (name, t) in runs {
+        let m = &t.summary;
+        let _ = writeln!(
+            s,
+            "{name},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            t.method,
+            t.chain.links(),
+            num(t.chain.damping()),
+            num(t.t_end),
+            t.status,
+            t.stats.steps,
+            t.stats.rejected_steps,
+            t.stats.rhs_evals,
+            num(m.energy_start),
+            num(m.energy_end),
+            num(m.dissipated),
+            num(m.energy_balance_error),
+            num(t.chain.energy_scale()),
+            num(m.tip_speed_max),
+            num(m.t_tip_speed_max),
+            num(m.tip_end[0]),
+            num(m.tip_end[1]),
+        );
+    }
+    s
+}
+
 /// `n` points from `a` to `b`.
 pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)

@@ -7,6 +7,12 @@
 //! [`super::stability::csv_text`] as read back ([`Table`]), so a figure drawn
 //! from a file is the figure drawn from the computation.
 
+pub mod convergence;
+pub mod folded;
+pub mod report;
+pub mod timing;
+pub mod validation;
+
 use std::path::Path;
 
 use chain_ode::{Method, Status};
@@ -17,6 +23,11 @@ use figures::{
 use super::format::{exp, short_err};
 use super::stability::{Outcome, MAX_STEPS};
 use super::table::{distinct, parse_num, Table};
+
+/// What a drawing reads its tables with: the table of the given suffix
+/// (`""` for the main table, `"-law"`, `"-times"`, ...; the caller maps
+/// the suffix to a file).
+pub type Reader<'a> = &'a dyn Fn(&str) -> Result<Table, String>;
 
 /// Errors below this are drawn at it (a log axis cannot show 0).
 const DRAW_FLOOR: f64 = 1e-16;
