@@ -416,6 +416,41 @@ fn a_spent_budget_skips_and_lists_the_points() {
     assert_eq!(budget.len(), 10);
 }
 
+/// needs' budget holds in every phase, the ladder of n first: a budget
+/// spent at the start stops the ladder's runs (which without it answer n,
+/// as the test above shows), lists them as not run, and gives no n.
+#[test]
+fn a_spent_budget_stops_the_ladder_of_needs() {
+    let o = run(&[
+        &["needs", &scene("span-d3")][..],
+        &SMALL,
+        &[
+            "--links",
+            "5,10,20,80",
+            "--tol",
+            "1e-2",
+            "--budget",
+            "1e-9",
+            "--json",
+            "--quiet",
+        ],
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json(&o);
+    assert!(v["links"].is_null(), "{v}");
+    let skipped: Vec<&str> = v["skipped"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    assert!(
+        skipped.iter().any(|s| s.starts_with("rods n = ")),
+        "{skipped:?}"
+    );
+}
+
 /// precision in three shards, merged, is the unsharded table but for wall
 /// times, RK4's floor rule included: a shard decides it from the coarser
 /// steps it does not own, so its later points are `not_run` as in the
