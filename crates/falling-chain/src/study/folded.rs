@@ -356,7 +356,7 @@ pub fn support_force(
     }
     let chain = &span_traj.chain;
     let weight = chain.weight();
-    let forces = pivot_forces(&span_traj);
+    let forces = pivot_forces(span_traj);
     for (t, f) in &forces {
         let _ = writeln!(
             csv,

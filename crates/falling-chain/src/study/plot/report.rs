@@ -77,7 +77,7 @@ pub fn catenaries(read: Reader, stem: &Path, title: &str) -> Result<Output, Stri
             },
         }
     }
-    let mut f = figures::ColoredCurves::new(&title, curves, [0.0, 0.0]);
+    let mut f = figures::ColoredCurves::new(title, curves, [0.0, 0.0]);
     f.p1 = p1;
     f.markers = lows;
     f.markers_label = "lowest point";
@@ -116,7 +116,7 @@ pub fn snapshots(
         .filter(|(k, _)| k % every == 0 || *k == last)
         .map(|(_, f)| f)
         .collect();
-    let mut f = ChainSnapshots::new(&title, frames, p0);
+    let mut f = ChainSnapshots::new(title, frames, p0);
     f.p1 = p1;
     if let Some(label) = p1_label {
         f.p1_label = label;
@@ -128,7 +128,7 @@ pub fn tip_speed(read: Reader, stem: &Path, title: &str) -> Result<Output, Strin
     let scenes = read_scenes(read)?;
     let t = read("")?;
     let lines = per_scene(&t, &scenes, "t", "tip_speed")?;
-    let mut p = LinePlot::new(&title, "t", "tip speed |v|");
+    let mut p = LinePlot::new(title, "t", "tip speed |v|");
     for (s, pts) in scenes.iter().zip(lines) {
         p.series.push(Series::line(s.1.clone(), pts));
     }
@@ -148,7 +148,7 @@ pub fn tip_velocity(read: Reader, stem: &Path, title: &str) -> Result<Output, St
     let scenes = read_scenes(read)?;
     let t = read("")?;
     let lines = per_scene(&t, &scenes, "v_x", "v_y")?;
-    let mut p = LinePlot::new(&title, "v_x", "v_y");
+    let mut p = LinePlot::new(title, "v_x", "v_y");
     p.equal_aspect = true;
     for (s, pts) in scenes.iter().zip(lines) {
         p.series.push(Series::line(s.1.clone(), pts));
@@ -178,7 +178,7 @@ pub fn vmax_vs_span(
     let dense_count = set.iter().filter(|s| **s == "dense").count();
     let fine = format!("n{links}");
     let fine_count = set.iter().filter(|s| **s == fine).count();
-    let mut p = LinePlot::new(&title, "span d", "maximum tip speed");
+    let mut p = LinePlot::new(title, "span d", "maximum tip speed");
     p.x_tick_step = Some(0.5);
     p.series.push(Series::line(
         format!("n = 50: {dense_count} spans (DOPRI5, rtol 1e-8)"),
