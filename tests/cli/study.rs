@@ -450,12 +450,26 @@ fn the_plots_are_the_papers_drawing_of_the_table() {
     let o = run(&[
         &["stability", &scene("span-d3")][..],
         &SMALL,
-        &["--methods", "rk4", "--quiet", "--plot", map.to_str().unwrap()],
+        &[
+            "--methods",
+            "rk4",
+            "--quiet",
+            "--plot",
+            map.to_str().unwrap(),
+        ],
     ]
     .concat());
-    assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
+    assert!(
+        o.status.code() == Some(0) || o.status.code() == Some(1),
+        "{}",
+        stderr(&o)
+    );
     let svg = fs::read_to_string(&map).unwrap();
-    for text in ["RK4: step dt", "completed, energy error", "(−5: 1e-5 to 1e-4)"] {
+    for text in [
+        "RK4: step dt",
+        "completed, energy error",
+        "(−5: 1e-5 to 1e-4)",
+    ] {
         assert!(svg.contains(text), "no '{text}' in the map");
     }
     fs::remove_dir_all(&dir).unwrap();
