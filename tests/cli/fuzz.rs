@@ -2,13 +2,16 @@
 //! (lengths, masses, gravity, damping, counts near integer limits, t_end up
 //! to 1e6, output_dt down to 1e-12, tolerances, every method and start
 //! kind) and runs them through every subcommand (simulate, sweep,
-//! converge, plot, animate, catenary). Every run has a step budget
+//! converge, plot, animate, catenary, view, and the study's precision,
+//! stability, needs and merge, each with `--budget 1`; a test checks that
+//! [`COMMANDS`] is every subcommand of `--help`). Every run has a step budget
 //! (`--set run.max_steps=...`, smaller for more rods) and a wall-clock kill
 //! timeout. Each must end with exit 0, 1 or 2, never a signal, 101 (panic),
 //! 134 (abort) or a hang; an exit 2 says one line, `error: ...`; any other
 //! exit says at most one line apart from the stiffness hint (`hint: ...`,
 //! allowed: it is the one line the CLI adds on purpose for explicit methods
-//! on stiff scenes) and converge's progress lines.
+//! on stiff scenes), converge's progress lines and the `wrote FILE` lines
+//! of the study's commands.
 //!
 //! `FUZZ_CASES` sets the number of cases (default 100, a few seconds),
 //! `FUZZ_SEED` the seed (default fixed, so that CI is repeatable),
@@ -118,8 +121,18 @@ struct Case {
     tip_mass: f64,
 }
 
-const COMMANDS: [&str; 6] = [
-    "simulate", "sweep", "converge", "plot", "animate", "catenary",
+const COMMANDS: [&str; 11] = [
+    "simulate",
+    "sweep",
+    "converge",
+    "plot",
+    "animate",
+    "catenary",
+    "precision",
+    "stability",
+    "needs",
+    "merge",
+    "view",
 ];
 const KINDS: [&str; 4] = ["stretched", "catenary", "folded", "angles"];
 
@@ -350,6 +363,58 @@ impl Case {
                     "0.6".into(),
                 ]);
             }
+            "precision" | "stability" | "needs" => {
+                a.extend([
+                    scene,
+                    "--set".into(),
+                    budget,
+                    "--methods".into(),
+                    self.method_name(),
+                    "--budget".into(),
+                    "1".into(),
+                    "--jobs".into(),
+                    "2".into(),
+                    "--quiet".into(),
+                ]);
+                match (command, self.with_out) {
+                    ("needs", _) => a.extend([
+                        "--tol".into(),
+                        "0.1".into(),
+                        "--links".into(),
+                        format!("2,{}", 2 * self.extra.clamp(2, 4)),
+                    ]),
+                    (_, true) => {
+                        a.extend(["--out".into(), out("s.csv"), "--plot".into(), out("s.svg")])
+                    }
+                    // A shard near the limits, or an ordinary one.
+                    (_, false) => a.extend(["--shard".into(), format!("{}/3", self.extra)]),
+                }
+                if command == "stability" && self.extra % 2 == 0 {
+                    let top = toml_f(self.damping.abs());
+                    a.extend(["--vary".into(), format!("chain.damping=0:{top}:2")]);
+                }
+            }
+            "view" => {
+                a.extend([scene, "--set".into(), budget, "-o".into(), out("v.html")]);
+                if self.with_out {
+                    a.extend(["--method".into(), self.method_name(), "--forces".into()]);
+                }
+            }
+            "merge" => {
+                // Shards that are not: the scene file, a table of another
+                // shape, and (half of the time) a file that does not exist.
+                let table = dir.join("t.csv");
+                fs::write(
+                    &table,
+                    format!("run,x\n{},{}\n", self.extra, toml_f(self.length)),
+                )
+                .unwrap();
+                a.extend([scene, table.to_string_lossy().into_owned()]);
+                if self.with_out {
+                    a.push(out("missing.csv"));
+                }
+                a.extend(["--out".into(), out("m.csv")]);
+            }
             _ => {
                 let (x, y) = self.p1();
                 a.extend([
@@ -369,10 +434,12 @@ impl Case {
     }
 }
 
-/// A line the CLI prints on purpose besides a result: the stiffness hint
-/// and converge's progress.
+/// A line the CLI prints on purpose besides a result: the stiffness hint,
+/// converge's progress, and the files a study command wrote.
 fn is_info(line: &str) -> bool {
-    line.starts_with("hint: ") || (line.starts_with("converge: ") && line.ends_with(" runs done"))
+    line.starts_with("hint: ")
+        || (line.starts_with("converge: ") && line.ends_with(" runs done"))
+        || line.starts_with("wrote ")
 }
 
 /// What is wrong with how a case ended, if anything.
@@ -457,6 +524,29 @@ fn fuzzed_scenes_end_with_a_status_or_one_line() {
         failures.len()
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The fuzzer draws every subcommand that `falling-chain --help` lists
+/// (but `help`): a command added to the CLI fails here until it is drawn.
+#[test]
+fn the_fuzzer_draws_every_command() {
+    let out = run(&["--help"]);
+    let help = String::from_utf8_lossy(&out.stdout);
+    let listed: Vec<&str> = help
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(listed.len() >= 10, "--help lists {listed:?}");
+    for c in &listed {
+        assert!(COMMANDS.contains(c), "the fuzzer does not draw `{c}`");
+    }
+    for c in COMMANDS {
+        assert!(listed.contains(&c), "`{c}` is not a command");
+    }
 }
 
 /// The scene keys the fuzzer leaves at their defaults: free text, the

@@ -416,6 +416,100 @@ fn a_spent_budget_skips_and_lists_the_points() {
     assert_eq!(budget.len(), 10);
 }
 
+/// The CLI's `--plot` is the paper's drawing (`study::plot`) of the table
+/// it writes: the work-precision pair with the reference's agreement note
+/// and a legend line per method, the stability map with a panel per
+/// method and the paper's cell legend.
+#[test]
+fn the_plots_are_the_papers_drawing_of_the_table() {
+    let dir = scratch("plots");
+    let wp = dir.join("wp.svg");
+    let o = run(&[
+        &["precision", &scene("span-d3")][..],
+        &SMALL,
+        &[
+            "--methods",
+            "dopri5,dop853",
+            "--quiet",
+            "--plot",
+            wp.to_str().unwrap(),
+        ],
+    ]
+    .concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let svg = fs::read_to_string(&wp).unwrap();
+    for text in [
+        "Work-precision: span-d3 (n = 10)",
+        "reference: DOPRI5 rtol 1e-13, agrees with",
+        "DOPRI5 (rtol 1e-3",
+        "DOP853 (rtol 1e-3",
+    ] {
+        assert!(svg.contains(text), "no '{text}' in the plot");
+    }
+    let map = dir.join("map.svg");
+    let o = run(&[
+        &["stability", &scene("span-d3")][..],
+        &SMALL,
+        &[
+            "--methods",
+            "rk4",
+            "--quiet",
+            "--plot",
+            map.to_str().unwrap(),
+        ],
+    ]
+    .concat());
+    assert!(
+        o.status.code() == Some(0) || o.status.code() == Some(1),
+        "{}",
+        stderr(&o)
+    );
+    let svg = fs::read_to_string(&map).unwrap();
+    for text in [
+        "RK4: step dt",
+        "completed, energy error",
+        "(−5: 1e-5 to 1e-4)",
+    ] {
+        assert!(svg.contains(text), "no '{text}' in the map");
+    }
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// needs' budget holds in every phase, the ladder of n first: a budget
+/// spent at the start stops the ladder's runs (which without it answer n,
+/// as the test above shows), lists them as not run, and gives no n.
+#[test]
+fn a_spent_budget_stops_the_ladder_of_needs() {
+    let o = run(&[
+        &["needs", &scene("span-d3")][..],
+        &SMALL,
+        &[
+            "--links",
+            "5,10,20,80",
+            "--tol",
+            "1e-2",
+            "--budget",
+            "1e-9",
+            "--json",
+            "--quiet",
+        ],
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json(&o);
+    assert!(v["links"].is_null(), "{v}");
+    let skipped: Vec<&str> = v["skipped"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    assert!(
+        skipped.iter().any(|s| s.starts_with("rods n = ")),
+        "{skipped:?}"
+    );
+}
+
 /// precision in three shards, merged, is the unsharded table but for wall
 /// times, RK4's floor rule included: a shard decides it from the coarser
 /// steps it does not own, so its later points are `not_run` as in the

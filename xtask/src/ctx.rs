@@ -6,9 +6,11 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use falling_chain::study::plot::Reader;
 use falling_chain::{Prepared, Scene};
 
 use crate::data::Table;
+use crate::registry::Figure;
 use crate::runs::SceneRun;
 
 pub struct Ctx {
@@ -106,6 +108,19 @@ impl Ctx {
     /// `figures/<id>`, the stem the figures crate appends `.png` and `.svg` to.
     pub fn stem(&self, id: &str) -> PathBuf {
         self.out.join(id)
+    }
+
+    /// Draws `fig` with `draw` (a drawing of `falling_chain::study::plot`)
+    /// from its data files `<id><suffix>.csv`; returns the files written.
+    pub fn draw(
+        &self,
+        fig: &Figure,
+        draw: impl Fn(Reader, &Path) -> Result<figures::Output, String>,
+    ) -> Result<Vec<String>, String> {
+        let read = |suffix: &str| self.read(&format!("{}{suffix}.csv", fig.id));
+        draw(&read, &self.stem(fig.id))
+            .map(|o| self.drawn(&o))
+            .map_err(|e| format!("{}: {e}", fig.id))
     }
 
     /// The files a figure was drawn to, relative to the root.

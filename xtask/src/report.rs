@@ -3,17 +3,12 @@
 //! the registry, never a copy of code: `compute` takes the shared scene
 //! runs to `figures/data/<id>*.csv`, `draw` draws from those files.
 
-use std::fmt::Write as _;
-
-use catenary::Catenary;
-use falling_chain::converge;
-use falling_chain::render;
-use falling_chain::sweep::{self, Vary};
-use figures::{ChainSnapshots, LinePlot, Series, Style};
+use falling_chain::study::plot;
+use falling_chain::study::report;
 
 use crate::ctx::Ctx;
-use crate::data::{distinct, fixed, num, Table};
 use crate::registry::{Figure, Make};
+use crate::runs::SceneRun;
 
 fn title(fig: &Figure, title: &str) -> String {
     format!("{}: {title}", fig.label())
@@ -52,64 +47,14 @@ impl Make for Catenaries {
     /// `<id>.csv`: `kind,length,x,y`, kind `p1`, `curve` (201 points per
     /// length) or `lowest`.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let (l0, l1, count) = self.lengths;
-        let p1 = self.p1;
-        let mut csv = format!("kind,length,x,y\np1,,{},{}\n", num(p1[0]), num(p1[1]));
-        for k in 0..count {
-            let length = l0 + (l1 - l0) * k as f64 / (count - 1) as f64;
-            let c = Catenary::through([0.0, 0.0], p1, length).map_err(|e| e.to_string())?;
-            for i in 0..=200 {
-                let x = p1[0] * i as f64 / 200.0;
-                writeln!(
-                    csv,
-                    "curve,{},{},{}",
-                    num(length),
-                    fixed(x, 6),
-                    fixed(c.y(x), 6)
-                )
-                .unwrap();
-            }
-            let low = c.lowest_point();
-            writeln!(
-                csv,
-                "lowest,{},{},{}",
-                num(length),
-                num(low[0]),
-                num(low[1])
-            )
-            .unwrap();
-        }
+        let csv = report::catenaries(self.p1, self.lengths)?;
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let (kind, length, x, y) = (
-            t.strs("kind")?,
-            t.nums("length")?,
-            t.nums("x")?,
-            t.nums("y")?,
-        );
-        let mut p1 = None;
-        let mut curves: Vec<(f64, Vec<(f64, f64)>)> = vec![];
-        let mut lows = vec![];
-        for k in 0..t.len() {
-            match kind[k] {
-                "p1" => p1 = Some([x[k], y[k]]),
-                "lowest" => lows.push((x[k], y[k])),
-                _ => match curves.last_mut() {
-                    Some((l, pts)) if *l == length[k] => pts.push((x[k], y[k])),
-                    _ => curves.push((length[k], vec![(x[k], y[k])])),
-                },
-            }
-        }
-        let title = title(fig, self.title);
-        let mut f = figures::ColoredCurves::new(&title, curves, [0.0, 0.0]);
-        f.p1 = p1;
-        f.markers = lows;
-        f.markers_label = "lowest point";
-        f.colorbar_label = "L";
-        drawn(ctx, fig, figures::colored_curves(&f, &ctx.stem(fig.id)))
+        ctx.draw(fig, |r, s| {
+            plot::report::catenaries(r, s, &title(fig, self.title))
+        })
     }
 }
 
@@ -138,123 +83,33 @@ impl Make for Snapshots {
     /// then joints `0..=n` of each snapshot (the scene's `output_dt` apart).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let run = ctx.run(self.scene)?;
-        let (p0, p1) = (run.traj.anchor, run.release);
-        let mut csv = format!(
-            "point,t,x,y\nP0,,{},{}\nP1,,{},{}\n",
-            num(p0[0]),
-            num(p0[1]),
-            num(p1[0]),
-            num(p1[1])
-        );
-        for (t, joints) in render::frames(&run.traj, Some(run.snapshot_dt)) {
-            for (i, p) in joints.iter().enumerate() {
-                writeln!(csv, "{i},{},{},{}", num(t), fixed(p[0], 6), fixed(p[1], 6)).unwrap();
-            }
-        }
+        let csv = report::snapshots(&run.as_run(), run.snapshot_dt);
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let (point, time, x, y) = (t.strs("point")?, t.nums("t")?, t.nums("x")?, t.nums("y")?);
-        let (mut p0, mut p1) = ([0.0, 0.0], None);
-        let mut frames: Vec<(f64, Vec<[f64; 2]>)> = vec![];
-        for k in 0..t.len() {
-            match point[k] {
-                "P0" => p0 = [x[k], y[k]],
-                "P1" => p1 = Some([x[k], y[k]]),
-                "0" => frames.push((time[k], vec![[x[k], y[k]]])),
-                _ => frames
-                    .last_mut()
-                    .ok_or_else(|| format!("{}: a joint before joint 0", t.name))?
-                    .1
-                    .push([x[k], y[k]]),
-            }
-        }
-        let title = title(fig, self.title);
-        let every = self.every.max(1);
-        let last = frames.len().saturating_sub(1);
-        let frames = frames
-            .into_iter()
-            .enumerate()
-            .filter(|(k, _)| k % every == 0 || *k == last)
-            .map(|(_, f)| f)
-            .collect();
-        let mut f = ChainSnapshots::new(&title, frames, p0);
-        f.p1 = p1;
-        if let Some(label) = self.p1_label {
-            f.p1_label = label;
-        }
-        drawn(ctx, fig, figures::chain_snapshots(&f, &ctx.stem(fig.id)))
-    }
-}
-
-/// `<id>-scenes.csv`: `scene,p1_x,p1_y,t_tip_speed_max,tip_speed_max`, one
-/// row per scene (the legend order).
-fn scenes_csv(ctx: &Ctx, fig: &Figure, scenes: &[&str]) -> Result<String, String> {
-    let mut csv = String::from("scene,p1_x,p1_y,t_tip_speed_max,tip_speed_max\n");
-    for s in scenes {
-        let run = ctx.run(s)?;
-        let sm = &run.traj.summary;
-        writeln!(
-            csv,
-            "{},{},{},{},{}",
-            run.scene.name(),
-            num(run.release[0]),
-            num(run.release[1]),
-            num(sm.t_tip_speed_max),
-            num(sm.tip_speed_max)
-        )
-        .unwrap();
-    }
-    ctx.write(&format!("{}-scenes.csv", fig.id), &csv)
-}
-
-/// The legend entry of a scene: its name and where it was released.
-fn scene_label(scene: &str, p1: (f64, f64)) -> String {
-    format!("{scene} (P1 = ({:.3}, {:.3}))", p1.0, p1.1).replace(".000", "")
-}
-
-/// A scene of a tip figure: (name, legend label, (t_max, v_max)).
-type SceneRow = (String, String, (f64, f64));
-
-/// The scenes of `<id>-scenes.csv`.
-fn read_scenes(ctx: &Ctx, fig: &Figure) -> Result<Vec<SceneRow>, String> {
-    let t = ctx.read(&format!("{}-scenes.csv", fig.id))?;
-    let (name, x, y) = (t.strs("scene")?, t.nums("p1_x")?, t.nums("p1_y")?);
-    let (tm, vm) = (t.nums("t_tip_speed_max")?, t.nums("tip_speed_max")?);
-    Ok((0..t.len())
-        .map(|k| {
-            (
-                name[k].to_string(),
-                scene_label(name[k], (x[k], y[k])),
-                (tm[k], vm[k]),
-            )
+        ctx.draw(fig, |r, s| {
+            plot::report::snapshots(r, s, &title(fig, self.title), self.every, self.p1_label)
         })
-        .collect())
+    }
 }
 
-/// The samples of column pair `(a, b)` of `t` for each scene in `scenes`.
-fn per_scene(
-    t: &Table,
-    scenes: &[SceneRow],
-    a: &str,
-    b: &str,
-) -> Result<Vec<Vec<(f64, f64)>>, String> {
-    let (scene, a, b) = (t.strs("scene")?, t.nums(a)?, t.nums(b)?);
-    let names = distinct(&scene);
-    if names.len() != scenes.len() || names.iter().zip(scenes).any(|(n, s)| *n != s.0) {
-        return Err(format!("{}: its scenes differ from the legend's", t.name));
-    }
-    Ok(names
+/// `<id>.csv` (`table` of the runs of `scenes`) and `<id>-scenes.csv`
+/// (where each was released, its continuous maximum tip speed).
+fn tip_tables(
+    ctx: &Ctx,
+    fig: &Figure,
+    scenes: &[&str],
+    table: fn(&[report::Run]) -> String,
+) -> Result<Vec<String>, String> {
+    let runs = scenes
         .iter()
-        .map(|n| {
-            (0..t.len())
-                .filter(|&k| scene[k] == *n)
-                .map(|k| (a[k], b[k]))
-                .collect()
-        })
-        .collect())
+        .map(|s| ctx.run(s).map(SceneRun::as_run))
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok(vec![
+        ctx.write(&format!("{}.csv", fig.id), &table(&runs))?,
+        ctx.write(&format!("{}-scenes.csv", fig.id), &report::scenes(&runs))?,
+    ])
 }
 
 /// Tip speed against time, one line per scene.
@@ -271,38 +126,13 @@ impl Make for TipSpeed {
     /// `<id>.csv`: `scene,t,tip_speed` at every sample (32 per snapshot
     /// spacing), and `<id>-scenes.csv` (the continuous maxima).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let mut csv = String::from("scene,t,tip_speed\n");
-        for s in self.scenes {
-            let run = ctx.run(s)?;
-            for (t, v) in render::tip_speed(&run.traj) {
-                writeln!(csv, "{},{},{}", run.scene.name(), fixed(t, 6), fixed(v, 6)).unwrap();
-            }
-        }
-        Ok(vec![
-            ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            scenes_csv(ctx, fig, self.scenes)?,
-        ])
+        tip_tables(ctx, fig, self.scenes, report::tip_speed)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let scenes = read_scenes(ctx, fig)?;
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let lines = per_scene(&t, &scenes, "t", "tip_speed")?;
-        let title = title(fig, self.title);
-        let mut p = LinePlot::new(&title, "t", "tip speed |v|");
-        for (s, pts) in scenes.iter().zip(lines) {
-            p.series.push(Series::line(s.1.clone(), pts));
-        }
-        // The continuous maxima, located between steps.
-        p.series.push(
-            Series::new(
-                "maximum (continuous)",
-                scenes.iter().map(|s| s.2).collect(),
-                Style::Points,
-            )
-            .with_color(figures::RGBColor(0, 0, 0)),
-        );
-        drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
+        ctx.draw(fig, |r, s| {
+            plot::report::tip_speed(r, s, &title(fig, self.title))
+        })
     }
 }
 
@@ -319,37 +149,13 @@ impl Make for TipVelocity {
 
     /// `<id>.csv`: `scene,v_x,v_y` at every sample, and `<id>-scenes.csv`.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let mut csv = String::from("scene,v_x,v_y\n");
-        for s in self.scenes {
-            let run = ctx.run(s)?;
-            for (vx, vy) in render::tip_velocity_path(&run.traj) {
-                writeln!(
-                    csv,
-                    "{},{},{}",
-                    run.scene.name(),
-                    fixed(vx, 6),
-                    fixed(vy, 6)
-                )
-                .unwrap();
-            }
-        }
-        Ok(vec![
-            ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            scenes_csv(ctx, fig, self.scenes)?,
-        ])
+        tip_tables(ctx, fig, self.scenes, report::tip_velocity)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let scenes = read_scenes(ctx, fig)?;
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let lines = per_scene(&t, &scenes, "v_x", "v_y")?;
-        let title = title(fig, self.title);
-        let mut p = LinePlot::new(&title, "v_x", "v_y");
-        p.equal_aspect = true;
-        for (s, pts) in scenes.iter().zip(lines) {
-            p.series.push(Series::line(s.1.clone(), pts));
-        }
-        drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
+        ctx.draw(fig, |r, s| {
+            plot::report::tip_velocity(r, s, &title(fig, self.title))
+        })
     }
 }
 
@@ -371,23 +177,6 @@ pub struct VmaxVsSpan {
     pub refined: (usize, f64, f64, usize),
 }
 
-/// A span's `(d, tip_speed_max, t_tip_speed_max)`.
-type SpanMax = (f64, f64, f64);
-
-/// The largest jump of `t_tip_speed_max` between neighbouring spans of
-/// `rows` (`(d, v, t)`, sorted by `d`) at spans above `from`: where the
-/// maximum switches from one whip event to another. Returns the two rows.
-fn whip_switch(rows: &[SpanMax], from: f64) -> Option<(SpanMax, SpanMax)> {
-    rows.windows(2)
-        .filter(|w| w[0].0 >= from && w[0].2.is_finite() && w[1].2.is_finite())
-        .max_by(|a, b| (a[1].2 - a[0].2).abs().total_cmp(&(b[1].2 - b[0].2).abs()))
-        .map(|w| (w[0], w[1]))
-}
-
-/// Spans above which [`whip_switch`] looks for the switch (the curve's
-/// minimum near `d = 5.3`; below it the maximum's time moves smoothly).
-const SWITCH_FROM: f64 = 4.0;
-
 /// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
 /// values from `start` to `stop` (both included), of which those at the
 /// indices `from..to` are kept.
@@ -398,13 +187,6 @@ pub struct LinspaceSlice {
     pub num: usize,
     pub from: usize,
     pub to: usize,
-}
-
-/// `n` points from `a` to `b`.
-fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-        .collect()
 }
 
 impl Make for VmaxVsSpan {
@@ -419,192 +201,26 @@ impl Make for VmaxVsSpan {
     /// `-n200`): the two neighbouring spans of the dense curve between
     /// which the time of the maximum jumps (the whip switch).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let spans = self.report_spans;
-        let report: Vec<f64> =
-            linspace(spans.start, spans.stop, spans.num)[spans.from..spans.to].to_vec();
-        let dense = linspace(self.dense.0, self.dense.1, self.dense.2);
-        // Adaptive DOPRI5 for every span: RK4 at the report's dt diverges near d = 1.
-        let base = ctx.run(self.scene)?;
-        let base = base
-            .scene
-            .with_overrides(&["run.method=dopri5", "run.rtol=1e-8", "run.atol=1e-10"])
-            .map_err(|e| e.to_string())?;
-        let mut csv = String::from("set,d,tip_speed_max,t_tip_speed_max,status\n");
-        for (set, spans) in [("report", &report), ("dense", &dense)] {
-            let vary = [Vary::floats("start.p1.0", spans)];
-            let rows =
-                sweep::run(&base, &vary, None, ctx.jobs, &|_, _| {}).map_err(|e| e.to_string())?;
-            for (r, &d) in rows.iter().zip(spans.iter()) {
-                let s = &r.summary;
-                writeln!(
-                    csv,
-                    "{set},{},{},{},{}",
-                    num(d),
-                    num(s.tip_speed_max),
-                    num(s.t_tip_speed_max),
-                    s.status
-                )
-                .unwrap();
-            }
-        }
-        let full = ctx.run(self.stretched)?;
-        let s = &full.traj.summary;
-        let span_full = full.release[0] - full.traj.anchor[0];
-        writeln!(
-            csv,
-            "stretched,{},{},{},{}",
-            num(span_full),
-            num(s.tip_speed_max),
-            num(s.t_tip_speed_max),
-            full.traj.status
-        )
-        .unwrap();
-        // The refined chain: the n = 50 scene at `links` rods with the
-        // continuum fixed, over fewer spans, and its stretched chain.
+        let r = self.report_spans;
         let (links, a, b, count) = self.refined;
-        let refine = |scene: &falling_chain::Scene| {
-            converge::refined_scene(scene, links)
-                .and_then(|s| {
-                    s.with_overrides(&["run.method=auto", "run.rtol=1e-8", "run.atol=1e-10"])
-                })
-                .map_err(|e| e.to_string())
+        let spans = report::Spans {
+            report: report::linspace(r.start, r.stop, r.num)[r.from..r.to].to_vec(),
+            dense: report::linspace(self.dense.0, self.dense.1, self.dense.2),
+            refined: (links, report::linspace(a, b, count)),
         };
-        let fine_spans = linspace(a, b, count);
-        let fine = refine(&base)?;
-        let rows = sweep::run(
-            &fine,
-            &[Vary::floats("start.p1.0", &fine_spans)],
-            None,
+        let stretched = ctx.run(self.stretched)?;
+        let csv = report::vmax_vs_span(
+            &ctx.run(self.scene)?.scene,
+            (&stretched.scene, &stretched.as_run()),
+            &spans,
             ctx.jobs,
-            &|_, _| {},
-        )
-        .map_err(|e| e.to_string())?;
-        let set = format!("n{links}");
-        for (r, &d) in rows.iter().zip(fine_spans.iter()) {
-            let s = &r.summary;
-            writeln!(
-                csv,
-                "{set},{},{},{},{}",
-                num(d),
-                num(s.tip_speed_max),
-                num(s.t_tip_speed_max),
-                s.status
-            )
-            .unwrap();
-        }
-        let stretched = refine(&full.scene)?;
-        let mut prepared = stretched.prepare().map_err(|e| e.to_string())?;
-        prepared.options.output_dt = None;
-        let traj = prepared.solve().map_err(|e| e.to_string())?;
-        writeln!(
-            csv,
-            "stretched-{set},{},{},{},{}",
-            num(span_full),
-            num(traj.summary.tip_speed_max),
-            num(traj.summary.t_tip_speed_max),
-            traj.status
-        )
-        .unwrap();
-        // The whip switch of each curve, from the data just written.
-        let table = crate::data::Table::parse("fig09", &csv)?;
-        let (tset, td, tv, tt, tst) = (
-            table.strs("set")?,
-            table.nums("d")?,
-            table.nums("tip_speed_max")?,
-            table.nums("t_tip_speed_max")?,
-            table.strs("status")?,
-        );
-        for (which, suffix) in [("dense", String::new()), (set.as_str(), format!("-{set}"))] {
-            let mut pts: Vec<SpanMax> = (0..table.len())
-                .filter(|&k| tset[k] == which && tst[k] == "ok")
-                .map(|k| (td[k], tv[k], tt[k]))
-                .collect();
-            pts.sort_by(|x, y| x.0.total_cmp(&y.0));
-            if let Some((lo, hi)) = whip_switch(&pts, SWITCH_FROM) {
-                for (name, p) in [("switch-before", lo), ("switch-after", hi)] {
-                    writeln!(
-                        csv,
-                        "{name}{suffix},{},{},{},ok",
-                        num(p.0),
-                        num(p.1),
-                        num(p.2)
-                    )
-                    .unwrap();
-                }
-            }
-        }
+        )?;
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let (set, d, v, status) = (
-            t.strs("set")?,
-            t.nums("d")?,
-            t.nums("tip_speed_max")?,
-            t.strs("status")?,
-        );
-        let ok = |which: &str| -> Vec<(f64, f64)> {
-            (0..t.len())
-                .filter(|&k| set[k] == which && status[k] == "ok")
-                .map(|k| (d[k], v[k]))
-                .collect()
-        };
-        let dense_count = set.iter().filter(|s| **s == "dense").count();
-        let (links, ..) = self.refined;
-        let fine = format!("n{links}");
-        let fine_count = set.iter().filter(|s| **s == fine).count();
-        let title = title(fig, self.title);
-        let mut p = LinePlot::new(&title, "span d", "maximum tip speed");
-        p.x_tick_step = Some(0.5);
-        p.series.push(Series::line(
-            format!("n = 50: {dense_count} spans (DOPRI5, rtol 1e-8)"),
-            ok("dense"),
-        ));
-        p.series.push(Series::new(
-            format!("n = {links}, continuum fixed: {fine_count} spans (auto, rtol 1e-8)"),
-            ok(&fine),
-            Style::LinePoints,
-        ));
-        p.series.push(Series::points(
-            "this model at the report's 14 spans (n = 50)",
-            ok("report"),
-        ));
-        let mut full = ok("stretched");
-        full.extend(ok(&format!("stretched-{fine}")));
-        p.series
-            .push(Series::points("stretched, d = L (n = 50, n = 200)", full));
-        // The whip switch of the n = 50 curve: a dashed line between the two
-        // spans where the time of the maximum jumps.
-        let before = ok("switch-before");
-        let after = ok("switch-after");
-        if let (Some(a), Some(b)) = (before.first(), after.first()) {
-            let (lo, hi) = v
-                .iter()
-                .copied()
-                .filter(|x| x.is_finite())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-                    (l.min(x), h.max(x))
-                });
-            let at = 0.5 * (a.0 + b.0);
-            let times = |k: &str| {
-                (0..t.len())
-                    .find(|&i| set[i] == k)
-                    .map(|i| t.nums("t_tip_speed_max").map(|c| c[i]))
-            };
-            let (ta, tb) = match (times("switch-before"), times("switch-after")) {
-                (Some(a), Some(b)) => (a?, b?),
-                _ => (f64::NAN, f64::NAN),
-            };
-            p.series.push(
-                Series::new(
-                    format!("whip switch, d = {at:.2}: t of max {ta:.2} -> {tb:.2}"),
-                    vec![(at, lo), (at, hi)],
-                    Style::Dashed,
-                )
-                .with_color(figures::RGBColor(90, 90, 90)),
-            );
-        }
-        drawn(ctx, fig, figures::line_plot(&p, &ctx.stem(fig.id)))
+        ctx.draw(fig, |r, s| {
+            plot::report::vmax_vs_span(r, s, &title(fig, self.title), self.refined.0)
+        })
     }
 }

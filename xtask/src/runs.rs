@@ -3,15 +3,14 @@
 //! which are made from the runs directly (they are not redrawn from data).
 
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::Path;
 
 use chain_ode::{Trajectory, Vec2};
+use falling_chain::study::report;
 use falling_chain::{render, Scene};
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;
-use crate::data::num;
 
 /// A finished scene run and what the figures need to know about it.
 pub struct SceneRun {
@@ -21,6 +20,17 @@ pub struct SceneRun {
     pub snapshot_dt: f64,
     /// Where the free end was held (P1).
     pub release: Vec2,
+}
+
+impl SceneRun {
+    /// The run as the report's tables take it.
+    pub fn as_run(&self) -> falling_chain::study::report::Run<'_> {
+        falling_chain::study::report::Run {
+            name: self.scene.name(),
+            traj: &self.traj,
+            release: self.release,
+        }
+    }
 }
 
 /// Samples are recorded this many times finer than the scene's `output_dt`,
@@ -74,37 +84,8 @@ pub fn run_all(
 /// `scenes.csv`: one row per scene run, what the paper quotes about the
 /// report's scenes (no wall times).
 pub fn summary_csv(runs: &BTreeMap<&'static str, SceneRun>) -> String {
-    let mut s = String::from(
-        "scene,method,links,damping,t_end,status,steps,rejected_steps,rhs_evals,\
-         energy_start,energy_end,dissipated,energy_balance_error,energy_scale,\
-         tip_speed_max,t_tip_speed_max,tip_end_x,tip_end_y\n",
-    );
-    for (name, r) in runs {
-        let (t, m) = (&r.traj, &r.traj.summary);
-        writeln!(
-            s,
-            "{name},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            t.method,
-            t.chain.links(),
-            num(t.chain.damping()),
-            num(t.t_end),
-            t.status,
-            t.stats.steps,
-            t.stats.rejected_steps,
-            t.stats.rhs_evals,
-            num(m.energy_start),
-            num(m.energy_end),
-            num(m.dissipated),
-            num(m.energy_balance_error),
-            num(t.chain.energy_scale()),
-            num(m.tip_speed_max),
-            num(m.t_tip_speed_max),
-            num(m.tip_end[0]),
-            num(m.tip_end[1]),
-        )
-        .unwrap();
-    }
-    s
+    let runs: Vec<(&str, &Trajectory)> = runs.iter().map(|(n, r)| (*n, &r.traj)).collect();
+    report::summary(&runs)
 }
 
 /// The animation of one scene run, `<dir>/<name>.gif`: about 60 frames at

@@ -25,17 +25,6 @@ pub fn is_timing(file: &str) -> bool {
     file.ends_with(SUFFIX)
 }
 
-/// The median of `v` (which must not be empty).
-pub fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let k = v.len();
-    if k % 2 == 1 {
-        v[k / 2]
-    } else {
-        0.5 * (v[k / 2 - 1] + v[k / 2])
-    }
-}
-
 /// The value of the first line of `text` that starts with `key` (in the
 /// `key : value` form of /proc/cpuinfo and /proc/meminfo).
 fn field<'a>(text: &'a str, key: &str) -> Option<&'a str> {
@@ -108,12 +97,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn dates_and_medians() {
+    fn dates() {
         assert_eq!(civil(0), (1970, 1, 1));
         assert_eq!(civil(19_723), (2024, 1, 1));
         assert_eq!(civil(20_513), (2026, 3, 1));
-        assert_eq!(median(&mut [3.0, 1.0, 2.0]), 2.0);
-        assert_eq!(median(&mut [4.0, 1.0, 2.0, 3.0]), 2.5);
         assert!(is_timing("wp-folded-timing.csv") && !is_timing("wp-folded.csv"));
     }
 

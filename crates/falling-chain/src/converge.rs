@@ -85,6 +85,19 @@ pub fn run_level(
     method: Option<&str>,
     rtol: Option<f64>,
 ) -> Result<Level, Error> {
+    run_level_until(scene, links, method, rtol, None)
+}
+
+/// [`run_level`], stopped when `cancel` is set (the run then ends
+/// `interrupted`, at once if it was set before it started): how a time
+/// budget stops a ladder.
+pub fn run_level_until(
+    scene: &Scene,
+    links: usize,
+    method: Option<&str>,
+    rtol: Option<f64>,
+    cancel: Option<&chain_ode::Cancel>,
+) -> Result<Level, Error> {
     let mut s = refined_scene(scene, links)?;
     if let Some(m) = method {
         s = s.with_value("run.method", toml::Value::String(m.to_string()))?;
@@ -93,7 +106,8 @@ pub fn run_level(
         s = s.with_value("run.rtol", toml::Value::Float(r))?;
         s = s.with_value("run.atol", toml::Value::Float(r * 1e-2))?;
     }
-    let prepared = s.prepare()?;
+    let mut prepared = s.prepare()?;
+    prepared.options.cancel = cancel.cloned();
     let traj = prepared.solve()?;
     let track = tip_track(&traj)
         .into_iter()
@@ -299,6 +313,20 @@ pub fn run_levels(
     jobs: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Vec<Level>, Error> {
+    run_levels_until(scene, links, method, rtol, jobs, progress, None)
+}
+
+/// [`run_levels`], each run stopped when `cancel` is set (see
+/// [`run_level_until`]).
+pub fn run_levels_until(
+    scene: &Scene,
+    links: &[usize],
+    method: Option<&str>,
+    rtol: Option<f64>,
+    jobs: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: Option<&chain_ode::Cancel>,
+) -> Result<Vec<Level>, Error> {
     let jobs = crate::sweep::check_jobs("--jobs", jobs)?;
     let mut links = links.to_vec();
     links.sort_unstable();
@@ -336,7 +364,7 @@ pub fn run_levels(
             .par_iter()
             .rev()
             .map(|&n| {
-                let level = run_level(scene, n, method, rtol)?;
+                let level = run_level_until(scene, n, method, rtol, cancel)?;
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
                 Ok(level)
             })

@@ -224,8 +224,8 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         eprintln!("wrote {} rows to {shown}", s.rows.len());
     }
     if let Some(path) = &a.plot {
-        let title = format!("Work-precision: {} (n = {})", s.name, s.links);
-        draw(path, plot::precision(&title, &s.rows, path))?;
+        let label = format!("{} (n = {})", s.name, s.links);
+        draw(path, plot::precision(&label, &s.csv(), path))?;
     }
     Ok(report_failures(&s.failures))
 }
@@ -290,7 +290,7 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     }
     if let Some(path) = &a.plot {
         let title = format!("Where each method fails: {}", s.name);
-        draw(path, plot::stability(&title, &s.rows, &s.cells, path))?;
+        draw(path, plot::stability(&title, &s.csv(), path))?;
     }
     Ok(report_failures(&s.failures))
 }

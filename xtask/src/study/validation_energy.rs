@@ -3,14 +3,11 @@
 //! the span d = 3 scene, for r = 0, the scene's r and a larger r. With the
 //! scene's n = 50 and m = 0.2 per rod, only r changes.
 
-use std::fmt::Write as _;
-
-use chain_ode::kinematics::{kinetic_energy, potential_energy};
-use figures::{palette, LinePlot, Series, Style};
+use falling_chain::study::plot;
+use falling_chain::study::validation;
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;
-use crate::data::{distinct, num};
 use crate::registry::{Figure, Make};
 
 const DAMPINGS: [f64; 3] = [0.0, 5e-4, 1e-2];
@@ -46,91 +43,14 @@ impl Make for EnergyBudget {
                 .collect::<Result<Vec<_>, String>>()
         })?;
 
-        let mut csv = String::from(
-            "damping,damping_rate,energy_scale,t,kinetic,potential,energy,dissipated,\
-             balance_over_MgL\n",
-        );
-        for traj in &runs {
-            let chain = &traj.chain;
-            let scale = chain.energy_scale();
-            let mut e0 = None;
-            let mut worst: f64 = 0.0;
-            for s in traj.samples() {
-                let t = kinetic_energy(chain, s.angles, s.rates);
-                let v = potential_energy(chain, s.angles);
-                let e = t + v;
-                let e0 = *e0.get_or_insert(e);
-                let b = (e + s.dissipated - e0) / scale;
-                worst = worst.max(b.abs());
-                writeln!(
-                    csv,
-                    "{},{},{},{},{},{},{},{},{}",
-                    num(chain.damping()),
-                    num(chain.damping_rate()),
-                    num(scale),
-                    num(s.t),
-                    num(t),
-                    num(v),
-                    num(e),
-                    num(s.dissipated),
-                    num(b)
-                )
-                .unwrap();
-            }
-            println!(
-                "  {}: r = {} (r/(m l^2) = {:.3}): max |E + W - E(0)| = {worst:.2e} M g L",
-                fig.id,
-                chain.damping(),
-                chain.damping_rate()
-            );
+        let (csv, notes) = validation::energy_budget(&runs);
+        for n in notes {
+            println!("  {}: {n}", fig.id);
         }
         Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let damping = t.strs("damping")?;
-        let (scale, time) = (t.nums("energy_scale")?, t.nums("t")?);
-        let (energy, dissipated, balance) = (
-            t.nums("energy")?,
-            t.nums("dissipated")?,
-            t.nums("balance_over_MgL")?,
-        );
-        let mut left = LinePlot::new("energy change and dissipated work", "t", "energy / (M g L)");
-        let mut right = LinePlot::new("energy balance", "t", "|E(t) + W(t) - E(0)| / (M g L)");
-        right.log_y = true;
-        let mut notes = vec![];
-        for (i, r) in distinct(&damping).into_iter().enumerate() {
-            let rows: Vec<usize> = (0..t.len()).filter(|&k| damping[k] == r).collect();
-            let e0 = energy[rows[0]];
-            let de = rows
-                .iter()
-                .map(|&k| (time[k], (energy[k] - e0) / scale[k]))
-                .collect();
-            left.series
-                .push(Series::line(format!("E - E(0), r = {r}"), de).with_color(palette(i)));
-            if crate::data::parse_num(r)? > 0.0 {
-                let w = rows
-                    .iter()
-                    .map(|&k| (time[k], dissipated[k] / scale[k]))
-                    .collect();
-                left.series.push(
-                    Series::new(format!("W, r = {r}"), w, Style::Dashed).with_color(palette(i)),
-                );
-            }
-            let bal: Vec<(f64, f64)> = rows.iter().map(|&k| (time[k], balance[k].abs())).collect();
-            let worst = bal.iter().map(|b| b.1).fold(0.0, f64::max);
-            notes.push(format!("r = {r}: {worst:.1e}"));
-            right
-                .series
-                .push(Series::line(format!("r = {r}"), bal).with_color(palette(i)));
-        }
-        right.annotations = vec!["max over the samples:".to_string()];
-        right.annotations.extend(notes);
-        right.y_range = Some((1e-17, 1e-9));
-        let title = "Energy budget, span d = 3 (n = 50): dE/dt = -2R, W' = 2R (DOPRI5, rtol 1e-10)";
-        let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(fig.id))
-            .map_err(|e| format!("{}: {e}", fig.id))?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, plot::validation::energy_budget)
     }
 }

@@ -1,61 +1,16 @@
-//! `folded-vs-analytic` and `support-force`: the folded chain with r = 0
-//! against the energy-conserving law (Calkin & March 1989), and the force on
-//! the pivot during the fall.
-//!
-//! Convention: the fall distance `x` is measured from the free end's own
-//! start height. The discrete folded start has its free end at
-//! `P0 + (l, -l)`, released at rest, as the law's free end is at `x = 0`;
-//! measured from the pivot's height instead, the chain would start at
-//! `x = l` with `v = 0`, where the law already has `v ~ sqrt(2 g l)`: a time
-//! offset of about `sqrt(2 l / g)`. Both are `O(1/n)` apart; the data carry
-//! both, the figures use the first.
+//! `folded-vs-analytic`, `support-force` and `folded-tip-acceleration`:
+//! the folded chain with r = 0 against the energy-conserving law (Calkin &
+//! March 1989), the force on the pivot during the fall, and the tip's
+//! acceleration. The tables are `falling_chain::study::folded`'s; here are
+//! the scenes and the drawing.
 
-use std::fmt::Write as _;
 use std::sync::OnceLock;
 
-use chain_ode::analysis::{first_time_below, folded_law, pivot_forces, refined, tip_track};
-use chain_ode::dynamics::{accelerations, Workspace};
-use chain_ode::{solve, Method, SolveOptions, Start, Trajectory, Vec2};
-use figures::{palette, LinePlot, RGBColor, Series, Style};
-use rayon::prelude::*;
+use falling_chain::study::folded::{self, FoldedRun};
+use falling_chain::study::plot;
 
 use crate::ctx::Ctx;
-use crate::data::{distinct, fixed, num, opt};
 use crate::registry::{Figure, Make};
-
-/// A long per-sample cell: six decimals (quantities of order one).
-fn short(x: f64) -> String {
-    fixed(x, 6)
-}
-
-const LINKS: [usize; 4] = [50, 100, 200, 400];
-const XIS: [f64; 2] = [0.5, 0.9];
-
-/// A folded run and its tip at every sample.
-struct FoldedRun {
-    traj: Trajectory,
-    /// `(t, tip, v_tip)`.
-    track: Vec<(f64, Vec2, Vec2)>,
-    /// Samples up to the tip's lowest point (the end of the fall).
-    fall: usize,
-}
-
-impl FoldedRun {
-    fn length(&self) -> f64 {
-        self.traj.chain.length()
-    }
-    fn gravity(&self) -> f64 {
-        self.traj.chain.gravity()
-    }
-    /// `(t, x, |v|)` during the fall, `x` from the free end's start height.
-    fn fall_curve(&self) -> Vec<(f64, f64, f64)> {
-        let y0 = self.track[0].1[1];
-        self.track[..self.fall]
-            .iter()
-            .map(|(t, p, v)| (*t, y0 - p[1], v[0].hypot(v[1])))
-            .collect()
-    }
-}
 
 static FOLDED: OnceLock<Result<Vec<FoldedRun>, String>> = OnceLock::new();
 
@@ -64,72 +19,32 @@ fn folded_runs(ctx: &Ctx) -> Result<&'static [FoldedRun], String> {
     FOLDED
         .get_or_init(|| {
             let base = ctx.scene("folded", &["chain.damping=0"])?;
-            let chain = base.chain().map_err(|e| e.to_string())?;
-            let p0 = base.start().anchor();
-            let tau = (chain.length() / chain.gravity()).sqrt();
-            ctx.pool()?
-                .install(|| {
-                    LINKS
-                        .par_iter()
-                        .rev()
-                        .map(|&n| {
-                            let c = refined(&chain, n).map_err(|e| e.to_string())?;
-                            let start = Start::Folded {
-                                p0,
-                                down: Some(n / 2),
-                            }
-                            .state(&c)
-                            .map_err(|e| e.to_string())?;
-                            // Past the law's total fall time 1.198 sqrt(L/g).
-                            let options = SolveOptions {
-                                t_end: 1.22 * tau,
-                                rtol: 1e-10,
-                                atol: 1e-12,
-                                output_dt: Some(1e-3),
-                                ..Default::default()
-                            };
-                            let traj = solve(&c, &start, Method::Dopri5, &options)
-                                .map_err(|e| e.to_string())?;
-                            if !traj.status.is_ok() {
-                                return Err(format!("folded n = {n}: status {}", traj.status));
-                            }
-                            let track = tip_track(&traj);
-                            // The fall ends where the tip first moves up again.
-                            let fall = track
-                                .iter()
-                                .position(|(t, _, v)| *t > 0.5 * tau && v[1] >= 0.0)
-                                .unwrap_or(track.len());
-                            println!(
-                                "  folded n = {n}: vmax {:.4} at t = {:.4}, {} steps",
-                                traj.summary.tip_speed_max,
-                                traj.summary.t_tip_speed_max,
-                                traj.stats.steps,
-                            );
-                            Ok(FoldedRun { traj, track, fall })
-                        })
-                        .collect::<Result<Vec<_>, String>>()
-                })
-                .map(|mut v| {
-                    v.sort_by_key(|r| r.traj.chain.links());
-                    v
-                })
+            let runs = ctx.pool()?.install(|| folded::folded_runs(&base))?;
+            for r in &runs {
+                println!("  {}", r.note);
+            }
+            Ok(runs)
         })
         .as_ref()
         .map(|v| v.as_slice())
         .map_err(|e| e.clone())
 }
 
-/// `|v|` at fall distance `x`, linear in `x` between samples.
-fn speed_at(curve: &[(f64, f64, f64)], x: f64) -> Option<f64> {
-    curve.windows(2).find_map(|w| {
-        let (a, b) = (w[0], w[1]);
-        (a.1 <= x && x <= b.1 && b.1 > a.1).then(|| a.2 + (b.2 - a.2) * (x - a.1) / (b.1 - a.1))
-    })
+/// Writes `tables` as `<id><suffix>.csv` and prints `notes`.
+fn write_all(
+    ctx: &Ctx,
+    id: &str,
+    tables: &[(&str, &str)],
+    notes: &[String],
+) -> Result<Vec<String>, String> {
+    for n in notes {
+        println!("  {id}: {n}");
+    }
+    tables
+        .iter()
+        .map(|(suffix, csv)| ctx.write(&format!("{id}{suffix}.csv"), csv))
+        .collect()
 }
-
-/// Points of the law's curves: `xi` from 0 to [`LAW_TO`].
-const LAW_POINTS: usize = 2000;
-const LAW_TO: f64 = 0.9999;
 
 pub struct FoldedVsAnalytic;
 
@@ -138,238 +53,15 @@ impl Make for FoldedVsAnalytic {
     /// L/2 and 0.9 L against the law) and `-law.csv` (the law's and free
     /// fall's speed against `xi`).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
-        let runs = folded_runs(ctx)?;
-        let (length, g) = (runs[0].length(), runs[0].gravity());
-        let vs = (g * length).sqrt();
-        let tau = (length / g).sqrt();
-
-        let mut curve_csv = String::from("links,t,x_over_L,v_over_sqrt_gL,v_law_over_sqrt_gL\n");
-        let mut times_csv = String::from(
-            "links,xi,t_from_start_height,t_from_pivot_height,t_law,rel_from_start_height,\
-             rel_from_pivot_height,speed_rel_at_xi,max_speed_rel_from_0.05L_to_xi,\
-             t_law_over_sqrt_L_over_g\n",
-        );
-        for run in runs {
-            let n = run.traj.chain.links();
-            let curve = run.fall_curve();
-            for &(t, x, v) in &curve {
-                let law = if x < length {
-                    short(folded_law::speed(x.max(0.0), length, g) / vs)
-                } else {
-                    String::new()
-                };
-                writeln!(
-                    curve_csv,
-                    "{n},{},{},{},{law}",
-                    short(t),
-                    short(x / length),
-                    short(v / vs)
-                )
-                .unwrap();
-            }
-            let y0 = run.track[0].1[1];
-            for &xi in &XIS {
-                let x = xi * length;
-                let from_start = first_time_below(&run.track, y0 - x)
-                    .ok_or_else(|| format!("{id}: n = {n} never fell {xi} L"))?;
-                let from_pivot = first_time_below(&run.track, run.traj.anchor[1] - x)
-                    .ok_or_else(|| format!("{id}: n = {n} never fell below {xi} L"))?;
-                let law = folded_law::time(x, length, g);
-                let speed = speed_at(&curve, x).unwrap_or(f64::NAN);
-                let law_v = folded_law::speed(x, length, g);
-                let worst = curve
-                    .iter()
-                    .filter(|c| c.1 >= 0.05 * length && c.1 <= x)
-                    .map(|c| (c.2 / folded_law::speed(c.1, length, g) - 1.0).abs())
-                    .fold(0.0, f64::max);
-                writeln!(
-                    times_csv,
-                    "{n},{xi},{},{},{},{},{},{},{},{}",
-                    num(from_start),
-                    num(from_pivot),
-                    num(law),
-                    num(from_start / law - 1.0),
-                    num(from_pivot / law - 1.0),
-                    num(speed / law_v - 1.0),
-                    num(worst),
-                    num(law / tau)
-                )
-                .unwrap();
-                if xi == 0.5 {
-                    println!(
-                        "  {id}: n = {n}: t(L/2) {:+.3}%, |v/v_law - 1| <= {:.2}% to L/2",
-                        100.0 * (from_start / law - 1.0),
-                        100.0 * worst
-                    );
-                }
-            }
-        }
-        let mut law_csv = String::from("xi,v_law_over_sqrt_gL,v_free_fall_over_sqrt_gL\n");
-        for k in 0..=LAW_POINTS {
-            let xi = LAW_TO * k as f64 / LAW_POINTS as f64;
-            writeln!(
-                law_csv,
-                "{},{},{}",
-                short(xi),
-                short(folded_law::speed(xi * length, length, g) / vs),
-                short(folded_law::free_fall_speed(xi * length, g) / vs)
-            )
-            .unwrap();
-        }
-        Ok(vec![
-            ctx.write(&format!("{id}.csv"), &curve_csv)?,
-            ctx.write(&format!("{id}-times.csv"), &times_csv)?,
-            ctx.write(&format!("{id}-law.csv"), &law_csv)?,
-        ])
+        let t = folded::vs_law(folded_runs(ctx)?)?;
+        let tables = [("", &*t.curve), ("-times", &*t.times), ("-law", &*t.law)];
+        write_all(ctx, fig.id, &tables, &t.notes)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
-        let c = ctx.read(&format!("{id}.csv"))?;
-        let (links, x, v) = (
-            c.strs("links")?,
-            c.nums("x_over_L")?,
-            c.nums("v_over_sqrt_gL")?,
-        );
-        let tm = ctx.read(&format!("{id}-times.csv"))?;
-        let (t_links, t_xi) = (tm.nums("links")?, tm.strs("xi")?);
-        let (rel_start, rel_pivot) = (
-            tm.nums("rel_from_start_height")?,
-            tm.nums("rel_from_pivot_height")?,
-        );
-        let t_law = tm.nums("t_law_over_sqrt_L_over_g")?;
-        let law = ctx.read(&format!("{id}-law.csv"))?;
-        let (law_xi, law_v, free_v) = (
-            law.nums("xi")?,
-            law.nums("v_law_over_sqrt_gL")?,
-            law.nums("v_free_fall_over_sqrt_gL")?,
-        );
-
-        let mut left = LinePlot::new(
-            "tip speed against fall distance",
-            "x / L (fall of the free end from its start)",
-            "|v| / sqrt(g L)",
-        );
-        let mut right = LinePlot::new(
-            "time to fall x: chain against the law",
-            "n (rods)",
-            "t(x) / t_law(x) - 1  (%)",
-        );
-        for (i, n) in distinct(&links).into_iter().enumerate() {
-            left.series.push(
-                Series::line(
-                    format!("n = {n}"),
-                    (0..c.len())
-                        .filter(|&k| links[k] == n)
-                        .map(|k| (x[k], v[k]))
-                        .collect(),
-                )
-                .with_color(palette(i)),
-            );
-        }
-        let black = RGBColor(0, 0, 0);
-        let gray = RGBColor(120, 120, 120);
-        let pairs = |ys: &[f64]| law_xi.iter().copied().zip(ys.iter().copied()).collect();
-        left.series.push(
-            Series::new(
-                "law: v^2 = g x (2L - x)/(L - x)",
-                pairs(&law_v),
-                Style::Dashed,
-            )
-            .with_color(black),
-        );
-        left.series.push(
-            Series::new("free fall: v^2 = 2 g x", pairs(&free_v), Style::Dashed).with_color(gray),
-        );
-        let top = v.iter().copied().fold(0.0, f64::max);
-        left.y_range = Some((0.0, 1.05 * top));
-        left.x_range = Some((0.0, 1.0));
-        let mut title_law = vec![];
-        for (k, xi) in distinct(&t_xi).into_iter().enumerate() {
-            let rows: Vec<usize> = (0..tm.len()).filter(|&j| t_xi[j] == xi).collect();
-            title_law.push(t_law[rows[0]]);
-            let label = if xi == "0.5" { "L/2" } else { "0.9 L" };
-            right.series.push(
-                Series::new(
-                    format!("{label}, x from the free end's start"),
-                    rows.iter()
-                        .map(|&j| (t_links[j], 100.0 * rel_start[j]))
-                        .collect(),
-                    Style::LinePoints,
-                )
-                .with_color(palette(k)),
-            );
-            right.series.push(
-                Series::new(
-                    format!("{label}, x from the pivot's height"),
-                    rows.iter()
-                        .map(|&j| (t_links[j], 100.0 * rel_pivot[j]))
-                        .collect(),
-                    Style::Dashed,
-                )
-                .with_color(palette(k)),
-            );
-        }
-        right.series.push(
-            Series::new("+-0.5%", vec![(0.0, 0.5), (420.0, 0.5)], Style::Dashed).with_color(gray),
-        );
-        right.series.push(
-            Series::new("", vec![(0.0, -0.5), (420.0, -0.5)], Style::Dashed).with_color(gray),
-        );
-        right
-            .series
-            .push(Series::new("", vec![(0.0, 0.0), (420.0, 0.0)], Style::Line).with_color(black));
-        right.x_range = Some((0.0, 420.0));
-        right.y_range = Some((-2.0, 4.0));
-        let [half, most] = title_law[..] else {
-            return Err(format!("{id}-times.csv: expected two fall distances"));
-        };
-        let title = format!(
-            "Folded chain, r = 0: the law's t(L/2) = {half:.4} sqrt(L/g), t(0.9 L) = {most:.4} sqrt(L/g)"
-        );
-        let out = figures::line_plot_pair(&left, &right, &title, &ctx.stem(id))
-            .map_err(|e| format!("{id}: {e}"))?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, plot::folded::vs_law)
     }
 }
-
-/// Width (time units) of the centred window of the running mean of the
-/// pivot force: several rods turn through the fold in it (about 2.5 at
-/// n = 100 and L/2), so the rods' clicks average out.
-const WINDOW: f64 = 0.1;
-
-/// The running means drawn (all are in the data).
-const SHOWN: [usize; 2] = [100, 400];
-
-/// The impulse `integral_0^{t_k} (f - 1) dt` of samples `(t, f)` (units of M g).
-fn impulse_at(pts: &[(f64, f64)], k: usize) -> f64 {
-    pts[..=k]
-        .windows(2)
-        .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[1].1 + w[0].1 - 2.0))
-        .sum()
-}
-
-/// Running means over a centred window of width `WINDOW` of `(t, f)`
-/// (trapezoid rule on the samples), where the window fits in the data.
-fn running_mean(pts: &[(f64, f64)]) -> Vec<Option<f64>> {
-    let mut cum = vec![0.0; pts.len()];
-    for k in 1..pts.len() {
-        cum[k] = cum[k - 1] + 0.5 * (pts[k].0 - pts[k - 1].0) * (pts[k].1 + pts[k - 1].1);
-    }
-    let dt = pts.get(1).map_or(1.0, |p| p.0 - pts[0].0);
-    let half = (0.5 * WINDOW / dt).round() as usize;
-    (0..pts.len())
-        .map(|k| {
-            (k >= half && k + half < pts.len())
-                .then(|| (cum[k + half] - cum[k - half]) / (pts[k + half].0 - pts[k - half].0))
-        })
-        .collect()
-}
-
-/// Points of the law's curve of the support force: `xi` from 0 to 0.97.
-const FORCE_LAW_POINTS: usize = 1000;
-const FORCE_LAW_TO: f64 = 0.97;
 
 pub struct SupportForce;
 
@@ -377,7 +69,6 @@ impl Make for SupportForce {
     /// `support-force.csv`: the pivot force at every sample of the folded
     /// falls and of the span d = 3 scene; `support-force-law.csv`: the law.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
         let runs = folded_runs(ctx)?;
         // The catenary scene for comparison, as the scene runs it (adaptive).
         let span = ctx.scene(
@@ -394,275 +85,15 @@ impl Make for SupportForce {
             .and_then(|p| p.solve())
             .map_err(|e| e.to_string())?;
         if !span_traj.status.is_ok() {
-            return Err(format!("{id}: span-d3 status {}", span_traj.status));
+            return Err(format!("{}: span-d3 status {}", fig.id, span_traj.status));
         }
-
-        // Columns: the pivot's force on rod 1 (= minus the chain's pull on
-        // P0), its running mean, the law's value and running mean at the
-        // measured xi, and the chain's vertical momentum from the force's
-        // impulse, P_y(t) = integral (F_y - M g) dt, against the law's
-        // -rho v (L - x)/2.
-        let mut csv = String::from(
-            "scene,links,t,xi,pivot_force_x_over_Mg,pivot_force_y_over_Mg,\
-             running_mean_y_over_Mg,law_over_Mg,law_running_mean_over_Mg,\
-             momentum_y_over_M_sqrt_gL,law_momentum_y_over_M_sqrt_gL\n",
-        );
-        for run in runs {
-            let chain = &run.traj.chain;
-            let (weight, length, g) = (chain.weight(), chain.length(), chain.gravity());
-            let vs = (g * length).sqrt();
-            let forces = &pivot_forces(&run.traj)[..run.fall];
-            let y0 = run.track[0].1[1];
-            let xi: Vec<f64> = run.track[..run.fall]
-                .iter()
-                .map(|p| (y0 - p.1[1]) / length)
-                .collect();
-            let fy: Vec<(f64, f64)> = forces.iter().map(|(t, f)| (*t, f[1] / weight)).collect();
-            let law: Vec<(f64, f64)> = fy
-                .iter()
-                .zip(&xi)
-                .map(|(p, &x)| (p.0, folded_law::support_force(x)))
-                .collect();
-            let mean = running_mean(&fy);
-            let law_mean = running_mean(&law);
-            let (mut impulse, mut worst_mean, mut worst_p): (f64, f64, f64) = (0.0, 0.0, 0.0);
-            for k in 0..fy.len() {
-                if k > 0 {
-                    impulse += 0.5 * (fy[k].0 - fy[k - 1].0) * (fy[k].1 + fy[k - 1].1 - 2.0);
-                }
-                // Momentum over M sqrt(g L): g * impulse (in units of M g) / sqrt(g L).
-                let p = impulse * g / vs;
-                let law_p = -0.5
-                    * folded_law::speed((xi[k] * length).clamp(0.0, 0.999_999 * length), length, g)
-                    / vs
-                    * (1.0 - xi[k]);
-                writeln!(
-                    csv,
-                    "folded,{},{},{},{},{},{},{},{},{},{}",
-                    chain.links(),
-                    short(fy[k].0),
-                    short(xi[k]),
-                    short(forces[k].1[0] / weight),
-                    short(fy[k].1),
-                    opt(mean[k], short),
-                    short(law[k].1),
-                    opt(law_mean[k], short),
-                    short(p),
-                    short(law_p)
-                )
-                .unwrap();
-                if let (Some(m), Some(lm)) = (mean[k], law_mean[k]) {
-                    if (0.05..=0.75).contains(&xi[k]) {
-                        worst_mean = worst_mean.max((m / lm - 1.0).abs());
-                    }
-                }
-                if xi[k] <= 0.75 {
-                    worst_p = worst_p.max((p - law_p).abs());
-                }
-            }
-            // The momentum from the impulse against the law's at xi = 0.5.
-            let half = xi.iter().position(|&x| x >= 0.5).unwrap_or(xi.len() - 1);
-            let p_half = impulse_at(&fy, half) * g / vs;
-            let law_half =
-                -0.5 * folded_law::speed(xi[half] * length, length, g) / vs * (1.0 - xi[half]);
-            let (lo, hi) = fy
-                .iter()
-                .zip(&xi)
-                .filter(|(_, &x)| (0.4..=0.6).contains(&x))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, (p, _)| {
-                    (a.0.min(p.1), a.1.max(p.1))
-                });
-            println!(
-                "  {id}: n = {}: running mean within {:.1}% of the law's for 0.05 <= xi <= 0.75; \
-                 momentum from the impulse at xi = 0.5: {:+.2}% of the law's, within {:.4} \
-                 M sqrt(g L) of it to xi = 0.75; raw force in [{lo:.2}, {hi:.2}] M g for \
-                 0.4 <= xi <= 0.6",
-                chain.links(),
-                100.0 * worst_mean,
-                100.0 * (p_half / law_half - 1.0),
-                worst_p,
-            );
-        }
-        let chain = &span_traj.chain;
-        let weight = chain.weight();
-        let forces = pivot_forces(&span_traj);
-        for (t, f) in &forces {
-            writeln!(
-                csv,
-                "span-d3,{},{},,{},{},,,,,",
-                chain.links(),
-                short(*t),
-                short(f[0] / weight),
-                short(f[1] / weight)
-            )
-            .unwrap();
-        }
-        println!(
-            "  {id}: span-d3 at t = 0+: pull ({:.4}, {:.4}) M g",
-            -forces[0].1[0] / weight,
-            forces[0].1[1] / weight
-        );
-        let mut law_csv = String::from("xi,law_over_Mg\n");
-        for k in 0..=FORCE_LAW_POINTS {
-            let xi = FORCE_LAW_TO * k as f64 / FORCE_LAW_POINTS as f64;
-            writeln!(
-                law_csv,
-                "{},{}",
-                short(xi),
-                short(folded_law::support_force(xi))
-            )
-            .unwrap();
-        }
-        Ok(vec![
-            ctx.write(&format!("{id}.csv"), &csv)?,
-            ctx.write(&format!("{id}-law.csv"), &law_csv)?,
-        ])
+        let t = folded::support_force(runs, ("span-d3", &span_traj))?;
+        write_all(ctx, fig.id, &[("", &t.force), ("-law", &t.law)], &t.notes)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
-        let d = ctx.read(&format!("{id}.csv"))?;
-        let (scene, links, t, xi) = (
-            d.strs("scene")?,
-            d.strs("links")?,
-            d.nums("t")?,
-            d.nums("xi")?,
-        );
-        let (fx, fy) = (
-            d.nums("pivot_force_x_over_Mg")?,
-            d.nums("pivot_force_y_over_Mg")?,
-        );
-        let (mean, law_mean) = (
-            d.nums("running_mean_y_over_Mg")?,
-            d.nums("law_running_mean_over_Mg")?,
-        );
-        let (p, law_p) = (
-            d.nums("momentum_y_over_M_sqrt_gL")?,
-            d.nums("law_momentum_y_over_M_sqrt_gL")?,
-        );
-        let law = ctx.read(&format!("{id}-law.csv"))?;
-        let (law_xi, law_f) = (law.nums("xi")?, law.nums("law_over_Mg")?);
-
-        let mut left = LinePlot::new(
-            "folded chain, r = 0: vertical pull against ξ",
-            "ξ = x / L (fall x of the free end from its start, chain length L)",
-            "vertical pull on P₀, downward / (M g)",
-        );
-        let mut right = LinePlot::new("against time t", "t", "pull on P₀ / (M g)");
-        let light = RGBColor(190, 190, 190);
-        let mut momentum_notes = vec![];
-        let folded: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "folded").collect();
-        let ns = distinct(&folded.iter().map(|&k| links[k]).collect::<Vec<_>>());
-        for (i, n) in ns.iter().enumerate() {
-            let rows: Vec<usize> = folded.iter().copied().filter(|&k| links[k] == *n).collect();
-            // The momentum from the impulse against the law's at xi = 0.5.
-            if let Some(&h) = rows.iter().find(|&&k| xi[k] >= 0.5).or(rows.last()) {
-                momentum_notes.push(format!(
-                    "{:+.1}% (n = {n})",
-                    100.0 * (p[h] / law_p[h] - 1.0)
-                ));
-            }
-            if *n == "100" {
-                // The raw force of one n, to show the clicks the means smooth.
-                left.series.insert(
-                    0,
-                    Series::line(
-                        "n = 100, raw",
-                        rows.iter().map(|&k| (xi[k], fy[k])).collect(),
-                    )
-                    .with_color(light),
-                );
-            }
-            let averaged: Vec<usize> = rows
-                .iter()
-                .copied()
-                .filter(|&k| mean[k].is_finite() && law_mean[k].is_finite() && xi[k] <= 0.95)
-                .collect();
-            if SHOWN.iter().any(|s| s.to_string() == *n) {
-                left.series.push(
-                    Series::line(
-                        format!("n = {n}, mean"),
-                        averaged.iter().map(|&k| (xi[k], mean[k])).collect(),
-                    )
-                    .with_color(palette(i)),
-                );
-            }
-            if i + 1 == ns.len() {
-                right.series.push(
-                    Series::line(
-                        format!("folded, n = {n} (mean)"),
-                        averaged.iter().map(|&k| (t[k], mean[k])).collect(),
-                    )
-                    .with_color(palette(i)),
-                );
-            }
-        }
-        let black = RGBColor(0, 0, 0);
-        left.series.push(
-            Series::new(
-                format!("law (drawn to ξ = {FORCE_LAW_TO}; → ∞ as ξ → 1)"),
-                law_xi.iter().copied().zip(law_f.iter().copied()).collect(),
-                Style::Dashed,
-            )
-            .with_color(black),
-        );
-        // A log axis: the raw pulses (up to some 300 M g near the end of the
-        // fall) and the law's rise stay in the frame.
-        left.x_range = Some((0.0, 1.0));
-        left.log_y = true;
-        left.annotations = vec![
-            format!("mean: over {WINDOW} time units"),
-            "momentum at ξ = 0.5".to_string(),
-            "against the law's:".to_string(),
-        ];
-        left.annotations.extend(momentum_notes);
-
-        let span: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "span-d3").collect();
-        right.series.push(
-            Series::line(
-                "span-d3: vertical",
-                span.iter().map(|&k| (t[k], fy[k])).collect(),
-            )
-            .with_color(palette(5)),
-        );
-        right.series.push(
-            Series::new(
-                "span-d3: horizontal",
-                span.iter().map(|&k| (t[k], -fx[k])).collect(),
-                Style::Dashed,
-            )
-            .with_color(palette(5)),
-        );
-        let peak = |f: &dyn Fn(usize) -> f64| span.iter().map(|&k| f(k)).fold(0.0, f64::max);
-        right.annotations = vec![
-            format!("span-d3: peak vertical pull {:.2} M g", peak(&|k| fy[k])),
-            format!(
-                "(peak magnitude |F| {:.2} M g)",
-                peak(&|k| fx[k].hypot(fy[k]))
-            ),
-        ];
-        right.y_range = Some((-0.2, 6.5));
-        let title = "Force F on the pivot P₀ (O(n) recursion) / weight M g of the chain (mass M)";
-        let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(id))
-            .map_err(|e| format!("{id}: {e}"))?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, plot::folded::support_force)
     }
-}
-
-/// The rods of the tip-acceleration figure (two of the folded runs).
-const ACCEL_LINKS: [usize; 2] = [100, 400];
-/// Fall distances at which `-at.csv` compares the tip with the law.
-const ACCEL_XIS: [f64; 5] = [0.25, 0.5, 0.75, 0.9, 0.95];
-/// Half-width in `xi` of the window `-at.csv` averages over (the discrete
-/// tip's acceleration oscillates as each rod rounds the fold).
-const ACCEL_WINDOW: f64 = 0.02;
-
-/// The law's tip acceleration over `g`: `1 + xi (2 - xi) / (2 (1 - xi)^2)`,
-/// the derivative along the fall of `v^2 = g x (2L - x)/(L - x)`
-/// (`a = (1/2) d(v^2)/dx`): free fall plus the pull of the tension at the
-/// fold on the falling arm.
-fn accel_law(xi: f64) -> f64 {
-    1.0 + xi * (2.0 - xi) / (2.0 * (1.0 - xi) * (1.0 - xi))
 }
 
 /// Why the tip beats `g`: the simulated tip's downward acceleration in the
@@ -671,144 +102,15 @@ pub struct FoldedTipAcceleration;
 
 impl Make for FoldedTipAcceleration {
     /// `folded-tip-acceleration.csv`: `links,t,xi,accel_over_g,law_over_g`
-    /// at every output sample of the fall (`xi = x/L`, `x` from the free
-    /// end's start height; `accel_over_g` = the tip's downward acceleration
-    /// over `g`, evaluated by `chain_ode::dynamics::accelerations` at the
-    /// sample's state, not differenced). `-at.csv`:
-    /// `links,xi,accel_over_g,law_over_g,rel_to_law` at a few `xi`, linear
-    /// in `xi` between samples, then `accel_mean_over_g,law_mean_over_g,
-    /// rel_mean_to_law`: the means over `|x/L - xi| <= 0.02` (the tip
-    /// velocity's change over that time, and the law's mean there).
+    /// at every output sample of the fall of the runs of `ACCEL_LINKS`
+    /// rods, and `-at.csv`, the comparison at a few `xi`
+    /// (`falling_chain::study::folded::tip_acceleration`).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
-        let runs = folded_runs(ctx)?;
-        let mut csv = String::from("links,t,xi,accel_over_g,law_over_g\n");
-        let mut at = String::from(
-            "links,xi,accel_over_g,law_over_g,rel_to_law,\
-             accel_mean_over_g,law_mean_over_g,rel_mean_to_law\n",
-        );
-        for run in runs
-            .iter()
-            .filter(|r| ACCEL_LINKS.contains(&r.traj.chain.links()))
-        {
-            let chain = &run.traj.chain;
-            let n = chain.links();
-            let (length, g) = (run.length(), run.gravity());
-            let mut ws = Workspace::new(n);
-            let mut acc = vec![0.0; n];
-            let y0 = run.track[0].1[1];
-            let mut curve = vec![];
-            for k in 0..run.fall {
-                let s = run.traj.sample(k);
-                let r = accelerations(chain, s.angles, s.rates, &mut acc, &mut ws);
-                let xi = (y0 - run.track[k].1[1]) / length;
-                let a = -r.tip_acceleration[1] / g;
-                curve.push((xi, a, s.t, run.track[k].2[1]));
-                writeln!(
-                    csv,
-                    "{n},{},{},{},{}",
-                    fixed(s.t, 4),
-                    short(xi),
-                    short(a),
-                    short(accel_law(xi))
-                )
-                .unwrap();
-            }
-            for xi in ACCEL_XIS {
-                let a = curve.windows(2).find_map(|w| {
-                    let (p, q) = (w[0], w[1]);
-                    (p.0 <= xi && xi <= q.0 && q.0 > p.0)
-                        .then(|| p.1 + (q.1 - p.1) * (xi - p.0) / (q.0 - p.0))
-                });
-                let law = accel_law(xi);
-                // The mean over the samples within ACCEL_WINDOW of xi: the
-                // exact tip velocity's change over the time between them,
-                // against the law's mean over the same samples (equal times).
-                let near: Vec<&(f64, f64, f64, f64)> = curve
-                    .iter()
-                    .filter(|c| (c.0 - xi).abs() <= ACCEL_WINDOW)
-                    .collect();
-                let (mean, law_mean) = match (near.first(), near.last()) {
-                    (Some(p), Some(q)) if q.2 > p.2 => (
-                        Some(-(q.3 - p.3) / (q.2 - p.2) / g),
-                        Some(near.iter().map(|c| accel_law(c.0)).sum::<f64>() / near.len() as f64),
-                    ),
-                    _ => (None, None),
-                };
-                writeln!(
-                    at,
-                    "{n},{},{},{},{},{},{},{}",
-                    num(xi),
-                    opt(a, num),
-                    num(law),
-                    opt(a.map(|a| a / law - 1.0), num),
-                    opt(mean, num),
-                    opt(law_mean, num),
-                    opt(mean.zip(law_mean).map(|(m, l)| m / l - 1.0), num)
-                )
-                .unwrap();
-            }
-        }
-        Ok(vec![
-            ctx.write(&format!("{id}.csv"), &csv)?,
-            ctx.write(&format!("{id}-at.csv"), &at)?,
-        ])
+        let (csv, at) = folded::tip_acceleration(folded_runs(ctx)?);
+        write_all(ctx, fig.id, &[("", &csv), ("-at", &at)], &[])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
-        let c = ctx.read(&format!("{id}.csv"))?;
-        let (links, xi, a, law) = (
-            c.strs("links")?,
-            c.nums("xi")?,
-            c.nums("accel_over_g")?,
-            c.nums("law_over_g")?,
-        );
-        let mut p = LinePlot::new(
-            "folded chain, r = 0: why the tip beats g",
-            "x / L (fall of the free end from its start)",
-            "downward tip acceleration / g",
-        );
-        p.log_y = true;
-        p.x_range = Some((0.0, 1.0));
-        p.y_range = Some((0.5, 200.0));
-        let names = distinct(&links);
-        for (i, n) in names.iter().enumerate() {
-            p.series.push(
-                Series::line(
-                    format!("n = {n} (from the dynamics at each sample)"),
-                    (0..c.len())
-                        .filter(|&k| links[k] == *n && a[k] > 0.0)
-                        .map(|k| (xi[k], a[k]))
-                        .collect(),
-                )
-                .with_color(palette(i)),
-            );
-        }
-        // The law at the finest run's samples.
-        let finest = names.last().copied().unwrap_or_default();
-        let law_pts: Vec<(f64, f64)> = (0..c.len())
-            .filter(|&k| links[k] == finest)
-            .map(|k| (xi[k], law[k]))
-            .collect();
-        p.series.push(
-            Series::new(
-                "law: a = g [1 + xi (2 - xi) / (2 (1 - xi)^2)]",
-                law_pts,
-                Style::Dashed,
-            )
-            .with_color(RGBColor(0, 0, 0)),
-        );
-        p.series.push(
-            Series::new(
-                "free fall: a = g",
-                vec![(0.0, 1.0), (1.0, 1.0)],
-                Style::Dashed,
-            )
-            .with_color(RGBColor(120, 120, 120)),
-        );
-        figures::line_plot(&p, &ctx.stem(id))
-            .map(|o| ctx.drawn(&o))
-            .map_err(|e| format!("{id}: {e}"))
+        ctx.draw(fig, plot::folded::tip_acceleration)
     }
 }

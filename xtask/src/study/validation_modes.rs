@@ -3,16 +3,10 @@
 //! and the convergence order fitted to the relative errors (least squares
 //! in log-log over n >= 40).
 
-use std::fmt::Write as _;
+use falling_chain::study::plot;
+use falling_chain::study::validation;
 
-use chain_ode::analysis::bessel_frequencies;
-use chain_ode::modes::hanging_frequencies;
-use chain_ode::Chain;
-use figures::{palette, LinePlot, Series, Style};
-
-use super::linear_fit;
 use crate::ctx::Ctx;
-use crate::data::{distinct, num};
 use crate::registry::{Figure, Make};
 
 const LINKS: [usize; 12] = [10, 14, 20, 28, 40, 57, 80, 100, 160, 226, 320, 400];
@@ -25,130 +19,17 @@ impl Make for NormalModes {
     /// `normal-modes.csv` (every n and mode, also in units of `sqrt(g/L)`)
     /// and `normal-modes-fit.csv` (the fitted order of each mode).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let base = Chain::report(LINKS[0], 0.0).map_err(|e| e.to_string())?;
-        let bessel = bessel_frequencies(&base);
-        let unit = (base.length() / base.gravity()).sqrt();
-        let mut csv = String::from(
-            "links,mode,omega,omega_bessel,relative_error,omega_sqrt_L_over_g,\
-             omega_bessel_sqrt_L_over_g\n",
-        );
-        let mut errors = vec![vec![]; MODES];
-        for &n in &LINKS {
-            let chain = Chain::report(n, 0.0).map_err(|e| e.to_string())?;
-            let w = hanging_frequencies(&chain);
-            for k in 0..MODES {
-                let rel = w[k] / bessel[k] - 1.0;
-                writeln!(
-                    csv,
-                    "{n},{},{},{},{},{},{}",
-                    k + 1,
-                    num(w[k]),
-                    num(bessel[k]),
-                    num(rel),
-                    num(w[k] * unit),
-                    num(bessel[k] * unit)
-                )
-                .unwrap();
-                errors[k].push((n as f64, rel));
-            }
-        }
-        let mut fit_csv = String::from("mode,order,coefficient,fit_from_links,fit_to_links\n");
-        for (k, errors) in errors.iter().enumerate() {
-            let logs: Vec<(f64, f64)> = errors
-                .iter()
-                .filter(|p| p.0 >= FIT_FROM as f64 && p.1 > 0.0)
-                .map(|p| (p.0.ln(), p.1.ln()))
-                .collect();
-            let (a, b) = linear_fit(&logs);
-            let (order, coefficient) = (-b, a.exp());
-            writeln!(
-                fit_csv,
-                "{},{},{},{FIT_FROM},{}",
-                k + 1,
-                num(order),
-                num(coefficient),
-                LINKS[LINKS.len() - 1]
-            )
-            .unwrap();
-            println!(
-                "  {}: mode {}: p = {order:.3}, C = {coefficient:.4}",
-                fig.id,
-                k + 1
-            );
+        let (csv, fit, notes) = validation::normal_modes(&LINKS, MODES, FIT_FROM)?;
+        for n in notes {
+            println!("  {}: {n}", fig.id);
         }
         Ok(vec![
             ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            ctx.write(&format!("{}-fit.csv", fig.id), &fit_csv)?,
+            ctx.write(&format!("{}-fit.csv", fig.id), &fit)?,
         ])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
-        let (links, mode, rel) = (t.nums("links")?, t.strs("mode")?, t.nums("relative_error")?);
-        let (omega, bessel) = (
-            t.nums("omega_sqrt_L_over_g")?,
-            t.nums("omega_bessel_sqrt_L_over_g")?,
-        );
-        let f = ctx.read(&format!("{}-fit.csv", fig.id))?;
-        let (fit_mode, order, coefficient) =
-            (f.strs("mode")?, f.nums("order")?, f.nums("coefficient")?);
-        let fit_from = f.strs("fit_from_links")?.first().copied().unwrap_or("?");
-        let mut left = LinePlot::new(
-            "frequencies against the continuum",
-            "n (rods)",
-            "omega sqrt(L/g)",
-        );
-        left.log_x = true;
-        let mut right = LinePlot::new(
-            "relative error (all positive: the chain is stiffer)",
-            "n (rods)",
-            "omega_n / omega_Bessel - 1",
-        );
-        right.log_x = true;
-        right.log_y = true;
-        let mut notes = vec![format!("fit over n >= {fit_from}: error = C / n^p")];
-        for (k, m) in distinct(&mode).into_iter().enumerate() {
-            let rows: Vec<usize> = (0..t.len()).filter(|&j| mode[j] == m).collect();
-            if let Some(j) = fit_mode.iter().position(|x| *x == m) {
-                notes.push(format!(
-                    "mode {m}: p = {:.3}, C = {:.4}",
-                    order[j], coefficient[j]
-                ));
-            }
-            left.series.push(
-                Series::new(
-                    format!("mode {m}"),
-                    rows.iter().map(|&j| (links[j], omega[j])).collect(),
-                    Style::LinePoints,
-                )
-                .with_color(palette(k)),
-            );
-            let b = bessel[rows[0]];
-            left.series.push(
-                Series::new(
-                    if k == 0 { "j_0k / 2 (continuum)" } else { "" },
-                    vec![(8.0, b), (500.0, b)],
-                    Style::Dashed,
-                )
-                .with_color(palette(k)),
-            );
-            right.series.push(
-                Series::new(
-                    format!("mode {m}"),
-                    rows.iter().map(|&j| (links[j], rel[j])).collect(),
-                    Style::LinePoints,
-                )
-                .with_color(palette(k)),
-            );
-        }
-        left.x_range = Some((8.0, 500.0));
-        left.y_range = Some((0.0, 15.0));
-        right.x_range = Some((8.0, 500.0));
-        right.y_range = Some((1e-8, 1e5));
-        right.annotations = notes;
-        let title = "Small oscillations of the hanging chain: n rods against the Bessel zeros";
-        let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(fig.id))
-            .map_err(|e| format!("{}: {e}", fig.id))?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, plot::validation::normal_modes)
     }
 }

@@ -8,6 +8,7 @@ use chain_ode::kinematics::tip;
 use chain_ode::{solve, Method};
 
 use super::precision::reference_options;
+use super::table::Table;
 use crate::error::Error;
 use crate::scene::Prepared;
 
@@ -70,4 +71,56 @@ pub fn divergence(p: &Prepared) -> Result<Divergence, Error> {
         t_eval,
         curve,
     })
+}
+
+/// The table of how runs separate: `damping,t,tip_separation,amplification`
+/// for each `(damping, divergence)` (the amplification is the separation
+/// over [`PERTURBATION`]).
+pub fn csv_text(runs: &[(f64, &Divergence)]) -> String {
+    use super::format::{exp, num};
+    let mut csv = String::from("damping,t,tip_separation,amplification\n");
+    for (r, d) in runs {
+        for &(t, sep) in &d.curve {
+            csv.push_str(&format!(
+                "{},{},{},{}\n",
+                num(*r),
+                num(t),
+                exp(sep),
+                exp(sep / PERTURBATION)
+            ));
+        }
+    }
+    csv
+}
+
+/// The legend line of a table of [`csv_text`]: how far the scene's runs (its
+/// first damping) and the `r = 0` runs separate.
+pub fn note(t: &Table) -> Result<String, String> {
+    let (damping, time, sep) = (t.strs("damping")?, t.nums("t")?, t.nums("tip_separation")?);
+    let fmt = |r: &str| {
+        let curve: Vec<(f64, f64)> = (0..t.len())
+            .filter(|&k| damping[k] == r)
+            .map(|k| (time[k], sep[k]))
+            .collect();
+        match separation(&curve) {
+            Some(k) => format!(
+                "×{} by t = {:.2}",
+                super::format::short_err(AMPLIFICATION_MAX),
+                curve[k].0
+            ),
+            None => format!(
+                "×{:.0}",
+                curve.iter().map(|c| c.1).fold(0.0, f64::max) / PERTURBATION
+            ),
+        }
+    };
+    match super::table::distinct(&damping)[..] {
+        [scene, undamped] => Ok(format!(
+            "runs {} apart: {} (r = 0: {})",
+            super::format::exp(PERTURBATION),
+            fmt(scene),
+            fmt(undamped)
+        )),
+        _ => Err(format!("{}: expected two dampings", t.name)),
+    }
 }

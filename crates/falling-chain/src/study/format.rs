@@ -25,3 +25,46 @@ pub fn opt(x: Option<f64>, f: fn(f64) -> String) -> String {
 pub fn text(s: &str) -> String {
     s.replace(',', ";")
 }
+
+/// `x` with `decimals` decimals (long per-sample tables, wall times).
+pub fn fixed(x: f64, decimals: usize) -> String {
+    format!("{x:.decimals$}")
+}
+
+/// `x` in exponent form with `digits` decimals: `1.23e-5` (wall times:
+/// more digits than the noise would be false precision).
+pub fn exp_digits(x: f64, digits: usize) -> String {
+    format!("{x:.digits$e}")
+}
+
+/// A short relative-error text for legends, e.g. `3e-12` (the leading digit
+/// rounded down).
+pub fn short_err(e: f64) -> String {
+    if e.is_finite() && e > 0.0 {
+        let x = 10f64.powf(e.log10().floor());
+        format!("{:.0}e{}", (e / x).floor(), x.log10().round() as i64)
+    } else {
+        format!("{e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::table::parse_num;
+    use super::*;
+
+    #[test]
+    fn numbers_read_back_exactly() {
+        for x in [0.1, 1.0 / 3.0, 4.157, 1e-13, 6.02e23, -0.0005] {
+            assert_eq!(parse_num(&num(x)).unwrap(), x);
+            assert_eq!(parse_num(&exp(x)).unwrap(), x);
+        }
+        assert!(parse_num("").unwrap().is_nan());
+        assert!(parse_num(&num(f64::NAN)).unwrap().is_nan());
+        assert_eq!(exp(1e-3), "1e-3");
+        assert_eq!(exp(5e-4), "5e-4");
+        assert_eq!(exp(0.02), "2e-2");
+        assert_eq!(short_err(3.7e-12), "3e-12");
+        assert_eq!(fixed(0.1234567, 6), "0.123457");
+    }
+}

@@ -4,6 +4,11 @@
 //! errors bracket the level, never extrapolated; `explicit-best` is, at each
 //! level, the least such time among [`EXPLICIT`].
 
+use std::fmt::Write as _;
+
+use super::format::{exp, exp_digits, fixed};
+use super::table::Table;
+
 /// The explicit methods `explicit-best` chooses from.
 pub const EXPLICIT: [&str; 3] = ["rk4", "dopri5", "dop853"];
 
@@ -45,6 +50,76 @@ pub fn at<E>(
         return Ok(best);
     }
     Ok(time_at(&runs(name)?, level).map(|t| (name.to_string(), t)))
+}
+
+/// `(error, wall)` of each `ok` run of `method`, loosest first.
+fn runs(read: Read, scene: &str, method: &str) -> Result<Vec<(f64, f64)>, String> {
+    let wp = read(scene)?;
+    let tm = read(&format!("{scene}-timing"))?;
+    let (m, param, status) = (wp.strs("method")?, wp.strs("param")?, wp.strs("status")?);
+    let (et, ev) = (wp.nums("err_tip")?, wp.nums("err_vmax")?);
+    let (tm_m, tm_p, wall) = (
+        tm.strs("method")?,
+        tm.strs("param")?,
+        tm.nums("wall_median")?,
+    );
+    let mut out: Vec<(f64, f64, f64)> = vec![];
+    for k in 0..wp.len() {
+        if m[k] != method || status[k] != "ok" {
+            continue;
+        }
+        let Some(j) = (0..tm.len()).find(|&j| tm_m[j] == method && tm_p[j] == param[k]) else {
+            continue;
+        };
+        let p: f64 = param[k]
+            .parse()
+            .map_err(|_| format!("{scene}: bad param"))?;
+        let e = et[k].max(ev[k]);
+        if e.is_finite() && e > 0.0 && wall[j].is_finite() && wall[j] > 0.0 {
+            out.push((p, e, wall[j]));
+        }
+    }
+    // Loosest first: the largest step or tolerance first.
+    out.sort_by(|a, b| b.0.total_cmp(&a.0));
+    Ok(out.into_iter().map(|(_, e, w)| (e, w)).collect())
+}
+
+/// What [`table`] reads the work-precision tables with: `wp-<scene>` and
+/// `wp-<scene>-timing` by name.
+pub type Read<'a> = &'a dyn Fn(&str) -> Result<Table, String>;
+
+/// The speed-ups at matched accuracy of each pair `(a, b)` of methods on
+/// each work-precision table of `scenes` at each error level:
+/// `scene,pair,error,a,a_method,wall_a,b,b_method,wall_b,b_over_a` (`pair`
+/// is `a/b`; `b_over_a` = `wall_b / wall_a`, how many times faster `a` is
+/// at that error), a row only where both methods have a time.
+pub fn table(
+    scenes: &[&str],
+    pairs: &[(&str, &str)],
+    levels: &[f64],
+    read: Read,
+) -> Result<String, String> {
+    let mut csv = String::from("scene,pair,error,a,a_method,wall_a,b,b_method,wall_b,b_over_a\n");
+    for &scene in scenes {
+        for &(a, b) in pairs {
+            for &level in levels {
+                if let (Some((am, ta)), Some((bm, tb))) = (
+                    at(a, level, |m| runs(read, scene, m))?,
+                    at(b, level, |m| runs(read, scene, m))?,
+                ) {
+                    let _ = writeln!(
+                        csv,
+                        "{scene},{a}/{b},{},{a},{am},{},{b},{bm},{},{}",
+                        exp(level),
+                        exp_digits(ta, 3),
+                        exp_digits(tb, 3),
+                        fixed(tb / ta, 2)
+                    );
+                }
+            }
+        }
+    }
+    Ok(csv)
 }
 
 #[cfg(test)]

@@ -14,6 +14,12 @@
 //!   `n` with the term switched off, against the same run with it on: the
 //!   term is needed if the tip path or the maximum tip speed moves by more
 //!   than `tol`.
+//!
+//! The time budget ([`Budget`]) holds in every phase: a ladder level, the
+//! reference, a method's point or a term's run still going at the deadline
+//! (or started after it) ends `interrupted` at once, and is listed in
+//! [`Needs::skipped`] (`rods n = 400`, `the reference`, `dop853 rtol 1e-9`,
+//! `term joint friction`); an incomplete ladder gives no `n`.
 
 use chain_ode::Method;
 use serde::Serialize;
@@ -76,6 +82,20 @@ pub fn judge_term(
     tol: f64,
     rtol: f64,
 ) -> Result<TermNeed, Error> {
+    judge_term_until(term, scene, n, on_level, tol, rtol, None)
+}
+
+/// [`judge_term`], its run stopped when `cancel` is set (it then ends
+/// `interrupted` and the term is not judged: `needed` stays `None`).
+pub fn judge_term_until(
+    term: &Term,
+    scene: &Scene,
+    n: usize,
+    on_level: &Level,
+    tol: f64,
+    rtol: f64,
+    cancel: Option<&chain_ode::Cancel>,
+) -> Result<TermNeed, Error> {
     let on = (term.is_on)(scene);
     let mut need = TermNeed {
         term: term.name,
@@ -86,7 +106,13 @@ pub fn judge_term(
         needed: None,
     };
     if on {
-        let off = converge::run_level(&(term.off)(scene)?, n, Some(LADDER_METHOD), Some(rtol))?;
+        let off = converge::run_level_until(
+            &(term.off)(scene)?,
+            n,
+            Some(LADDER_METHOD),
+            Some(rtol),
+            cancel,
+        )?;
         if off.summary.is_ok() {
             let d = Deviation::between(&off, on_level);
             need.tip_path = Some(d.tip_path);
@@ -228,14 +254,24 @@ pub fn run(
     let rtol = ladder_rtol(tol);
     // The scene must be one that sampling can compare: its output_dt is
     // the tip path's grid.
-    let levels = converge::run_levels(
+    // Every phase runs under the budget: a run still going at the
+    // deadline, or started after it, ends `interrupted` and is listed.
+    let cancel = Some(budget.cancel());
+    let levels = converge::run_levels_until(
         scene,
         &options.links,
         Some(LADDER_METHOD),
         Some(rtol),
         options.jobs,
         &|d, t| progress("rods", d, t),
+        cancel,
     )?;
+    let interrupted = |status: &str| status == chain_ode::Status::Interrupted.as_str();
+    let skipped_levels: Vec<String> = levels
+        .iter()
+        .filter(|l| interrupted(&l.summary.status))
+        .map(|l| format!("rods n = {}", l.links()))
+        .collect();
     let ladder = converge::report(scene, &levels, tol)?;
     let links = adequate_links(&levels, tol);
     let mut needs = Needs {
@@ -248,7 +284,7 @@ pub fn run(
         least_work: None,
         methods: vec![],
         terms: vec![],
-        skipped: vec![],
+        skipped: skipped_levels,
     };
     let Some(n) = links else {
         return Ok(needs);
@@ -263,7 +299,13 @@ pub fn run(
     let mut prepared = refined.prepare()?;
     prepared.options.output_dt = None;
     let t_eval = prepared.options.t_end;
+    // The reference and its checks stop at the budget's deadline too.
+    prepared.options.cancel = Some(budget.cancel().clone());
     let (reference, ref_rows) = precision::reference(&prepared, t_eval, Checks::default())?;
+    prepared.options.cancel = None;
+    if reference.is_none() && ref_rows.iter().any(|r| interrupted(&r.status)) {
+        needs.skipped.push("the reference".to_string());
+    }
     let (a_rk4, a_bdf) = precision::agreement(&ref_rows);
     needs.reference_agreement = [a_rk4, a_bdf];
     if let Some(reference) = reference {
@@ -308,7 +350,7 @@ pub fn run(
             .iter()
             .min_by_key(|c| c.rhs_equiv)
             .map(|c| (*c).clone());
-        needs.skipped = rows
+        let methods_skipped = rows
             .iter()
             .filter(|p| p.plan == precision::Plan::Budget)
             .map(|p| {
@@ -318,8 +360,8 @@ pub fn run(
                     p.param_name,
                     super::format::exp(p.param)
                 )
-            })
-            .collect();
+            });
+        needs.skipped.extend(methods_skipped);
     }
 
     // The terms, at n, with the ladder's method and tolerance.
@@ -329,7 +371,10 @@ pub fn run(
         .ok_or_else(|| Error::field("--links", "the adequate n is not a level of the ladder"))?;
     for (k, term) in TERMS.iter().enumerate() {
         progress("terms", k, TERMS.len());
-        let need = judge_term(term, scene, n, on_level, tol, rtol)?;
+        let need = judge_term_until(term, scene, n, on_level, tol, rtol, cancel)?;
+        if need.on && need.needed.is_none() && budget.cancel().is_cancelled() {
+            needs.skipped.push(format!("term {}", need.term));
+        }
         needs.terms.push(need);
     }
     progress("terms", TERMS.len(), TERMS.len());

@@ -302,13 +302,17 @@ impl Default for Checks {
 
 /// The reference run and its checks: the reference (if its run ended
 /// `ok`) and their rows (the reference's first). Runs on the scene's chain
-/// and start up to `t_eval`.
+/// and start up to `t_eval`, stopped by the scene's cancel flag if it has
+/// one (a time budget: the runs then end `interrupted`).
 pub fn reference(
     p: &Prepared,
     t_eval: f64,
     checks: Checks,
 ) -> Result<(Option<Reference>, Vec<Point>), Error> {
-    let ref_opts = reference_options(t_eval);
+    let ref_opts = SolveOptions {
+        cancel: p.options.cancel.clone(),
+        ..reference_options(t_eval)
+    };
     let run = |method: Method, o: &SolveOptions| -> Result<Trajectory, Error> {
         Ok(solve(&p.chain, &p.state, method, o)?)
     };

@@ -1,0 +1,89 @@
+//! Work-precision lines whose points are chosen by their cost, and so by
+//! wall times, made reproducible: a timed study records its decision, the
+//! plan, beside its wall times ([`timing_text`]); an untimed one reads the
+//! plan back ([`plan_of`]) and runs those points once each, in parallel, so
+//! that its table (steps, evaluations, errors, no wall time) is the same to
+//! the byte whenever the physics is ([`rows`]).
+
+use chain_ode::Method;
+
+use super::format::{exp, exp_digits, text};
+use super::precision::{self, params, Checks, Plan, Point, Reference};
+use super::table::Table;
+use crate::scene::Prepared;
+
+/// The plan of every method's every point from a timing table
+/// (`method,param,plan`), in [`Method::ALL`] order.
+pub fn plan_of(t: &Table) -> Result<Vec<(Method, f64, Plan)>, String> {
+    let (method, param, plan) = (t.strs("method")?, t.strs("param")?, t.strs("plan")?);
+    let mut jobs = vec![];
+    for m in Method::ALL {
+        for &x in params(m) {
+            let k = (0..t.len())
+                .find(|&k| method[k] == m.as_str() && param[k] == exp(x))
+                .ok_or_else(|| {
+                    format!(
+                        "{} has no plan for {m} at {} {}",
+                        t.name,
+                        m.accuracy_name(),
+                        exp(x)
+                    )
+                })?;
+            jobs.push((m, x, Plan::parse(plan[k])?));
+        }
+    }
+    Ok(jobs)
+}
+
+/// The reference at `t_eval` (with its `checks`) and every method's line:
+/// timed, repeated and interleaved when `plan` is `None`, else the points
+/// of `plan`, each run once, untimed, in parallel on the current rayon pool.
+pub fn rows(
+    p: &Prepared,
+    t_eval: f64,
+    checks: Checks,
+    plan: Option<&[(Method, f64, Plan)]>,
+) -> Result<(Reference, Vec<Point>), String> {
+    let (reference, mut rows) =
+        precision::reference(p, t_eval, checks).map_err(|e| e.to_string())?;
+    let Some(reference) = reference else {
+        return Err(format!("the reference run ended {}", rows[0].status));
+    };
+    match plan {
+        None => {
+            for method in Method::ALL {
+                rows.extend(
+                    precision::timed_line(p, method, &reference).map_err(|e| e.to_string())?,
+                );
+            }
+            precision::repeat_interleaved(p, &mut rows).map_err(|e| e.to_string())?;
+        }
+        Some(jobs) => {
+            rows.extend(precision::run_planned(p, jobs, &reference).map_err(|e| e.to_string())?)
+        }
+    }
+    Ok((reference, rows))
+}
+
+/// The timing table: `method,param_name,param,plan,repeats,wall_median,note`,
+/// the plan and the median wall time (s) of each point's runs.
+pub fn timing_text(rows: &[Point]) -> String {
+    let mut csv = String::from("method,param_name,param,plan,repeats,wall_median,note\n");
+    for pt in rows {
+        let wall = if pt.walls.is_empty() {
+            String::new()
+        } else {
+            exp_digits(super::median(&pt.walls), 3)
+        };
+        csv.push_str(&format!(
+            "{},{},{},{},{},{wall},{}\n",
+            pt.method,
+            pt.param_name,
+            exp(pt.param),
+            pt.plan.as_str(),
+            pt.walls.len(),
+            text(&pt.timing_note)
+        ));
+    }
+    csv
+}

@@ -1,0 +1,302 @@
+//! The drawings of the folded chain's tables (`super::super::folded`):
+//! its fall against the law, the force on the pivot, the tip's
+//! acceleration.
+
+use std::path::Path;
+
+use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+
+use super::Reader;
+use crate::study::folded::{FORCE_LAW_TO, WINDOW};
+use crate::study::table::distinct;
+
+/// The running means drawn (all are in the data).
+const SHOWN: [usize; 2] = [100, 400];
+
+pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
+    let c = read("")?;
+    let (links, x, v) = (
+        c.strs("links")?,
+        c.nums("x_over_L")?,
+        c.nums("v_over_sqrt_gL")?,
+    );
+    let tm = read("-times")?;
+    let (t_links, t_xi) = (tm.nums("links")?, tm.strs("xi")?);
+    let (rel_start, rel_pivot) = (
+        tm.nums("rel_from_start_height")?,
+        tm.nums("rel_from_pivot_height")?,
+    );
+    let t_law = tm.nums("t_law_over_sqrt_L_over_g")?;
+    let law = read("-law")?;
+    let (law_xi, law_v, free_v) = (
+        law.nums("xi")?,
+        law.nums("v_law_over_sqrt_gL")?,
+        law.nums("v_free_fall_over_sqrt_gL")?,
+    );
+
+    let mut left = LinePlot::new(
+        "tip speed against fall distance",
+        "x / L (fall of the free end from its start)",
+        "|v| / sqrt(g L)",
+    );
+    let mut right = LinePlot::new(
+        "time to fall x: chain against the law",
+        "n (rods)",
+        "t(x) / t_law(x) - 1  (%)",
+    );
+    for (i, n) in distinct(&links).into_iter().enumerate() {
+        left.series.push(
+            Series::line(
+                format!("n = {n}"),
+                (0..c.len())
+                    .filter(|&k| links[k] == n)
+                    .map(|k| (x[k], v[k]))
+                    .collect(),
+            )
+            .with_color(palette(i)),
+        );
+    }
+    let black = RGBColor(0, 0, 0);
+    let gray = RGBColor(120, 120, 120);
+    let pairs = |ys: &[f64]| law_xi.iter().copied().zip(ys.iter().copied()).collect();
+    left.series.push(
+        Series::new(
+            "law: v^2 = g x (2L - x)/(L - x)",
+            pairs(&law_v),
+            Style::Dashed,
+        )
+        .with_color(black),
+    );
+    left.series.push(
+        Series::new("free fall: v^2 = 2 g x", pairs(&free_v), Style::Dashed).with_color(gray),
+    );
+    let top = v.iter().copied().fold(0.0, f64::max);
+    left.y_range = Some((0.0, 1.05 * top));
+    left.x_range = Some((0.0, 1.0));
+    let mut title_law = vec![];
+    for (k, xi) in distinct(&t_xi).into_iter().enumerate() {
+        let rows: Vec<usize> = (0..tm.len()).filter(|&j| t_xi[j] == xi).collect();
+        title_law.push(t_law[rows[0]]);
+        let label = if xi == "0.5" { "L/2" } else { "0.9 L" };
+        right.series.push(
+            Series::new(
+                format!("{label}, x from the free end's start"),
+                rows.iter()
+                    .map(|&j| (t_links[j], 100.0 * rel_start[j]))
+                    .collect(),
+                Style::LinePoints,
+            )
+            .with_color(palette(k)),
+        );
+        right.series.push(
+            Series::new(
+                format!("{label}, x from the pivot's height"),
+                rows.iter()
+                    .map(|&j| (t_links[j], 100.0 * rel_pivot[j]))
+                    .collect(),
+                Style::Dashed,
+            )
+            .with_color(palette(k)),
+        );
+    }
+    right.series.push(
+        Series::new("+-0.5%", vec![(0.0, 0.5), (420.0, 0.5)], Style::Dashed).with_color(gray),
+    );
+    right
+        .series
+        .push(Series::new("", vec![(0.0, -0.5), (420.0, -0.5)], Style::Dashed).with_color(gray));
+    right
+        .series
+        .push(Series::new("", vec![(0.0, 0.0), (420.0, 0.0)], Style::Line).with_color(black));
+    right.x_range = Some((0.0, 420.0));
+    right.y_range = Some((-2.0, 4.0));
+    let [half, most] = title_law[..] else {
+        return Err("the times table: expected two fall distances".to_string());
+    };
+    let title = format!(
+        "Folded chain, r = 0: the law's t(L/2) = {half:.4} sqrt(L/g), t(0.9 L) = {most:.4} sqrt(L/g)"
+    );
+    let out = figures::line_plot_pair(&left, &right, &title, stem).map_err(|e| e.to_string())?;
+    Ok(out)
+}
+
+pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
+    let d = read("")?;
+    let (scene, links, t, xi) = (
+        d.strs("scene")?,
+        d.strs("links")?,
+        d.nums("t")?,
+        d.nums("xi")?,
+    );
+    let (fx, fy) = (
+        d.nums("pivot_force_x_over_Mg")?,
+        d.nums("pivot_force_y_over_Mg")?,
+    );
+    let (mean, law_mean) = (
+        d.nums("running_mean_y_over_Mg")?,
+        d.nums("law_running_mean_over_Mg")?,
+    );
+    let (p, law_p) = (
+        d.nums("momentum_y_over_M_sqrt_gL")?,
+        d.nums("law_momentum_y_over_M_sqrt_gL")?,
+    );
+    let law = read("-law")?;
+    let (law_xi, law_f) = (law.nums("xi")?, law.nums("law_over_Mg")?);
+
+    let mut left = LinePlot::new(
+        "folded chain, r = 0: vertical pull against ξ",
+        "ξ = x / L (fall x of the free end from its start, chain length L)",
+        "vertical pull on P₀, downward / (M g)",
+    );
+    let mut right = LinePlot::new("against time t", "t", "pull on P₀ / (M g)");
+    let light = RGBColor(190, 190, 190);
+    let mut momentum_notes = vec![];
+    let folded: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "folded").collect();
+    let ns = distinct(&folded.iter().map(|&k| links[k]).collect::<Vec<_>>());
+    for (i, n) in ns.iter().enumerate() {
+        let rows: Vec<usize> = folded.iter().copied().filter(|&k| links[k] == *n).collect();
+        // The momentum from the impulse against the law's at xi = 0.5.
+        if let Some(&h) = rows.iter().find(|&&k| xi[k] >= 0.5).or(rows.last()) {
+            momentum_notes.push(format!(
+                "{:+.1}% (n = {n})",
+                100.0 * (p[h] / law_p[h] - 1.0)
+            ));
+        }
+        if *n == "100" {
+            // The raw force of one n, to show the clicks the means smooth.
+            left.series.insert(
+                0,
+                Series::line(
+                    "n = 100, raw",
+                    rows.iter().map(|&k| (xi[k], fy[k])).collect(),
+                )
+                .with_color(light),
+            );
+        }
+        let averaged: Vec<usize> = rows
+            .iter()
+            .copied()
+            .filter(|&k| mean[k].is_finite() && law_mean[k].is_finite() && xi[k] <= 0.95)
+            .collect();
+        if SHOWN.iter().any(|s| s.to_string() == *n) {
+            left.series.push(
+                Series::line(
+                    format!("n = {n}, mean"),
+                    averaged.iter().map(|&k| (xi[k], mean[k])).collect(),
+                )
+                .with_color(palette(i)),
+            );
+        }
+        if i + 1 == ns.len() {
+            right.series.push(
+                Series::line(
+                    format!("folded, n = {n} (mean)"),
+                    averaged.iter().map(|&k| (t[k], mean[k])).collect(),
+                )
+                .with_color(palette(i)),
+            );
+        }
+    }
+    let black = RGBColor(0, 0, 0);
+    left.series.push(
+        Series::new(
+            format!("law (drawn to ξ = {FORCE_LAW_TO}; → ∞ as ξ → 1)"),
+            law_xi.iter().copied().zip(law_f.iter().copied()).collect(),
+            Style::Dashed,
+        )
+        .with_color(black),
+    );
+    // A log axis: the raw pulses (up to some 300 M g near the end of the
+    // fall) and the law's rise stay in the frame.
+    left.x_range = Some((0.0, 1.0));
+    left.log_y = true;
+    left.annotations = vec![
+        format!("mean: over {WINDOW} time units"),
+        "momentum at ξ = 0.5".to_string(),
+        "against the law's:".to_string(),
+    ];
+    left.annotations.extend(momentum_notes);
+
+    let span: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "span-d3").collect();
+    right.series.push(
+        Series::line(
+            "span-d3: vertical",
+            span.iter().map(|&k| (t[k], fy[k])).collect(),
+        )
+        .with_color(palette(5)),
+    );
+    right.series.push(
+        Series::new(
+            "span-d3: horizontal",
+            span.iter().map(|&k| (t[k], -fx[k])).collect(),
+            Style::Dashed,
+        )
+        .with_color(palette(5)),
+    );
+    let peak = |f: &dyn Fn(usize) -> f64| span.iter().map(|&k| f(k)).fold(0.0, f64::max);
+    right.annotations = vec![
+        format!("span-d3: peak vertical pull {:.2} M g", peak(&|k| fy[k])),
+        format!(
+            "(peak magnitude |F| {:.2} M g)",
+            peak(&|k| fx[k].hypot(fy[k]))
+        ),
+    ];
+    right.y_range = Some((-0.2, 6.5));
+    let title = "Force F on the pivot P₀ (O(n) recursion) / weight M g of the chain (mass M)";
+    let out = figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())?;
+    Ok(out)
+}
+
+pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
+    let c = read("")?;
+    let (links, xi, a, law) = (
+        c.strs("links")?,
+        c.nums("xi")?,
+        c.nums("accel_over_g")?,
+        c.nums("law_over_g")?,
+    );
+    let mut p = LinePlot::new(
+        "folded chain, r = 0: why the tip beats g",
+        "x / L (fall of the free end from its start)",
+        "downward tip acceleration / g",
+    );
+    p.log_y = true;
+    p.x_range = Some((0.0, 1.0));
+    p.y_range = Some((0.5, 200.0));
+    let names = distinct(&links);
+    for (i, n) in names.iter().enumerate() {
+        p.series.push(
+            Series::line(
+                format!("n = {n} (from the dynamics at each sample)"),
+                (0..c.len())
+                    .filter(|&k| links[k] == *n && a[k] > 0.0)
+                    .map(|k| (xi[k], a[k]))
+                    .collect(),
+            )
+            .with_color(palette(i)),
+        );
+    }
+    // The law at the finest run's samples.
+    let finest = names.last().copied().unwrap_or_default();
+    let law_pts: Vec<(f64, f64)> = (0..c.len())
+        .filter(|&k| links[k] == finest)
+        .map(|k| (xi[k], law[k]))
+        .collect();
+    p.series.push(
+        Series::new(
+            "law: a = g [1 + xi (2 - xi) / (2 (1 - xi)^2)]",
+            law_pts,
+            Style::Dashed,
+        )
+        .with_color(RGBColor(0, 0, 0)),
+    );
+    p.series.push(
+        Series::new(
+            "free fall: a = g",
+            vec![(0.0, 1.0), (1.0, 1.0)],
+            Style::Dashed,
+        )
+        .with_color(RGBColor(120, 120, 120)),
+    );
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}

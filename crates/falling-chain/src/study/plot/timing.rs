@@ -1,0 +1,206 @@
+//! The drawings of the wall-time studies: speed-ups at matched accuracy
+//! (`crate::study::matched`), the cost of a right-hand side
+//! (`crate::study::rhs_cost`) and where BDF pays (`crate::study::stiffness`).
+
+use std::path::Path;
+
+use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+
+use super::Reader;
+use crate::study::rhs_cost::FIT_FROM;
+use crate::study::stiffness::EXPLICIT_BUDGET;
+use crate::study::table::distinct;
+
+/// The slope guides run this factor below the measured points.
+const GUIDE_OFFSET: f64 = 3.0;
+
+/// Draws `matched`'s tables to `<stem>.png` and `.svg`.
+pub fn matched(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (scene, pair, err, ratio) = (
+        t.strs("scene")?,
+        t.strs("pair")?,
+        t.nums("error")?,
+        t.nums("b_over_a")?,
+    );
+    let mut p = LinePlot::new(
+        "wp-matched: speed-up at matched error (wall_b / wall_a)",
+        "error max(err_tip, err_vmax)",
+        "wall_b / wall_a",
+    );
+    p.log_x = true;
+    p.log_y = true;
+    let styles = [Style::LinePoints, Style::Dashed, Style::Line];
+    for (i, pr) in distinct(&pair).into_iter().enumerate() {
+        for (j, sc) in distinct(&scene).into_iter().enumerate() {
+            let pts: Vec<(f64, f64)> = (0..t.len())
+                .filter(|&k| pair[k] == pr && scene[k] == sc)
+                .map(|k| (err[k], ratio[k]))
+                .collect();
+            if pts.is_empty() {
+                continue;
+            }
+            p.series.push(
+                Series::new(format!("{pr}, {sc}"), pts, styles[j % styles.len()])
+                    .with_color(palette(i)),
+            );
+        }
+    }
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}
+
+/// Draws `cost`'s tables to `<stem>.png` and `.svg`.
+pub fn rhs_cost(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (solver, n, secs) = (t.strs("solver")?, t.nums("n")?, t.nums("seconds_per_call")?);
+    let f = read("-fit-timing")?;
+    let (fit_solver, fit_slope) = (f.strs("solver")?, f.nums("slope")?);
+    let slope = |kind: &str| {
+        fit_solver
+            .iter()
+            .position(|s| *s == kind)
+            .map_or(f64::NAN, |k| fit_slope[k])
+    };
+    let (slope_fast, slope_dense) = (slope("recursion"), slope("dense"));
+    let (slope_assembly, slope_factor) = (slope("dense-assembly"), slope("dense-minus-assembly"));
+    let pts = |kind: &str| -> Vec<(f64, f64)> {
+        (0..t.len())
+            .filter(|&k| solver[k] == kind)
+            .map(|k| (n[k], secs[k]))
+            .collect()
+    };
+    let (fast, dense_pts, assembly) = (pts("recursion"), pts("dense"), pts("dense-assembly"));
+    if fast.is_empty() || dense_pts.is_empty() {
+        return Err(format!("{}: no recursion or dense rows", t.name));
+    }
+
+    // The figure: measured points, and reference slopes n and n^3
+    // through the last measured point of each, a factor GUIDE_OFFSET below.
+    let guide = |p: &[(f64, f64)], k: i32, ns: &[f64]| -> Vec<(f64, f64)> {
+        let (n1, t1) = p[p.len() - 1];
+        ns.iter()
+            .map(|&n| (n, t1 / GUIDE_OFFSET * (n / n1).powi(k)))
+            .collect()
+    };
+    let mut plot = LinePlot::new(
+        "Cost of one right-hand side",
+        "rods n",
+        "seconds per evaluation (median)",
+    );
+    plot.log_x = true;
+    plot.log_y = true;
+    plot.series.push(
+        Series::new(
+            format!("O(n) recursion (ChainSystem::rhs): slope {slope_fast:.2}"),
+            fast.clone(),
+            Style::LinePoints,
+        )
+        .with_color(palette(0)),
+    );
+    plot.series.push(
+        Series::new(
+            format!("dense: assemble A, b + Cholesky (faer): slope {slope_dense:.2}"),
+            dense_pts.clone(),
+            Style::LinePoints,
+        )
+        .with_color(palette(3)),
+    );
+    plot.series.push(
+        Series::new(
+            format!("dense, assembly of A and b only: slope {slope_assembly:.2}"),
+            assembly,
+            Style::LinePoints,
+        )
+        .with_color(palette(1)),
+    );
+    plot.series.push(
+        Series::new("∝ n", guide(&fast, 1, &[25.0, 10000.0]), Style::Dashed).with_color(palette(0)),
+    );
+    plot.series.push(
+        Series::new(
+            "∝ n³",
+            guide(&dense_pts, 3, &[100.0, 1000.0]),
+            Style::Dashed,
+        )
+        .with_color(palette(3)),
+    );
+    let at = |kind: &str, rods: f64| {
+        (0..t.len())
+            .find(|&k| solver[k] == kind && n[k] == rods)
+            .map(|k| secs[k])
+    };
+    let ratio = |rods: f64| Some(at("dense", rods)? / at("recursion", rods)?);
+    // Lines of text in the legend (invisible swatches), which gets room of
+    // its own above the data.
+    for line in [
+        format!("slopes fitted for n ≥ {FIT_FROM}; guides offset ×1/{GUIDE_OFFSET}"),
+        format!("dense less assembly (Cholesky + solve): slope {slope_factor:.2}"),
+        format!(
+            "dense / O(n): {:.0}× at n = 50, {:.0}× at n = 1000",
+            ratio(50.0).unwrap_or(f64::NAN),
+            ratio(1000.0).unwrap_or(f64::NAN)
+        ),
+    ] {
+        plot.series
+            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+    }
+    let out = figures::line_plot(&plot, stem).map_err(|e| e.to_string())?;
+    Ok(out)
+}
+
+/// Draws `stiffness`'s tables to `<stem>.png` and `.svg`.
+pub fn stiffness(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (n, gamma, ratio) = (
+        t.strs("n")?,
+        t.nums("gamma")?,
+        t.nums("ratio_dopri5_over_bdf")?,
+    );
+    let c = read("-crossover-timing")?;
+    let crossings: Vec<f64> = c
+        .nums("gamma_crossover")?
+        .into_iter()
+        .filter(|g| g.is_finite())
+        .collect();
+    let rods = distinct(&n);
+    let mut plot = LinePlot::new(
+        "Where BDF pays: DOPRI5 wall time over BDF's (span d = 3, t = 1, rtol 1e-6)",
+        "damping rate γ = r / (m l²)",
+        "DOPRI5 time / BDF time",
+    );
+    plot.log_x = true;
+    plot.log_y = true;
+    for (k, rods_n) in rods.iter().enumerate() {
+        let pts = (0..t.len())
+            .filter(|&j| n[j] == *rods_n)
+            .map(|j| (gamma[j], ratio[j]))
+            .collect();
+        plot.series.push(
+            Series::new(format!("n = {rods_n}"), pts, Style::LinePoints).with_color(palette(k)),
+        );
+    }
+    let (g0, g1) = gamma
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &g| {
+            (a.0.min(g), a.1.max(g))
+        });
+    plot.series.push(
+        Series::new("equal cost", vec![(g0, 1.0), (g1, 1.0)], Style::Dashed)
+            .with_color(RGBColor(0, 0, 0)),
+    );
+    if let (Some(lo), Some(hi), [first, .., last]) = (
+        crossings.iter().copied().reduce(f64::min),
+        crossings.iter().copied().reduce(f64::max),
+        &rods[..],
+    ) {
+        plot.annotations.push(format!(
+            "crossover γ from {lo:.3} to {hi:.3} (×{:.1}) over n = {first}..{last}",
+            hi / lo,
+        ));
+    }
+    plot.annotations.push(format!(
+        "DOPRI5 beyond {EXPLICIT_BUDGET} s: extrapolated from the time reached"
+    ));
+    let out = figures::line_plot(&plot, stem).map_err(|e| e.to_string())?;
+    Ok(out)
+}
