@@ -12,6 +12,7 @@
 //! xtask figures` (which keeps the choice of scenes and the drawing) call
 //! these.
 
+pub mod accuracy;
 pub mod budget;
 pub mod convergence;
 pub mod divergence;

@@ -7,6 +7,7 @@
 //! [`super::stability::csv_text`] as read back ([`Table`]), so a figure drawn
 //! from a file is the figure drawn from the computation.
 
+pub mod accuracy;
 pub mod convergence;
 pub mod folded;
 pub mod report;
