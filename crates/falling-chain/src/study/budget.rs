@@ -73,11 +73,6 @@ impl Budget {
             cancel: Cancel::new(),
             outer: outer.cloned(),
         };
-        // A budget already spent stops every run from the first, whenever
-        // the watcher gets to run.
-        if budget.deadline.is_some_and(|d| Instant::now() >= d) {
-            budget.cancel.cancel();
-        }
         let finished = AtomicBool::new(false);
         std::thread::scope(|scope| {
             scope.spawn(|| {

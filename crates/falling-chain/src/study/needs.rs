@@ -257,6 +257,11 @@ pub fn run(
     // Every phase runs under the budget: a run still going at the
     // deadline, or started after it, ends `interrupted` and is listed.
     let cancel = Some(budget.cancel());
+    // A budget already spent stops the ladder from its first run, whenever
+    // the budget's watcher gets to run.
+    if !budget.fits(0.0) {
+        budget.cancel().cancel();
+    }
     let levels = converge::run_levels_until(
         scene,
         &options.links,
