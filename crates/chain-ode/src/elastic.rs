@@ -485,6 +485,21 @@ pub fn joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
     out
 }
 
+/// The force of the pivot on the first rod, `F_1 = -K d_1 - C d_1'`
+/// (physical units; the support feels `-F_1`): joint 0 of
+/// [`joint_forces`], in O(1).
+pub fn pivot_force(chain: &Chain, y: &[f64]) -> Vec2 {
+    let n = chain.links();
+    let p = Springs::of(chain);
+    let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
+    let (s, c) = sin_cos(y[0]);
+    let (hs, hc) = (p.h * s, p.h * c);
+    let w = y[ow];
+    let (dx, dyy) = (y[ox] - hc, y[oy] - hs);
+    let (ddx, ddy) = (y[ovx] + hs * w, y[ovy] - hc * w);
+    [-p.k * dx - p.c * ddx, -p.k * dyy - p.c * ddy]
+}
+
 /// The energy `T + V + U_el + U_b` of the elastic state `y` (zero
 /// potential at the pivot's height).
 pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
