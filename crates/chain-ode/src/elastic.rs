@@ -222,14 +222,19 @@ impl OdeSystem for ElasticSystem {
 
 /// Every method runs the elastic chain: `bdf` on [`ElasticDae`] (an ODE is
 /// a DAE without algebraic unknowns), `auto` starting explicit and handing
-/// over at its first stiffness detection (it names no chain: the rigid
-/// chain's crossover in the damping rate does not place an axial stiffness).
+/// over at its first stiffness detection if the joints are damped enough
+/// (`solve::auto_elastic`: the rigid chain's crossover in the damping rate
+/// does not place an axial stiffness).
 impl Problem for ElasticSystem {
     fn banded_dae(&self, _t0: f64, y0: &[f64]) -> Option<BandedDae> {
         Some(BandedDae {
             dae: Box::new(ElasticDae::new(&self.chain)),
             y0: y0.to_vec(),
         })
+    }
+
+    fn chain(&self) -> Option<&Chain> {
+        Some(&self.chain)
     }
 }
 

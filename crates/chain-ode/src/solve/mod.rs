@@ -7,6 +7,7 @@
 //! a [`Counted`](crate::ode::Counted) system, never from counting by hand.
 
 mod auto;
+pub mod auto_elastic;
 mod bdf;
 mod bdf_dense;
 mod diffsol_driver;

@@ -704,3 +704,47 @@ fn the_largest_pivot_force_is_tracked_at_every_step() {
     let rigid = solve(&rigid_of(&chain), &released, Method::Dopri5, &opts).unwrap();
     assert_eq!(rigid.summary.pivot_force_max, None);
 }
+
+/// `auto` on an elastic chain: lightly damped axial modes (a joint damping
+/// ratio below `AUTO_ELASTIC_ZETA`) keep it explicit throughout, although
+/// DOPRI5's detector fires (BDF would have to follow the ringing modes);
+/// overdamped joints hand over to BDF. Both reach the same answer as
+/// DOPRI5. A rule that hands over on every detection fails the first case,
+/// one that never hands over the second.
+#[test]
+fn auto_hands_an_elastic_chain_to_bdf_only_when_its_joints_are_damped() {
+    let (n, ea) = (50, 1e6);
+    let start = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    };
+    let mut segments = vec![];
+    for zeta in [0.05, 1.0] {
+        let l = 6.0 / n as f64;
+        let eta = 2.0 * zeta * (ea * 0.2 * l).sqrt();
+        let chain = Chain::new(ChainParams {
+            links: n,
+            axial_stiffness: Some(ea),
+            axial_damping: eta,
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let ratio = chain_ode::joint_damping_ratio(&chain).unwrap();
+        assert!((ratio / zeta - 1.0).abs() < 1e-12);
+        let s = start.state(&chain).unwrap();
+        let opts = tolerances(0.5, 1e-7, 1e-9);
+        let explicit = solve(&chain, &s, Method::Dopri5, &opts).unwrap();
+        assert!(explicit.stats.stiffness_detections > 0, "{zeta}");
+        let auto = solve(&chain, &s, Method::Auto, &opts).unwrap();
+        assert_eq!(auto.status, Status::Ok);
+        let tip = |t: &chain_ode::Trajectory| t.summary.tip_end;
+        assert!(dist(tip(&auto), tip(&explicit)) < 1e-5, "{zeta}");
+        segments.push(auto.segments.iter().map(|g| g.method).collect::<Vec<_>>());
+    }
+    assert_eq!(segments[0], vec![Method::Dopri5]);
+    assert_eq!(segments[1], vec![Method::Dopri5, Method::Bdf]);
+    assert_eq!(
+        chain_ode::joint_damping_ratio(&rigid_of(&elastic_chain(5, 1e3, 0.0))),
+        None
+    );
+}
