@@ -283,8 +283,8 @@ t_end = 3.6
             let mut j = [0.0, 0.0];
             for k in a..b {
                 let dt = f[k + 1].0 - f[k].0;
-                for d in 0..2 {
-                    j[d] += 0.5 * dt * (f[k].1[d] + f[k + 1].1[d]);
+                for (d, jd) in j.iter_mut().enumerate() {
+                    *jd += 0.5 * dt * (f[k].1[d] + f[k + 1].1[d]);
                 }
             }
             let unit = traj.chain.total_mass() * (traj.chain.length()).sqrt();
