@@ -5,8 +5,7 @@
 //! n ([`convergence`]), of matched accuracy ([`matched`]) and of when two
 //! runs separate ([`divergence`]), which the paper's figures use; the `EA`
 //! above which a scene may use rigid links ([`rigid_limit`]); the snap's
-//! force, impulse and tension ([`snap`]); each method's wall time at
-//! matched accuracy across `EA` ([`elastic_cost`]).
+//! force, impulse and tension ([`snap`]).
 //!
 //! Each takes a prepared scene (or a scene) and options and returns rows of
 //! plain data, with the text of its CSV table; it knows nothing of figure
@@ -18,7 +17,6 @@
 pub mod budget;
 pub mod convergence;
 pub mod divergence;
-pub mod elastic_cost;
 pub mod format;
 pub mod matched;
 pub mod needs;
