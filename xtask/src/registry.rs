@@ -486,6 +486,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 35);
+        assert_eq!(FIGURES.len(), 38);
     }
 }
