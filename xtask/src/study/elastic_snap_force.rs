@@ -2,16 +2,16 @@
 //! (`falling_chain::study::snap`), for span d = 3, span d = 1 and the
 //! folded chain, each refined from its n = 50 scene at fixed total mass
 //! `M = 10` and bending viscosity (`converge::refined_scene`: the continuum
-//! convention), with rigid links and with elastic links of `EA = 1e4` (and
-//! `1e5` up to n = 100), with and without `EI = 0.1` and joint friction (those two and `1e5`
-//! to fewer n: the machine's time).
-//! The axial viscosity `eta = 1.549` (5% damping of a joint at n = 50) is
-//! kept under refinement too. Every run DOPRI5 at rtol 1e-8 (to t = 3.5, the folded chain to 4.157),
-//! samples every 1e-3, impulse window ±0.2 around the peak.
+//! convention), with rigid links and with elastic links: `EA = 1e4` to
+//! n = 400, with `EI = 0.1` and without joint friction to n = 200, and
+//! `EA = 1e5` to n = 100 (fewer n for the machine's time). The axial
+//! viscosity `eta = 1.549` (5% damping of a joint at n = 50) is kept under
+//! refinement too. Every run DOPRI5 at rtol 1e-8 (to t = 3.5; the folded
+//! chain to 4.157), samples every 1e-3, impulse window ±0.2 around the peak.
 //!
-//! The sweep takes several minutes on two cores (n = 400 at `EA = 1e4`:
-//! 72 000 steps and 14 s for one run), so it is computed only by
-//! `--timings`; its file carries each run's wall time too.
+//! The sweep took 161 s on two shared cores (the folded chain at n = 400,
+//! `EA = 1e4`: 151 130 steps and 34 s for one run), so it is computed only
+//! by `--timings`; its file carries each run's wall time too.
 
 use falling_chain::converge::refined_scene;
 use falling_chain::study::snap::{self, Options, SNAP_HEADER};
