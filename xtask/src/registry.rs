@@ -342,6 +342,41 @@ pub static FIGURES: &[Figure] = &[
         make: &study::validation_folded::SupportForce,
     },
     Figure {
+        id: "elastic-rigid-limit",
+        report: None,
+        what: "when the rigid model will do: for each report scene at its own n, the elastic \
+               chain's tip path and maximum tip speed against the rigid chain's vs EA, and the \
+               EA above which both agree within 1e-3 (about 5 min on two cores: computed only by \
+               --timings)",
+        data: &[
+            "elastic-rigid-limit-timing.csv",
+            "elastic-rigid-limit-threshold-timing.csv",
+        ],
+        timing: Timing::Only,
+        make: &study::elastic_rigid_limit::RigidLimit,
+    },
+    Figure {
+        id: "snap-force",
+        report: None,
+        what: "the snap: peak support force and impulse against n (25 .. 400, total mass fixed) \
+               for span d = 3, d = 1 and the folded chain, rigid and elastic (EA 1e4 with and \
+               without EI 0.1 and friction to n = 200; EA 1e5 to n = 100) (minutes: computed only by \
+               --timings)",
+        data: &["snap-force-timing.csv"],
+        timing: Timing::Only,
+        make: &study::elastic_snap_force::SnapForce,
+    },
+    Figure {
+        id: "snap-tension",
+        report: None,
+        what: "the snap's wave: the tension along the chain at six times from the tip's arrest \
+               to the support's peak, and the support force against time (span d = 3, n = 100, \
+               total mass 10, EA = 1e4)",
+        data: &["snap-tension.csv", "snap-tension-force.csv", "snap-tension-summary.csv"],
+        timing: Timing::None,
+        make: &study::elastic_snap_tension::SnapTension,
+    },
+    Figure {
         id: "viewer-peak",
         report: None,
         what: "`falling-chain view`'s page for the folded chain (n = 50, r = 0.001) at its peak \
@@ -460,6 +495,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 36);
+        assert_eq!(FIGURES.len(), 39);
     }
 }

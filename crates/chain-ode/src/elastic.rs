@@ -222,14 +222,19 @@ impl OdeSystem for ElasticSystem {
 
 /// Every method runs the elastic chain: `bdf` on [`ElasticDae`] (an ODE is
 /// a DAE without algebraic unknowns), `auto` starting explicit and handing
-/// over at its first stiffness detection (it names no chain: the rigid
-/// chain's crossover in the damping rate does not place an axial stiffness).
+/// over at its first stiffness detection if the joints are damped enough
+/// (`solve::auto_elastic`: the rigid chain's crossover in the damping rate
+/// does not place an axial stiffness).
 impl Problem for ElasticSystem {
     fn banded_dae(&self, _t0: f64, y0: &[f64]) -> Option<BandedDae> {
         Some(BandedDae {
             dae: Box::new(ElasticDae::new(&self.chain)),
             y0: y0.to_vec(),
         })
+    }
+
+    fn chain(&self) -> Option<&Chain> {
+        Some(&self.chain)
     }
 }
 
@@ -483,6 +488,21 @@ pub fn joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
     }
     out.push([0.0, 0.0]);
     out
+}
+
+/// The force of the pivot on the first rod, `F_1 = -K d_1 - C d_1'`
+/// (physical units; the support feels `-F_1`): joint 0 of
+/// [`joint_forces`], in O(1).
+pub fn pivot_force(chain: &Chain, y: &[f64]) -> Vec2 {
+    let n = chain.links();
+    let p = Springs::of(chain);
+    let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
+    let (s, c) = sin_cos(y[0]);
+    let (hs, hc) = (p.h * s, p.h * c);
+    let w = y[ow];
+    let (dx, dyy) = (y[ox] - hc, y[oy] - hs);
+    let (ddx, ddy) = (y[ovx] + hs * w, y[ovy] - hc * w);
+    [-p.k * dx - p.c * ddx, -p.k * dyy - p.c * ddy]
 }
 
 /// The energy `T + V + U_el + U_b` of the elastic state `y` (zero

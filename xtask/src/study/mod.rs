@@ -8,6 +8,9 @@
 //! Timed runs run alone, never beside another timed run, and only with
 //! `--timings`; untimed runs run in parallel on [`crate::ctx::Ctx::pool`].
 
+pub mod elastic_rigid_limit;
+pub mod elastic_snap_force;
+pub mod elastic_snap_tension;
 pub mod precision_cost;
 pub mod precision_map;
 pub mod precision_matched;

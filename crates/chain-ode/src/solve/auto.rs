@@ -1,7 +1,8 @@
 //! `auto`: a policy over the registered methods. BDF from the start past
 //! the measured crossover damping rate; otherwise DOPRI5 (DOP853 at tight
 //! tolerances) until its stiffness detector keeps firing with `|lambda|`
-//! past the crossover's `48 gamma`, then BDF from that state.
+//! past the crossover's `48 gamma`, then BDF from that state. Elastic links
+//! hand over only when their axial modes are damped (`auto_elastic`).
 
 use super::integrator::{Integrator, Run, Settings, Span};
 use super::{registry, Method};
@@ -44,10 +45,12 @@ impl Method {
 
 /// The explicit method `auto` starts with on `problem` (none: BDF from the
 /// start), and the stiffness estimate `|lambda|` (1/time) past which it
-/// hands over. A chain places both from its crossover; a problem that names
-/// no chain starts explicit and hands over at the first detection.
+/// hands over. A rigid chain places both from its crossover, an elastic
+/// one from its joint damping (`auto_elastic`); a problem that names no
+/// chain starts explicit and hands over at the first detection.
 fn plan(problem: &dyn Problem, rtol: f64) -> (Option<Method>, f64) {
     match problem.chain() {
+        Some(chain) if chain.is_elastic() => super::auto_elastic::plan(chain, rtol),
         Some(chain) => (
             Method::auto_plan(chain, rtol),
             48.0 * bdf_crossover_gamma(chain),

@@ -7,6 +7,7 @@
 //! a [`Counted`](crate::ode::Counted) system, never from counting by hand.
 
 mod auto;
+pub mod auto_elastic;
 mod bdf;
 mod bdf_dense;
 mod diffsol_driver;
@@ -355,6 +356,11 @@ pub struct Summary {
     pub tip_speed_max: f64,
     /// When it happened.
     pub t_tip_speed_max: f64,
+    /// Elastic links only: the largest pivot force `|F_1|` (force units)
+    /// at the start and at any accepted step's end, and when: `(force, t)`.
+    /// `None` for rigid links (their pivot force is the DAE's, from the
+    /// samples: `analysis::pivot_forces`).
+    pub pivot_force_max: Option<(f64, f64)>,
     /// Wall time of the integration (s).
     pub wall_seconds: f64,
 }
@@ -376,6 +382,8 @@ impl Summary {
             self.tip_speed_max,
             self.t_tip_speed_max,
             self.wall_seconds,
+            self.pivot_force_max.map_or(0.0, |p| p.0),
+            self.pivot_force_max.map_or(0.0, |p| p.1),
         ]
         .iter()
         .all(|v| v.is_finite())
@@ -624,6 +632,9 @@ pub fn solve(
         tip_velocity_end: state_tip_velocity(chain, y),
         tip_speed_max: obs.tip_speed_max,
         t_tip_speed_max: obs.t_tip_speed_max,
+        pivot_force_max: chain
+            .is_elastic()
+            .then_some((obs.pivot_force_max, obs.t_pivot_force_max)),
         wall_seconds,
     };
     // A non-finite value in the summary (an energy that overflowed, a NaN

@@ -89,6 +89,10 @@ pub(crate) struct ChainObserver {
     pub max_energy_rise: f64,
     pub tip_speed_max: f64,
     pub t_tip_speed_max: f64,
+    /// Elastic links only: the largest `|F_1|` of the pivot at the start
+    /// and at any step end (force units), and when; `(0, 0)` for rigid links.
+    pub pivot_force_max: f64,
+    pub t_pivot_force_max: f64,
     /// The first time a recorded quantity (energy, balance, tip speed) was
     /// not finite, if one was: the run then ends `diverged` (see `solve`).
     pub t_nonfinite: Option<f64>,
@@ -128,6 +132,8 @@ impl ChainObserver {
             max_energy_rise: 0.0,
             tip_speed_max: 0.0,
             t_tip_speed_max: 0.0,
+            pivot_force_max: 0.0,
+            t_pivot_force_max: 0.0,
             t_nonfinite: None,
             balance_limit: chain.energy_scale(),
             t_inaccurate: None,
@@ -172,6 +178,19 @@ impl ChainObserver {
         step.interpolant.eval(t, &mut self.buf);
         let v = state_tip_velocity(&self.chain, &self.buf);
         v[0].hypot(v[1])
+    }
+
+    /// Elastic links: keeps the largest pivot force `|F_1|` of `y` at `t`
+    /// (a NaN is kept, as the tip speed's is). Rigid links: nothing.
+    fn note_pivot_force(&mut self, t: f64, y: &[f64]) {
+        if self.chain.is_elastic() {
+            let f = elastic::pivot_force(&self.chain, y);
+            let f = f[0].hypot(f[1]);
+            if f > self.pivot_force_max || f.is_nan() {
+                self.pivot_force_max = f;
+                self.t_pivot_force_max = t;
+            }
+        }
     }
 
     /// Golden-section search for the interpolated speed's maximum in the step.
@@ -266,6 +285,7 @@ impl Observer for ChainObserver {
         self.energy_end = m.energy;
         self.tip_speed_max = m.tip_velocity[0].hypot(m.tip_velocity[1]);
         self.t_tip_speed_max = t0;
+        self.note_pivot_force(t0, y0);
         self.check_finite(t0, &[m.energy, self.tip_speed_max]);
         self.slope = 2.0
             * (m.tip_velocity[0] * m.tip_acceleration[0]
@@ -303,6 +323,7 @@ impl Observer for ChainObserver {
             self.t_tip_speed_max = step.t1;
         }
         self.slope = slope;
+        self.note_pivot_force(step.t1, step.y1);
         self.check_finite(
             step.t1,
             &[

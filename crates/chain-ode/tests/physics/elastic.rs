@@ -646,3 +646,105 @@ fn a_pulse_travels_at_the_wave_speed_sqrt_ea_over_mu() {
         );
     }
 }
+
+/// The run's largest pivot force (`Summary::pivot_force_max`, tracked at
+/// every step end): `elastic::pivot_force` is joint 0 of the joint forces
+/// on any state; at rest it is the weight `M g` (every method, BDF to
+/// rounding); released, it bounds the force at every output sample (which
+/// are interpolated between step ends: within 1%) and is reached at one of
+/// them to 5% when the samples are fine; a rigid chain has none.
+#[test]
+fn the_largest_pivot_force_is_tracked_at_every_step() {
+    let chain = Chain::new(ChainParams {
+        links: 10,
+        damping: 1e-3,
+        axial_stiffness: Some(2e3),
+        axial_damping: 0.3,
+        ..ChainParams::default()
+    })
+    .unwrap();
+    let s = hanging(&chain);
+    let mut y = elastic::start_state(&chain, &s);
+    for (k, v) in y.iter_mut().enumerate() {
+        *v += 1e-2 * noise(k);
+    }
+    let f = elastic::pivot_force(&chain, &y);
+    assert_eq!(f, elastic::joint_forces(&chain, &y)[0]);
+    let opts = tolerances(1.0, 1e-8, 1e-10);
+    let rest = solve(&chain, &s, Method::Bdf, &opts).unwrap();
+    let (f, _) = rest.summary.pivot_force_max.unwrap();
+    assert!((f / chain.weight() - 1.0).abs() < 1e-9, "{f}");
+    let released = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    }
+    .state(&chain)
+    .unwrap();
+    let opts = SolveOptions {
+        output_dt: Some(1e-3),
+        ..tolerances(3.0, 1e-8, 1e-10)
+    };
+    let tr = solve(&chain, &released, Method::Dopri5, &opts).unwrap();
+    assert_eq!(tr.status, Status::Ok);
+    let (peak, t_peak) = tr.summary.pivot_force_max.unwrap();
+    let sampled = (0..tr.len())
+        .map(|k| {
+            let [a, b] = tr.joint_forces(k)[0];
+            a.hypot(b)
+        })
+        .fold(0.0, f64::max);
+    assert!(
+        sampled <= 1.01 * peak && sampled >= 0.95 * peak,
+        "{sampled} vs {peak}"
+    );
+    assert!(
+        peak > 2.0 * chain.weight() && t_peak > 1.0,
+        "{peak} at {t_peak}"
+    );
+    let rigid = solve(&rigid_of(&chain), &released, Method::Dopri5, &opts).unwrap();
+    assert_eq!(rigid.summary.pivot_force_max, None);
+}
+
+/// `auto` on an elastic chain: lightly damped axial modes (a joint damping
+/// ratio below `AUTO_ELASTIC_ZETA`) keep it explicit throughout, although
+/// DOPRI5's detector fires (BDF would have to follow the ringing modes);
+/// overdamped joints hand over to BDF. Both reach the same answer as
+/// DOPRI5. A rule that hands over on every detection fails the first case,
+/// one that never hands over the second.
+#[test]
+fn auto_hands_an_elastic_chain_to_bdf_only_when_its_joints_are_damped() {
+    let (n, ea) = (50, 1e6);
+    let start = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [3.0, 0.0],
+    };
+    let mut segments = vec![];
+    for zeta in [0.05, 1.0] {
+        let l = 6.0 / n as f64;
+        let eta = 2.0 * zeta * (ea * 0.2 * l).sqrt();
+        let chain = Chain::new(ChainParams {
+            links: n,
+            axial_stiffness: Some(ea),
+            axial_damping: eta,
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let ratio = chain_ode::joint_damping_ratio(&chain).unwrap();
+        assert!((ratio / zeta - 1.0).abs() < 1e-12);
+        let s = start.state(&chain).unwrap();
+        let opts = tolerances(0.5, 1e-7, 1e-9);
+        let explicit = solve(&chain, &s, Method::Dopri5, &opts).unwrap();
+        assert!(explicit.stats.stiffness_detections > 0, "{zeta}");
+        let auto = solve(&chain, &s, Method::Auto, &opts).unwrap();
+        assert_eq!(auto.status, Status::Ok);
+        let tip = |t: &chain_ode::Trajectory| t.summary.tip_end;
+        assert!(dist(tip(&auto), tip(&explicit)) < 1e-5, "{zeta}");
+        segments.push(auto.segments.iter().map(|g| g.method).collect::<Vec<_>>());
+    }
+    assert_eq!(segments[0], vec![Method::Dopri5]);
+    assert_eq!(segments[1], vec![Method::Dopri5, Method::Bdf]);
+    assert_eq!(
+        chain_ode::joint_damping_ratio(&rigid_of(&elastic_chain(5, 1e3, 0.0))),
+        None
+    );
+}

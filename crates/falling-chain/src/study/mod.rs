@@ -3,7 +3,9 @@
 //! method and tolerance, physical terms), with their time budget
 //! ([`budget`]) and shards ([`shard`]); the tables of the convergence in
 //! n ([`convergence`]), of matched accuracy ([`matched`]) and of when two
-//! runs separate ([`divergence`]), which the paper's figures use.
+//! runs separate ([`divergence`]), which the paper's figures use; the `EA`
+//! above which a scene may use rigid links ([`rigid_limit`]); the snap's
+//! force, impulse and tension ([`snap`]).
 //!
 //! Each takes a prepared scene (or a scene) and options and returns rows of
 //! plain data, with the text of its CSV table; it knows nothing of figure
@@ -25,7 +27,9 @@ pub mod plot;
 pub mod precision;
 pub mod report;
 pub mod rhs_cost;
+pub mod rigid_limit;
 pub mod shard;
+pub mod snap;
 pub mod stability;
 pub mod stiffness;
 pub mod table;
