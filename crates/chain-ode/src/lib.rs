@@ -50,6 +50,8 @@ pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
+#[doc(hidden)]
+pub use solve::with_general_sparse_lu;
 pub use solve::{
     bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
     Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES,

@@ -9,6 +9,7 @@
 mod auto;
 mod bdf;
 mod bdf_dense;
+mod block_lu;
 mod diffsol_driver;
 mod dop853;
 mod dop853_tableau;
@@ -36,6 +37,8 @@ use crate::ode::{Cancel, Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
+#[doc(hidden)]
+pub use bdf::with_general_sparse_lu;
 pub use integrator::Accuracy;
 use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
