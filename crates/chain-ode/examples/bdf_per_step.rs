@@ -5,7 +5,10 @@
 //! atol 1e-8. Runs alternate between the two solvers; the median of `RUNS`
 //! is printed with the work counters and the tip difference between them.
 //!
-//! `cargo run --release -p chain-ode --example bdf_per_step -- GAMMA N1[,N2..] [RUNS]`
+//! `cargo run --release -p chain-ode --example bdf_per_step -- GAMMA N1[,N2..] [RUNS] [block|sparse]`
+//!
+//! With `block` or `sparse` only that solver runs (for `perf stat`, whose
+//! cycle counts a loaded machine disturbs less than wall times).
 
 #![allow(
     clippy::unwrap_used,
@@ -20,6 +23,7 @@ fn main() {
     let gamma: f64 = a[0].parse().unwrap();
     let ns: Vec<usize> = a[1].split(',').map(|s| s.parse().unwrap()).collect();
     let runs: usize = a.get(2).map_or(5, |s| s.parse().unwrap());
+    let only = a.get(3).map(String::as_str);
     for n in ns {
         let base = Chain::report(n, 0.0).unwrap();
         let r = gamma * base.mass() * base.rod_length().powi(2);
@@ -37,6 +41,22 @@ fn main() {
             ..Default::default()
         };
         let run = || solve(&chain, &s, Method::Bdf, &o).unwrap();
+        if let Some(which) = only {
+            for _ in 0..runs {
+                let t = match which {
+                    "block" => run(),
+                    "sparse" => with_general_sparse_lu(run),
+                    _ => panic!("block or sparse, not {which}"),
+                };
+                println!(
+                    "n {n} {which}: {} steps {} per step {:.3e} s",
+                    t.status,
+                    t.stats.steps,
+                    t.summary.wall_seconds / t.stats.steps as f64
+                );
+            }
+            continue;
+        }
         let (mut block, mut sparse) = (Vec::new(), Vec::new());
         let (mut last_b, mut last_s): (Option<Trajectory>, Option<Trajectory>) = (None, None);
         for _ in 0..runs {

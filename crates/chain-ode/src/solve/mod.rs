@@ -61,8 +61,9 @@ pub enum Method {
     /// O(n^3) per factorisation, kept as the reference for `bdf` (`rtol`, `atol`).
     BdfDense,
     /// BDF where the damping rate is past the measured crossover; otherwise
-    /// DOPRI5 (DOP853 at tight tolerances), handing over to BDF when the
-    /// stiffness detector keeps firing with an eigenvalue past the crossover.
+    /// DOPRI5 (DOP853 at tight tolerances) to the end on a chain, and on a
+    /// problem that names no chain (the elastic chain) handing over to BDF
+    /// when the stiffness detector fires.
     Auto,
 }
 
