@@ -773,15 +773,11 @@ mod tests {
         for (a, b) in x.iter().zip(&want) {
             assert!((a - b).abs() < 1e-14);
         }
-        // Rows 2 and 3 made equal (both [0, 0, 1, 1, 0, 0]): the second
-        // block's pivot is exactly zero.
+        // Rows 4 and 5 made equal (both [0, 0, 0, 0, 1, 1]): the last
+        // block's pivot is exactly zero (and no later block would turn it
+        // into a NaN that fails on its own).
         let mut singular = three_blocks();
-        for (k, v) in [
-            (2 * 6 + 1, 0.0),
-            (2 * 6 + 2, 1.0),
-            (3 * 6 + 3, 1.0),
-            (3 * 6 + 4, 0.0),
-        ] {
+        for (k, v) in [(4 * 6 + 3, 0.0), (4 * 6 + 4, 1.0), (5 * 6 + 5, 1.0)] {
             singular.a[k] = v;
         }
         lu.set_linearisation(&singular);
