@@ -3,6 +3,10 @@
 //! reference run.
 //!
 //! `cargo run --release -p chain-ode --example bdf_probe -- N R T_END RTOL DT1[,DT2..] [RUNS]`
+//!
+//! Setting `BDF_PROBE_SPARSE_LU=1` runs `bdf` on the general sparse LU
+//! (faer, COLAMD) instead of the block-tridiagonal one, for the old-new
+//! ratio.
 //! (atol = rtol / 100; the reference is BDF at rtol 1e-12, atol 1e-14.)
 
 #![allow(
@@ -11,7 +15,7 @@
     clippy::panic,
     reason = "a developer's tool: a bad argument or a failed run stops it with the message"
 )]
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, Trajectory};
+use chain_ode::{solve, with_general_sparse_lu, Chain, Method, SolveOptions, Start, Trajectory};
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
@@ -54,7 +58,12 @@ fn main() {
         let mut walls = Vec::new();
         let mut last = None;
         for _ in 0..runs {
-            let tr = solve(&chain, &s, m, o).unwrap();
+            let tr = if std::env::var_os("BDF_PROBE_SPARSE_LU").is_some() {
+                with_general_sparse_lu(|| solve(&chain, &s, m, o))
+            } else {
+                solve(&chain, &s, m, o)
+            }
+            .unwrap();
             walls.push(tr.summary.wall_seconds);
             last = Some(tr);
         }

@@ -304,6 +304,22 @@ impl ChainDae {
         }
     }
 
+    /// The rod of every unknown (`phi_i, w_i, alpha_i, f_i` belong to rod
+    /// `i`; `W`, read by no equation, to rod 0): the Jacobian couples each
+    /// rod only to its neighbours, so that the Newton matrices are block
+    /// tridiagonal in this grouping.
+    pub fn rod_blocks(&self) -> Vec<usize> {
+        let n = self.n;
+        (0..self.dim())
+            .map(|u| match u {
+                _ if u < 2 * n => u % n,
+                _ if u == 2 * n => 0,
+                _ if u < 3 * n + 1 => u - (2 * n + 1),
+                _ => (u - (3 * n + 1)) / 2,
+            })
+            .collect()
+    }
+
     /// The row of `W` left out of [`Self::jacobian_entries`]: `dW'/dw_i`,
     /// written into `out` (length `n`).
     pub fn dissipation_row(&self, w: &[f64], out: &mut [f64]) {
@@ -335,5 +351,8 @@ impl SemiExplicitDae for ChainDae {
     }
     fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ChainDae::jacobian_entries(self, y, emit)
+    }
+    fn blocks(&self) -> Option<Vec<usize>> {
+        Some(self.rod_blocks())
     }
 }

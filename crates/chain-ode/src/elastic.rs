@@ -288,6 +288,20 @@ impl SemiExplicitDae for ElasticDae {
     fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ElasticDae::jacobian_entries(self, y, emit)
     }
+    /// Rod `i` holds `theta_i, w_i, x_i, y_i, vx_i, vy_i` (and rod 0 `W`):
+    /// each rod's accelerations read only its neighbours.
+    fn blocks(&self) -> Option<Vec<usize>> {
+        let n = self.springs.n;
+        Some(
+            (0..6 * n + 1)
+                .map(|u| match u {
+                    _ if u < 2 * n => u % n,
+                    _ if u == 2 * n => 0,
+                    _ => (u - (2 * n + 1)) % n,
+                })
+                .collect(),
+        )
+    }
 }
 
 impl ElasticDae {

@@ -51,6 +51,8 @@ pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
+#[doc(hidden)]
+pub use solve::with_general_sparse_lu;
 pub use solve::{
     bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
     Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES,

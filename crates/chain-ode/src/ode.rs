@@ -48,6 +48,16 @@ pub trait SemiExplicitDae {
     /// entries and their order must not depend on `t` or `y`: the pattern
     /// is built once, from the start.
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64));
+    /// The unknowns as a chain of blocks: `Some(block)` with `block[u]` the
+    /// block (`0..K`, none empty, in the chain's order) of unknown `u`, such
+    /// that every Jacobian entry couples an unknown to its own block or a
+    /// neighbouring one (for a chain of rods: a block per rod). The sparse
+    /// BDF then factorises its Newton matrices block-tridiagonally (and
+    /// checks the claim against the pattern first). `None` (the default):
+    /// no such grouping is known, and the general sparse LU runs.
+    fn blocks(&self) -> Option<Vec<usize>> {
+        None
+    }
 }
 
 impl<D: SemiExplicitDae + ?Sized> SemiExplicitDae for Box<D> {
@@ -62,6 +72,9 @@ impl<D: SemiExplicitDae + ?Sized> SemiExplicitDae for Box<D> {
     }
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         (**self).jacobian_entries(t, y, emit)
+    }
+    fn blocks(&self) -> Option<Vec<usize>> {
+        (**self).blocks()
     }
 }
 

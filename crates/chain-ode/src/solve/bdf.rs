@@ -9,8 +9,12 @@
 //! * the mass matrix `diag(1 (2n+1), 0 (3n))` is given with its pattern;
 //! * the start is made consistent by the O(n) recursion, so diffsol's
 //!   consistent-initialisation solve (O(N^2) colouring) is skipped;
-//! * the Newton matrices are factorised by [`SparseLu`] (faer, COLAMD
-//!   ordering), which fails with an error instead of a panic.
+//! * the Newton matrices are factorised block-tridiagonally, rod by rod
+//!   ([`BlockLu`]), when the DAE groups its unknowns in a chain of blocks
+//!   ([`SemiExplicitDae::blocks`]: the rigid chain's `ChainDae` and the
+//!   elastic `ElasticDae` do) and its pattern bears that out; otherwise
+//!   (the tests' small DAEs) by [`SparseLu`] (faer, COLAMD ordering). Both
+//!   fail with an error instead of a panic.
 //!
 //! The algebraic unknowns (`alpha`, forces) get an absolute tolerance of
 //! [`ALGEBRAIC_ATOL`], which takes them out of the error test and the
@@ -33,6 +37,7 @@ use diffsol::{
 };
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
+use super::block_lu::{BlockLayout, BlockLu};
 use super::diffsol_driver::{drive, slice, slice_mut, Hooks};
 use super::integrator::{Integrator, Settings, Span};
 use super::sparse_lu::{LuLog, SparseLu};
@@ -46,6 +51,90 @@ type Vf = FaerVec<f64>;
 /// Absolute tolerance of the algebraic unknowns: large enough that they
 /// never weigh in the error norm (their values are below 1e8 in every scene).
 pub(crate) const ALGEBRAIC_ATOL: f64 = 1e10;
+
+thread_local! {
+    /// Set by [`with_general_sparse_lu`]: every run on this thread uses the
+    /// general sparse LU.
+    static GENERAL_SPARSE_LU: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Runs `f` with every `bdf` run on this thread factorising its Newton
+/// matrices by the general sparse LU (faer, COLAMD), as before the
+/// block-tridiagonal one: for benchmarks that time both in the same run.
+#[doc(hidden)]
+pub fn with_general_sparse_lu<R>(f: impl FnOnce() -> R) -> R {
+    let before = GENERAL_SPARSE_LU.with(|g| g.replace(true));
+    let out = f();
+    GENERAL_SPARSE_LU.with(|g| g.set(before));
+    out
+}
+
+/// The Newton matrices' LU: block-tridiagonal when the DAE's blocks allow
+/// it, the general sparse LU otherwise.
+enum NewtonLu {
+    Block(Box<BlockLu>),
+    Sparse(Box<SparseLu>),
+}
+
+impl Default for NewtonLu {
+    fn default() -> Self {
+        Self::Sparse(Box::default())
+    }
+}
+
+impl NewtonLu {
+    /// The block LU if `blocks` makes `pattern` block tridiagonal (and the
+    /// general one is not forced), else the sparse LU; both log to `log`.
+    fn choose(
+        blocks: Option<Vec<usize>>,
+        pattern: &SymbolicSparseColMat<usize>,
+        log: Rc<LuLog>,
+    ) -> Self {
+        let general = GENERAL_SPARSE_LU.with(Cell::get);
+        match blocks {
+            Some(b) if !general && BlockLayout::new(&b, pattern.as_ref()).is_some() => {
+                Self::Block(Box::new(BlockLu::new(b, log)))
+            }
+            _ => Self::Sparse(Box::new(SparseLu::logging(log))),
+        }
+    }
+}
+
+impl diffsol_la::LinearSolver<Mat> for NewtonLu {
+    fn set_sparsity<C: diffsol_la::LinearOp<T = f64, V = Vf, M = Mat, C = FaerContext>>(
+        &mut self,
+        op: &C,
+    ) {
+        match self {
+            Self::Block(lu) => diffsol_la::LinearSolver::set_sparsity(lu.as_mut(), op),
+            Self::Sparse(lu) => diffsol_la::LinearSolver::set_sparsity(lu.as_mut(), op),
+        }
+    }
+
+    fn set_linearisation<C: diffsol_la::LinearOp<T = f64, V = Vf, M = Mat, C = FaerContext>>(
+        &mut self,
+        op: &C,
+    ) {
+        match self {
+            Self::Block(lu) => diffsol_la::LinearSolver::set_linearisation(lu.as_mut(), op),
+            Self::Sparse(lu) => diffsol_la::LinearSolver::set_linearisation(lu.as_mut(), op),
+        }
+    }
+
+    fn solve_in_place(&self, x: &mut Vf) -> Result<(), diffsol_la::error::LaError> {
+        match self {
+            Self::Block(lu) => lu.solve_in_place(x),
+            Self::Sparse(lu) => lu.solve_in_place(x),
+        }
+    }
+
+    fn solve_transpose_in_place(&self, x: &mut Vf) -> Result<(), diffsol_la::error::LaError> {
+        match self {
+            Self::Block(lu) => lu.solve_transpose_in_place(x),
+            Self::Sparse(lu) => lu.solve_transpose_in_place(x),
+        }
+    }
+}
 
 /// The DAE as diffsol's `OdeEquations`, with exact call counters.
 struct DaeEquations<D> {
@@ -279,6 +368,7 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
 ) -> Outcome {
     let (d, dim) = (dae.differential_dim(), dae.dim());
     let y = y0[..d].to_vec();
+    let blocks = dae.blocks();
     let Some(eqn) = DaeEquations::new(dae, t0, y0) else {
         // A malformed pattern is a programming error: a failure at the start.
         return Outcome::ended(Status::Diverged, t0, Some(t0), Stats::default(), y);
@@ -309,8 +399,9 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     };
     let log = Rc::new(LuLog::default());
+    let lu = NewtonLu::choose(blocks, &problem.eqn.jacobian_pattern, log.clone());
     let setup = <BdfState<Vf> as OdeSolverState<Vf>>::new(&problem, 1)
-        .and_then(|state| Bdf::<_, _>::new(&problem, state, SparseLu::logging(log.clone())));
+        .and_then(|state| Bdf::<_, _>::new(&problem, state, lu));
     let Ok(mut solver) = setup else {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     };
@@ -335,3 +426,48 @@ pub(crate) const BDF: Integrator = Integrator {
     adaptive: true,
     run: |p, s, obs| integrate(p, s, obs).into(),
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{dae::ChainDae, elastic::ElasticDae, Chain, ChainParams};
+
+    /// Which LU `integrate_dae` would pick for `dae`.
+    fn picks_blocks<D: SemiExplicitDae>(dae: D) -> bool {
+        let y0 = vec![0.1; dae.dim()];
+        let blocks = dae.blocks();
+        let eqn = DaeEquations::new(dae, 0.0, y0).unwrap();
+        let log = Rc::new(LuLog::default());
+        matches!(
+            NewtonLu::choose(blocks, &eqn.jacobian_pattern, log),
+            NewtonLu::Block(_)
+        )
+    }
+
+    #[test]
+    fn the_chains_get_the_block_lu_and_the_general_one_can_be_forced() {
+        for n in [1, 2, 9] {
+            let rigid = Chain::new(ChainParams {
+                links: n,
+                bending_stiffness: 0.1,
+                tip_mass: 0.3,
+                ..ChainParams::default()
+            })
+            .unwrap();
+            assert!(picks_blocks(ChainDae::new(&rigid)), "rigid n = {n}");
+            let elastic = Chain::new(ChainParams {
+                links: n,
+                axial_stiffness: Some(1e3),
+                ..ChainParams::default()
+            })
+            .unwrap();
+            assert!(picks_blocks(ElasticDae::new(&elastic)), "elastic n = {n}");
+            assert!(!with_general_sparse_lu(|| picks_blocks(ChainDae::new(
+                &rigid
+            ))));
+        }
+        // After the closure, the default again.
+        let chain = Chain::report(4, 0.0).unwrap();
+        assert!(picks_blocks(ChainDae::new(&chain)));
+    }
+}

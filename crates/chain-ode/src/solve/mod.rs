@@ -10,6 +10,7 @@ mod auto;
 pub mod auto_elastic;
 mod bdf;
 mod bdf_dense;
+mod block_lu;
 mod diffsol_driver;
 mod dop853;
 mod dop853_tableau;
@@ -37,6 +38,8 @@ use crate::ode::{Cancel, Stats, Status};
 use crate::state::State;
 use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
+#[doc(hidden)]
+pub use bdf::with_general_sparse_lu;
 pub use integrator::Accuracy;
 use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
@@ -59,8 +62,9 @@ pub enum Method {
     /// O(n^3) per factorisation, kept as the reference for `bdf` (`rtol`, `atol`).
     BdfDense,
     /// BDF where the damping rate is past the measured crossover; otherwise
-    /// DOPRI5 (DOP853 at tight tolerances), handing over to BDF when the
-    /// stiffness detector keeps firing with an eigenvalue past the crossover.
+    /// DOPRI5 (DOP853 at tight tolerances) to the end on a chain, and on a
+    /// problem that names no chain (the elastic chain) handing over to BDF
+    /// when the stiffness detector fires.
     Auto,
 }
 

@@ -41,7 +41,7 @@ pub(crate) struct LuLog {
 }
 
 impl LuLog {
-    fn record(&self, ok: bool) {
+    pub(crate) fn record(&self, ok: bool) {
         self.last_failed.set(!ok);
         if !ok {
             self.failures.set(self.failures.get() + 1);

@@ -1,0 +1,857 @@
+//! A block-tridiagonal LU for diffsol's Newton matrices: the chain's
+//! unknowns grouped rod by rod, each rod coupled only to its two
+//! neighbours, factorised in a fixed order with no fill outside the three
+//! block diagonals. Fallible like [`super::sparse_lu::SparseLu`].
+//!
+//! The DAE names the block of every unknown
+//! ([`SemiExplicitDae::blocks`](crate::ode::SemiExplicitDae::blocks)); an
+//! unknown whose row and column hold only the diagonal (the chain's `W`,
+//! whose row is left out of the Jacobian) is solved alone, and the others
+//! must form blocks of one size `S <= MAX_BLOCK` (5 per rod for the rigid
+//! chain, 6 for the elastic one). With `D_k`, `L_k`, `U_k` the diagonal,
+//! left and right blocks of block row `k`, the factorisation is the block
+//! Thomas algorithm
+//!
+//! ```text
+//! D'_0 = D_0,   X_k = D'_k^-1 U_k,   D'_k = D_k - L_k X_{k-1}
+//! ```
+//!
+//! with each `D'_k` factorised by dense LU with partial pivoting (within the
+//! block) and kept as its inverse beside `G_k = D'_k^-1 L_k`. The solve is
+//! then small dense products, forward `y_k = D'_k^-1 b_k - G_k y_{k-1}` and
+//! back `x_k = y_k - X_k x_{k+1}`, compiled for each block size. Per rod of
+//! 5 unknowns: about 400 multiply-adds to factorise and 75 per solve, with
+//! no ordering, no symbolic phase and no allocation after the first pattern.
+//!
+//! Pivoting is confined to the diagonal blocks, so the factorisation relies
+//! on every `D'_k` being nonsingular; a zero or non-finite pivot, a
+//! non-finite matrix entry or a non-finite solution is a failure (logged; the
+//! solve returns an error, which diffsol treats as a failed Newton iteration
+//! and answers with a smaller step). If a matrix with a usable structure
+//! were ever badly conditioned block by block, the Newton iteration's own
+//! convergence test is the next guard.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use diffsol::{FaerContext, FaerSparseMat, FaerVec, Matrix, MatrixCommon};
+use diffsol_la::error::{LaError, LinearSolverError};
+use diffsol_la::{LinearOp, LinearSolver};
+use faer::sparse::SymbolicSparseColMatRef;
+
+use super::diffsol_driver::slice_mut;
+use super::sparse_lu::LuLog;
+
+/// Where each unknown sits: in a block of the chain, all blocks of one
+/// size `S`, or alone (its row and column hold only the diagonal entry, as
+/// the chain's `W` does, whose row is left out of the Jacobian).
+#[derive(Clone, Debug)]
+pub(crate) struct BlockLayout {
+    /// The block size `S`.
+    size: usize,
+    /// `order[p]`: the unknown at position `p` (block `p / S`).
+    order: Vec<usize>,
+    /// `place[u]`: `Ok(position)` in the blocks, or `Err(index)` in `lone`.
+    place: Vec<Result<usize, usize>>,
+    /// The unknowns alone.
+    lone: Vec<usize>,
+}
+
+/// The largest block this solver takes (the solve is compiled for each size
+/// up to it); a DAE with larger blocks gets the sparse LU.
+pub(crate) const MAX_BLOCK: usize = 8;
+
+impl BlockLayout {
+    /// The layout of `block` (the block of every unknown, numbered `0..K` in
+    /// the chain's order) for the matrix `pattern`; `None` unless every
+    /// unknown not alone sits in a block of the same size `S <= MAX_BLOCK`,
+    /// no block is empty, and every entry couples blocks at most one apart:
+    /// then the matrix is not block tridiagonal in this grouping.
+    pub fn new(block: &[usize], pattern: SymbolicSparseColMatRef<'_, usize>) -> Option<Self> {
+        let dim = block.len();
+        if dim == 0 || pattern.nrows() != dim || pattern.ncols() != dim {
+            return None;
+        }
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+        let mut coupled = vec![false; dim];
+        for c in 0..dim {
+            for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+                if r != c {
+                    coupled[r] = true;
+                    coupled[c] = true;
+                }
+            }
+        }
+        let blocks = block.iter().max()? + 1;
+        let mut count = vec![0usize; blocks];
+        for (u, &k) in block.iter().enumerate() {
+            if coupled[u] {
+                count[k] += 1;
+            }
+        }
+        let size = count[0];
+        if size == 0 || size > MAX_BLOCK || count.iter().any(|&s| s != size) {
+            return None;
+        }
+        let mut next: Vec<usize> = (0..blocks).map(|k| k * size).collect();
+        let mut order = vec![0; blocks * size];
+        let mut place = vec![Err(0); dim];
+        let mut lone = Vec::new();
+        for (u, &k) in block.iter().enumerate() {
+            if coupled[u] {
+                order[next[k]] = u;
+                place[u] = Ok(next[k]);
+                next[k] += 1;
+            } else {
+                place[u] = Err(lone.len());
+                lone.push(u);
+            }
+        }
+        let layout = Self {
+            size,
+            order,
+            place,
+            lone,
+        };
+        for c in 0..dim {
+            for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+                layout.slot(r, c)?;
+            }
+        }
+        Some(layout)
+    }
+
+    fn blocks(&self) -> usize {
+        self.order.len() / self.size
+    }
+
+    /// Where entry `(r, c)` is stored: in block row `k`, `[L_k | D_k | U_k]`
+    /// (each `S x S`, row-major) at `3 S^2 k`; the lone diagonals after all
+    /// blocks. `None` outside the three block diagonals.
+    fn slot(&self, r: usize, c: usize) -> Option<usize> {
+        let s = self.size;
+        match (*self.place.get(r)?, *self.place.get(c)?) {
+            (Err(i), Err(j)) if i == j => Some(3 * s * s * self.blocks() + i),
+            (Ok(pr), Ok(pc)) => {
+                let (kr, kc) = (pr / s, pc / s);
+                let (i, j) = (pr % s, pc % s);
+                let part = if kc + 1 == kr {
+                    0
+                } else if kc == kr {
+                    1
+                } else if kc == kr + 1 {
+                    2
+                } else {
+                    return None;
+                };
+                Some(3 * s * s * kr + part * s * s + i * s + j)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// LU with partial pivoting of the `s x s` row-major `a` in place (unit
+/// lower factor below the diagonal); `piv[j]` is the row swapped with row
+/// `j` at step `j`. `false` on a zero or non-finite pivot.
+fn dense_lu(a: &mut [f64], s: usize, piv: &mut [usize]) -> bool {
+    for j in 0..s {
+        let mut p = j;
+        let mut best = a[j * s + j].abs();
+        for i in j + 1..s {
+            let v = a[i * s + j].abs();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        // `!(best > 0)` also catches a NaN column.
+        if !(best > 0.0 && best.is_finite()) {
+            return false;
+        }
+        piv[j] = p;
+        if p != j {
+            for c in 0..s {
+                a.swap(j * s + c, p * s + c);
+            }
+        }
+        let inv = 1.0 / a[j * s + j];
+        for i in j + 1..s {
+            let l = a[i * s + j] * inv;
+            a[i * s + j] = l;
+            if l != 0.0 {
+                for c in j + 1..s {
+                    a[i * s + c] -= l * a[j * s + c];
+                }
+            }
+        }
+    }
+    true
+}
+
+/// `B = D^-1 B` for the factors of [`dense_lu`] and the `s x m` row-major `b`.
+fn lu_solve(lu: &[f64], s: usize, piv: &[usize], b: &mut [f64], m: usize) {
+    for (j, &p) in piv.iter().enumerate().take(s) {
+        if p != j {
+            for c in 0..m {
+                b.swap(j * m + c, p * m + c);
+            }
+        }
+    }
+    for i in 1..s {
+        for j in 0..i {
+            let l = lu[i * s + j];
+            if l != 0.0 {
+                for c in 0..m {
+                    b[i * m + c] -= l * b[j * m + c];
+                }
+            }
+        }
+    }
+    for i in (0..s).rev() {
+        for j in i + 1..s {
+            let u = lu[i * s + j];
+            if u != 0.0 {
+                for c in 0..m {
+                    b[i * m + c] -= u * b[j * m + c];
+                }
+            }
+        }
+        let inv = 1.0 / lu[i * s + i];
+        for c in 0..m {
+            b[i * m + c] *= inv;
+        }
+    }
+}
+
+/// `x = A^-1 x` on the blocks (`transpose`: `A^-T`), with `values` holding
+/// `[L_k | D'_k | X_k]` per block and `inverse` the `D'_k^-1`.
+fn solve_blocks<const S: usize>(values: &[f64], inverse: &[f64], z: &mut [f64], transpose: bool) {
+    let blocks = values
+        .chunks_exact(3 * S * S)
+        .zip(inverse.chunks_exact(2 * S * S));
+    let mut carry = [0.0; S];
+    if transpose {
+        // A = Lb Ub (Lb: D'_k and L_k below; Ub: I and X_k above), so that
+        // A^T x = b is Ub^T y = b forward, then Lb^T x = y backward.
+        for ((blk, _), zk) in blocks.clone().zip(z.chunks_exact_mut(S)) {
+            // z_k -= X_{k-1}^T z_{k-1}, then the same for the next block.
+            for (zi, ci) in zk.iter_mut().zip(carry) {
+                *zi -= ci;
+            }
+            let x_k = &blk[2 * S * S..];
+            carry = [0.0; S];
+            for i in 0..S {
+                for j in 0..S {
+                    carry[j] += x_k[i * S + j] * zk[i];
+                }
+            }
+        }
+        let mut below = [0.0; S];
+        for ((blk, inv), zk) in blocks.rev().zip(z.chunks_exact_mut(S).rev()) {
+            let mut t = [0.0; S];
+            for i in 0..S {
+                t[i] = zk[i] - below[i];
+            }
+            let mut y = [0.0; S];
+            for i in 0..S {
+                for j in 0..S {
+                    y[j] += inv[i * S + j] * t[i];
+                }
+            }
+            zk.copy_from_slice(&y);
+            // Block k-1 subtracts L_k^T x_k.
+            let l_k = &blk[..S * S];
+            below = [0.0; S];
+            for i in 0..S {
+                for j in 0..S {
+                    below[j] += l_k[i * S + j] * y[i];
+                }
+            }
+        }
+    } else {
+        // y_k = D'_k^-1 b_k - G_k y_{k-1} with G_k = D'_k^-1 L_k: only the
+        // second product waits for the previous block.
+        for ((_, inv), zk) in blocks.clone().zip(z.chunks_exact_mut(S)) {
+            let (d_inv, g_k) = inv.split_at(S * S);
+            let mut t = [0.0; S];
+            for i in 0..S {
+                let mut acc = 0.0;
+                for j in 0..S {
+                    acc += d_inv[i * S + j] * zk[j];
+                }
+                t[i] = acc;
+            }
+            for i in 0..S {
+                let mut acc = 0.0;
+                for j in 0..S {
+                    acc += g_k[i * S + j] * carry[j];
+                }
+                zk[i] = t[i] - acc;
+            }
+            carry.copy_from_slice(zk);
+        }
+        carry = [0.0; S];
+        for ((blk, _), zk) in blocks.rev().zip(z.chunks_exact_mut(S).rev()) {
+            let x_k = &blk[2 * S * S..];
+            for i in 0..S {
+                let mut acc = zk[i];
+                for j in 0..S {
+                    acc -= x_k[i * S + j] * carry[j];
+                }
+                zk[i] = acc;
+            }
+            carry.copy_from_slice(zk);
+        }
+    }
+}
+
+/// [`solve_blocks`] for the block size `s` (`1..=MAX_BLOCK`).
+fn solve_sized(s: usize, values: &[f64], inverse: &[f64], z: &mut [f64], transpose: bool) {
+    match s {
+        1 => solve_blocks::<1>(values, inverse, z, transpose),
+        2 => solve_blocks::<2>(values, inverse, z, transpose),
+        3 => solve_blocks::<3>(values, inverse, z, transpose),
+        4 => solve_blocks::<4>(values, inverse, z, transpose),
+        5 => solve_blocks::<5>(values, inverse, z, transpose),
+        6 => solve_blocks::<6>(values, inverse, z, transpose),
+        7 => solve_blocks::<7>(values, inverse, z, transpose),
+        _ => solve_blocks::<MAX_BLOCK>(values, inverse, z, transpose),
+    }
+}
+
+/// The factors of one matrix on a [`BlockLayout`].
+struct Factors {
+    layout: BlockLayout,
+    /// diffsol's Newton matrix in CSC, as it writes it.
+    a: FaerSparseMat<f64>,
+    /// The storage slot of each CSC value.
+    slots: Vec<usize>,
+    /// Per block `[L_k | D'_k (LU) | X_k]`, then the lone diagonals.
+    values: Vec<f64>,
+    /// `[D'_k^-1 | D'_k^-1 L_k]` per block, row-major: the solves are then
+    /// products of small dense blocks.
+    inverse: Vec<f64>,
+    /// Pivots of the current block's LU.
+    piv: [usize; MAX_BLOCK],
+    /// The last factorisation succeeded.
+    ok: bool,
+    /// Scratch of the solves (the right-hand side in block order).
+    work: RefCell<Vec<f64>>,
+}
+
+impl Factors {
+    fn factorise(&mut self) -> bool {
+        let l = &self.layout;
+        let s = l.size;
+        let ss = s * s;
+        let csc = self.a.inner()[0].val();
+        if !csc.iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        self.values.fill(0.0);
+        for (&slot, &v) in self.slots.iter().zip(csc) {
+            self.values[slot] = v;
+        }
+        let lone = &self.values[3 * ss * l.blocks()..];
+        if lone.contains(&0.0) {
+            return false;
+        }
+        let mut product = [0.0; MAX_BLOCK * MAX_BLOCK];
+        let piv = &mut self.piv[..s];
+        for k in 0..l.blocks() {
+            let (head, tail) = self.values.split_at_mut(3 * ss * k);
+            let blk = &mut tail[..3 * ss];
+            if k > 0 {
+                // D_k -= L_k X_{k-1}.
+                let x = &head[3 * ss * (k - 1) + 2 * ss..3 * ss * k];
+                let p = &mut product[..ss];
+                p.fill(0.0);
+                for i in 0..s {
+                    for j in 0..s {
+                        let lij = blk[i * s + j];
+                        for c in 0..s {
+                            p[i * s + c] += lij * x[j * s + c];
+                        }
+                    }
+                }
+                for (dv, pv) in blk[ss..2 * ss].iter_mut().zip(p.iter()) {
+                    *dv -= pv;
+                }
+            }
+            let (lk, rest) = blk.split_at_mut(ss);
+            let (d, u) = rest.split_at_mut(ss);
+            if !dense_lu(d, s, piv) {
+                return false;
+            }
+            let (inv, g) = self.inverse[2 * ss * k..2 * ss * (k + 1)].split_at_mut(ss);
+            inv.fill(0.0);
+            for i in 0..s {
+                inv[i * s + i] = 1.0;
+            }
+            lu_solve(d, s, piv, inv, s);
+            // G_k = D'_k^-1 L_k, for the forward solve.
+            g.copy_from_slice(lk);
+            lu_solve(d, s, piv, g, s);
+            // X_k = D'_k^-1 U_k, in place of U_k.
+            lu_solve(d, s, piv, u, s);
+        }
+        true
+    }
+
+    /// `x = A^-1 x` (`transpose`: `x = A^-T x`); `false` if the result is
+    /// not finite.
+    fn solve(&self, x: &mut [f64], transpose: bool) -> bool {
+        let l = &self.layout;
+        let mut z = self.work.borrow_mut();
+        for (zp, &u) in z.iter_mut().zip(&l.order) {
+            *zp = x[u];
+        }
+        let split = 3 * l.size * l.size * l.blocks();
+        let (values, lone) = self.values.split_at(split);
+        solve_sized(l.size, values, &self.inverse, &mut z, transpose);
+        for (&zp, &u) in z.iter().zip(&l.order) {
+            x[u] = zp;
+        }
+        for (&u, &d) in l.lone.iter().zip(lone) {
+            x[u] /= d;
+        }
+        x.iter().all(|v| v.is_finite())
+    }
+}
+
+/// Block-tridiagonal LU with fallible factorisation; see the module doc.
+/// Built by [`BlockLu::new`] with the block of every unknown; its pattern
+/// comes from diffsol (`set_sparsity`), and a pattern that is not block
+/// tridiagonal in that grouping leaves it unusable: every factorisation
+/// fails (the caller checks the Jacobian's pattern first; see `bdf.rs`).
+#[derive(Default)]
+pub(crate) struct BlockLu {
+    block: Vec<usize>,
+    factors: Option<Factors>,
+    log: Rc<LuLog>,
+}
+
+impl BlockLu {
+    /// A solver for unknowns grouped as `block` (see [`BlockLayout::new`])
+    /// that records its factorisations in `log`.
+    pub fn new(block: Vec<usize>, log: Rc<LuLog>) -> Self {
+        Self {
+            block,
+            factors: None,
+            log,
+        }
+    }
+
+    fn fail(&self) -> LaError {
+        LaError::LinearSolverError(LinearSolverError::LuSolveFailed)
+    }
+
+    fn solve_either(&self, x: &mut FaerVec<f64>, transpose: bool) -> Result<(), LaError> {
+        let Some(f) = self.factors.as_ref().filter(|f| f.ok) else {
+            return Err(self.fail());
+        };
+        if f.solve(slice_mut(x), transpose) {
+            Ok(())
+        } else {
+            self.log.record(false);
+            Err(self.fail())
+        }
+    }
+}
+
+impl LinearSolver<FaerSparseMat<f64>> for BlockLu {
+    fn set_sparsity<
+        C: LinearOp<T = f64, V = FaerVec<f64>, M = FaerSparseMat<f64>, C = FaerContext>,
+    >(
+        &mut self,
+        op: &C,
+    ) {
+        let a =
+            FaerSparseMat::new_from_sparsity(op.nrows(), op.ncols(), op.sparsity(), *op.context());
+        let pattern = a.inner()[0].symbolic();
+        let Some((layout, slots)) = BlockLayout::new(&self.block, pattern).and_then(|layout| {
+            let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+            let mut slots = Vec::with_capacity(row_idx.len());
+            for c in 0..pattern.ncols() {
+                for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+                    slots.push(layout.slot(r, c)?);
+                }
+            }
+            Some((layout, slots))
+        }) else {
+            self.factors = None;
+            return;
+        };
+        let (blocks, ss) = (layout.blocks(), layout.size * layout.size);
+        self.factors = Some(Factors {
+            values: vec![0.0; 3 * ss * blocks + layout.lone.len()],
+            inverse: vec![0.0; 2 * ss * blocks],
+            piv: [0; MAX_BLOCK],
+            work: RefCell::new(vec![0.0; layout.order.len()]),
+            layout,
+            a,
+            slots,
+            ok: false,
+        });
+    }
+
+    fn set_linearisation<
+        C: LinearOp<T = f64, V = FaerVec<f64>, M = FaerSparseMat<f64>, C = FaerContext>,
+    >(
+        &mut self,
+        op: &C,
+    ) {
+        let Some(f) = self.factors.as_mut() else {
+            self.log.record(false);
+            return;
+        };
+        op.matrix_inplace(&mut f.a);
+        f.ok = f.factorise();
+        self.log.record(f.ok);
+    }
+
+    fn solve_in_place(&self, x: &mut FaerVec<f64>) -> Result<(), LaError> {
+        self.solve_either(x, false)
+    }
+
+    fn solve_transpose_in_place(&self, x: &mut FaerVec<f64>) -> Result<(), LaError> {
+        self.solve_either(x, true)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::SemiExplicitDae;
+    use crate::solve::diffsol_driver::slice;
+    use crate::{dae::ChainDae, elastic::ElasticDae, Chain, ChainParams};
+    use diffsol::Vector;
+    use faer::sparse::{Pair, SymbolicSparseColMat};
+
+    /// A dense matrix on a sparsity pattern, as diffsol hands it over.
+    struct Dense {
+        dim: usize,
+        /// Row-major.
+        a: Vec<f64>,
+        pattern: SymbolicSparseColMat<usize>,
+        ctx: FaerContext,
+    }
+
+    impl Dense {
+        /// `M - c J` of `dae` at `y`: the Newton matrix of a BDF step.
+        fn newton<D: SemiExplicitDae>(dae: &D, y: &[f64], c: f64) -> Self {
+            let dim = dae.dim();
+            let mut a = vec![0.0; dim * dim];
+            let mut pairs: Vec<Pair<usize, usize>> = Vec::new();
+            for i in 0..dae.differential_dim() {
+                a[i * dim + i] = 1.0;
+                pairs.push(Pair::new(i, i));
+            }
+            dae.jacobian_entries(0.0, y, &mut |r, col, j| {
+                a[r * dim + col] -= c * j;
+                pairs.push(Pair::new(r, col));
+            });
+            let pattern = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
+                .unwrap()
+                .0;
+            Self {
+                dim,
+                a,
+                pattern,
+                ctx: FaerContext::default(),
+            }
+        }
+
+        /// `A^-1 b` (`A^-T b`) by Gaussian elimination with partial pivoting
+        /// on the whole matrix.
+        fn solve(&self, b: &[f64], transpose: bool) -> Vec<f64> {
+            let n = self.dim;
+            let mut m: Vec<f64> = (0..n * n)
+                .map(|k| {
+                    let (i, j) = (k / n, k % n);
+                    if transpose {
+                        self.a[j * n + i]
+                    } else {
+                        self.a[k]
+                    }
+                })
+                .collect();
+            let mut x = b.to_vec();
+            for j in 0..n {
+                let p = (j..n)
+                    .max_by(|&r, &s| m[r * n + j].abs().total_cmp(&m[s * n + j].abs()))
+                    .unwrap();
+                for c in 0..n {
+                    m.swap(j * n + c, p * n + c);
+                }
+                x.swap(j, p);
+                for i in j + 1..n {
+                    let l = m[i * n + j] / m[j * n + j];
+                    for c in j..n {
+                        m[i * n + c] -= l * m[j * n + c];
+                    }
+                    x[i] -= l * x[j];
+                }
+            }
+            for i in (0..n).rev() {
+                let s: f64 = (i + 1..n).map(|c| m[i * n + c] * x[c]).sum();
+                x[i] = (x[i] - s) / m[i * n + i];
+            }
+            x
+        }
+    }
+
+    impl LinearOp for Dense {
+        type T = f64;
+        type V = FaerVec<f64>;
+        type M = FaerSparseMat<f64>;
+        type C = FaerContext;
+        fn nrows(&self) -> usize {
+            self.dim
+        }
+        fn ncols(&self) -> usize {
+            self.dim
+        }
+        fn context(&self) -> &FaerContext {
+            &self.ctx
+        }
+        fn matrix_inplace(&self, y: &mut FaerSparseMat<f64>) {
+            let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
+            let vals = y.inner_mut()[0].val_mut();
+            for c in 0..self.dim {
+                for k in col_ptr[c]..col_ptr[c + 1] {
+                    vals[k] = self.a[row_idx[k] * self.dim + c];
+                }
+            }
+        }
+        fn sparsity(&self) -> Option<SymbolicSparseColMat<usize>> {
+            Some(self.pattern.clone())
+        }
+    }
+
+    /// A reproducible sequence in `[-1, 1)`.
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// Solves `M - c J` of `dae` at a random state both ways (and
+    /// transposed) against the dense solve; returns the largest error
+    /// relative to the solution's size.
+    fn worst_error<D: SemiExplicitDae>(dae: &D, y: &[f64], c: f64, rng: &mut Lcg) -> f64 {
+        let m = Dense::newton(dae, y, c);
+        let log = Rc::new(LuLog::default());
+        let mut lu = BlockLu::new(dae.blocks().unwrap(), log.clone());
+        lu.set_sparsity(&m);
+        assert!(lu.factors.is_some(), "the layout was refused");
+        lu.set_linearisation(&m);
+        assert!(!log.last_failed.get());
+        let mut worst: f64 = 0.0;
+        for transpose in [false, true] {
+            let b: Vec<f64> = (0..m.dim).map(|_| rng.next()).collect();
+            let want = m.solve(&b, transpose);
+            let mut x = FaerVec::from_vec(b, m.ctx);
+            if transpose {
+                lu.solve_transpose_in_place(&mut x).unwrap();
+            } else {
+                lu.solve_in_place(&mut x).unwrap();
+            }
+            let size = want.iter().fold(0.0_f64, |s, v| s.max(v.abs()));
+            let diff = slice(&x)
+                .iter()
+                .zip(&want)
+                .fold(0.0_f64, |s, (a, b)| s.max((a - b).abs()));
+            worst = worst.max(diff / size);
+        }
+        worst
+    }
+
+    /// A random consistent-looking state of `dim` unknowns: angles in
+    /// `[-pi, pi)`, everything else in `[-scale, scale)`.
+    fn random_state(dim: usize, n: usize, scale: f64, rng: &mut Lcg) -> Vec<f64> {
+        (0..dim)
+            .map(|u| {
+                if u < n {
+                    std::f64::consts::PI * rng.next()
+                } else {
+                    scale * rng.next()
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_block_solve_matches_a_dense_solve_on_random_chains() {
+        let mut rng = Lcg(20);
+        let mut worst: f64 = 0.0;
+        for n in [1usize, 2, 3, 7, 20, 41] {
+            for (r, ei, tip) in [
+                (5e-4, 0.0, 0.0),
+                (1.0, 0.0, 0.0),
+                (0.1, 0.3, 0.0),
+                (0.2, 0.0, 0.5),
+            ] {
+                let chain = Chain::new(ChainParams {
+                    links: n,
+                    damping: r,
+                    bending_stiffness: ei,
+                    tip_mass: tip,
+                    ..ChainParams::default()
+                })
+                .unwrap();
+                let dae = ChainDae::new(&chain);
+                let y = random_state(dae.dim(), n, 10.0, &mut rng);
+                for c in [1e-4, 1e-2, 0.3] {
+                    worst = worst.max(worst_error(&dae, &y, c, &mut rng));
+                }
+            }
+            let elastic = Chain::new(ChainParams {
+                links: n,
+                damping: 0.01,
+                axial_stiffness: Some(1e4),
+                axial_damping: 0.1,
+                ..ChainParams::default()
+            })
+            .unwrap();
+            let dae = ElasticDae::new(&elastic);
+            let y = random_state(dae.dim(), n, 1.0, &mut rng);
+            for c in [1e-4, 1e-2] {
+                worst = worst.max(worst_error(&dae, &y, c, &mut rng));
+            }
+        }
+        println!("worst relative difference {worst:e}");
+        assert!(worst < 1e-9, "{worst:e}");
+    }
+
+    /// A 6x6 tridiagonal matrix (4 on the diagonal, 1 beside it) as three
+    /// blocks of two (unknown `u` in block `u / 2`).
+    fn three_blocks() -> Dense {
+        let dim = 6;
+        let mut a = vec![0.0; dim * dim];
+        let mut pairs = Vec::new();
+        for i in 0..dim {
+            a[i * dim + i] = 4.0;
+            pairs.push(Pair::new(i, i));
+            if i + 1 < dim {
+                a[i * dim + i + 1] = 1.0;
+                a[(i + 1) * dim + i] = 1.0;
+                pairs.push(Pair::new(i, i + 1));
+                pairs.push(Pair::new(i + 1, i));
+            }
+        }
+        Dense {
+            dim,
+            a,
+            pattern: SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
+                .unwrap()
+                .0,
+            ctx: FaerContext::default(),
+        }
+    }
+
+    #[test]
+    fn a_singular_or_non_finite_matrix_fails_and_a_good_one_recovers() {
+        let log = Rc::new(LuLog::default());
+        let mut lu = BlockLu::new(vec![0, 0, 1, 1, 2, 2], log.clone());
+        let good = three_blocks();
+        lu.set_sparsity(&good);
+        lu.set_linearisation(&good);
+        assert!(!log.last_failed.get());
+        let solve = |lu: &BlockLu| {
+            let mut x = FaerVec::from_element(6, 1.0, FaerContext::default());
+            lu.solve_in_place(&mut x).map(|()| slice(&x).to_vec())
+        };
+        let x = solve(&lu).unwrap();
+        let want = good.solve(&[1.0; 6], false);
+        for (a, b) in x.iter().zip(&want) {
+            assert!((a - b).abs() < 1e-14);
+        }
+        // Rows 4 and 5 made equal (both [0, 0, 0, 0, 1, 1]): the last
+        // block's pivot is exactly zero (and no later block would turn it
+        // into a NaN that fails on its own).
+        let mut singular = three_blocks();
+        for (k, v) in [(4 * 6 + 3, 0.0), (4 * 6 + 4, 1.0), (5 * 6 + 5, 1.0)] {
+            singular.a[k] = v;
+        }
+        lu.set_linearisation(&singular);
+        assert!(log.last_failed.get());
+        assert!(solve(&lu).is_err());
+        let mut nan = three_blocks();
+        nan.a[7] = f64::NAN;
+        lu.set_linearisation(&nan);
+        assert!(log.last_failed.get());
+        assert!(solve(&lu).is_err());
+        assert_eq!(log.failures.get(), 2);
+        lu.set_linearisation(&good);
+        assert!(!log.last_failed.get());
+        assert!(solve(&lu).is_ok());
+    }
+
+    #[test]
+    fn a_grouping_that_is_not_block_tridiagonal_is_refused() {
+        let m = three_blocks();
+        let p = m.pattern.as_ref();
+        assert!(BlockLayout::new(&[0, 0, 1, 1, 2, 2], p).is_some());
+        // Unknown 1 (block 2) couples to unknown 0 and 2 (block 0 and 1):
+        // two blocks apart.
+        assert!(BlockLayout::new(&[0, 2, 1, 1, 2, 0], p).is_none());
+        // Blocks of different sizes.
+        assert!(BlockLayout::new(&[0, 0, 0, 1, 1, 2], p).is_none());
+        // An empty block.
+        assert!(BlockLayout::new(&[0, 0, 0, 2, 2, 2], p).is_none());
+    }
+
+    /// `x' = v`, `v' = a` and `0 = 0 a`: no equation fixes `a`, so every
+    /// Newton matrix is singular. `blocks` says whether it names a block.
+    struct Undetermined {
+        blocks: bool,
+    }
+
+    impl SemiExplicitDae for Undetermined {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn differential_dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, _t: f64, y: &[f64], out: &mut [f64]) {
+            out.copy_from_slice(&[y[1], y[2], 0.0]);
+        }
+        fn jacobian_entries(&self, _t: f64, _y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+            emit(0, 1, 1.0);
+            emit(1, 2, 1.0);
+            emit(2, 2, 0.0);
+        }
+        fn blocks(&self) -> Option<Vec<usize>> {
+            self.blocks.then(|| vec![0, 0, 0])
+        }
+    }
+
+    #[test]
+    fn a_singular_newton_matrix_ends_the_run_as_linear_solve_failed() {
+        use crate::ode::Status;
+        use crate::solve::bdf::integrate_dae;
+        use crate::solve::test_problems::{options, Quiet};
+        for blocks in [true, false] {
+            let o = options(1e-6, 1e-8);
+            let out = integrate_dae(
+                Undetermined { blocks },
+                0.0,
+                vec![1.0, 0.0, 0.0],
+                1.0,
+                &o,
+                &mut Quiet,
+            );
+            assert_eq!(out.status, Status::LinearSolveFailed, "blocks {blocks}");
+            assert_eq!(out.t_reached, 0.0);
+            assert!(out.y_end.iter().all(|v| v.is_finite()));
+        }
+    }
+}
