@@ -6,5 +6,15 @@
 //! except long per-sample tables, which are `fixed` to a few decimals to
 //! stay small. Timing files use `fixed` and `exp_digits`.
 
-pub use falling_chain::study::format::{fixed, text};
-pub use falling_chain::study::table::Table;
+// Every helper a figure file may use, as before the move to the library
+// (figures added on other branches use them).
+#[allow(
+    unused_imports,
+    reason = "the figure files' helpers: not every one is used by today's figures"
+)]
+pub use falling_chain::study::format::{exp, exp_digits, fixed, num, opt, short_err, text};
+#[allow(
+    unused_imports,
+    reason = "the figure files' helpers: not every one is used by today's figures"
+)]
+pub use falling_chain::study::table::{distinct, parse_num, Table};

@@ -13,6 +13,11 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 use crate::data::text;
 
+/// The median of a non-empty sample (the library's; kept here for the
+/// figure files that time their runs).
+#[allow(unused_imports, reason = "for the figure files that time their runs")]
+pub use falling_chain::study::median;
+
 /// The end of every timing file's name.
 pub const SUFFIX: &str = "-timing.csv";
 /// The machine the timing files were measured on.

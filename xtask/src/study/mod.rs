@@ -20,3 +20,7 @@ pub mod validation_convergence;
 pub mod validation_energy;
 pub mod validation_folded;
 pub mod validation_modes;
+
+/// Least-squares fits for the figure files (the library's).
+#[allow(unused_imports, reason = "for the figure files that fit slopes")]
+pub use falling_chain::study::{linear_fit, log_slope};
