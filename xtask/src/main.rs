@@ -14,6 +14,7 @@ mod data;
 mod paper;
 mod registry;
 mod report;
+mod report_model;
 mod runs;
 mod study;
 mod timing;

@@ -14,9 +14,14 @@
 //! sum_j mt_ij c_ij phi_j'' + sum_j mt_ij s_ij w_j^2 + G q_i cos phi_i = sigma gamma D_i(w)
 //! ```
 //!
-//! * `mt_ii = n - i + 1/3 + delta`, `mt_ij = n - max(i, j) + 1/2` (`i != j`),
-//!   `q_i = n - i + 1/2 + delta`: `delta = 1` with the code's 0-based
-//!   indices (erratum 2), `0` corrected;
+//! * `mt_ii = n - i + 1/3 + delta`, `mt_ij = n - max(i, j) + 1/2 + delta`
+//!   (`i != j`), `q_i = n - i + 1/2 + delta`: `delta = 1` with the code's
+//!   0-based indices (erratum 2: its `M(n)` and `qc` use the 1-based
+//!   formulas with 0-based `i`, `j`, so every entry is one too large),
+//!   `0` corrected. `+1` in every `mt_ij` and every `q_i` is exactly a
+//!   point mass of one rod's mass `m` at the free end (`chain.tip_mass = m`,
+//!   `docs/model.md`): the report's chain carries a tip mass it never
+//!   mentions;
 //! * `G = 1` (1/time^2) with the code's dropped `g/l` (erratum 3: its time
 //!   unit is `sqrt(l/g)` of ours), `G = g/l` corrected;
 //! * `gamma = r / (m l^2)`, `D_i` the joint stencil of the corrected model
@@ -42,18 +47,20 @@ pub const REPORT_MAX_LINKS: usize = 200;
 /// [`ReportModel::AS_CODED`] is `model.report = true`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ReportModel {
-    /// Erratum 2: `mt_ii` and `q_i` indexed from 0 (each one too large).
+    /// Erratum 2: `mt_ij` and `q_i` indexed from 0 (each one too large:
+    /// a tip mass of one rod's mass).
     pub indices: bool,
     /// Erratum 3: the gravity term without `g/l` (`G = 1`): the report's
     /// clock, whose time unit is `sqrt(l/g)` of ours.
     pub clock: bool,
     /// Erratum 1 as printed: `+ gamma D_i` on the left of eq. (5.3), which
-    /// feeds energy in. Off in [`ReportModel::AS_CODED`]: the report's
-    /// figures settle, which only the dissipative sign does (measured,
-    /// `docs/model.md`).
+    /// feeds energy in. Off in [`ReportModel::AS_CODED`]: the report's code
+    /// adds its friction term with the dissipative sign (and the boundary
+    /// rows `D_1`, `D_n` above); only the printed equation has the other.
     pub printed_friction_sign: bool,
     /// Erratum 4: `rk4` runs the report's stepper (explicit Euler in
-    /// `phi`, RK4 stages in `w` at frozen angles) instead of RK4.
+    /// `phi`, RK4 stages in `w` at frozen angles: `solve_report`) instead
+    /// of RK4.
     pub stepper: bool,
 }
 
@@ -115,7 +122,7 @@ impl ReportModel {
         if i == j {
             (n - k) as f64 + 1.0 / 3.0 + self.delta()
         } else {
-            (n - k) as f64 + 0.5
+            (n - k) as f64 + 0.5 + self.delta()
         }
     }
 

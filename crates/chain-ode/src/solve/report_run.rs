@@ -1,17 +1,20 @@
 //! Runs of the report's model ([`crate::report`]): [`solve_report`], and
 //! the report's own stepper (erratum 4), which its code calls RK4.
 //!
-//! The stepper advances `y = [phi, w, W]` by `h`:
+//! The stepper advances `y = [phi, w, W]` by `h` as the report's code does
+//! (its notebook's step loop):
 //!
 //! ```text
-//! k1 = a(phi, w)          k2 = a(phi, w + h/2 k1)
-//! k3 = a(phi, w + h/2 k2) k4 = a(phi, w + h k3)
-//! w1 = w + h/6 (k1 + 2 k2 + 2 k3 + k4)          (RK4 stages at frozen angles)
 //! phi1 = phi + h w                               (explicit Euler)
+//! k1 = a(phi, w)           k2 = a(phi, w + h/2 k1)
+//! k3 = a(phi1, w + h/2 k2) k4 = a(phi1, w + h k3)
+//! w1 = w + h/6 (k1 + 2 k2 + 2 k3 + k4)
 //! ```
 //!
-//! (`W` with the same stages as `w`): a first-order method, measured so by
-//! a test.
+//! RK4's weights on the rates, with the angles frozen at `phi` for the
+//! first two stages and at the Euler update `phi1` for the last two (`W`
+//! takes the same stages as `w`): a first-order method, measured so by a
+//! test.
 
 use std::time::Instant;
 
@@ -184,22 +187,23 @@ fn steps<S: OdeSystem>(sys: &mut S, span: &Span<'_>, obs: &mut dyn Observer) -> 
             t1 = t_end;
         }
         let h = t1 - t;
-        // Stages in the rates (and W) only: the angles stay at phi.
-        let stage = |out: &mut [f64], y: &[f64], a: f64, k: &[f64]| {
-            out[..n].copy_from_slice(&y[..n]);
+        // The angles by explicit Euler first: the last two stages use them.
+        for i in 0..n {
+            y1[i] = y[i] + h * y[n + i];
+        }
+        // Stages in the rates (and W) only, at the angles `at`.
+        let stage = |out: &mut [f64], at: &[f64], y: &[f64], a: f64, k: &[f64]| {
+            out[..n].copy_from_slice(&at[..n]);
             for i in n..d {
                 out[i] = y[i] + a * k[i];
             }
         };
-        stage(&mut tmp, &y, 0.5 * h, &f);
+        stage(&mut tmp, &y, &y, 0.5 * h, &f);
         sys.rhs(t, &tmp, &mut k2);
-        stage(&mut tmp, &y, 0.5 * h, &k2);
-        sys.rhs(t, &tmp, &mut k3);
-        stage(&mut tmp, &y, h, &k3);
-        sys.rhs(t, &tmp, &mut k4);
-        for i in 0..n {
-            y1[i] = y[i] + h * y[n + i];
-        }
+        stage(&mut tmp, &y1, &y, 0.5 * h, &k2);
+        sys.rhs(t1, &tmp, &mut k3);
+        stage(&mut tmp, &y1, &y, h, &k3);
+        sys.rhs(t1, &tmp, &mut k4);
         for i in n..d {
             y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
         }

@@ -11,26 +11,26 @@ use crate::{max_abs, span, tolerances};
 
 /// `phi''` of the report's equations at `n = 2`, from the 2 x 2 system
 /// written out by hand (1-based): with `delta = 1` for the 0-based
-/// indices, `mt_11 = 4/3 + delta`, `mt_22 = 1/3 + delta`, `mt_12 = 1/2`,
+/// indices, `mt_11 = 4/3 + delta`, `mt_22 = 1/3 + delta`, `mt_12 = 1/2 + delta`,
 /// `q_1 = 3/2 + delta`, `q_2 = 1/2 + delta`, `c = cos(phi1 - phi2)`,
 /// `s = sin(phi1 - phi2)`:
 ///
 /// ```text
-/// mt_11 phi1'' + c/2 phi2'' + s/2 w2^2 + G q_1 cos phi1 = sigma gamma (w2 - w1)
-/// c/2 phi1'' + mt_22 phi2'' - s/2 w1^2 + G q_2 cos phi2 = sigma gamma (w1 - w2)
+/// mt_11 phi1'' + mt_12 c phi2'' + mt_12 s w2^2 + G q_1 cos phi1 = sigma gamma (w2 - w1)
+/// mt_12 c phi1'' + mt_22 phi2'' - mt_12 s w1^2 + G q_2 cos phi2 = sigma gamma (w1 - w2)
 /// ```
 ///
 /// solved by Cramer's rule.
 fn two_rods(delta: f64, g: f64, sigma_gamma: f64, phi: [f64; 2], w: [f64; 2]) -> [f64; 2] {
-    let (m11, m22) = (4.0 / 3.0 + delta, 1.0 / 3.0 + delta);
+    let (m11, m22, m12) = (4.0 / 3.0 + delta, 1.0 / 3.0 + delta, 0.5 + delta);
     let (q1, q2) = (1.5 + delta, 0.5 + delta);
     let (c, s) = ((phi[0] - phi[1]).cos(), (phi[0] - phi[1]).sin());
-    let b1 = sigma_gamma * (w[1] - w[0]) - 0.5 * s * w[1] * w[1] - g * q1 * phi[0].cos();
-    let b2 = sigma_gamma * (w[0] - w[1]) + 0.5 * s * w[0] * w[0] - g * q2 * phi[1].cos();
-    let det = m11 * m22 - 0.25 * c * c;
+    let b1 = sigma_gamma * (w[1] - w[0]) - m12 * s * w[1] * w[1] - g * q1 * phi[0].cos();
+    let b2 = sigma_gamma * (w[0] - w[1]) + m12 * s * w[0] * w[0] - g * q2 * phi[1].cos();
+    let det = m11 * m22 - m12 * m12 * c * c;
     [
-        (m22 * b1 - 0.5 * c * b2) / det,
-        (m11 * b2 - 0.5 * c * b1) / det,
+        (m22 * b1 - m12 * c * b2) / det,
+        (m11 * b2 - m12 * c * b1) / det,
     ]
 }
 
@@ -105,6 +105,41 @@ fn corrected_it_is_the_chain_of_the_o_n_recursion() {
         assert!(
             (dense[i] - fast[i]).abs() < 1e-11 * scale,
             "{i}: {dense:?} {fast:?}"
+        );
+    }
+}
+
+#[test]
+fn its_indices_are_a_tip_mass_of_one_rod() {
+    // One added to every mt_ij and every q_i is a point mass m at the free
+    // end: the report's 0-based indices against the O(n) recursion of the
+    // corrected chain with chain.tip_mass = m (its own, independent model).
+    let with_tip = Chain::new(ChainParams {
+        links: 7,
+        damping: 2e-3,
+        gravity: 1.3,
+        tip_mass: 0.2,
+        ..ChainParams::default()
+    })
+    .unwrap();
+    let plain = chain(7, 2e-3, 1.3);
+    let indices_only = ReportModel {
+        indices: true,
+        ..ReportModel::CORRECTED
+    };
+    let mut sys = ReportSystem::new(&plain, indices_only);
+    let phi: Vec<f64> = (0..7).map(|i| (0.9 * i as f64).cos() * 1.7).collect();
+    let w: Vec<f64> = (0..7).map(|i| (0.4 * i as f64).sin() * 2.0 - 0.3).collect();
+    let mut report = vec![0.0; 7];
+    sys.accelerations(&phi, &w, &mut report);
+    let mut ws = dynamics::Workspace::new(7);
+    let mut tip = vec![0.0; 7];
+    dynamics::accelerations(&with_tip, &phi, &w, &mut tip, &mut ws);
+    let scale = 1.0 + max_abs(&tip);
+    for i in 0..7 {
+        assert!(
+            (report[i] - tip[i]).abs() < 1e-11 * scale,
+            "{i}: {report:?} {tip:?}"
         );
     }
 }
