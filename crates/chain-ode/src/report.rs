@@ -199,15 +199,25 @@ impl ReportModel {
 }
 
 /// The tip speeds as the report's code computed them (erratum 5): the
-/// tip rebuilt as `P0 + l sum_{j>=2} (cos phi_j, sin phi_j)`, without rod 1,
+/// free end's point as its reconstruction `x_iz_phi`/`y_iz_phi` gives it,
+/// `P0 + l sum_{j=2}^{n-1} u_j + (l/2) u_n` (`u_j = (cos phi_j, sin phi_j)`:
+/// rod 1 left out of the sum, and the last rod's midpoint, not its end),
 /// differenced between consecutive samples, `|r(t_{k+1}) - r(t_k)| /
-/// (t_{k+1} - t_k)`; one speed per pair of samples, at the later time.
+/// (t_{k+1} - t_k)`; one `[t, speed]` per pair of samples, at the later time.
 pub fn finite_difference_tip_speeds(chain: &Chain, times: &[f64], angles: &[&[f64]]) -> Vec<Vec2> {
     let l = chain.rod_length();
     let tip = |phi: &[f64]| -> Vec2 {
-        phi.iter()
-            .skip(1)
-            .fold([0.0, 0.0], |[x, y], p| [x + l * p.cos(), y + l * p.sin()])
+        let n = phi.len();
+        let mut r = [0.0, 0.0];
+        for (j, p) in phi.iter().enumerate().skip(1) {
+            let w = if j + 1 == n { 0.5 * l } else { l };
+            r[0] += w * p.cos();
+            r[1] += w * p.sin();
+        }
+        if n == 1 {
+            r = [0.5 * l * phi[0].cos(), 0.5 * l * phi[0].sin()];
+        }
+        r
     };
     times
         .windows(2)

@@ -300,3 +300,21 @@ fn it_refuses_what_the_report_has_not() {
         assert_eq!(e.field, field);
     }
 }
+
+#[test]
+fn the_reports_tip_speed_leaves_out_rod_one_and_ends_mid_rod() {
+    // Three rods, rod 1 turning alone: the report's point does not move.
+    // Rod 3 turning alone at rate 1: its midpoint moves at l/2.
+    let c = chain(3, 0.0, 1.0);
+    let l = c.rod_length();
+    let times = [0.0, 1e-6];
+    let a0 = [0.3, -0.2, 0.5];
+    let rod1 = [0.3 + 1e-6, -0.2, 0.5];
+    let rod3 = [0.3, -0.2, 0.5 + 1e-6];
+    let v = chain_ode::report::finite_difference_tip_speeds(&c, &times, &[&a0, &rod1]);
+    assert_eq!(v.len(), 1);
+    assert!(v[0][1].abs() < 1e-12, "{v:?}");
+    let v = chain_ode::report::finite_difference_tip_speeds(&c, &times, &[&a0, &rod3]);
+    assert!((v[0][1] - 0.5 * l).abs() < 1e-6, "{v:?}");
+    assert_eq!(v[0][0], 1e-6);
+}
