@@ -375,7 +375,7 @@ pub static FIGURES: &[Figure] = &[
         data: &["rm09-vmax-vs-span.csv", "rm09-vmax-vs-span-errata.csv"],
         timing: Timing::None,
         make: &ReportVmax {
-            title: "maximum tip speed against span d, the report's model",
+            title: "Fig. 9 from the report's model",
             scene: "span-d3",
             t_report: 12.0,
         },
