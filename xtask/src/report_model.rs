@@ -127,6 +127,16 @@ const READ_OFF_FIG9: [f64; 14] = [
     2.43, 2.435, 2.515, 2.48, 2.42, 2.37, 2.30, 2.165, 2.04, 1.94, 1.84, 1.775, 1.795, 1.975,
 ];
 
+/// The largest angle between neighbouring rods (rad, in `[0, pi]`).
+fn kink(phi: &[f64]) -> f64 {
+    phi.windows(2)
+        .map(|p| {
+            let d = (p[1] - p[0]).rem_euclid(std::f64::consts::TAU);
+            d.min(std::f64::consts::TAU - d)
+        })
+        .fold(0.0, f64::max)
+}
+
 /// The report's 14 spans: `linspace(0, 6, 20)[5..19]`.
 fn report_spans() -> Vec<f64> {
     (5..19).map(|i| 6.0 * i as f64 / 19.0).collect()
@@ -169,7 +179,7 @@ const CASES: &[(&str, ReportModel)] = &[
 
 impl Make for ReportVmax {
     fn scenes(&self) -> Vec<&'static str> {
-        vec![self.scene, "horizontal-damped"]
+        vec![self.scene, "horizontal-damped", "horizontal-undamped"]
     }
 
     /// `<id>.csv`: `d,vmax_report,vmax_fd,vmax,t_vmax,status` at the
@@ -182,10 +192,14 @@ impl Make for ReportVmax {
     /// rtol 1e-8) to the same physical time; `read_off`, the published
     /// Fig. 9 ([`READ_OFF_FIG9`]).
     ///
-    /// `<id>-errata.csv`: `scene,case,vmax,t_vmax,status`: the scene in
+    /// `<id>-errata.csv`: `scene,case,vmax,t_vmax,status,t_reached,balance,kink`:
+    /// the scene in
     /// each case of [`CASES`] at the report's step and span (`dt = t / (100 t - 1)`
     /// and `t = 12` (Figs. 7, 9) or 10 (Fig. 4) of the report's clock,
-    /// kept in physical time when the clock is corrected), in our units.
+    /// kept in physical time when the clock is corrected), in our units;
+    /// `balance`, the largest `|E + W - E(0)|` of the model's own energy
+    /// over its energy scale; `kink`, the largest angle between neighbouring
+    /// rods at the end (rad): how crumpled the chain ends.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let base = ctx.run(self.scene)?.scene.clone();
         let mut csv = String::from("d,vmax_report,vmax_fd,vmax,t_vmax,status,corrected,read_off\n");
@@ -226,8 +240,12 @@ impl Make for ReportVmax {
             )
             .map_err(err)?;
         }
-        let mut errata = String::from("scene,case,vmax,t_vmax,status\n");
-        for (scene, t_report) in [(self.scene, self.t_report), ("horizontal-damped", 10.0)] {
+        let mut errata = String::from("scene,case,vmax,t_vmax,status,t_reached,balance,kink\n");
+        for (scene, t_report) in [
+            (self.scene, self.t_report),
+            ("horizontal-damped", 10.0),
+            ("horizontal-undamped", 10.0),
+        ] {
             let p = ctx.run(scene)?.scene.prepare().map_err(err)?;
             let coded = ReportModel::AS_CODED.time_unit(&p.chain);
             for (case, model) in CASES {
@@ -240,10 +258,13 @@ impl Make for ReportVmax {
                     solve_report(&p.chain, &p.state, *model, Method::Rk4, &o).map_err(err)?;
                 writeln!(
                     errata,
-                    "{scene},{case},{},{},{}",
+                    "{scene},{case},{},{},{},{},{},{}",
                     num(traj.summary.tip_speed_max / unit),
                     num(traj.summary.t_tip_speed_max * unit),
-                    traj.status
+                    traj.status,
+                    num(traj.t_reached * unit),
+                    num(traj.summary.energy_balance_error / model.energy_scale(&p.chain)),
+                    num(kink(&traj.final_state[..p.chain.links()]))
                 )
                 .map_err(err)?;
             }
