@@ -161,7 +161,7 @@ const CASES: &[(&str, ReportModel)] = &[
         },
     ),
     (
-        "stepper corrected: RK4 (erratum 4)",
+        "stepper corrected to RK4 (erratum 4)",
         ReportModel {
             stepper: false,
             ..ReportModel::AS_CODED
