@@ -237,3 +237,59 @@ fn steps<S: OdeSystem>(sys: &mut S, span: &Span<'_>, obs: &mut dyn Observer) -> 
     }
     Outcome::ended(Status::Ok, t, None, stats, y)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solve::test_problems::Quiet;
+
+    /// `q'' = -q` as `[q, v, W]` with `W' = 0`: the layout the stepper reads.
+    struct Spring;
+
+    impl OdeSystem for Spring {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = y[1];
+            dy[1] = -y[0];
+            dy[2] = 0.0;
+        }
+        fn jvp(&mut self, _t: f64, _y: &[f64], v: &[f64], jv: &mut [f64]) {
+            jv[0] = v[1];
+            jv[1] = -v[0];
+            jv[2] = 0.0;
+        }
+    }
+
+    #[test]
+    fn one_step_is_the_reports_by_hand() {
+        // From (q, v) = (1, 1) by h: q1 = q + h v = 1 + h; the rates' stages
+        // are -q, -q, -q1, -q1, so v1 = v - h/6 (q + 2 q + 2 q1 + q1)
+        // = 1 - h - h^2/2 (at frozen old angles it would be 1 - h).
+        let h = 0.1;
+        let settings = Settings {
+            dt: h,
+            rtol: 1e-6,
+            atol: 1e-8,
+            h_min: 0.0,
+            max_steps: 10,
+            h0: None,
+        };
+        let span = Span {
+            t0: 0.0,
+            y0: &[1.0, 1.0, 0.0],
+            t_end: h,
+            settings: &settings,
+        };
+        let out = integrate(&mut Spring, &span, &mut Quiet);
+        assert_eq!(out.status, Status::Ok);
+        assert_eq!(out.stats.steps, 1);
+        assert!((out.y_end[0] - 1.1).abs() < 1e-15, "{:?}", out.y_end);
+        assert!(
+            (out.y_end[1] - (1.0 - h - 0.5 * h * h)).abs() < 1e-15,
+            "{:?}",
+            out.y_end
+        );
+    }
+}
