@@ -96,7 +96,7 @@ impl Make for ReportSnapshots {
                 s => status = format!("{s} at t = {}", time[k]),
             }
         }
-        let title = format!("{}: {} ({status})", fig.id, self.title);
+        let title = format!("{} ({status})", self.title);
         let f = ChainSnapshots::new(&title, frames, p0);
         out(ctx, fig, figures::chain_snapshots(&f, &ctx.stem(fig.id)))
     }
