@@ -119,6 +119,9 @@ struct Case {
     elastic: bool,
     /// `chain.tip_mass` (refused with elastic links when > 0).
     tip_mass: f64,
+    /// `model.report` (refused with elastic links, bending, a tip mass and
+    /// the methods it does not run).
+    report: bool,
 }
 
 const COMMANDS: [&str; 11] = [
@@ -170,6 +173,7 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.0, 0.1, &[-1.0, 1e300, f64::INFINITY, f64::NAN]),
             any::<bool>(),
             number(0.0, 2.0, &[0.0, -1.0, 1e300, f64::INFINITY, f64::NAN]),
+            any::<bool>(),
         ),
     )
         .prop_map(
@@ -177,7 +181,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (command, length, links, mass, gravity, damping, kind),
                 (p1, p1_on_circle, down, t_end, method, dt),
                 (rtol, atol, output_dt, h_min, extra, with_out),
-                (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass),
+                (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
             )| Case {
                 command,
                 length,
@@ -203,6 +207,7 @@ fn case() -> impl Strategy<Value = Case> {
                 bending_stiffness,
                 elastic,
                 tip_mass,
+                report,
             },
         )
 }
@@ -271,6 +276,7 @@ impl Case {
         writeln!(t, "atol = {}", toml_f(self.atol)).unwrap();
         writeln!(t, "output_dt = {}", toml_f(self.output_dt)).unwrap();
         writeln!(t, "h_min = {}", toml_f(self.h_min)).unwrap();
+        writeln!(t, "[model]\nreport = {}", self.report).unwrap();
         t
     }
 
@@ -587,6 +593,7 @@ fn the_fuzzer_draws_every_scene_key() {
             bending_stiffness: 0.0,
             elastic: true,
             tip_mass: 0.0,
+            report: true,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

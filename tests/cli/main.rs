@@ -18,6 +18,7 @@ mod converge;
 mod fuzz;
 mod hostile;
 mod plot;
+mod report;
 mod scenes;
 mod simulate;
 mod study;

@@ -16,6 +16,7 @@ mod pdf;
 mod registry;
 mod report;
 mod report_accuracy;
+mod report_model;
 mod runs;
 mod study;
 mod timing;

@@ -11,6 +11,7 @@ use crate::ctx::Ctx;
 use crate::report::{
     Catenaries, LinspaceSlice, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan,
 };
+use crate::report_model::{ReportSnapshots, ReportVmax};
 use crate::study;
 use crate::timing;
 
@@ -85,6 +86,24 @@ macro_rules! snapshots {
                 scene: $scene,
                 every: 1,
                 p1_label: None,
+            },
+        }
+    };
+}
+
+/// A report figure's scene run in the report's own model.
+macro_rules! report_model {
+    ($id:literal, $title:literal, $what:literal, $scene:literal, $t:literal) => {
+        Figure {
+            id: $id,
+            report: None,
+            what: $what,
+            data: &[concat!($id, ".csv")],
+            timing: Timing::None,
+            make: &ReportSnapshots {
+                title: $title,
+                scene: $scene,
+                t_report: $t,
             },
         }
     };
@@ -385,6 +404,26 @@ pub static FIGURES: &[Figure] = &[
         timing: Timing::None,
         make: &crate::viewer_shot::ViewerPeak,
     },
+    // The report's own model, as a control (`docs/model.md`).
+    report_model!("rm03-horizontal-undamped", "Fig. 3, report's model, n = 25, r = 0", "the report's Fig. 3 from the report's model (`model.report = true`: its equations, clock and stepper; n = 25, r = 0, its dt = 0.01001 to its t = 10, every 25th step), beside fig03", "horizontal-undamped", 10.0),
+    report_model!("rm04-horizontal-damped", "Fig. 4, report's model, n = 25, r = 0.001", "the report's Fig. 4 from the report's model (n = 25, r = 0.001, to its t = 10), beside fig04", "horizontal-damped", 10.0),
+    report_model!("rm05-horizontal-settling", "Fig. 5, report's model, n = 25, r = 0.001", "the report's Fig. 5 from the report's model (n = 25, r = 0.001, to its t = 40), beside fig05", "horizontal-settling", 40.0),
+    report_model!("rm07a-span-d1", "Fig. 7a, report's model", "the report's Fig. 7a from the report's model (n = 50, r = 0.0005, d = 1, to its t = 12), beside fig07a", "span-d1", 12.0),
+    report_model!("rm07b-span-d3", "Fig. 7b, report's model", "the report's Fig. 7b from the report's model (n = 50, d = 3, to its t = 12), beside fig07b", "span-d3", 12.0),
+    report_model!("rm07c-span-d5", "Fig. 7c, report's model", "the report's Fig. 7c from the report's model (n = 50, d = 5, to its t = 12), beside fig07c", "span-d5", 12.0),
+    report_model!("rm07d-span-d6", "Fig. 7d, report's model", "the report's Fig. 7d from the report's model (n = 50, d = 6, stretched, to its t = 12), beside fig07d", "span-d6", 12.0),
+    Figure {
+        id: "rm09-vmax-vs-span",
+        report: None,
+        what: "Fig. 9 in the report's model (its 14 spans, n = 50, r = 0.0005, its dt = 0.01001 to its t = 12): its maximum tip speed in its clock, by its finite differences, in our units, and the corrected model's; with a pair of runs per erratum (the -errata file)",
+        data: &["rm09-vmax-vs-span.csv", "rm09-vmax-vs-span-errata.csv"],
+        timing: Timing::None,
+        make: &ReportVmax {
+            title: "Fig. 9 from the report's model",
+            scene: "span-d3",
+            t_report: 12.0,
+        },
+    },
 ];
 
 /// The figure called `id`.
@@ -495,6 +534,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 39);
+        assert_eq!(FIGURES.len(), 47);
     }
 }

@@ -26,6 +26,8 @@
 //!   [`accelerations`](dynamics::accelerations)), [`dae`] (the banded DAE the
 //!   O(n) BDF runs on) and [`ChainSystem`] (the right-hand side `y' = f(y)`
 //!   and its Jacobian-vector product, as inherent methods);
+//! * the report's own model, as a control: [`report`] ([`report::ReportModel`],
+//!   its errata as switches) run by [`solve_report`];
 //! * errors with their fields: [`InvalidParameter`], [`StartError`].
 //!
 //! Everything else is internal: the interface between problems and methods
@@ -41,6 +43,7 @@ pub mod elastic;
 pub mod kinematics;
 pub mod modes;
 mod ode;
+pub mod report;
 mod scalar;
 mod solve;
 mod state;
@@ -54,9 +57,9 @@ pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 #[doc(hidden)]
 pub use solve::with_general_sparse_lu;
 pub use solve::{
-    bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
-    Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES,
-    RTOL_RANGE,
+    bdf_crossover_gamma, solve, solve_report, Accuracy, Method, Sample, Segment, SolveOptions,
+    Summary, Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,
+    MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

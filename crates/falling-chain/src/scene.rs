@@ -27,7 +27,10 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use chain_ode::{solve, Chain, ChainParams, Method, SolveOptions, Start, State, Trajectory};
+use chain_ode::report::ReportModel;
+use chain_ode::{
+    solve, solve_report, Chain, ChainParams, Method, SolveOptions, Start, State, Trajectory,
+};
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
@@ -45,6 +48,14 @@ struct SceneFile {
     chain: ChainSection,
     start: StartSection,
     run: RunSection,
+    model: ModelSection,
+}
+
+/// `[model]`: which equations a scene runs.
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct ModelSection {
+    report: bool,
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -108,6 +119,8 @@ pub struct Scene {
     start: Start,
     method: String,
     options: SolveOptions,
+    /// `model.report`: the report's own model instead of the corrected one.
+    report: bool,
 }
 
 /// Everything a run needs, validated.
@@ -117,12 +130,33 @@ pub struct Prepared {
     pub state: State,
     pub method: Method,
     pub options: SolveOptions,
+    /// `Some` with `model.report = true`: the report's model
+    /// ([`ReportModel::AS_CODED`]), run by [`chain_ode::solve_report`] in
+    /// its own clock; `None`, the corrected model.
+    pub report: Option<ReportModel>,
 }
 
 impl Prepared {
     /// Runs it.
     pub fn solve(&self) -> Result<Trajectory, Error> {
-        Ok(solve(&self.chain, &self.state, self.method, &self.options)?)
+        Ok(match self.report {
+            None => solve(&self.chain, &self.state, self.method, &self.options)?,
+            Some(model) => {
+                solve_report(&self.chain, &self.state, model, self.method, &self.options)?
+            }
+        })
+    }
+
+    /// An error naming `model.report` if this is the report's model: for
+    /// the commands that run the corrected model only (`what`).
+    pub fn require_corrected(&self, what: &str) -> Result<(), Error> {
+        if self.report.is_some() {
+            return Err(Error::field(
+                "model.report",
+                format!("must be false for {what} (it runs the corrected model only)"),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -154,6 +188,7 @@ impl Scene {
             chain,
             start,
             run,
+            model,
         } = SceneFile::read(&tree)?;
         // Exhaustive both ways: a field of `ChainParams` without its key
         // here, or a key without its field, does not compile.
@@ -217,6 +252,7 @@ impl Scene {
             start,
             method: run.method,
             options,
+            report: model.report,
             tree,
         })
     }
@@ -376,12 +412,25 @@ impl Scene {
         let method = self.method()?;
         // Every bound of the run (tolerances, RK4's step count, the samples'
         // memory, bdf-dense's size) before anything is allocated or spawned.
+        let report = self.report.then_some(ReportModel::AS_CODED);
+        if let Some(model) = report {
+            model.validate(&chain)?;
+            if !chain_ode::REPORT_METHODS.contains(&method) {
+                return Err(Error::field(
+                    "run.method",
+                    format!(
+                        "must be one of rk4, dopri5, dop853 with model.report = true (got {method})"
+                    ),
+                ));
+            }
+        }
         self.options.validate_for(&chain, method)?;
         Ok(Prepared {
             chain,
             state,
             method,
             options: self.options.clone(),
+            report,
         })
     }
 }
@@ -497,6 +546,7 @@ t_end = 4
             schema::Type::Numbers => "[0.25, 0.5]",
             schema::Type::Text => "sample",
             schema::Type::OneOf(_) => kind.as_str(),
+            schema::Type::Bool => "true",
         }
     }
 
@@ -699,6 +749,7 @@ t_end = 4
             ),
             (schema::Type::Text, &["nonesuch", "1"]),
             (schema::Type::OneOf(&[]), &["nonesuch", "1"]),
+            (schema::Type::Bool, &["1", "\"yes\""]),
         ];
         let names = crate::CatenaryNames::SCENE;
         for k in schema::KEYS {

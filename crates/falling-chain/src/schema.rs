@@ -71,6 +71,8 @@ pub enum Type {
     Text,
     /// One of these strings.
     OneOf(&'static [&'static str]),
+    /// `true` or `false`.
+    Bool,
 }
 
 /// A default as a constant (turned into TOML by [`Literal::to_toml`]).
@@ -80,6 +82,7 @@ pub enum Literal {
     Integer(i64),
     Point([f64; 2]),
     Text(&'static str),
+    Bool(bool),
 }
 
 /// What an omitted key is.
@@ -139,7 +142,7 @@ pub struct Key {
 const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
 
 /// Every scene key, in the order of the README table. The sections
-/// (`chain`, `start`, `run`) are the first parts of the dotted paths.
+/// (`chain`, `start`, `run`, `model`) are the first parts of the dotted paths.
 pub static KEYS: &[Key] = &[
     Key {
         path: "name",
@@ -366,6 +369,15 @@ pub static KEYS: &[Key] = &[
         example: "1e-9",
         out_of_range: Some("-1"),
     },
+    Key {
+        path: "model.report",
+        ty: Type::Bool,
+        default: DefaultValue::Value(Literal::Bool(false)),
+        kinds: Kinds::Any,
+        doc: "`true`: the report's own model, as a control (its equations, clock and stepper as its code has them, `docs/model.md`); rigid links only, at most 200 rods, `run.method` one of `rk4` (the report's stepper), `dopri5`, `dop853`; times and speeds in its clock's unit",
+        example: "true",
+        out_of_range: None,
+    },
 ];
 
 /// The row of the key at `path` (`chain.links`), if it is one.
@@ -374,7 +386,7 @@ pub fn key(path: &str) -> Option<&'static Key> {
 }
 
 /// The names a scene file may have at its top: the top-level keys and the
-/// sections, in table order (`name, description, chain, start, run`).
+/// sections, in table order (`name, description, chain, start, run, model`).
 pub fn top_names() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = vec![];
     for k in KEYS {
@@ -386,7 +398,7 @@ pub fn top_names() -> Vec<&'static str> {
     names
 }
 
-/// Whether `name` is a section (`chain`, `start`, `run`).
+/// Whether `name` is a section (`chain`, `start`, `run`, `model`).
 pub fn is_section(name: &str) -> bool {
     KEYS.iter().any(|k| k.section() == Some(name))
 }
@@ -460,6 +472,7 @@ impl Key {
             (Type::Numbers, V::Array(a)) => a.iter().all(number),
             (Type::Text, V::String(_)) => true,
             (Type::OneOf(names), V::String(s)) => names.contains(&s.as_str()),
+            (Type::Bool, V::Boolean(_)) => true,
             _ => false,
         };
         let accepted = match self.ty {
@@ -502,6 +515,7 @@ impl Type {
             Self::Numbers => "a list of numbers [a, b, ...]".into(),
             Self::Text => "a string".into(),
             Self::OneOf(names) => format!("one of {}", names.join(", ")),
+            Self::Bool => "true or false".into(),
         }
     }
 
@@ -517,6 +531,7 @@ impl Type {
                 let quoted: Vec<String> = names.iter().map(|n| format!("`\"{n}\"`")).collect();
                 quoted.join(", ")
             }
+            Self::Bool => "boolean".into(),
         }
     }
 }
@@ -529,6 +544,7 @@ impl Literal {
             Self::Integer(i) => toml::Value::Integer(i),
             Self::Point(p) => toml::Value::Array(p.map(toml::Value::Float).to_vec()),
             Self::Text(s) => toml::Value::String(s.into()),
+            Self::Bool(b) => toml::Value::Boolean(b),
         }
     }
 
@@ -538,6 +554,7 @@ impl Literal {
             Self::Integer(i) => format!("`{i}`"),
             Self::Point([x, y]) => format!("`[{}, {}]`", number_text(x), number_text(y)),
             Self::Text(s) => format!("`\"{s}\"`"),
+            Self::Bool(b) => format!("`{b}`"),
         }
     }
 }
@@ -756,7 +773,7 @@ mod tests {
         }
         assert_eq!(
             top_names(),
-            ["name", "description", "chain", "start", "run"]
+            ["name", "description", "chain", "start", "run", "model"]
         );
         // Every kind takes `kind` and `p0` first; every [start] row is
         // taken by some kind (the rest of each list is the table's).
@@ -810,7 +827,7 @@ mod tests {
         for (path, hint) in [
             (
                 "colour",
-                "a scene has the keys name, description, chain, start, run",
+                "a scene has the keys name, description, chain, start, run, model",
             ),
             ("chain.lenght", chain_hint.as_str()),
             ("name.x", "'name' is not a table"),

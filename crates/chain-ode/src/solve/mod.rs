@@ -21,6 +21,7 @@ mod integrator;
 mod known_solutions;
 mod observer;
 mod registry;
+mod report_run;
 mod rk4;
 mod sparse_lu;
 mod step_size;
@@ -43,6 +44,7 @@ pub use bdf::with_general_sparse_lu;
 pub use integrator::Accuracy;
 use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
+pub use report_run::{solve_report, REPORT_METHODS};
 
 /// An integration method. The variant is the public handle; its name and
 /// kind come from its integrator in the registry.

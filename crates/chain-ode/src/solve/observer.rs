@@ -6,6 +6,7 @@ use crate::chain::Chain;
 use crate::elastic;
 use crate::kinematics::{bending_energy, lever_arm, RodSums, Vec2};
 use crate::ode::{Cancel, Observer, StepView};
+use crate::report::ReportModel;
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
 /// `f = y'`, fused into one pass over the rods.
@@ -108,6 +109,9 @@ pub(crate) struct ChainObserver {
     slope: f64,
     started: bool,
     buf: Vec<f64>,
+    /// The report's model, whose own energy the balance checks (`None`:
+    /// the chain's model).
+    report: Option<ReportModel>,
 }
 
 impl ChainObserver {
@@ -141,6 +145,34 @@ impl ChainObserver {
             slope: 0.0,
             started: false,
             buf: vec![0.0; dim],
+            report: None,
+        }
+    }
+
+    /// An observer of a run of the report's `model` of `chain`: the same
+    /// record, with that model's energy and energy scale in the balance.
+    pub fn for_report(
+        chain: &Chain,
+        model: ReportModel,
+        t_end: f64,
+        output_dt: Option<f64>,
+        cancel: Option<Cancel>,
+    ) -> Self {
+        let mut obs = Self::new(chain, t_end, output_dt, cancel);
+        obs.balance_limit = model.energy_scale(chain);
+        obs.report = Some(model);
+        obs
+    }
+
+    /// The energy of `y` in the observed model (`fused`: the chain's, from
+    /// the one-pass [`metrics`]).
+    fn energy_of(&self, y: &[f64], fused: f64) -> f64 {
+        match self.report {
+            None => fused,
+            Some(model) => {
+                let n = self.chain.links();
+                model.energy(&self.chain, &y[..n], &y[n..2 * n])
+            }
         }
     }
 
@@ -162,7 +194,7 @@ impl ChainObserver {
             // The method stopped before its first right-hand side was finite:
             // the energies and the speed are the start's, from the state
             // alone (not the zeros the observer was made with).
-            self.energy_start = state_energy(&self.chain, y);
+            self.energy_start = self.energy_of(y, state_energy(&self.chain, y));
             self.energy_end = self.energy_start;
             let v = state_tip_velocity(&self.chain, y);
             self.tip_speed_max = v[0].hypot(v[1]);
@@ -279,7 +311,8 @@ impl Observer for ChainObserver {
             return;
         }
         self.started = true;
-        let m = metrics(&self.chain, y0, f0);
+        let mut m = metrics(&self.chain, y0, f0);
+        m.energy = self.energy_of(y0, m.energy);
         self.t_origin = t0;
         self.energy_start = m.energy;
         self.energy_end = m.energy;
@@ -298,7 +331,8 @@ impl Observer for ChainObserver {
 
     fn step(&mut self, step: &StepView<'_>) {
         let n = self.chain.links();
-        let m = metrics(&self.chain, step.y1, step.f1);
+        let mut m = metrics(&self.chain, step.y1, step.f1);
+        m.energy = self.energy_of(step.y1, m.energy);
         let dissipated = step.y1[2 * n];
         // NaN-propagating maxima: `f64::max` would drop a NaN and hide it.
         self.energy_balance_error = max_nan(

@@ -38,6 +38,7 @@ pub fn separation(curve: &[(f64, f64)]) -> Option<usize> {
 /// Two DOPRI5 runs at the reference tolerance, one from angles perturbed by
 /// [`PERTURBATION`]: how far apart their tips are over the scene's time.
 pub fn divergence(p: &Prepared) -> Result<Divergence, Error> {
+    p.require_corrected("the divergence study")?;
     let mut opts = reference_options(p.options.t_end);
     opts.output_dt = Some(0.01);
     let a = solve(&p.chain, &p.state, Method::Dopri5, &opts)?;

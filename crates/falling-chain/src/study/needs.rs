@@ -251,6 +251,7 @@ pub fn run(
 ) -> Result<Needs, Error> {
     let tol = options.tol;
     converge::check_tol(tol)?;
+    scene.prepare()?.require_corrected("needs")?;
     let rtol = ladder_rtol(tol);
     // The scene must be one that sampling can compare: its output_dt is
     // the tip path's grid.

@@ -835,6 +835,7 @@ pub fn study(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Study, Error> {
     let mut p = scene.prepare()?;
+    p.require_corrected("precision")?;
     p.options.output_dt = None;
     let t_eval = p.options.t_end;
     let methods = &options.methods;

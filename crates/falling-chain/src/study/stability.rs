@@ -395,6 +395,7 @@ pub fn rows_of(
     scene: &crate::scene::Scene,
     vary: Option<&crate::sweep::Vary>,
 ) -> Result<Vec<Row>, Error> {
+    scene.prepare()?.require_corrected("stability")?;
     let Some(v) = vary else {
         return Ok(vec![Row {
             key: scene.name().to_string(),
