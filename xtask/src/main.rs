@@ -11,8 +11,6 @@
 
 mod ctx;
 mod data;
-mod paper;
-mod pdf;
 mod registry;
 mod report;
 mod report_accuracy;
@@ -295,7 +293,7 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         }
     }
     if all && failed.is_empty() && root.join("paper/paper.tmpl.md").exists() {
-        paper::run(&root, false)?;
+        paper::fill::run(&root, false)?;
     }
     println!(
         "{} figures {} and {} animations in {:.1} s",
@@ -341,11 +339,10 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("figures") => parse(&args[1..]).and_then(figures_cmd),
         Some("paper") => match &args[1..] {
-            [] => paper::run(&root(), false),
-            [c] if c == "--check" => paper::run(&root(), true),
-            [c] if c == "--pdf" => {
-                paper::run(&root(), false).and_then(|()| pdf::build(&root()).map(|_| ()))
-            }
+            [] => paper::fill::run(&root(), false),
+            [c] if c == "--check" => paper::fill::run(&root(), true),
+            [c] if c == "--pdf" => paper::fill::run(&root(), false)
+                .and_then(|()| paper::pdf::build(&root()).map(|_| ())),
             _ => Err(USAGE.to_string()),
         },
         Some("scene-keys") => match &args[1..] {

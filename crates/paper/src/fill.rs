@@ -20,8 +20,7 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
-use crate::ctx::write_text;
-use crate::data::Table;
+use falling_chain::study::table::Table;
 
 fn col(t: &Table, name: &str) -> Result<usize, String> {
     t.col(name)
@@ -235,6 +234,12 @@ pub fn run(root: &Path, check: bool) -> Result<(), String> {
         println!("wrote paper/paper.md");
     }
     Ok(())
+}
+
+/// Writes `text` to `path` atomically.
+fn write_text(path: &Path, text: &str) -> Result<(), String> {
+    falling_chain::atomic::write_atomic("paper", path, |w| w.write_all(text.as_bytes()))
+        .map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

@@ -140,7 +140,10 @@ mod tests {
         if !tools() {
             return;
         }
-        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .and_then(Path::parent)
+            .unwrap();
         let out = std::env::temp_dir().join(format!("xtask-pdf-{}", std::process::id()));
         std::fs::create_dir_all(&out).unwrap();
         let written = build_into(root, &out).unwrap();
