@@ -116,6 +116,11 @@ struct Case {
     elastic: bool,
     /// `chain.tip_mass` (refused with elastic links when > 0).
     tip_mass: f64,
+    /// The `[pivot]` section (written only when `moving`): the y parts of
+    /// `pivot.acceleration`, `pivot.amplitude` and `pivot.jerk`, then
+    /// `pivot.frequency`, `pivot.jerk_time` and `pivot.release`.
+    pivot: [f64; 6],
+    moving: bool,
 }
 
 const COMMANDS: [&str; 6] = [
@@ -158,6 +163,15 @@ fn case() -> impl Strategy<Value = Case> {
             any::<bool>(),
             number(0.0, 2.0, &[0.0, -1.0, 1e300, f64::INFINITY, f64::NAN]),
         ),
+        (
+            number(-2.0, 2.0, &[0.0, 1e300, f64::NAN]),
+            number(-0.2, 0.2, &[0.0, f64::INFINITY]),
+            number(-1.0, 1.0, &[0.0, f64::NAN]),
+            number(0.0, 50.0, &[0.0, -1.0, 1e300]),
+            number(0.01, 2.0, &[0.0, -1.0, f64::INFINITY]),
+            number(0.0, 2.0, &[-1.0, f64::NAN, 1e300]),
+            any::<bool>(),
+        ),
     )
         .prop_map(
             |(
@@ -165,6 +179,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (p1, p1_on_circle, down, t_end, method, dt),
                 (rtol, atol, output_dt, h_min, extra, with_out),
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass),
+                (acc, amp, jerk, freq, jerk_time, release, moving),
             )| Case {
                 command,
                 length,
@@ -190,6 +205,8 @@ fn case() -> impl Strategy<Value = Case> {
                 bending_stiffness,
                 elastic,
                 tip_mass,
+                pivot: [acc, amp, jerk, freq, jerk_time, release],
+                moving,
             },
         )
 }
@@ -232,6 +249,20 @@ impl Case {
         writeln!(t, "axial_damping = {}", toml_f(self.axial_damping)).unwrap();
         writeln!(t, "bending_stiffness = {}", toml_f(self.bending_stiffness)).unwrap();
         writeln!(t, "tip_mass = {}", toml_f(self.tip_mass)).unwrap();
+        if self.moving {
+            let [acc, amp, jerk, freq, jerk_time, release] = self.pivot.map(toml_f);
+            writeln!(
+                t,
+                "[pivot]\nacceleration = [0, {acc}]\namplitude = [0, {amp}]"
+            )
+            .unwrap();
+            writeln!(
+                t,
+                "jerk = [{jerk}, 0]\nfrequency = {freq}\njerk_time = {jerk_time}"
+            )
+            .unwrap();
+            writeln!(t, "release = {release}").unwrap();
+        }
         let kind = KINDS[self.kind];
         writeln!(t, "[start]\nkind = \"{kind}\"").unwrap();
         match kind {
@@ -497,6 +528,8 @@ fn the_fuzzer_draws_every_scene_key() {
             bending_stiffness: 0.0,
             elastic: true,
             tip_mass: 0.0,
+            pivot: [0.0, 0.0, 0.0, 1.0, 1.0, 0.0],
+            moving: true,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

@@ -3,6 +3,8 @@
 use std::borrow::Cow;
 use std::fmt;
 
+use crate::pivot::Pivot;
+
 /// The largest number of rods of a chain (`chain.links`): the same cap as
 /// the catenary's ([`catenary::MAX_LINKS`]), so that every chain has a
 /// catenary start.
@@ -46,6 +48,10 @@ pub struct ChainParams {
     /// last rod's tip. Default 0. Rigid links only: an elastic chain
     /// refuses `M_t > 0` (`chain.tip_mass`).
     pub tip_mass: f64,
+    /// How the pivot `P0` moves: fixed (the default), along a prescribed
+    /// path, or let go at a time ([`Pivot`], the `pivot.*` keys). Rigid
+    /// links only: an elastic chain refuses a pivot that is not fixed.
+    pub pivot: Pivot,
 }
 
 impl Default for ChainParams {
@@ -61,6 +67,7 @@ impl Default for ChainParams {
             axial_damping: 0.0,
             bending_stiffness: 0.0,
             tip_mass: 0.0,
+            pivot: Pivot::default(),
         }
     }
 }
@@ -183,7 +190,18 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         "chain.tip_mass",
         "0 with elastic links (chain.axial_stiffness given): a tip mass needs rigid links",
         p.tip_mass,
-    )
+    )?;
+    p.pivot.validate()?;
+    match p.pivot.first_given() {
+        Some(key) if p.axial_stiffness.is_some() => Err(InvalidParameter {
+            field: key,
+            accepted: "absent with elastic links (chain.axial_stiffness given): a moving or \
+                       released pivot needs rigid links"
+                .into(),
+            got: "a value".into(),
+        }),
+        _ => Ok(()),
+    }
 }
 
 impl Chain {
@@ -253,6 +271,11 @@ impl Chain {
         self.params.tip_mass
     }
 
+    /// How the pivot moves ([`Pivot`]; fixed by default).
+    pub fn pivot(&self) -> &Pivot {
+        &self.params.pivot
+    }
+
     /// The tip mass in rod masses, `mu = M_t / m`: the recursion's and the
     /// dense reference's unit.
     pub fn tip_mass_ratio(&self) -> f64 {
@@ -299,6 +322,7 @@ impl Chain {
     ///   quantity and `r' = eta / l' = r n' / n` (rounded as `(r n') / n`).
     ///
     /// * The tip mass `M_t` is a point mass: carried as it is.
+    /// * The pivot's motion is carried as it is.
     /// * The axial stiffness `EA`, the axial viscosity `eta` and the bending
     ///   stiffness `EI` are continuum properties of the rope: carried as
     ///   they are (the joint spring `K = EA / l`, dashpot `eta / l` and
@@ -443,6 +467,7 @@ mod tests {
             axial_damping: 0.7,
             bending_stiffness: 0.03,
             tip_mass: 0.0,
+            pivot: Pivot::default(),
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -457,7 +482,10 @@ mod tests {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            pivot,
         } = refined.params().clone();
+        // The pivot's motion: carried.
+        assert_eq!(pivot, given.pivot);
         // The tip mass is a point mass: carried.
         assert_eq!(tip_mass.to_bits(), given.tip_mass.to_bits());
         // Carried as they are.

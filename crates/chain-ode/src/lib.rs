@@ -41,6 +41,7 @@ pub mod elastic;
 pub mod kinematics;
 pub mod modes;
 mod ode;
+pub mod pivot;
 mod scalar;
 mod solve;
 mod state;
@@ -50,6 +51,7 @@ pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
+pub use pivot::{Pivot, PivotPath};
 pub use solve::{
     bdf_crossover_gamma, solve, Accuracy, Method, Sample, Segment, SolveOptions, Summary,
     Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, MAX_OUTPUT_BYTES,

@@ -27,7 +27,7 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use chain_ode::{solve, Chain, ChainParams, Method, SolveOptions, Start, State, Trajectory};
+use chain_ode::{solve, Chain, ChainParams, Method, Pivot, SolveOptions, Start, State, Trajectory};
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
@@ -43,6 +43,7 @@ struct SceneFile {
     name: Option<String>,
     description: String,
     chain: ChainSection,
+    pivot: PivotSection,
     start: StartSection,
     run: RunSection,
 }
@@ -59,6 +60,18 @@ struct ChainSection {
     axial_damping: f64,
     bending_stiffness: f64,
     tip_mass: f64,
+}
+
+/// The pivot's motion ([`chain_ode::Pivot`]).
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct PivotSection {
+    acceleration: [f64; 2],
+    amplitude: [f64; 2],
+    frequency: f64,
+    jerk: [f64; 2],
+    jerk_time: f64,
+    release: Option<f64>,
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -152,6 +165,7 @@ impl Scene {
             name,
             description,
             chain,
+            pivot,
             start,
             run,
         } = SceneFile::read(&tree)?;
@@ -168,6 +182,14 @@ impl Scene {
             bending_stiffness,
             tip_mass,
         } = chain;
+        let PivotSection {
+            acceleration,
+            amplitude,
+            frequency,
+            jerk,
+            jerk_time,
+            release,
+        } = pivot;
         let chain = ChainParams {
             length,
             links,
@@ -178,6 +200,14 @@ impl Scene {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            pivot: Pivot {
+                acceleration,
+                amplitude,
+                frequency,
+                jerk,
+                jerk_time,
+                release,
+            },
         };
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
@@ -282,6 +312,7 @@ impl Scene {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            pivot,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
@@ -299,6 +330,45 @@ impl Scene {
             ),
         ] {
             overrides::set_path(&mut tree, path, value)?;
+        }
+        // The pivot's keys are written only where they differ from a fixed
+        // pivot's, so that a scene without them reads as it did before.
+        let fixed = Pivot::default();
+        let point = |p: [f64; 2]| toml::Value::Array(p.map(toml::Value::Float).to_vec());
+        let pivot_keys = [
+            (
+                "acceleration",
+                point(pivot.acceleration),
+                pivot.acceleration != fixed.acceleration,
+            ),
+            (
+                "amplitude",
+                point(pivot.amplitude),
+                pivot.amplitude != fixed.amplitude,
+            ),
+            (
+                "frequency",
+                toml::Value::Float(pivot.frequency),
+                pivot.frequency != fixed.frequency,
+            ),
+            ("jerk", point(pivot.jerk), pivot.jerk != fixed.jerk),
+            (
+                "jerk_time",
+                toml::Value::Float(pivot.jerk_time),
+                pivot.jerk_time != fixed.jerk_time,
+            ),
+            (
+                "release",
+                toml::Value::Float(pivot.release.unwrap_or(0.0)),
+                pivot.release.is_some(),
+            ),
+        ];
+        for (name, value, given) in pivot_keys {
+            if given {
+                overrides::set_path(&mut tree, &format!("pivot.{name}"), value)?;
+            } else if let Some(toml::Value::Table(section)) = tree.get_mut("pivot") {
+                section.remove(name);
+            }
         }
         // The tip mass is written only when there is one, so that a scene
         // without it reads as it did before the key existed.
