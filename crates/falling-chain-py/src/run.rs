@@ -62,7 +62,8 @@ struct Series {
     /// Joint forces `[tension, shear]`, `n + 1` per sample.
     forces: Vec<f64>,
     /// The joints of every sample, `n + 1` points each, kept for an elastic
-    /// chain only (a rigid chain's follow from its angles, as always).
+    /// chain and a moving pivot only (a rigid chain's on a fixed pivot
+    /// follow from its angles, as always).
     joints: Option<Vec<f64>>,
 }
 
@@ -80,9 +81,9 @@ impl Series {
             energy: Vec::with_capacity(samples),
             dissipated: Vec::with_capacity(samples),
             forces: Vec::with_capacity(samples * 2 * (n + 1)),
-            joints: traj
-                .chain
-                .is_elastic()
+            // An elastic chain's joints, and a moving or released pivot's,
+            // do not follow from the angles and the anchor.
+            joints: (traj.chain.is_elastic() || !traj.pivot.is_fixed())
                 .then(|| Vec::with_capacity(samples * 2 * (n + 1))),
         };
         for (k, sample) in traj.samples().enumerate() {

@@ -202,6 +202,9 @@ fn kapitza_threshold_for_one_rod_holds_on_both_sides() {
         };
         let tr = solve(&chain, &s, Method::Dop853, &o).unwrap();
         assert_eq!(tr.status, Status::Ok);
+        // The support's work, counted in W, keeps the inertial balance.
+        let e = tr.summary.energy_balance_error;
+        assert!(e < 1e-6 * chain.energy_scale(), "{factor}: {e}");
         tr.samples()
             .map(|smp| (smp.angles[0] - up).abs())
             .fold(0.0f64, f64::max)
