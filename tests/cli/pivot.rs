@@ -51,3 +51,39 @@ fn pivot_keys_are_checked_by_name_in_one_line() {
         assert!(e.contains(key), "{set}: {e}");
     }
 }
+
+/// `view` of a released pivot gives the page the pivot's place per kept
+/// sample: it starts at the anchor and falls `g t^2 / 2` with the chain
+/// (the page builds each frame's joints from it).
+#[test]
+fn the_viewer_gets_the_released_pivots_place_per_frame() {
+    let dir = scratch("pivot-view");
+    let out = dir.join("both.html");
+    let o = run(&[
+        "view",
+        &scene("both-ends-let-go"),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let page = std::fs::read_to_string(&out).unwrap();
+    let at = page.find("\"pivot\":[").expect("a pivot array") + "\"pivot\":[".len();
+    let end = at + page[at..].find(']').unwrap();
+    let p: Vec<f64> = page[at..end]
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!(p.len() >= 4 && p.len().is_multiple_of(2));
+    assert!(p[0].abs() < 1e-12 && p[1].abs() < 1e-12, "{:?}", &p[..2]);
+    // The last kept sample is t_end = 2: the pivot has fallen g t^2 / 2 = 2.
+    let (x, y) = (p[p.len() - 2], p[p.len() - 1]);
+    assert!(x.abs() < 1e-9 && (y + 2.0).abs() < 1e-9, "{x}, {y}");
+    // A fixed pivot has none.
+    let fixed = dir.join("span.html");
+    let o = run(&["view", &scene("span-d3"), "-o", fixed.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(&fixed)
+        .unwrap()
+        .contains("\"pivot\":null"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

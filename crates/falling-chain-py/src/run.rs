@@ -324,9 +324,16 @@ impl Run {
             dissipated: Vec::new(),
             phi: Vec::new(),
             forces: None,
+            // A moving or released pivot: its place in every kept sample,
+            // the first of the joints kept for it.
+            pivot: (!self.head.chain.pivot().is_fixed()).then(Vec::new),
             source: None,
         };
         for k in (0..samples).filter(|&k| keeps(k, samples, stride)) {
+            if let (Some(p), Some(all)) = (run.pivot.as_mut(), &self.joints) {
+                let m = 2 * (n + 1);
+                p.extend(all.get(k * m..k * m + 2).unwrap_or(&[0.0, 0.0]));
+            }
             run.t.push(t[k]);
             run.speed.push(v[2 * k].hypot(v[2 * k + 1]));
             run.energy.push(e[k]);
