@@ -371,8 +371,15 @@ impl Chain {
         self.params.gravity / self.rod_length()
     }
 
-    /// Energy scale `M g L`, against which energy errors are judged.
+    /// Energy scale `M g L` (`M L^2` at `g = 0`), against which energy
+    /// errors are judged; with a tip mass, `M` includes it (`n m + M_t`).
     pub fn energy_scale(&self) -> f64 {
+        if self.params.tip_mass != 0.0 {
+            let m = self.total_mass() + self.params.tip_mass;
+            let g = self.params.gravity;
+            let l = self.params.length;
+            return if g > 0.0 { m * g * l } else { m * l * l };
+        }
         let w = self.weight();
         if w > 0.0 {
             w * self.params.length
@@ -510,6 +517,18 @@ mod tests {
         assert!((back.damping() - chain.damping()).abs() < 1e-18);
         assert_eq!(back.length(), chain.length());
         assert_eq!(back.gravity(), chain.gravity());
+    }
+
+    #[test]
+    fn the_energy_scale_counts_the_tip_mass() {
+        let bare = Chain::new(with("chain.tip_mass", 0.0)).unwrap();
+        let tipped = Chain::new(with("chain.tip_mass", 2.0)).unwrap();
+        // n m = 5, g = 1, L = 1: M g L = 5, and 7 with M_t = 2.
+        assert_eq!(bare.energy_scale(), 5.0);
+        assert_eq!(tipped.energy_scale(), 7.0);
+        let mut p = with("chain.tip_mass", 2.0);
+        p.gravity = 0.0;
+        assert_eq!(Chain::new(p).unwrap().energy_scale(), 7.0);
     }
 
     #[test]

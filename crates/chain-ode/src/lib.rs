@@ -46,6 +46,7 @@ mod scalar;
 mod solve;
 mod state;
 mod system;
+pub mod tip_mass_law;
 
 pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use elastic::ElasticSystem;

@@ -22,6 +22,7 @@ pub mod plot;
 pub mod precision;
 pub mod shard;
 pub mod stability;
+pub mod tip_mass;
 
 use chain_ode::Method;
 
