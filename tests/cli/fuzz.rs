@@ -122,6 +122,11 @@ struct Case {
     /// `model.report` (refused with elastic links, bending, a tip mass and
     /// the methods it does not run).
     report: bool,
+    /// The `[pivot]` section (written only when `moving`): the y parts of
+    /// `pivot.acceleration`, `pivot.amplitude` and `pivot.jerk`, then
+    /// `pivot.frequency`, `pivot.jerk_time` and `pivot.release`.
+    pivot: [f64; 6],
+    moving: bool,
 }
 
 const COMMANDS: [&str; 11] = [
@@ -175,6 +180,15 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.0, 2.0, &[0.0, -1.0, 1e300, f64::INFINITY, f64::NAN]),
             any::<bool>(),
         ),
+        (
+            number(-2.0, 2.0, &[0.0, 1e300, f64::NAN]),
+            number(-0.2, 0.2, &[0.0, f64::INFINITY]),
+            number(-1.0, 1.0, &[0.0, f64::NAN]),
+            number(0.0, 50.0, &[0.0, -1.0, 1e300]),
+            number(0.01, 2.0, &[0.0, -1.0, f64::INFINITY]),
+            number(0.0, 2.0, &[-1.0, f64::NAN, 1e300]),
+            any::<bool>(),
+        ),
     )
         .prop_map(
             |(
@@ -182,6 +196,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (p1, p1_on_circle, down, t_end, method, dt),
                 (rtol, atol, output_dt, h_min, extra, with_out),
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
+                (acc, amp, jerk, freq, jerk_time, release, moving),
             )| Case {
                 command,
                 length,
@@ -208,6 +223,8 @@ fn case() -> impl Strategy<Value = Case> {
                 elastic,
                 tip_mass,
                 report,
+                pivot: [acc, amp, jerk, freq, jerk_time, release],
+                moving,
             },
         )
 }
@@ -250,6 +267,20 @@ impl Case {
         writeln!(t, "axial_damping = {}", toml_f(self.axial_damping)).unwrap();
         writeln!(t, "bending_stiffness = {}", toml_f(self.bending_stiffness)).unwrap();
         writeln!(t, "tip_mass = {}", toml_f(self.tip_mass)).unwrap();
+        if self.moving {
+            let [acc, amp, jerk, freq, jerk_time, release] = self.pivot.map(toml_f);
+            writeln!(
+                t,
+                "[pivot]\nacceleration = [0, {acc}]\namplitude = [0, {amp}]"
+            )
+            .unwrap();
+            writeln!(
+                t,
+                "jerk = [{jerk}, 0]\nfrequency = {freq}\njerk_time = {jerk_time}"
+            )
+            .unwrap();
+            writeln!(t, "release = {release}").unwrap();
+        }
         let kind = KINDS[self.kind];
         writeln!(t, "[start]\nkind = \"{kind}\"").unwrap();
         match kind {
@@ -594,6 +625,8 @@ fn the_fuzzer_draws_every_scene_key() {
             elastic: true,
             tip_mass: 0.0,
             report: true,
+            pivot: [0.0, 0.0, 0.0, 1.0, 1.0, 0.0],
+            moving: true,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

@@ -42,6 +42,8 @@ fn what_the_report_has_not_is_refused_in_one_line() {
         ("chain.bending_stiffness=0.1", "chain.bending_stiffness"),
         ("chain.tip_mass=0.1", "chain.tip_mass"),
         ("chain.links=201", "chain.links"),
+        ("pivot.release=0.5", "pivot.release"),
+        ("pivot.acceleration=[0, 0.2]", "pivot.acceleration"),
     ] {
         let o = run(&[
             "simulate",

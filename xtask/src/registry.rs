@@ -396,6 +396,15 @@ pub static FIGURES: &[Figure] = &[
         make: &study::elastic_snap_tension::SnapTension,
     },
     Figure {
+        id: "tip-mass-fall",
+        report: None,
+        what: "folded chain with a tip mass M (n = 400, r = 0), M/m_c = 0.1 .. 10: fall time over \
+               free fall and tip speed at the end of the fall against the energy-conserving law",
+        data: &["tip-mass-fall.csv", "tip-mass-fall-law.csv"],
+        timing: Timing::None,
+        make: &study::tip_mass_fall::TipMassFall,
+    },
+    Figure {
         id: "viewer-peak",
         report: None,
         what: "`falling-chain view`'s page for the folded chain (n = 50, r = 0.001) at its peak \
@@ -534,6 +543,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 47);
+        assert_eq!(FIGURES.len(), 48);
     }
 }

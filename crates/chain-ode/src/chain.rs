@@ -3,6 +3,8 @@
 use std::borrow::Cow;
 use std::fmt;
 
+use crate::pivot::Pivot;
+
 /// The largest number of rods of a chain (`chain.links`): the same cap as
 /// the catenary's ([`catenary::MAX_LINKS`]), so that every chain has a
 /// catenary start.
@@ -46,6 +48,10 @@ pub struct ChainParams {
     /// last rod's tip. Default 0. Rigid links only: an elastic chain
     /// refuses `M_t > 0` (`chain.tip_mass`).
     pub tip_mass: f64,
+    /// How the pivot `P0` moves: fixed (the default), along a prescribed
+    /// path, or let go at a time ([`Pivot`], the `pivot.*` keys). Rigid
+    /// links only: an elastic chain refuses a pivot that is not fixed.
+    pub pivot: Pivot,
 }
 
 impl Default for ChainParams {
@@ -61,6 +67,7 @@ impl Default for ChainParams {
             axial_damping: 0.0,
             bending_stiffness: 0.0,
             tip_mass: 0.0,
+            pivot: Pivot::default(),
         }
     }
 }
@@ -183,7 +190,18 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         "chain.tip_mass",
         "0 with elastic links (chain.axial_stiffness given): a tip mass needs rigid links",
         p.tip_mass,
-    )
+    )?;
+    p.pivot.validate()?;
+    match p.pivot.first_given() {
+        Some(key) if p.axial_stiffness.is_some() => Err(InvalidParameter {
+            field: key,
+            accepted: "absent with elastic links (chain.axial_stiffness given): a moving or \
+                       released pivot needs rigid links"
+                .into(),
+            got: "a value".into(),
+        }),
+        _ => Ok(()),
+    }
 }
 
 impl Chain {
@@ -253,6 +271,11 @@ impl Chain {
         self.params.tip_mass
     }
 
+    /// How the pivot moves ([`Pivot`]; fixed by default).
+    pub fn pivot(&self) -> &Pivot {
+        &self.params.pivot
+    }
+
     /// The tip mass in rod masses, `mu = M_t / m`: the recursion's and the
     /// dense reference's unit.
     pub fn tip_mass_ratio(&self) -> f64 {
@@ -299,6 +322,7 @@ impl Chain {
     ///   quantity and `r' = eta / l' = r n' / n` (rounded as `(r n') / n`).
     ///
     /// * The tip mass `M_t` is a point mass: carried as it is.
+    /// * The pivot's motion is carried as it is.
     /// * The axial stiffness `EA`, the axial viscosity `eta` and the bending
     ///   stiffness `EI` are continuum properties of the rope: carried as
     ///   they are (the joint spring `K = EA / l`, dashpot `eta / l` and
@@ -347,8 +371,15 @@ impl Chain {
         self.params.gravity / self.rod_length()
     }
 
-    /// Energy scale `M g L`, against which energy errors are judged.
+    /// Energy scale `M g L` (`M L^2` at `g = 0`), against which energy
+    /// errors are judged; with a tip mass, `M` includes it (`n m + M_t`).
     pub fn energy_scale(&self) -> f64 {
+        if self.params.tip_mass != 0.0 {
+            let m = self.total_mass() + self.params.tip_mass;
+            let g = self.params.gravity;
+            let l = self.params.length;
+            return if g > 0.0 { m * g * l } else { m * l * l };
+        }
         let w = self.weight();
         if w > 0.0 {
             w * self.params.length
@@ -443,6 +474,7 @@ mod tests {
             axial_damping: 0.7,
             bending_stiffness: 0.03,
             tip_mass: 0.0,
+            pivot: Pivot::default(),
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -457,7 +489,10 @@ mod tests {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            pivot,
         } = refined.params().clone();
+        // The pivot's motion: carried.
+        assert_eq!(pivot, given.pivot);
         // The tip mass is a point mass: carried.
         assert_eq!(tip_mass.to_bits(), given.tip_mass.to_bits());
         // Carried as they are.
@@ -482,6 +517,18 @@ mod tests {
         assert!((back.damping() - chain.damping()).abs() < 1e-18);
         assert_eq!(back.length(), chain.length());
         assert_eq!(back.gravity(), chain.gravity());
+    }
+
+    #[test]
+    fn the_energy_scale_counts_the_tip_mass() {
+        let bare = Chain::new(with("chain.tip_mass", 0.0)).unwrap();
+        let tipped = Chain::new(with("chain.tip_mass", 2.0)).unwrap();
+        // n m = 5, g = 1, L = 1: M g L = 5, and 7 with M_t = 2.
+        assert_eq!(bare.energy_scale(), 5.0);
+        assert_eq!(tipped.energy_scale(), 7.0);
+        let mut p = with("chain.tip_mass", 2.0);
+        p.gravity = 0.0;
+        assert_eq!(Chain::new(p).unwrap().energy_scale(), 7.0);
     }
 
     #[test]

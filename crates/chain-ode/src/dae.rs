@@ -21,6 +21,13 @@
 //! gives `f_n = tip (f_{n-1} + h_{n-1})` (0-based rods), `tip = mu / (1 + mu)`,
 //! which is substituted in the last rod's two rows: the unknowns stay the same.
 //!
+//! A moving pivot (`pivot.*`, [`crate::pivot`]) adds its acceleration
+//! `a_0 = P0''(t) / l` to rod 0's centre (`- a_0` in rod 0's translation
+//! row), and the work row counts its power, `W' = 2R - m l f_0 . P0'(t)`. A
+//! released pivot has `f_0 = 0`: the unknown in `f_0`'s place is then
+//! `a_0`, entering rod 0's translation row as `- a_0` and nothing else
+//! (the Jacobian's pattern stays the same; only values change).
+//!
 //! The last line is the difference of the translational balances of two
 //! neighbours (`m c_i'' = F_i - F_{i+1} + m g`), in which the joint
 //! accelerations cancel: `c_i'' - c_{i-1}'' = l (h_{i-1} + h_i)`. The mass
@@ -36,9 +43,10 @@
 //! of the Newton matrix; see [`ChainDae::jacobian_entries`]).
 
 use crate::chain::Chain;
-use crate::dynamics::{accelerations, damping_stencil, Workspace};
+use crate::dynamics::{accelerations_with, damping_stencil, Base, Workspace};
 use crate::kinematics::dissipation_rate;
 use crate::ode::SemiExplicitDae;
+use crate::pivot::Pivot;
 use crate::scalar::sin_cos;
 
 /// The falling chain as `M y' = f(y)` with algebraic unknowns; see the module doc.
@@ -56,6 +64,10 @@ pub struct ChainDae {
     mu: f64,
     /// `mu / (1 + mu)`: the tip mass's force on its joint, `f_n = tip (f_{n-1} + h_{n-1})`.
     tip: f64,
+    /// The pivot's prescribed motion (used while not released).
+    pivot: Pivot,
+    /// The pivot is free: `f_0 = 0`, and `f_0`'s unknowns hold `a_0`.
+    free: bool,
 }
 
 impl ChainDae {
@@ -69,6 +81,36 @@ impl ChainDae {
             kappa: chain.bending_rate(),
             mu: chain.tip_mass_ratio(),
             tip: chain.tip_mass_ratio() / (1.0 + chain.tip_mass_ratio()),
+            pivot: *chain.pivot(),
+            free: false,
+        }
+    }
+
+    /// This DAE with the pivot let go (`true`) or held.
+    pub fn released(mut self, free: bool) -> Self {
+        self.free = free;
+        self
+    }
+
+    /// How joint 0 is held at `t`.
+    fn base_at(&self, t: f64) -> Base {
+        if self.free {
+            Base::Free
+        } else if self.pivot.is_driven() {
+            Base::Driven(self.pivot.acceleration_at(t))
+        } else {
+            Base::Fixed
+        }
+    }
+
+    /// The prescribed `a_0 = P0''(t) / l` (rod units), zero when fixed or free.
+    fn driven_acceleration(&self, t: f64) -> (f64, f64) {
+        match self.base_at(t) {
+            Base::Driven([ax, ay]) => {
+                let l = self.chain.rod_length();
+                (ax / l, ay / l)
+            }
+            _ => (0.0, 0.0),
         }
     }
 
@@ -98,22 +140,51 @@ impl ChainDae {
         3 * self.n + 1 + 2 * i
     }
 
-    /// The pivot force `F_0` in rod units (multiply by `m l` for physical units).
+    /// The pivot force `F_0` in rod units (multiply by `m l` for physical
+    /// units); zero for a released pivot.
     pub fn pivot_force(&self, y: &[f64]) -> [f64; 2] {
+        if self.free {
+            return [0.0, 0.0];
+        }
         let k = self.force(0);
         [y[k], y[k + 1]]
     }
 
-    /// Fills the algebraic unknowns of `y` from its `phi` and `w`: `alpha` by
-    /// the O(n) recursion, the forces by summing the rods' translational
-    /// balances back from the free tip. Allocation-free given the workspace.
+    /// The joint forces `f_0 .. f_{n-1}` of a consistent `y` in rod units,
+    /// as pairs (`f_0 = 0` for a released pivot).
+    pub fn joint_forces(&self, y: &[f64]) -> Vec<[f64; 2]> {
+        let k = self.force(0);
+        let mut out: Vec<[f64; 2]> = (0..self.n)
+            .map(|i| [y[k + 2 * i], y[k + 2 * i + 1]])
+            .collect();
+        if self.free {
+            out[0] = [0.0, 0.0];
+        }
+        out
+    }
+
+    /// [`ChainDae::make_consistent_at`] at `t = 0`.
     pub fn make_consistent(&self, y: &mut [f64], ws: &mut Workspace<f64>) {
+        self.make_consistent_at(0.0, y, ws)
+    }
+
+    /// Fills the algebraic unknowns of `y` at time `t` from its `phi` and
+    /// `w`: `alpha` by the O(n) recursion, the forces by summing the rods'
+    /// translational balances back from the free tip (for a released
+    /// pivot, `a_0` in `f_0`'s place). Allocation-free given the workspace.
+    pub fn make_consistent_at(&self, t: f64, y: &mut [f64], ws: &mut Workspace<f64>) {
         let n = self.n;
         let (diff, alg) = y.split_at_mut(2 * n + 1);
         let (alpha, f) = alg.split_at_mut(n);
-        accelerations(&self.chain, &diff[..n], &diff[n..2 * n], alpha, ws);
+        let base = self.base_at(t);
+        let r = accelerations_with(&self.chain, base, &diff[..n], &diff[n..2 * n], alpha, ws);
+        let l = self.chain.rod_length();
+        let a0 = match base {
+            Base::Fixed => (0.0, 0.0),
+            _ => (r.pivot_acceleration[0] / l, r.pivot_acceleration[1] / l),
+        };
         // Forward: the centre acceleration c_i'' / l = a_{i-1} + h_i, stored in f_i.
-        let (mut ax, mut ay) = (0.0, 0.0);
+        let (mut ax, mut ay) = a0;
         for i in 0..n {
             let (s, c) = sin_cos(diff[i]);
             let w2 = diff[n + i] * diff[n + i];
@@ -137,11 +208,21 @@ impl ChainDae {
             f[2 * i] = fx;
             f[2 * i + 1] = fy;
         }
+        if self.free {
+            // f_0 vanishes (to rounding); its place holds a_0.
+            f[0] = a0.0;
+            f[1] = a0.1;
+        }
     }
 
     /// `out = f(y)`: the derivatives of the differential unknowns, then the
     /// residuals of the algebraic equations. O(n), no allocation.
     pub fn rhs(&self, y: &[f64], out: &mut [f64]) {
+        self.rhs_at(0.0, y, out)
+    }
+
+    /// `out = f(t, y)` (see [`ChainDae::rhs`]); `t` places a moving pivot.
+    pub fn rhs_at(&self, t: f64, y: &[f64], out: &mut [f64]) {
         let n = self.n;
         let (phi, w) = (&y[..n], &y[n..2 * n]);
         let alpha = &y[2 * n + 1..3 * n + 1];
@@ -149,11 +230,30 @@ impl ChainDae {
         out[..n].copy_from_slice(w);
         out[n..2 * n].copy_from_slice(alpha);
         out[2 * n] = dissipation_rate(&self.chain, w);
+        // The pivot: its acceleration a_0 (rod units) and, driven, its power.
+        let (a0x, a0y) = if self.free {
+            (f[0], f[1])
+        } else {
+            self.driven_acceleration(t)
+        };
+        if !self.free && self.pivot.is_driven() {
+            let v0 = self.pivot.drive(t)[1];
+            let ml = self.chain.mass() * self.chain.rod_length();
+            out[2 * n] -= ml * (f[0] * v0[0] + f[1] * v0[1]);
+        }
+        // f_j with f_0 = 0 for a free pivot.
+        let force = |j: usize| {
+            if j == 0 && self.free {
+                (0.0, 0.0)
+            } else {
+                (f[2 * j], f[2 * j + 1])
+            }
+        };
         let (moment, trans) = out[2 * n + 1..].split_at_mut(n);
         let (mut px, mut py) = (0.0, 0.0); // h_{i-1}
         for i in 0..n {
             let (s, c) = sin_cos(phi[i]);
-            let (fx, fy) = (f[2 * i], f[2 * i + 1]);
+            let (fx, fy) = force(i);
             let w2 = w[i] * w[i];
             let (hx, hy) = (
                 0.5 * (-alpha[i] * s - w2 * c),
@@ -173,10 +273,10 @@ impl ChainDae {
                 moment[i] += self.kappa * damping_stencil(phi, i);
             }
             if i == 0 {
-                trans[0] = fx - gx - hx;
-                trans[1] = fy - gy - self.gl - hy;
+                trans[0] = fx - gx - hx - a0x;
+                trans[1] = fy - gy - self.gl - hy - a0y;
             } else {
-                let (ex, ey) = (f[2 * i - 2], f[2 * i - 1]);
+                let (ex, ey) = force(i - 1);
                 trans[2 * i] = -ex + 2.0 * fx - gx - px - hx;
                 trans[2 * i + 1] = -ey + 2.0 * fy - gy - py - hy;
             }
@@ -199,7 +299,17 @@ impl ChainDae {
         let n = self.n;
         let (phi, w) = (&y[..n], &y[n..2 * n]);
         let alpha = &y[2 * n + 1..3 * n + 1];
+        // A free pivot: f_0 = 0, and its columns are a_0's (`- a_0` in rod
+        // 0's translation row only); the pattern stays the same.
         let f = &y[3 * n + 1..];
+        let fr = |j: usize| -> f64 {
+            if self.free && j < 2 {
+                0.0
+            } else {
+                f[j]
+            }
+        };
+        let free = self.free;
         // phi' = w, w' = alpha.
         for i in 0..n {
             emit(i, n + i, 1.0);
@@ -215,12 +325,17 @@ impl ChainDae {
             let tipped = i + 1 == n && self.tip != 0.0;
             // Moment of rod i.
             let (sx, sy) = if i + 1 < n {
-                (f[2 * i] + f[2 * i + 2], f[2 * i + 1] + f[2 * i + 3])
+                (fr(2 * i) + f[2 * i + 2], fr(2 * i + 1) + f[2 * i + 3])
             } else if tipped {
-                ((1.0 + self.tip) * f[2 * i], (1.0 + self.tip) * f[2 * i + 1])
+                (
+                    (1.0 + self.tip) * fr(2 * i),
+                    (1.0 + self.tip) * fr(2 * i + 1),
+                )
             } else {
-                (f[2 * i], f[2 * i + 1])
+                (fr(2 * i), fr(2 * i + 1))
             };
+            // d/d(f_i) of rod i's rows is zero for a free pivot's f_0.
+            let own_force = if free && i == 0 { 0.0 } else { 1.0 };
             let m = row_m(i);
             let neighbours = (i > 0) as u8 + (i + 1 < n) as u8;
             if self.kappa != 0.0 {
@@ -250,12 +365,12 @@ impl ChainDae {
             if tipped {
                 // v_i . h_i = alpha_i / 2.
                 emit(m, self.alpha(i), -1.0 / 12.0 - 0.25 * self.tip);
-                emit(m, k, 0.5 * s * (1.0 + self.tip));
-                emit(m, k + 1, -0.5 * c * (1.0 + self.tip));
+                emit(m, k, own_force * (0.5 * s * (1.0 + self.tip)));
+                emit(m, k + 1, own_force * (-0.5 * c * (1.0 + self.tip)));
             } else {
                 emit(m, self.alpha(i), -1.0 / 12.0);
-                emit(m, k, 0.5 * s);
-                emit(m, k + 1, -0.5 * c);
+                emit(m, k, own_force * (0.5 * s));
+                emit(m, k + 1, own_force * (-0.5 * c));
             }
             if i + 1 < n {
                 emit(m, k + 2, 0.5 * s);
@@ -290,11 +405,15 @@ impl ChainDae {
             }
             // Forces: f_{i-1} (-1), f_i (1 for the pivot's rod, else 2), f_{i+1} (-1).
             if i > 0 {
-                emit(t, k - 2, -1.0);
-                emit(t + 1, k - 1, -1.0);
+                // f_{i-1}: zero for a free pivot's f_0.
+                let prev = if free && i == 1 { 0.0 } else { -1.0 };
+                emit(t, k - 2, prev);
+                emit(t + 1, k - 1, prev);
             }
             let own = if i == 0 { 1.0 } else { 2.0 };
             let own = if tipped { own - self.tip } else { own };
+            // A free pivot's columns in f_0's place are a_0's: `- a_0`.
+            let own = if free && i == 0 { -1.0 } else { own };
             emit(t, k, own);
             emit(t + 1, k + 1, own);
             if i + 1 < n {
@@ -338,7 +457,9 @@ impl ChainDae {
     }
 }
 
-/// The sparse BDF's view of the chain. The chain is autonomous: `t` is ignored.
+/// The sparse BDF's view of the chain. With a fixed pivot the chain is
+/// autonomous; a moving pivot reads `t` (its Jacobian does not: `P0''(t)`
+/// does not depend on `y`).
 impl SemiExplicitDae for ChainDae {
     fn dim(&self) -> usize {
         ChainDae::dim(self)
@@ -346,8 +467,8 @@ impl SemiExplicitDae for ChainDae {
     fn differential_dim(&self) -> usize {
         ChainDae::differential_dim(self)
     }
-    fn rhs(&self, _t: f64, y: &[f64], out: &mut [f64]) {
-        ChainDae::rhs(self, y, out)
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        ChainDae::rhs_at(self, t, y, out)
     }
     fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ChainDae::jacobian_entries(self, y, emit)

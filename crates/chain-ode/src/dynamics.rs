@@ -60,6 +60,22 @@ pub struct Reactions<T> {
     pub pivot_force: [T; 2],
     /// Acceleration of the free tip `r_n''` (physical units).
     pub tip_acceleration: [T; 2],
+    /// Acceleration of the pivot `P0''` (physical units): zero for a fixed
+    /// pivot, the prescribed one for a driven pivot, and the free end's
+    /// for a released one.
+    pub pivot_acceleration: [T; 2],
+}
+
+/// What holds joint 0 (the pivot) in the recursion's forward sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Base {
+    /// Pinned: `a_0 = 0` (the report's chain).
+    Fixed,
+    /// Moved with a prescribed acceleration `P0''` (physical units).
+    Driven([f64; 2]),
+    /// Let go: no force at joint 0, `f_0 = M_0 a_0 + beta_0 = 0`, so
+    /// `a_0 = -M_0^{-1} beta_0`.
+    Free,
 }
 
 /// Generalized damping force of rod `i` over `r`: `D_i(w)` of `docs/model.md`
@@ -80,13 +96,30 @@ pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
 }
 
 /// Angular accelerations `acc = phi''` for angles `phi` and rates `w`, in O(n)
-/// without allocation. Returns the pivot force and the tip acceleration.
+/// without allocation, the pivot fixed. Returns the pivot force and the tip
+/// acceleration.
 ///
 /// Panics if the slices' lengths differ from `chain.links` or the workspace's.
 /// `T` is `f64` outside this crate (a dual number inside it, for the exact
 /// Jacobian-vector product).
 pub fn accelerations<T: Scalar>(
     chain: &Chain,
+    phi: &[T],
+    w: &[T],
+    acc: &mut [T],
+    ws: &mut Workspace<T>,
+) -> Reactions<T> {
+    accelerations_with(chain, Base::Fixed, phi, w, acc, ws)
+}
+
+/// [`accelerations`] with the pivot held as `base` says: the forward sweep
+/// starts from the pivot's acceleration `a_0` (zero, prescribed, or, for a
+/// free pivot, `-M_0^{-1} beta_0` from the backward sweep's articulated
+/// body of the whole chain), and the pivot force is `M_0 a_0 + beta_0`.
+/// `Base::Fixed` is exactly the arithmetic of a pinned chain.
+pub fn accelerations_with<T: Scalar>(
+    chain: &Chain,
+    base: Base,
     phi: &[T],
     w: &[T],
     acc: &mut [T],
@@ -157,8 +190,33 @@ pub fn accelerations<T: Scalar>(
         ];
     }
 
+    let l = chain.rod_length();
+    // The pivot's acceleration a_0 (rod units) and force f_0 = M_0 a_0 + beta_0.
+    let (a0x, a0y, f0x, f0y) = match base {
+        Base::Fixed => (zero, zero, bx, by),
+        Base::Driven([px, py]) => {
+            let (a0x, a0y) = (T::cst(px / l), T::cst(py / l));
+            (
+                a0x,
+                a0y,
+                (mxx * a0x + mxy * a0y) + bx,
+                (mxy * a0x + myy * a0y) + by,
+            )
+        }
+        Base::Free => {
+            let det = mxx * myy - mxy * mxy;
+            let dinv = one / det;
+            (
+                -((myy * bx - mxy * by) * dinv),
+                -((mxx * by - mxy * bx) * dinv),
+                zero,
+                zero,
+            )
+        }
+    };
+
     // Forward sweep: the loop-carried chain is one 2x2 affine map per rod.
-    let (mut ax, mut ay) = (zero, zero);
+    let (mut ax, mut ay) = (a0x, a0y);
     for (i, a) in acc.iter_mut().enumerate() {
         let [gx, gy] = ws.g[i];
         *a = ws.q[i] - (gx * ax + gy * ay);
@@ -168,11 +226,11 @@ pub fn accelerations<T: Scalar>(
         ax = ax1;
     }
 
-    let l = chain.rod_length();
     let ml = chain.mass() * l;
     Reactions {
-        pivot_force: [bx * ml, by * ml],
+        pivot_force: [f0x * ml, f0y * ml],
         tip_acceleration: [ax * l, ay * l],
+        pivot_acceleration: [a0x * l, a0y * l],
     }
 }
 

@@ -546,14 +546,23 @@ pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
 /// units, joint `0..=n` on the rod after it; the tip's is zero): the banded
 /// DAE's algebraic unknowns, made consistent by the O(n) recursion.
 pub fn rigid_joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
+    rigid_joint_forces_at(chain, 0.0, false, y)
+}
+
+/// [`rigid_joint_forces`] at time `t` (which places a moving pivot), the
+/// pivot let go (`free`: its force is zero) or held.
+pub fn rigid_joint_forces_at(chain: &Chain, t: f64, free: bool, y: &[f64]) -> Vec<Vec2> {
     let n = chain.links();
-    let dae = ChainDae::new(chain);
+    let dae = ChainDae::new(chain).released(free);
     let mut full = vec![0.0; dae.dim()];
     full[..2 * n].copy_from_slice(&y[..2 * n]);
-    dae.make_consistent(&mut full, &mut Workspace::new(n));
+    dae.make_consistent_at(t, &mut full, &mut Workspace::new(n));
     let ml = chain.mass() * chain.rod_length();
-    let f = &full[3 * n + 1..];
-    let mut out: Vec<Vec2> = (0..n).map(|i| [ml * f[2 * i], ml * f[2 * i + 1]]).collect();
+    let mut out: Vec<Vec2> = dae
+        .joint_forces(&full)
+        .into_iter()
+        .map(|[fx, fy]| [ml * fx, ml * fy])
+        .collect();
     out.push([0.0, 0.0]);
     out
 }

@@ -43,16 +43,19 @@ pub mod elastic;
 pub mod kinematics;
 pub mod modes;
 mod ode;
+pub mod pivot;
 pub mod report;
 mod scalar;
 mod solve;
 mod state;
 mod system;
+pub mod tip_mass_law;
 
 pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
+pub use pivot::{Pivot, PivotPath};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 #[doc(hidden)]
 pub use solve::with_general_sparse_lu;

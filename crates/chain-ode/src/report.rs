@@ -132,7 +132,7 @@ impl ReportModel {
     }
 
     /// Checks that `chain` is one this model runs: rigid links without
-    /// bending springs or a tip mass (the report has none), at most
+    /// bending springs, a tip mass or a moving pivot (the report has none), at most
     /// [`REPORT_MAX_LINKS`] rods. The error names the scene key.
     pub fn validate(self, chain: &Chain) -> Result<(), InvalidParameter> {
         const WHY: &str = "absent with model.report = true (the report's model has rigid links)";
@@ -154,6 +154,13 @@ impl ReportModel {
             "0 with model.report = true (the report's model has no tip mass)",
             chain.tip_mass(),
         )?;
+        if let Some(key) = chain.pivot().first_given() {
+            return Err(InvalidParameter {
+                field: key,
+                accepted: "absent with model.report = true (the report's pivot is fixed)".into(),
+                got: "a moving or released pivot".to_string(),
+            });
+        }
         check(
             chain.links() <= REPORT_MAX_LINKS,
             "chain.links",

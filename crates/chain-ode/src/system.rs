@@ -4,7 +4,7 @@
 
 use crate::chain::Chain;
 use crate::dae::ChainDae;
-use crate::dynamics::{accelerations, Reactions, Workspace};
+use crate::dynamics::{accelerations, accelerations_with, Base, Reactions, Workspace};
 use crate::kinematics::dissipation_rate;
 use crate::ode::{BandedDae, OdeSystem, Problem};
 use crate::scalar::Dual;
@@ -13,6 +13,9 @@ use crate::scalar::Dual;
 #[derive(Clone, Debug)]
 pub struct ChainSystem {
     chain: Chain,
+    /// The pivot has been let go (`pivot.release` reached): `solve` sets it
+    /// between the run up to the release and the run after it.
+    released: bool,
     ws: Workspace<f64>,
     dual_ws: Workspace<Dual>,
     dual_phi: Vec<Dual>,
@@ -26,6 +29,7 @@ impl ChainSystem {
         let n = chain.links();
         Self {
             chain: chain.clone(),
+            released: false,
             ws: Workspace::new(n),
             dual_ws: Workspace::new(n),
             dual_phi: vec![Dual::default(); n],
@@ -39,6 +43,24 @@ impl ChainSystem {
         &self.chain
     }
 
+    /// Lets the pivot go (or holds it again): from now on the right-hand
+    /// side, its JVP and its DAE take joint 0 as a free end.
+    pub fn set_released(&mut self, released: bool) {
+        self.released = released;
+    }
+
+    /// How joint 0 is held at `t`: fixed, driven (`P0''(t)`) or free.
+    pub fn base_at(&self, t: f64) -> Base {
+        let pivot = self.chain.pivot();
+        if self.released {
+            Base::Free
+        } else if pivot.is_driven() {
+            Base::Driven(pivot.acceleration_at(t))
+        } else {
+            Base::Fixed
+        }
+    }
+
     /// Packs a state into `[phi, w, W]`.
     pub fn pack(angles: &[f64], rates: &[f64], dissipated: f64) -> Vec<f64> {
         let mut y = Vec::with_capacity(2 * angles.len() + 1);
@@ -48,7 +70,8 @@ impl ChainSystem {
         y
     }
 
-    /// `dy = f(y)`, also returning the pivot force and tip acceleration.
+    /// `dy = f(y)` with the pivot fixed, also returning the pivot force
+    /// and tip acceleration.
     pub fn rhs_with_reactions(&mut self, y: &[f64], dy: &mut [f64]) -> Reactions<f64> {
         let n = self.chain.links();
         let (phi, rest) = y.split_at(n);
@@ -60,27 +83,52 @@ impl ChainSystem {
         r
     }
 
+    /// `dy = f(t, y)` with the pivot held as at `t` ([`ChainSystem::base_at`]),
+    /// also returning the reactions. The work `W` counts the power the
+    /// moving pivot puts in: `W' = 2R - F_0 . P0'(t)`.
+    pub fn rhs_at(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Reactions<f64> {
+        let base = self.base_at(t);
+        let n = self.chain.links();
+        let (phi, rest) = y.split_at(n);
+        let w = &rest[..n];
+        let (dphi, drest) = dy.split_at_mut(n);
+        dphi.copy_from_slice(w);
+        let r = accelerations_with(&self.chain, base, phi, w, &mut drest[..n], &mut self.ws);
+        drest[n] = dissipation_rate(&self.chain, w);
+        if let Base::Driven(_) = base {
+            let v0 = self.chain.pivot().drive(t)[1];
+            drest[n] -= r.pivot_force[0] * v0[0] + r.pivot_force[1] * v0[1];
+        }
+        r
+    }
+
     /// Length of the state `[phi, w, W]`: `2 n + 1`.
     pub fn dim(&self) -> usize {
         2 * self.chain.links() + 1
     }
 
-    /// `dy = f(y)`, O(n) and allocation-free (the system is autonomous: `t`
-    /// is unused).
-    pub fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
-        self.rhs_with_reactions(y, dy);
+    /// `dy = f(t, y)`, O(n) and allocation-free (with a fixed pivot the
+    /// system is autonomous: `t` is unused).
+    pub fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        if self.chain.pivot().is_fixed() {
+            self.rhs_with_reactions(y, dy);
+        } else {
+            self.rhs_at(t, y, dy);
+        }
     }
 
     /// The exact Jacobian-vector product `jv = (df/dy)(y) v`, by forward-mode
     /// dual numbers through the same recursion.
-    pub fn jvp(&mut self, _t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+    pub fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
         let n = self.chain.links();
         for i in 0..n {
             self.dual_phi[i] = Dual::new(y[i], v[i]);
             self.dual_w[i] = Dual::new(y[n + i], v[n + i]);
         }
-        accelerations(
+        let base = self.base_at(t);
+        let r = accelerations_with(
             &self.chain,
+            base,
             &self.dual_phi,
             &self.dual_w,
             &mut self.dual_acc,
@@ -97,6 +145,10 @@ impl ChainSystem {
             d += (w[i] - w[i - 1]) * (vw[i] - vw[i - 1]);
         }
         jv[2 * n] = 2.0 * self.chain.damping() * d;
+        if let Base::Driven(_) = base {
+            let v0 = self.chain.pivot().drive(t)[1];
+            jv[2 * n] -= r.pivot_force[0].d * v0[0] + r.pivot_force[1].d * v0[1];
+        }
     }
 }
 
@@ -121,11 +173,11 @@ impl OdeSystem for ChainSystem {
 impl Problem for ChainSystem {
     /// [`ChainDae`] from `y0 = [phi, w, W]`, its accelerations and joint
     /// forces made consistent by the O(n) recursion.
-    fn banded_dae(&self, _t0: f64, y0: &[f64]) -> Option<BandedDae> {
-        let dae = ChainDae::new(&self.chain);
+    fn banded_dae(&self, t0: f64, y0: &[f64]) -> Option<BandedDae> {
+        let dae = ChainDae::new(&self.chain).released(self.released);
         let mut full = vec![0.0; dae.dim()];
         full[..dae.differential_dim()].copy_from_slice(y0);
-        dae.make_consistent(&mut full, &mut Workspace::new(self.chain.links()));
+        dae.make_consistent_at(t0, &mut full, &mut Workspace::new(self.chain.links()));
         Some(BandedDae {
             dae: Box::new(dae),
             y0: full,

@@ -62,7 +62,8 @@ struct Series {
     /// Joint forces `[tension, shear]`, `n + 1` per sample.
     forces: Vec<f64>,
     /// The joints of every sample, `n + 1` points each, kept for an elastic
-    /// chain only (a rigid chain's follow from its angles, as always).
+    /// chain and a moving pivot only (a rigid chain's on a fixed pivot
+    /// follow from its angles, as always).
     joints: Option<Vec<f64>>,
 }
 
@@ -80,9 +81,9 @@ impl Series {
             energy: Vec::with_capacity(samples),
             dissipated: Vec::with_capacity(samples),
             forces: Vec::with_capacity(samples * 2 * (n + 1)),
-            joints: traj
-                .chain
-                .is_elastic()
+            // An elastic chain's joints, and a moving or released pivot's,
+            // do not follow from the angles and the anchor.
+            joints: (traj.chain.is_elastic() || !traj.pivot.is_fixed())
                 .then(|| Vec::with_capacity(samples * 2 * (n + 1))),
         };
         for (k, sample) in traj.samples().enumerate() {
@@ -323,9 +324,16 @@ impl Run {
             dissipated: Vec::new(),
             phi: Vec::new(),
             forces: None,
+            // A moving or released pivot: its place in every kept sample,
+            // the first of the joints kept for it.
+            pivot: (!self.head.chain.pivot().is_fixed()).then(Vec::new),
             source: None,
         };
         for k in (0..samples).filter(|&k| keeps(k, samples, stride)) {
+            if let (Some(p), Some(all)) = (run.pivot.as_mut(), &self.joints) {
+                let m = 2 * (n + 1);
+                p.extend(all.get(k * m..k * m + 2).unwrap_or(&[0.0, 0.0]));
+            }
             run.t.push(t[k]);
             run.speed.push(v[2 * k].hypot(v[2 * k + 1]));
             run.energy.push(e[k]);

@@ -129,6 +129,8 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
             tension: columns.tension.then(Vec::new),
             shear: columns.shear.then(Vec::new),
         }),
+        // The CSV's rows are placed from one recovered pivot: fixed.
+        pivot: None,
         source: Some(
             path.file_name()
                 .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),

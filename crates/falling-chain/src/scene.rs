@@ -29,7 +29,7 @@ use std::str::FromStr;
 
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, solve_report, Chain, ChainParams, Method, SolveOptions, Start, State, Trajectory,
+    solve, solve_report, Chain, ChainParams, Method, Pivot, SolveOptions, Start, State, Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -46,6 +46,7 @@ struct SceneFile {
     name: Option<String>,
     description: String,
     chain: ChainSection,
+    pivot: PivotSection,
     start: StartSection,
     run: RunSection,
     model: ModelSection,
@@ -70,6 +71,18 @@ struct ChainSection {
     axial_damping: f64,
     bending_stiffness: f64,
     tip_mass: f64,
+}
+
+/// The pivot's motion ([`chain_ode::Pivot`]).
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct PivotSection {
+    acceleration: [f64; 2],
+    amplitude: [f64; 2],
+    frequency: f64,
+    jerk: [f64; 2],
+    jerk_time: f64,
+    release: Option<f64>,
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -186,6 +199,7 @@ impl Scene {
             name,
             description,
             chain,
+            pivot,
             start,
             run,
             model,
@@ -203,6 +217,14 @@ impl Scene {
             bending_stiffness,
             tip_mass,
         } = chain;
+        let PivotSection {
+            acceleration,
+            amplitude,
+            frequency,
+            jerk,
+            jerk_time,
+            release,
+        } = pivot;
         let chain = ChainParams {
             length,
             links,
@@ -213,6 +235,14 @@ impl Scene {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            pivot: Pivot {
+                acceleration,
+                amplitude,
+                frequency,
+                jerk,
+                jerk_time,
+                release,
+            },
         };
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
@@ -318,6 +348,7 @@ impl Scene {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            pivot,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
@@ -335,6 +366,45 @@ impl Scene {
             ),
         ] {
             overrides::set_path(&mut tree, path, value)?;
+        }
+        // The pivot's keys are written only where they differ from a fixed
+        // pivot's, so that a scene without them reads as it did before.
+        let fixed = Pivot::default();
+        let point = |p: [f64; 2]| toml::Value::Array(p.map(toml::Value::Float).to_vec());
+        let pivot_keys = [
+            (
+                "acceleration",
+                point(pivot.acceleration),
+                pivot.acceleration != fixed.acceleration,
+            ),
+            (
+                "amplitude",
+                point(pivot.amplitude),
+                pivot.amplitude != fixed.amplitude,
+            ),
+            (
+                "frequency",
+                toml::Value::Float(pivot.frequency),
+                pivot.frequency != fixed.frequency,
+            ),
+            ("jerk", point(pivot.jerk), pivot.jerk != fixed.jerk),
+            (
+                "jerk_time",
+                toml::Value::Float(pivot.jerk_time),
+                pivot.jerk_time != fixed.jerk_time,
+            ),
+            (
+                "release",
+                toml::Value::Float(pivot.release.unwrap_or(0.0)),
+                pivot.release.is_some(),
+            ),
+        ];
+        for (name, value, given) in pivot_keys {
+            if given {
+                overrides::set_path(&mut tree, &format!("pivot.{name}"), value)?;
+            } else if let Some(toml::Value::Table(section)) = tree.get_mut("pivot") {
+                section.remove(name);
+            }
         }
         // The tip mass is written only when there is one, so that a scene
         // without it reads as it did before the key existed.

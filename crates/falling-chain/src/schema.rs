@@ -142,7 +142,7 @@ pub struct Key {
 const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
 
 /// Every scene key, in the order of the README table. The sections
-/// (`chain`, `start`, `run`, `model`) are the first parts of the dotted paths.
+/// (`chain`, `pivot`, `start`, `run`, `model`) are the first parts of the dotted paths.
 pub static KEYS: &[Key] = &[
     Key {
         path: "name",
@@ -241,6 +241,60 @@ pub static KEYS: &[Key] = &[
         kinds: Kinds::Any,
         doc: "a point mass `M_t` (mass) at the free end, finite and >= 0; rigid links only (0 with `chain.axial_stiffness`)",
         example: "1.0",
+        out_of_range: Some("-1"),
+    },
+    Key {
+        path: "pivot.acceleration",
+        ty: Type::Point,
+        default: DefaultValue::Value(Literal::Point([0.0, 0.0])),
+        kinds: Kinds::Any,
+        doc: "a constant acceleration `a` of the pivot `P0` (`P0 + a t^2 / 2`), finite; `[0, -g]` is a support falling freely; rigid links only",
+        example: "[0.0, -0.5]",
+        out_of_range: Some("[nan, 0]"),
+    },
+    Key {
+        path: "pivot.amplitude",
+        ty: Type::Point,
+        default: DefaultValue::Value(Literal::Point([0.0, 0.0])),
+        kinds: Kinds::Any,
+        doc: "the amplitude `A` (length) of a harmonic motion `A sin(Omega t)` of the pivot, finite; rigid links only",
+        example: "[0.0, 0.05]",
+        out_of_range: Some("[inf, 0]"),
+    },
+    Key {
+        path: "pivot.frequency",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(1.0)),
+        kinds: Kinds::Any,
+        doc: "its angular frequency `Omega` (rad/time), finite and >= 0",
+        example: "30",
+        out_of_range: Some("-1"),
+    },
+    Key {
+        path: "pivot.jerk",
+        ty: Type::Point,
+        default: DefaultValue::Value(Literal::Point([0.0, 0.0])),
+        kinds: Kinds::Any,
+        doc: "a smooth jerk: the pivot moves by `D` (length) from `t = 0` over `pivot.jerk_time` on the minimum-jerk path `10u^3 - 15u^4 + 6u^5`, finite; rigid links only",
+        example: "[0.5, 0.0]",
+        out_of_range: Some("[0, nan]"),
+    },
+    Key {
+        path: "pivot.jerk_time",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(1.0)),
+        kinds: Kinds::Any,
+        doc: "the duration `tau` of the smooth jerk (time), finite and > 0",
+        example: "0.25",
+        out_of_range: Some("0"),
+    },
+    Key {
+        path: "pivot.release",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: never (the pivot stays pinned)"),
+        kinds: Kinds::Any,
+        doc: "the time the pivot is let go too, finite and >= 0 (`0`: both ends let go at `t = 0`); the pivot moves as the keys above until then; rigid links only",
+        example: "0",
         out_of_range: Some("-1"),
     },
     Key {
@@ -773,7 +827,15 @@ mod tests {
         }
         assert_eq!(
             top_names(),
-            ["name", "description", "chain", "start", "run", "model"]
+            [
+                "name",
+                "description",
+                "chain",
+                "pivot",
+                "start",
+                "run",
+                "model"
+            ]
         );
         // Every kind takes `kind` and `p0` first; every [start] row is
         // taken by some kind (the rest of each list is the table's).
@@ -827,7 +889,7 @@ mod tests {
         for (path, hint) in [
             (
                 "colour",
-                "a scene has the keys name, description, chain, start, run, model",
+                "a scene has the keys name, description, chain, pivot, start, run, model",
             ),
             ("chain.lenght", chain_hint.as_str()),
             ("name.x", "'name' is not a table"),

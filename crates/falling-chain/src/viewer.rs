@@ -13,7 +13,10 @@
 //! builds the joints `P0 + l sum (cos, sin)`; and `forces`, `null` or
 //! `{ "tension": [...], "shear": [...] }` (either may be absent), n + 1 joint
 //! values per kept sample in a row (issue "elastic links"), drawn as
-//! colour along the chain. `source` names the CSV a run was read from.
+//! colour along the chain. `pivot`, `null` for a fixed pivot, else `x, y`
+//! of `P0` per kept sample in a row (a moving or released pivot, the
+//! `pivot.*` keys), from which the page builds that frame's joints instead
+//! of `anchor`. `source` names the CSV a run was read from.
 
 use std::fmt::Write as _;
 
@@ -69,6 +72,9 @@ pub struct ViewRun {
     pub dissipated: Vec<f64>,
     pub phi: Vec<f64>,
     pub forces: Option<JointForces>,
+    /// The pivot `P0` of every kept sample, `x, y` each, for a moving or
+    /// released pivot (`pivot.*` keys); `None`: fixed at `anchor`.
+    pub pivot: Option<Vec<f64>>,
     /// The file a run was read from (`--from`), shown on the page.
     pub source: Option<String>,
 }
@@ -153,6 +159,7 @@ impl ViewRun {
             dissipated: Vec::with_capacity(kept),
             phi: Vec::with_capacity(kept * links),
             forces: None,
+            pivot: (!traj.pivot.is_fixed()).then(|| Vec::with_capacity(2 * kept)),
             source: None,
         };
         let (mut tension, mut shear) = (Vec::new(), Vec::new());
@@ -166,6 +173,9 @@ impl ViewRun {
             run.energy.push(traj.energy(k));
             run.dissipated.push(s.dissipated);
             run.phi.extend_from_slice(s.angles);
+            if let Some(p) = run.pivot.as_mut() {
+                p.extend(traj.pivot_at(k)[0]);
+            }
             if forces {
                 for f in traj.joint_forces(k) {
                     tension.push(f[0]);
@@ -213,6 +223,12 @@ impl ViewRun {
         write_array(out, "phi", &self.phi, |out, v| {
             let _ = write!(out, "{:.6}", finite(v));
         });
+        match &self.pivot {
+            None => out.push_str(",\"pivot\":null"),
+            Some(p) => write_array(out, "pivot", p, |out, v| {
+                let _ = write!(out, "{}", finite(v));
+            }),
+        }
         out.push_str(",\"forces\":");
         match &self.forces {
             None => out.push_str("null"),
@@ -327,6 +343,7 @@ mod tests {
             dissipated: vec![0.0, 0.0],
             phi: vec![0.0, -1.0, -0.5, -1.5],
             forces,
+            pivot: None,
             source: None,
         }
     }

@@ -16,8 +16,12 @@
     const xs = new Float64Array(frames * m), ys = new Float64Array(frames * m);
     let xmin = r.anchor[0], xmax = xmin, ymin = r.anchor[1], ymax = ymin;
     for (let f = 0; f < frames; f++) {
-      let x = r.anchor[0], y = r.anchor[1];
+      // A moving or released pivot has its place per frame (r.pivot).
+      let x = r.pivot ? r.pivot[2 * f] : r.anchor[0];
+      let y = r.pivot ? r.pivot[2 * f + 1] : r.anchor[1];
       xs[f * m] = x; ys[f * m] = y;
+      if (x < xmin) xmin = x; if (x > xmax) xmax = x;
+      if (y < ymin) ymin = y; if (y > ymax) ymax = y;
       for (let j = 0; j < n; j++) {
         const a = r.phi[f * n + j];
         x += r.rod * Math.cos(a); y += r.rod * Math.sin(a);

@@ -16,6 +16,7 @@ pub mod precision_map;
 pub mod precision_matched;
 pub mod precision_stiffness;
 pub mod precision_wp;
+pub mod tip_mass_fall;
 pub mod validation_convergence;
 pub mod validation_energy;
 pub mod validation_folded;

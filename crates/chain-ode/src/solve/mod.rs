@@ -36,6 +36,7 @@ use crate::chain::{check, Chain, InvalidParameter};
 use crate::elastic::{self, ElasticSystem};
 use crate::kinematics::{energy, joints, tip, tip_velocity, Vec2};
 use crate::ode::{Cancel, Stats, Status};
+use crate::pivot::PivotPath;
 use crate::state::State;
 use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
@@ -408,8 +409,10 @@ pub struct Segment {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trajectory {
     pub chain: Chain,
-    /// The pivot `P0`.
+    /// The pivot `P0` at `t = 0`.
     pub anchor: Vec2,
+    /// Where the pivot is at any time (the anchor, for a fixed pivot).
+    pub pivot: PivotPath,
     pub method: Method,
     pub status: Status,
     /// The requested end time.
@@ -474,27 +477,50 @@ impl Trajectory {
         &self.states[k * d..(k + 1) * d]
     }
 
+    /// The pivot's position and velocity at sample `k`.
+    pub fn pivot_at(&self, k: usize) -> [Vec2; 2] {
+        let n = self.chain.links();
+        let y = self.state(k);
+        self.pivot
+            .at(&self.chain, self.times[k], &y[..n], &y[n..2 * n])
+    }
+
     /// The joints `r_0 = P0, .., r_n` of sample `k`, for either model (for
-    /// rigid links, `kinematics::joints` of its angles).
+    /// rigid links, `kinematics::joints` of its angles from the pivot there).
     pub fn joints(&self, k: usize) -> Vec<Vec2> {
-        state_joints(&self.chain, self.anchor, self.state(k))
+        state_joints(&self.chain, self.pivot_at(k)[0], self.state(k))
     }
 
     /// The tip of sample `k` (for rigid links, `kinematics::tip`).
     pub fn tip(&self, k: usize) -> Vec2 {
-        state_tip(&self.chain, self.anchor, self.state(k))
+        state_tip(&self.chain, self.pivot_at(k)[0], self.state(k))
     }
 
     /// The tip velocity of sample `k` (for rigid links,
-    /// `kinematics::tip_velocity`).
+    /// `kinematics::tip_velocity`, plus the pivot's velocity).
     pub fn tip_velocity(&self, k: usize) -> Vec2 {
-        state_tip_velocity(&self.chain, self.state(k))
+        let v = state_tip_velocity(&self.chain, self.state(k));
+        if self.pivot.is_fixed() {
+            return v;
+        }
+        let v0 = self.pivot_at(k)[1];
+        [v[0] + v0[0], v[1] + v0[1]]
     }
 
     /// The energy of sample `k`: `T + V (+ U_b)` for rigid links
-    /// (`kinematics::energy`), `T + V + U_el + U_b` for elastic ones.
+    /// (`kinematics::energy`, in the inertial frame for a moving pivot),
+    /// `T + V + U_el + U_b` for elastic ones.
     pub fn energy(&self, k: usize) -> f64 {
-        state_energy(&self.chain, self.state(k))
+        let e = state_energy(&self.chain, self.state(k));
+        if self.pivot.is_fixed() {
+            return e;
+        }
+        let n = self.chain.links();
+        let y = self.state(k);
+        e + self
+            .pivot
+            .frame(&self.chain, self.times[k], &y[..n], &y[n..2 * n])
+            .energy
     }
 
     /// The joint forces of sample `k`, joints `0..=n` (the pivot first, the
@@ -503,9 +529,11 @@ impl Trajectory {
     /// pulls the rod back toward the pivot; shear `F_k . v_k` with `v_k`
     /// the rod's direction turned by +90 degrees (force units). Rigid
     /// links: the banded DAE's joint forces, consistent with the sample's
-    /// state; elastic links: the springs' and dashpots' forces.
+    /// state (and the pivot's motion at its time); elastic links: the
+    /// springs' and dashpots' forces.
     pub fn joint_forces(&self, k: usize) -> Vec<Vec2> {
-        state_joint_forces(&self.chain, self.state(k))
+        let t = self.times[k];
+        state_joint_forces(&self.chain, t, self.pivot.is_free_at(t), self.state(k))
     }
 }
 
@@ -560,12 +588,12 @@ pub(crate) fn state_joints(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
 
 /// The joint forces `[tension, shear]` of a state of either model, joints
 /// `0..=n` (see [`elastic::tension_shear`] for the frame and signs).
-pub(crate) fn state_joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
+pub(crate) fn state_joint_forces(chain: &Chain, t: f64, free: bool, y: &[f64]) -> Vec<Vec2> {
     let n = chain.links();
     let forces = if chain.is_elastic() {
         elastic::joint_forces(chain, y)
     } else {
-        elastic::rigid_joint_forces(chain, y)
+        elastic::rigid_joint_forces_at(chain, t, free, y)
     };
     elastic::tension_shear(&y[..n], &forces)
 }
@@ -605,13 +633,7 @@ pub fn solve(
     } else {
         ChainSystem::pack(&start.angles, &start.rates, 0.0)
     };
-    let mut obs = ChainObserver::new(
-        chain,
-        options.t_end,
-        options.output_dt,
-        options.cancel.clone(),
-    );
-    let clock = Instant::now();
+    let mut path = PivotPath::new(chain, start.anchor);
     let settings = Settings::of(options);
     let span = Span {
         t0: 0.0,
@@ -619,23 +641,52 @@ pub fn solve(
         t_end: options.t_end,
         settings: &settings,
     };
-    // A rigid chain takes exactly the path it always took.
-    let Run { outcome, segments } = if chain.is_elastic() {
-        registry::run(method, &mut ElasticSystem::new(chain), &span, &mut obs)
+    let clock = Instant::now();
+    // A rigid chain with a fixed pivot takes exactly the path it always took.
+    let (Run { outcome, segments }, obs) = if chain.is_elastic() {
+        let mut obs = ChainObserver::new(
+            chain,
+            options.t_end,
+            options.output_dt,
+            options.cancel.clone(),
+        );
+        let run = registry::run(method, &mut ElasticSystem::new(chain), &span, &mut obs);
+        (run, obs)
+    } else if chain.pivot().release.is_some() {
+        run_with_release(chain, start, method, options, &span, &mut path)
     } else {
-        registry::run(method, &mut ChainSystem::new(chain), &span, &mut obs)
+        let mut obs = ChainObserver::with_path(
+            chain,
+            path.clone(),
+            options.t_end,
+            options.output_dt,
+            options.cancel.clone(),
+        );
+        let run = registry::run(method, &mut ChainSystem::new(chain), &span, &mut obs);
+        (run, obs)
     };
+    let mut obs = obs;
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
+    let (tip_end, tip_velocity_end) = if path.is_fixed() {
+        (
+            state_tip(chain, start.anchor, y),
+            state_tip_velocity(chain, y),
+        )
+    } else {
+        let [p0, v0] = path.at(chain, outcome.t_reached, &y[..n], &y[n..2 * n]);
+        let v = state_tip_velocity(chain, y);
+        (state_tip(chain, p0, y), [v[0] + v0[0], v[1] + v0[1]])
+    };
     let summary = Summary {
         energy_start: obs.energy_start,
         energy_end: obs.energy_end,
         dissipated: y[2 * n],
         energy_balance_error: obs.energy_balance_error,
         max_energy_rise: obs.max_energy_rise,
-        tip_end: state_tip(chain, start.anchor, y),
-        tip_velocity_end: state_tip_velocity(chain, y),
+        tip_end,
+        tip_velocity_end,
         tip_speed_max: obs.tip_speed_max,
         t_tip_speed_max: obs.t_tip_speed_max,
         pivot_force_max: chain
@@ -661,6 +712,7 @@ pub fn solve(
     Ok(Trajectory {
         chain: chain.clone(),
         anchor: start.anchor,
+        pivot: path,
         method,
         status,
         t_end: options.t_end,
@@ -673,6 +725,74 @@ pub fn solve(
         states: std::mem::take(&mut obs.states),
         final_state: outcome.y_end,
     })
+}
+
+/// A rigid chain whose pivot is let go at `t_r` (`pivot.release`): held
+/// (fixed or driven) up to `t_r`, then free, in two runs of `method` from
+/// one observer (as `auto`'s handover). The release is noted in `path` from
+/// the state reached at `t_r` exactly; a first run that fails or is
+/// stopped ends the whole run there.
+fn run_with_release(
+    chain: &Chain,
+    start: &State,
+    method: Method,
+    options: &SolveOptions,
+    span: &Span<'_>,
+    path: &mut PivotPath,
+) -> (Run, ChainObserver) {
+    let n = chain.links();
+    let t_release = chain.pivot().release.unwrap_or(0.0);
+    let mut sys = ChainSystem::new(chain);
+    let new_observer = |path: &PivotPath| {
+        ChainObserver::with_path(
+            chain,
+            path.clone(),
+            options.t_end,
+            options.output_dt,
+            options.cancel.clone(),
+        )
+    };
+    if t_release <= span.t0 || t_release >= span.t_end {
+        if t_release <= span.t0 {
+            path.release(chain, span.t0, &start.angles, &start.rates);
+            sys.set_released(true);
+        }
+        let mut obs = new_observer(path);
+        let run = registry::run(method, &mut sys, span, &mut obs);
+        return (run, obs);
+    }
+    let mut obs = new_observer(path);
+    let held = Span {
+        t_end: t_release,
+        ..*span
+    };
+    let first = registry::run(method, &mut sys, &held, &mut obs);
+    if !first.outcome.status.is_ok() || first.outcome.t_reached < t_release {
+        return (first, obs);
+    }
+    let y = &first.outcome.y_end;
+    path.release(chain, t_release, &y[..n], &y[n..2 * n]);
+    obs.path = path.clone();
+    sys.set_released(true);
+    let done = first.outcome.stats;
+    let settings = Settings {
+        max_steps: span
+            .settings
+            .max_steps
+            .saturating_sub(done.steps + done.rejected_steps)
+            .max(1),
+        ..*span.settings
+    };
+    let rest = Span {
+        t0: t_release,
+        y0: y,
+        t_end: span.t_end,
+        settings: &settings,
+    };
+    let mut second = registry::run(method, &mut sys, &rest, &mut obs);
+    second.outcome.stats += done;
+    second.segments.splice(0..0, first.segments);
+    (second, obs)
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use crate::chain::Chain;
 use crate::elastic;
 use crate::kinematics::{bending_energy, lever_arm, RodSums, Vec2};
 use crate::ode::{Cancel, Observer, StepView};
+use crate::pivot::PivotPath;
 use crate::report::ReportModel;
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
@@ -63,6 +64,25 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     }
 }
 
+/// [`metrics`] at `t` in the inertial frame of a moving pivot: its
+/// velocity and acceleration added to the tip's, its energy terms to `E`.
+/// A fixed pivot's are [`metrics`] exactly.
+pub(crate) fn metrics_at(chain: &Chain, path: &PivotPath, t: f64, y: &[f64], f: &[f64]) -> Metrics {
+    let mut m = metrics(chain, y, f);
+    if path.is_fixed() || chain.is_elastic() {
+        return m;
+    }
+    let n = chain.links();
+    let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
+    let frame = path.frame(chain, t, phi, w);
+    let a0 = path.acceleration(chain, t, phi, w, acc);
+    m.energy += frame.energy;
+    let [v, a] = [frame.velocity, a0];
+    m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
+    m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
+    m
+}
+
 /// The larger of `a` and `b`, or NaN if either is NaN.
 fn max_nan(a: f64, b: f64) -> f64 {
     if a.is_nan() || b.is_nan() {
@@ -75,6 +95,8 @@ fn max_nan(a: f64, b: f64) -> f64 {
 /// Records a chain run.
 pub(crate) struct ChainObserver {
     chain: Chain,
+    /// Where the pivot is (`solve` notes the release in it).
+    pub path: PivotPath,
     dim: usize,
     output_dt: Option<f64>,
     t_origin: f64,
@@ -118,11 +140,29 @@ impl ChainObserver {
     /// An observer of a run of `chain` over `[0, t_end]`, recording a sample
     /// every `output_dt` (time units) if given; `cancel` stops the run.
     pub fn new(chain: &Chain, t_end: f64, output_dt: Option<f64>, cancel: Option<Cancel>) -> Self {
+        Self::with_path(
+            chain,
+            PivotPath::new(chain, [0.0, 0.0]),
+            t_end,
+            output_dt,
+            cancel,
+        )
+    }
+
+    /// [`ChainObserver::new`] with the pivot's `path`.
+    pub fn with_path(
+        chain: &Chain,
+        path: PivotPath,
+        t_end: f64,
+        output_dt: Option<f64>,
+        cancel: Option<Cancel>,
+    ) -> Self {
         let dim = state_len(chain);
         // Saturating: `solve` has bounded t_end / output_dt already.
         let last_sample = output_dt.map_or(0, |dt| ((t_end / dt).floor() as u64).saturating_add(1));
         Self {
             chain: chain.clone(),
+            path,
             dim,
             output_dt,
             t_origin: 0.0,
@@ -194,9 +234,10 @@ impl ChainObserver {
             // The method stopped before its first right-hand side was finite:
             // the energies and the speed are the start's, from the state
             // alone (not the zeros the observer was made with).
-            self.energy_start = self.energy_of(y, state_energy(&self.chain, y));
+            self.energy_start =
+                self.energy_of(y, state_energy(&self.chain, y)) + self.frame_energy(t, y);
             self.energy_end = self.energy_start;
-            let v = state_tip_velocity(&self.chain, y);
+            let v = self.tip_velocity(t, y);
             self.tip_speed_max = v[0].hypot(v[1]);
             self.t_tip_speed_max = t;
             self.check_finite(t, &[self.energy_start, self.tip_speed_max]);
@@ -206,9 +247,33 @@ impl ChainObserver {
         }
     }
 
+    /// The moving pivot's energy terms at `t` (0 for a fixed one).
+    fn frame_energy(&self, t: f64, y: &[f64]) -> f64 {
+        if self.path.is_fixed() || self.chain.is_elastic() {
+            return 0.0;
+        }
+        let n = self.chain.links();
+        self.path
+            .frame(&self.chain, t, &y[..n], &y[n..2 * n])
+            .energy
+    }
+
+    /// The tip velocity at `t` in the inertial frame.
+    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
+        let v = state_tip_velocity(&self.chain, y);
+        if self.path.is_fixed() || self.chain.is_elastic() {
+            return v;
+        }
+        let n = self.chain.links();
+        let v0 = self.path.at(&self.chain, t, &y[..n], &y[n..2 * n])[1];
+        [v[0] + v0[0], v[1] + v0[1]]
+    }
+
     fn speed_at(&mut self, step: &StepView<'_>, t: f64) -> f64 {
         step.interpolant.eval(t, &mut self.buf);
-        let v = state_tip_velocity(&self.chain, &self.buf);
+        let buf = std::mem::take(&mut self.buf);
+        let v = self.tip_velocity(t, &buf);
+        self.buf = buf;
         v[0].hypot(v[1])
     }
 
@@ -311,7 +376,7 @@ impl Observer for ChainObserver {
             return;
         }
         self.started = true;
-        let mut m = metrics(&self.chain, y0, f0);
+        let mut m = metrics_at(&self.chain, &self.path, t0, y0, f0);
         m.energy = self.energy_of(y0, m.energy);
         self.t_origin = t0;
         self.energy_start = m.energy;
@@ -331,7 +396,7 @@ impl Observer for ChainObserver {
 
     fn step(&mut self, step: &StepView<'_>) {
         let n = self.chain.links();
-        let mut m = metrics(&self.chain, step.y1, step.f1);
+        let mut m = metrics_at(&self.chain, &self.path, step.t1, step.y1, step.f1);
         m.energy = self.energy_of(step.y1, m.energy);
         let dissipated = step.y1[2 * n];
         // NaN-propagating maxima: `f64::max` would drop a NaN and hide it.

@@ -132,6 +132,8 @@ pub fn solve_report(
     Ok(Trajectory {
         chain: chain.clone(),
         anchor: start.anchor,
+        // The report's pivot never moves (`model.report` refuses `pivot.*`).
+        pivot: crate::pivot::PivotPath::new(chain, start.anchor),
         method,
         status,
         t_end: options.t_end,

@@ -19,6 +19,7 @@ mod elastic;
 mod failures;
 mod methods;
 mod modes;
+mod pivot;
 mod report;
 mod rk4;
 mod tip_mass;

@@ -207,27 +207,10 @@ fn one_rod_with_a_tip_mass_is_a_physical_pendulum() {
 }
 
 /// The folded chain with a tip mass `M`, energy-conserving (derived here).
-/// The free side, `(L - x)/2` long, moves at `v`; the fixed side is
-/// `(L + x)/2` long and at rest. With `lambda = m_c / L`:
-/// `T = (lambda (L - x)/2 + M) v^2 / 2`, and the potential falls by
-/// `lambda g x (2L - x)/4 + M g x`, so
-/// `v^2 = g x [lambda (2L - x)/2 + 2M] / [M + lambda (L - x)/2]`.
-/// With `x = L u^2` (`k = M / m_c`, `xi = u^2`), `dt = 2 sqrt(L/g) du / sqrt(F)`,
-/// `F = [(2 - xi)/2 + 2k] / [k + (1 - xi)/2]`: no singularity left for k > 0.
-/// Returns `t(xi L) / sqrt(L/g)` by Simpson.
+/// The law's fall time, `chain_ode::tip_mass_law::time` (derived in
+/// `docs/model.md`, "A tip mass").
 fn tip_law_time(k: f64, xi: f64) -> f64 {
-    let f = |u: f64| {
-        let x = u * u;
-        let big_f = ((2.0 - x) / 2.0 + 2.0 * k) / (k + (1.0 - x) / 2.0);
-        2.0 / big_f.sqrt()
-    };
-    let panels = 20_000;
-    let (a, b) = (0.0, xi.sqrt());
-    let h = (b - a) / panels as f64;
-    let inner: f64 = (1..panels)
-        .map(|j| f(a + j as f64 * h) * if j % 2 == 1 { 4.0 } else { 2.0 })
-        .sum();
-    h / 3.0 * (f(a) + inner + f(b))
+    chain_ode::tip_mass_law::time(xi, k)
 }
 
 #[test]

@@ -33,6 +33,7 @@ pub mod snap;
 pub mod stability;
 pub mod stiffness;
 pub mod table;
+pub mod tip_mass;
 pub mod validation;
 
 use chain_ode::Method;
