@@ -92,3 +92,22 @@ impl Budget {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The deadline's prediction, apart from the watcher: with a minute
+    /// left, a point predicted to take a second fits and one predicted to
+    /// take two minutes does not (a budget that ignored its deadline would
+    /// start it).
+    #[test]
+    fn a_point_predicted_past_the_deadline_does_not_fit() {
+        Budget::run(Some(60.0), None, |b| {
+            assert!(b.fits(1.0));
+            assert!(!b.fits(120.0));
+            assert!(!b.cancel().is_cancelled());
+        });
+        Budget::run(None, None, |b| assert!(b.fits(MAX_BUDGET)));
+    }
+}
