@@ -83,9 +83,9 @@ def test_a_failed_run_keeps_what_it_computed(span, tmp_path):
     out = tmp_path / "diverged.csv"
     cli(
         "simulate", scene_path("span-d3"), "--set", "chain.damping=0.1",
-        "--dt", "0.01", "--t-end", "20", "--out", out, check=1,
+        "--method", "rk4", "--dt", "0.01", "--t-end", "20", "--out", out, check=1,
     )
-    run = fc.simulate(span.set("chain.damping", 0.1), dt=0.01, t_end=20.0)
+    run = fc.simulate(span.set("chain.damping", 0.1), method="rk4", dt=0.01, t_end=20.0)
     assert run.status == "diverged"
     csv_t = np.loadtxt(out, delimiter=",", skiprows=1, usecols=0)
     np.testing.assert_array_equal(run.t, csv_t)

@@ -55,7 +55,7 @@ def test_summary_is_the_cli_json(name, sets, flags):
 
 def test_a_failed_run_returns_its_run():
     scene = fc.Scene.load(scene_path("span-d3")).set("chain.damping", 0.1)
-    run = fc.simulate(scene, dt=0.01, t_end=20.0)
+    run = fc.simulate(scene, method="rk4", dt=0.01, t_end=20.0)
     assert run.summary["status"] == "diverged"
     assert run.summary["t_reached"] < 20.0
     assert run.summary["t_failed"] > run.summary["t_reached"]

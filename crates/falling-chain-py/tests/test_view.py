@@ -66,7 +66,7 @@ def test_a_run_shows_as_the_viewer_in_jupyter(tmp_path):
 
 
 def test_several_runs_overlay_with_distinct_labels(tmp_path):
-    rigid = fc.simulate(span_d3())
+    rigid = fc.simulate(span_d3(), method="rk4")
     other = fc.simulate(span_d3(), method="dopri5")
     data = page_data(fc.view([rigid, other, rigid], tmp_path / "three.html").read_text())
     assert [r["label"] for r in data["runs"]] == ["span-d3", "span-d3 #2", "span-d3 #3"]
