@@ -26,6 +26,7 @@ pub mod plan;
 pub mod plot;
 pub mod precision;
 pub mod report;
+pub mod report_model;
 pub mod rhs_cost;
 pub mod rigid_limit;
 pub mod shard;

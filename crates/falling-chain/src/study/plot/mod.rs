@@ -11,6 +11,7 @@ pub mod accuracy;
 pub mod convergence;
 pub mod folded;
 pub mod report;
+pub mod report_model;
 pub mod timing;
 pub mod validation;
 
