@@ -31,6 +31,7 @@ pub mod rhs_cost;
 pub mod rigid_limit;
 pub mod shard;
 pub mod snap;
+pub mod snap_tension;
 pub mod stability;
 pub mod stiffness;
 pub mod table;

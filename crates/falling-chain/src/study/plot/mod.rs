@@ -9,6 +9,7 @@
 
 pub mod accuracy;
 pub mod convergence;
+pub mod elastic;
 pub mod folded;
 pub mod report;
 pub mod report_model;
