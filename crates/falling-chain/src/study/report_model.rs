@@ -204,3 +204,43 @@ pub fn errata(scenes: &[(&str, &Scene, f64)]) -> Result<String, String> {
     }
     Ok(csv)
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+    use super::*;
+    use crate::study::report::linspace;
+
+    #[test]
+    fn the_step_is_that_of_the_reports_linspace() {
+        for t in [10.0, 12.0, 40.0] {
+            let grid = linspace(0.0, t, (100.0 * t) as usize);
+            let dt = report_dt(t);
+            for w in grid.windows(2) {
+                assert!((w[1] - w[0] - dt).abs() < 1e-12 * t, "t = {t}");
+            }
+            assert!((snapshot_dt(t) - 25.0 * (grid[1] - grid[0])).abs() < 1e-12 * t);
+        }
+    }
+
+    #[test]
+    fn the_spans_are_the_reports_fourteen() {
+        let spans = report_spans();
+        assert_eq!(spans, linspace(0.0, 6.0, 20)[5..19].to_vec());
+        assert_eq!(spans.len(), READ_OFF_FIG9.len());
+    }
+
+    #[test]
+    fn the_kink_is_the_largest_bend_whatever_the_turns() {
+        // A straight chain, also with whole turns between rods.
+        assert_eq!(kink(&[0.3, 0.3 + TAU, 0.3 - 2.0 * TAU]), 0.0);
+        // A right angle, and a bend of 0.2 across the cut at +-pi.
+        let k = kink(&[0.0, FRAC_PI_2, PI - 0.1, -PI + 0.1]);
+        assert!((k - FRAC_PI_2).abs() < 1e-12, "{k}");
+        let k = kink(&[PI - 0.1, -PI + 0.1]);
+        assert!((k - 0.2).abs() < 1e-12, "{k}");
+        // Folded back on itself: pi, never more.
+        assert!((kink(&[0.0, PI, 0.0]) - PI).abs() < 1e-12);
+    }
+}
