@@ -240,6 +240,9 @@ mod tests {
         assert!((k - FRAC_PI_2).abs() < 1e-12, "{k}");
         let k = kink(&[PI - 0.1, -PI + 0.1]);
         assert!((k - 0.2).abs() < 1e-12, "{k}");
+        // A bend the other way is as large.
+        let k = kink(&[0.5, 0.3, 0.3]);
+        assert!((k - 0.2).abs() < 1e-12, "{k}");
         // Folded back on itself: pi, never more.
         assert!((kink(&[0.0, PI, 0.0]) - PI).abs() < 1e-12);
     }
