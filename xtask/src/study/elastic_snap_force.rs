@@ -11,16 +11,16 @@
 //!
 //! The sweep took 161 s on two shared cores (the folded chain at n = 400,
 //! `EA = 1e4`: 151 130 steps and 34 s for one run), so it is computed only
-//! by `--timings`; its file carries each run's wall time too.
+//! by `--timings`; its file carries each run's wall time too. The drawing
+//! is `falling_chain::study::plot::elastic::snap_force`.
 
 use falling_chain::converge::refined_scene;
+use falling_chain::study::plot;
 use falling_chain::study::snap::{self, Options, SNAP_HEADER};
-use figures::{palette, LinePlot, Series, Style};
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
-use falling_chain::study::table::distinct;
 
 /// The scenes, as `(scene, label, end time)`: the spans snap before
 /// t = 3.1 at every n; the folded chain's fold, whose friction grows with n
@@ -115,49 +115,7 @@ impl Make for SnapForce {
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}-timing.csv", fig.id))?;
-        let (scene, variant, links) = (t.strs("scene")?, t.strs("variant")?, t.nums("links")?);
-        let (peak, impulse) = (t.nums("peak_force_mg")?, t.nums("impulse")?);
-        let mut left = LinePlot::new(
-            "peak support force (rigid: at the 1e-3 samples)",
-            "n (rods, M = 10 fixed)",
-            "max |F_pivot| / (M g)",
-        );
-        let mut right = LinePlot::new(
-            "impulse of the snap, +-0.2 around the peak",
-            "n (rods, M = 10 fixed)",
-            "|J| / (M sqrt(g L))",
-        );
-        for p in [&mut left, &mut right] {
-            p.log_x = true;
-            p.log_y = true;
-            p.x_range = Some((20.0, 500.0));
-        }
-        left.y_range = Some((2.0, 300.0));
-        right.y_range = Some((0.1, 1e3));
-        let styles = [Style::LinePoints, Style::Dashed, Style::Points];
-        for (si, &(sc, label, _)) in SCENES.iter().enumerate() {
-            for (vi, v) in distinct(&variant).into_iter().enumerate() {
-                let rows: Vec<usize> = (0..t.len())
-                    .filter(|&j| scene[j] == sc && variant[j] == v)
-                    .collect();
-                let pts = |col: &[f64]| -> Vec<(f64, f64)> {
-                    rows.iter()
-                        .filter(|&&j| col[j].is_finite() && col[j] > 0.0)
-                        .map(|&j| (links[j], col[j]))
-                        .collect()
-                };
-                let name = format!("{label}, {v}");
-                left.series
-                    .push(Series::new(name, pts(&peak), styles[si % 3]).with_color(palette(vi)));
-                right
-                    .series
-                    .push(Series::new("", pts(&impulse), styles[si % 3]).with_color(palette(vi)));
-            }
-        }
-        let title = "The snap: support force and impulse against n (total mass fixed)";
-        let out = figures::line_plot_pair(&left, &right, title, &ctx.stem(fig.id))
-            .map_err(|e| format!("{}: {e}", fig.id))?;
-        Ok(ctx.drawn(&out))
+        let scenes: Vec<(&str, &str)> = SCENES.iter().map(|&(s, l, _)| (s, l)).collect();
+        ctx.draw(fig, |r, s| plot::elastic::snap_force(r, s, &scenes))
     }
 }

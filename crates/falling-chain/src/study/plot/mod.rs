@@ -9,8 +9,10 @@
 
 pub mod accuracy;
 pub mod convergence;
+pub mod elastic;
 pub mod folded;
 pub mod report;
+pub mod report_model;
 pub mod timing;
 pub mod validation;
 
