@@ -6,7 +6,7 @@
 //! over mid-run ([`hands_over`]). Elastic links hand over only when their
 //! axial modes are damped (`auto_elastic`).
 
-use super::integrator::{Integrator, Run, Settings, Span};
+use super::integrator::{Integrator, Run, Span};
 use super::{registry, Method};
 use crate::chain::Chain;
 use crate::ode::{Observer, Problem, Status, StepView};
@@ -152,15 +152,7 @@ fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Ru
         return first;
     };
     let done = first.outcome.stats;
-    // What is left of the step budget.
-    let settings = Settings {
-        max_steps: span
-            .settings
-            .max_steps
-            .saturating_sub(done.steps + done.rejected_steps)
-            .max(1),
-        ..*span.settings
-    };
+    let settings = span.settings.after(&done);
     let rest = Span {
         t0: t_switch,
         y0: &first.outcome.y_end,

@@ -1,7 +1,7 @@
 //! The one interface every method implements ([`Integrator`]), what it is
 //! told ([`Settings`]) and which parameter sets its accuracy ([`Accuracy`]).
 
-use super::{Segment, SolveOptions};
+use super::{Segment, SolveOptions, Stats};
 use crate::ode::{Observer, Outcome, Problem};
 
 /// The parameter that sets a method's accuracy.
@@ -115,5 +115,18 @@ impl Settings {
     /// The step floor at time `t`.
     pub fn floor(&self, t: f64) -> f64 {
         self.h_min.max(1e-14 * t.abs().max(1.0))
+    }
+
+    /// These settings for the rest of a run that already spent `done`'s
+    /// step attempts (a handover or a release continues from there): the
+    /// budget left, at least one.
+    pub fn after(&self, done: &Stats) -> Self {
+        Self {
+            max_steps: self
+                .max_steps
+                .saturating_sub(done.steps + done.rejected_steps)
+                .max(1),
+            ..*self
+        }
     }
 }

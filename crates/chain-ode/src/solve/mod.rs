@@ -775,14 +775,7 @@ fn run_with_release(
     obs.path = path.clone();
     sys.set_released(true);
     let done = first.outcome.stats;
-    let settings = Settings {
-        max_steps: span
-            .settings
-            .max_steps
-            .saturating_sub(done.steps + done.rejected_steps)
-            .max(1),
-        ..*span.settings
-    };
+    let settings = span.settings.after(&done);
     let rest = Span {
         t0: t_release,
         y0: y,
