@@ -124,9 +124,44 @@ impl Settings {
         Self {
             max_steps: self
                 .max_steps
-                .saturating_sub(done.steps + done.rejected_steps)
+                .saturating_sub(done.steps.saturating_add(done.rejected_steps))
                 .max(1),
             ..*self
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A continued run gets what is left of the step attempts, and at
+    /// least one; everything else is kept.
+    #[test]
+    fn a_continued_run_gets_the_steps_left() {
+        let s = Settings {
+            dt: 0.01,
+            rtol: 1e-6,
+            atol: 1e-8,
+            h_min: 0.0,
+            max_steps: 100,
+            h0: None,
+        };
+        let done = |steps, rejected_steps| Stats {
+            steps,
+            rejected_steps,
+            ..Stats::default()
+        };
+        let rest = s.after(&done(30, 5));
+        assert_eq!(rest.max_steps, 65);
+        assert_eq!(
+            Settings {
+                max_steps: 100,
+                ..rest
+            },
+            s
+        );
+        assert_eq!(s.after(&done(100, 0)).max_steps, 1);
+        assert_eq!(s.after(&done(u64::MAX, 7)).max_steps, 1);
     }
 }
