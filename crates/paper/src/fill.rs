@@ -1,5 +1,6 @@
-//! `cargo xtask paper [--check]`: fills `paper/paper.tmpl.md` with numbers
-//! read from the CSVs in `figures/data/` and writes `paper/paper.md`.
+//! `cargo xtask paper [--check]`: fills the templates `paper/<name>.tmpl.md`
+//! (`paper`, the physics; `methods`, the solver study) with numbers read
+//! from the CSVs in `figures/data/` and writes `paper/<name>.md`.
 //!
 //! A placeholder is `{{FILE:FILTER:EXPR:FORMAT}}`:
 //! - `FILE`: a CSV in `figures/data/` (`scenes.csv`); wall times only from
@@ -13,8 +14,8 @@
 //! - `FORMAT`: `s3` (3 significant digits), `f2` (2 decimals), `e2`
 //!   (scientific, 2 decimals) or `raw`.
 //!
-//! `--check` renders in memory and fails if `paper/paper.md` differs (a
-//! number or the template changed) or if a figure it links to is missing.
+//! `--check` renders in memory and fails if a `paper/<name>.md` differs (a
+//! number or the template changed) or if a file it links to is missing.
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -205,33 +206,57 @@ fn source(template: &str) -> &str {
     }
 }
 
-/// `cargo xtask paper [--check]`.
+/// `cargo xtask paper [--check]`: fills every document of
+/// [`crate::pdf::DOCUMENTS`] whose template `paper/<name>.tmpl.md` exists
+/// (the physics in `paper.md`, the solver study in `methods.md`). Links are
+/// checked once every document is rendered, so that the two may link to
+/// each other.
 pub fn run(root: &Path, check: bool) -> Result<(), String> {
     let dir = root.join("paper");
-    let template = fs::read_to_string(dir.join("paper.tmpl.md"))
-        .map_err(|e| format!("paper/paper.tmpl.md: {e}"))?;
-    let text = render(source(&template), &root.join("figures").join("data"))?;
-    let missing = missing_links(&text, &dir);
-    if !missing.is_empty() {
-        return Err(format!(
-            "paper links to missing files: {}",
-            missing.join(", ")
-        ));
-    }
-    let target = dir.join("paper.md");
-    if check {
-        let current = fs::read_to_string(&target).unwrap_or_default();
-        if current != text {
-            return Err(
-                "paper/paper.md is stale: its numbers or text differ from the \
-                        template filled with figures/data/ (run `cargo xtask paper`)"
-                    .into(),
-            );
+    let data = root.join("figures").join("data");
+    let mut rendered = Vec::new();
+    for name in crate::pdf::DOCUMENTS {
+        let template_path = dir.join(format!("{name}.tmpl.md"));
+        if !template_path.exists() {
+            continue;
         }
-        println!("paper/paper.md is current ({} bytes)", text.len());
-    } else {
-        write_text(&target, &text)?;
-        println!("wrote paper/paper.md");
+        let template =
+            fs::read_to_string(&template_path).map_err(|e| format!("paper/{name}.tmpl.md: {e}"))?;
+        let text =
+            render(source(&template), &data).map_err(|e| format!("paper/{name}.tmpl.md: {e}"))?;
+        rendered.push((name, text));
+    }
+    if rendered.is_empty() {
+        return Err("paper/: no template (paper.tmpl.md) to fill".into());
+    }
+    let written: Vec<String> = rendered.iter().map(|(n, _)| format!("{n}.md")).collect();
+    for (name, text) in &rendered {
+        let missing: Vec<String> = missing_links(text, &dir)
+            .into_iter()
+            .filter(|l| !written.contains(l))
+            .collect();
+        if !missing.is_empty() {
+            return Err(format!(
+                "paper/{name}.md links to missing files: {}",
+                missing.join(", ")
+            ));
+        }
+    }
+    for (name, text) in &rendered {
+        let target = dir.join(format!("{name}.md"));
+        if check {
+            let current = fs::read_to_string(&target).unwrap_or_default();
+            if current != *text {
+                return Err(format!(
+                    "paper/{name}.md is stale: its numbers or text differ from the \
+                     template filled with figures/data/ (run `cargo xtask paper`)"
+                ));
+            }
+            println!("paper/{name}.md is current ({} bytes)", text.len());
+        } else {
+            write_text(&target, text)?;
+            println!("wrote paper/{name}.md");
+        }
     }
     Ok(())
 }
@@ -263,6 +288,46 @@ mod tests {
             .contains("2 rows"));
         assert!(render("{{b.csv:*:x:s3}}", &dir).is_err());
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Both documents are filled, may link to each other, and `--check`
+    /// names the stale one.
+    #[test]
+    fn every_document_is_filled_and_checked() {
+        let root = std::env::temp_dir().join(format!("paper-docs-{}", std::process::id()));
+        fs::create_dir_all(root.join("paper")).unwrap();
+        fs::create_dir_all(root.join("figures/data")).unwrap();
+        fs::write(root.join("figures/data/a.csv"), "k,x\np,2.5\n").unwrap();
+        fs::write(
+            root.join("paper/paper.tmpl.md"),
+            "<!-- note -->\n# P\nx = {{a.csv:k=p:x:f1}}, see [methods](methods.md)\n",
+        )
+        .unwrap();
+        fs::write(
+            root.join("paper/methods.tmpl.md"),
+            "# M\nsee [the paper](paper.md)\n",
+        )
+        .unwrap();
+        assert!(run(&root, true)
+            .unwrap_err()
+            .contains("paper/paper.md is stale"));
+        run(&root, false).unwrap();
+        assert_eq!(
+            fs::read_to_string(root.join("paper/paper.md")).unwrap(),
+            "# P\nx = 2.5, see [methods](methods.md)\n"
+        );
+        assert_eq!(
+            fs::read_to_string(root.join("paper/methods.md")).unwrap(),
+            "# M\nsee [the paper](paper.md)\n"
+        );
+        run(&root, true).unwrap();
+        fs::write(root.join("paper/methods.md"), "# M\nold\n").unwrap();
+        assert!(run(&root, true)
+            .unwrap_err()
+            .contains("paper/methods.md is stale"));
+        fs::write(root.join("paper/methods.tmpl.md"), "# M\n[x](nowhere.md)\n").unwrap();
+        assert!(run(&root, false).unwrap_err().contains("nowhere.md"));
+        fs::remove_dir_all(&root).unwrap();
     }
 
     #[test]
