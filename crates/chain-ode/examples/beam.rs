@@ -49,7 +49,8 @@ fn main() -> ExitCode {
     let mut line = format!(
         "{{\"method\":\"{method}\",\"{name}\":{},\"status\":\"{}\",\"t_reached\":{},\
          \"steps\":{},\"rejected_steps\":{},\"rhs_evals\":{},\"jacobian_evals\":{},\
-         \"lu_factorizations\":{},\"wall_seconds\":{}",
+         \"lu_factorizations\":{},\"error_test_failures\":{},\"newton_failures\":{},\
+         \"newton_iterations\":{},\"wall_seconds\":{}",
         num(x),
         run.status,
         num(run.t_reached),
@@ -58,6 +59,9 @@ fn main() -> ExitCode {
         s.rhs_evals,
         s.jacobian_evals,
         s.lu_factorizations,
+        s.error_test_failures,
+        s.newton_failures,
+        s.newton_iterations,
         num(run.wall_seconds),
     );
     for (i, r) in REFERENCE {
