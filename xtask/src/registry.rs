@@ -396,6 +396,16 @@ pub static FIGURES: &[Figure] = &[
         make: &study::elastic_snap_tension::SnapTension,
     },
     Figure {
+        id: "beam-precision",
+        report: None,
+        what: "work-precision of BEAM, the IVP test set's stiff beam (40 segments, t = 0 .. 5): \
+               every method's error at t = 5 against the published reference vs wall time and \
+               vs accepted steps",
+        data: &["beam-precision.csv", "beam-precision-timing.csv"],
+        timing: Timing::Alongside,
+        make: &study::precision_beam::BeamPrecision,
+    },
+    Figure {
         id: "tip-mass-fall",
         report: None,
         what: "folded chain with a tip mass M (n = 400, r = 0), M/m_c = 0.1 .. 10: fall time over \
@@ -543,6 +553,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 48);
+        assert_eq!(FIGURES.len(), 49);
     }
 }

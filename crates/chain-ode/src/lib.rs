@@ -35,6 +35,7 @@
 //! registry, the scalar type of the recursion (`f64` or a dual number).
 
 pub mod analysis;
+pub mod beam;
 mod chain;
 pub mod dae;
 pub mod dense;
@@ -60,9 +61,9 @@ pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 #[doc(hidden)]
 pub use solve::with_general_sparse_lu;
 pub use solve::{
-    bdf_crossover_gamma, solve, solve_report, Accuracy, Method, Sample, Segment, SolveOptions,
-    Summary, Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,
-    MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
+    bdf_crossover_gamma, solve, solve_beam, solve_report, Accuracy, BeamRun, Method, Sample,
+    Segment, SolveOptions, Summary, Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
+    BDF_DENSE_MAX_LINKS, BEAM_MAX_STEPS, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

@@ -320,6 +320,18 @@ pub struct Stats {
     pub lu_factorizations: u64,
     /// Times the stiffness detector fired (DOPRI5).
     pub stiffness_detections: u64,
+    /// Implicit methods (diffsol's BDFs): attempts rejected by the local
+    /// error test. With [`Stats::newton_failures`] they make up
+    /// `rejected_steps` (less a step accepted below the step floor, which
+    /// counts as rejected). 0 for the explicit methods, whose rejections
+    /// are all error-test failures and are counted in `rejected_steps`.
+    pub error_test_failures: u64,
+    /// Implicit methods: attempts rejected because the Newton iteration
+    /// did not converge (or its linear solve failed).
+    pub newton_failures: u64,
+    /// Implicit methods: Newton iterations over the run, rejected
+    /// attempts included.
+    pub newton_iterations: u64,
 }
 
 impl std::ops::AddAssign for Stats {
@@ -330,6 +342,9 @@ impl std::ops::AddAssign for Stats {
         self.jacobian_evals += o.jacobian_evals;
         self.lu_factorizations += o.lu_factorizations;
         self.stiffness_detections += o.stiffness_detections;
+        self.error_test_failures += o.error_test_failures;
+        self.newton_failures += o.newton_failures;
+        self.newton_iterations += o.newton_iterations;
     }
 }
 

@@ -45,6 +45,15 @@ pub struct RunSummary {
     pub jacobian_evals: u64,
     pub lu_factorizations: u64,
     pub stiffness_detections: u64,
+    /// The implicit methods' rejections by cause and their Newton work
+    /// (`chain_ode::Stats`; 0 for the explicit methods). In `--json` only,
+    /// not in the CSV row; absent in older JSON reads as 0.
+    #[serde(default)]
+    pub error_test_failures: u64,
+    #[serde(default)]
+    pub newton_failures: u64,
+    #[serde(default)]
+    pub newton_iterations: u64,
     /// Wall time of the integration (s).
     pub wall_seconds: f64,
     /// `E(0)`.
@@ -175,6 +184,9 @@ impl RunSummary {
             jacobian_evals: st.jacobian_evals,
             lu_factorizations: st.lu_factorizations,
             stiffness_detections: st.stiffness_detections,
+            error_test_failures: st.error_test_failures,
+            newton_failures: st.newton_failures,
+            newton_iterations: st.newton_iterations,
             wall_seconds: s.wall_seconds,
             energy_start: s.energy_start,
             energy_end: s.energy_end,

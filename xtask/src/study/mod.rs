@@ -11,6 +11,7 @@
 pub mod elastic_rigid_limit;
 pub mod elastic_snap_force;
 pub mod elastic_snap_tension;
+pub mod precision_beam;
 pub mod precision_cost;
 pub mod precision_map;
 pub mod precision_matched;

@@ -466,6 +466,10 @@ mod tests {
                 &rigid
             ))));
         }
+        // BEAM's DAE groups its unknowns four to a segment.
+        for n in [2, 40] {
+            assert!(picks_blocks(crate::beam::BeamDae::new(n)), "beam n = {n}");
+        }
         // After the closure, the default again.
         let chain = Chain::report(4, 0.0).unwrap();
         assert!(picks_blocks(ChainDae::new(&chain)));

@@ -140,6 +140,12 @@ mod tests {
         assert_eq!(out.stats.rhs_evals, sys.rhs_calls);
         assert_eq!(out.stats.jacobian_evals * 2, sys.jvp_calls);
         assert!(out.stats.lu_factorizations >= out.stats.jacobian_evals);
+        let st = out.stats;
+        assert_eq!(
+            st.error_test_failures + st.newton_failures,
+            st.rejected_steps
+        );
+        assert!(st.newton_iterations >= st.steps, "{st:?}");
         // A relaxation oscillation of period ~ (3 - 2 ln 2) mu ~ 1614:
         // after 3000 time units x is on the slow branch, |x| in [1, 2].
         assert!((1.0..=2.0).contains(&out.y_end[0].abs()), "{:?}", out.y_end);

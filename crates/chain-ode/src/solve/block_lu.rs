@@ -19,7 +19,8 @@
 //! with each `D'_k` factorised by dense LU with partial pivoting (within the
 //! block) and kept as its inverse beside `G_k = D'_k^-1 L_k`. The solve is
 //! then small dense products, forward `y_k = D'_k^-1 b_k - G_k y_{k-1}` and
-//! back `x_k = y_k - X_k x_{k+1}`, compiled for each block size. Per rod of
+//! back `x_k = y_k - X_k x_{k+1}`; the factorisation and the solve are
+//! both compiled for each block size (the small loops unroll). Per rod of
 //! 5 unknowns: about 400 multiply-adds to factorise and 75 per solve, with
 //! no ordering, no symbolic phase and no allocation after the first pattern.
 //!
@@ -153,7 +154,10 @@ impl BlockLayout {
 
 /// LU with partial pivoting of the `s x s` row-major `a` in place (unit
 /// lower factor below the diagonal); `piv[j]` is the row swapped with row
-/// `j` at step `j`. `false` on a zero or non-finite pivot.
+/// `j` at step `j`. `false` on a zero or non-finite pivot. Inlined, as
+/// [`lu_solve`] is, into [`factorise_blocks`], where `s` is a constant and
+/// the small loops unroll.
+#[inline(always)]
 fn dense_lu(a: &mut [f64], s: usize, piv: &mut [usize]) -> bool {
     for j in 0..s {
         let mut p = j;
@@ -190,6 +194,7 @@ fn dense_lu(a: &mut [f64], s: usize, piv: &mut [usize]) -> bool {
 }
 
 /// `B = D^-1 B` for the factors of [`dense_lu`] and the `s x m` row-major `b`.
+#[inline(always)]
 fn lu_solve(lu: &[f64], s: usize, piv: &[usize], b: &mut [f64], m: usize) {
     for (j, &p) in piv.iter().enumerate().take(s) {
         if p != j {
@@ -320,6 +325,60 @@ fn solve_sized(s: usize, values: &[f64], inverse: &[f64], z: &mut [f64], transpo
     }
 }
 
+/// The block Thomas factorisation of [`Factors::factorise`] for the block
+/// size `S`: `values` holds `[L_k | D_k | U_k]` per block (left as
+/// `[L_k | D'_k (LU) | X_k]`), `inverse` receives `[D'_k^-1 | D'_k^-1 L_k]`.
+/// The same operations in the same order for every `S`, compiled for each
+/// so that the small loops unroll. `false` on a zero or non-finite pivot.
+fn factorise_blocks<const S: usize>(
+    values: &mut [f64],
+    inverse: &mut [f64],
+    piv: &mut [usize],
+    blocks: usize,
+) -> bool {
+    let (s, ss) = (S, S * S);
+    let mut product = [0.0; MAX_BLOCK * MAX_BLOCK];
+    let piv = &mut piv[..s];
+    for k in 0..blocks {
+        let (head, tail) = values.split_at_mut(3 * ss * k);
+        let blk = &mut tail[..3 * ss];
+        if k > 0 {
+            // D_k -= L_k X_{k-1}.
+            let x = &head[3 * ss * (k - 1) + 2 * ss..3 * ss * k];
+            let p = &mut product[..ss];
+            p.fill(0.0);
+            for i in 0..s {
+                for j in 0..s {
+                    let lij = blk[i * s + j];
+                    for c in 0..s {
+                        p[i * s + c] += lij * x[j * s + c];
+                    }
+                }
+            }
+            for (dv, pv) in blk[ss..2 * ss].iter_mut().zip(p.iter()) {
+                *dv -= pv;
+            }
+        }
+        let (lk, rest) = blk.split_at_mut(ss);
+        let (d, u) = rest.split_at_mut(ss);
+        if !dense_lu(d, s, piv) {
+            return false;
+        }
+        let (inv, g) = inverse[2 * ss * k..2 * ss * (k + 1)].split_at_mut(ss);
+        inv.fill(0.0);
+        for i in 0..s {
+            inv[i * s + i] = 1.0;
+        }
+        lu_solve(d, s, piv, inv, s);
+        // G_k = D'_k^-1 L_k, for the forward solve.
+        g.copy_from_slice(lk);
+        lu_solve(d, s, piv, g, s);
+        // X_k = D'_k^-1 U_k, in place of U_k.
+        lu_solve(d, s, piv, u, s);
+    }
+    true
+}
+
 /// The factors of one matrix on a [`BlockLayout`].
 struct Factors {
     layout: BlockLayout,
@@ -357,46 +416,18 @@ impl Factors {
         if lone.contains(&0.0) {
             return false;
         }
-        let mut product = [0.0; MAX_BLOCK * MAX_BLOCK];
-        let piv = &mut self.piv[..s];
-        for k in 0..l.blocks() {
-            let (head, tail) = self.values.split_at_mut(3 * ss * k);
-            let blk = &mut tail[..3 * ss];
-            if k > 0 {
-                // D_k -= L_k X_{k-1}.
-                let x = &head[3 * ss * (k - 1) + 2 * ss..3 * ss * k];
-                let p = &mut product[..ss];
-                p.fill(0.0);
-                for i in 0..s {
-                    for j in 0..s {
-                        let lij = blk[i * s + j];
-                        for c in 0..s {
-                            p[i * s + c] += lij * x[j * s + c];
-                        }
-                    }
-                }
-                for (dv, pv) in blk[ss..2 * ss].iter_mut().zip(p.iter()) {
-                    *dv -= pv;
-                }
-            }
-            let (lk, rest) = blk.split_at_mut(ss);
-            let (d, u) = rest.split_at_mut(ss);
-            if !dense_lu(d, s, piv) {
-                return false;
-            }
-            let (inv, g) = self.inverse[2 * ss * k..2 * ss * (k + 1)].split_at_mut(ss);
-            inv.fill(0.0);
-            for i in 0..s {
-                inv[i * s + i] = 1.0;
-            }
-            lu_solve(d, s, piv, inv, s);
-            // G_k = D'_k^-1 L_k, for the forward solve.
-            g.copy_from_slice(lk);
-            lu_solve(d, s, piv, g, s);
-            // X_k = D'_k^-1 U_k, in place of U_k.
-            lu_solve(d, s, piv, u, s);
+        let blocks = l.blocks();
+        let (values, inverse, piv) = (&mut self.values, &mut self.inverse, &mut self.piv);
+        match s {
+            1 => factorise_blocks::<1>(values, inverse, piv, blocks),
+            2 => factorise_blocks::<2>(values, inverse, piv, blocks),
+            3 => factorise_blocks::<3>(values, inverse, piv, blocks),
+            4 => factorise_blocks::<4>(values, inverse, piv, blocks),
+            5 => factorise_blocks::<5>(values, inverse, piv, blocks),
+            6 => factorise_blocks::<6>(values, inverse, piv, blocks),
+            7 => factorise_blocks::<7>(values, inverse, piv, blocks),
+            _ => factorise_blocks::<MAX_BLOCK>(values, inverse, piv, blocks),
         }
-        true
     }
 
     /// `x = A^-1 x` (`transpose`: `x = A^-T x`); `false` if the result is

@@ -83,6 +83,9 @@ impl Driven {
             jacobian_evals,
             lu_factorizations: s.number_of_linear_solver_setups as u64,
             stiffness_detections: 0,
+            error_test_failures: s.number_of_error_test_failures as u64,
+            newton_failures: s.number_of_nonlinear_solver_fails as u64,
+            newton_iterations: s.number_of_nonlinear_solver_iterations as u64,
         };
         crate::ode::Outcome::ended(self.status, self.t, self.t_failed, stats, self.y)
     }

@@ -10,6 +10,7 @@ mod auto;
 pub mod auto_elastic;
 mod bdf;
 mod bdf_dense;
+mod beam_run;
 mod block_lu;
 mod diffsol_driver;
 mod dop853;
@@ -42,6 +43,7 @@ use crate::system::ChainSystem;
 pub use auto::bdf_crossover_gamma;
 #[doc(hidden)]
 pub use bdf::with_general_sparse_lu;
+pub use beam_run::{solve_beam, BeamRun, BEAM_MAX_STEPS};
 pub use integrator::Accuracy;
 use integrator::{Run, Settings, Span};
 use observer::ChainObserver;

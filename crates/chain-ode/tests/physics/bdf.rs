@@ -38,6 +38,24 @@ fn agrees_with_rk4_at_tight_settings() {
     assert!(b.stats.jacobian_evals >= 1);
     assert!(b.stats.lu_factorizations >= b.stats.jacobian_evals);
     assert!(b.stats.rhs_evals > b.stats.steps);
+    // Rejections by cause add up, and every accepted step took at least
+    // one Newton iteration; an explicit method counts none of these.
+    let st = b.stats;
+    assert_eq!(
+        st.error_test_failures + st.newton_failures,
+        st.rejected_steps,
+        "{st:?}"
+    );
+    assert!(st.newton_iterations >= st.steps, "{st:?}");
+    let d = run(&chain, &s, Method::Dopri5, tolerances(0.2, 1e-6, 1e-8)).stats;
+    assert_eq!(
+        (
+            d.error_test_failures,
+            d.newton_failures,
+            d.newton_iterations
+        ),
+        (0, 0, 0)
+    );
 }
 
 #[test]

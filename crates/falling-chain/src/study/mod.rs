@@ -15,6 +15,7 @@
 //! these.
 
 pub mod accuracy;
+pub mod beam;
 pub mod budget;
 pub mod convergence;
 pub mod divergence;

@@ -8,6 +8,7 @@
 //! from a file is the figure drawn from the computation.
 
 pub mod accuracy;
+pub mod beam;
 pub mod convergence;
 pub mod elastic;
 pub mod folded;
