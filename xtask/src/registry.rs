@@ -13,7 +13,7 @@ use crate::report::{
 };
 use crate::report_model::{ReportSnapshots, ReportVmax};
 use crate::study;
-use crate::timing;
+use paper::catalogue::Entry;
 
 /// How a figure makes its data and draws itself.
 pub trait Make: Sync {
@@ -36,18 +36,8 @@ pub trait Make: Sync {
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String>;
 }
 
-/// Whether a figure measures wall times.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Timing {
-    /// No wall times: its data reproduce to the byte.
-    None,
-    /// Reproducible data in `<id>*.csv`, wall times beside them in
-    /// `<id>*-timing.csv`, rewritten only by `--timings`.
-    Alongside,
-    /// Nothing but wall times: computed only by `--timings`; otherwise
-    /// drawn from the committed timing files.
-    Only,
-}
+/// Whether a figure measures wall times (`None`, `Alongside`, `Only`).
+pub use paper::catalogue::Timing;
 
 /// One figure.
 pub struct Figure {
@@ -66,6 +56,18 @@ impl Figure {
     /// The title prefix: `Fig. 7a` for a report figure, else the id.
     pub fn label(&self) -> &'static str {
         self.report.unwrap_or(self.id)
+    }
+
+    /// The figure as the catalogue lists it.
+    pub fn entry(&self) -> Entry<'static> {
+        Entry {
+            id: self.id,
+            report: self.report,
+            what: self.what,
+            scenes: self.make.scenes(),
+            data: self.data,
+            timing: self.timing,
+        }
     }
 }
 
@@ -440,88 +442,9 @@ pub fn find(id: &str) -> Option<&'static Figure> {
     FIGURES.iter().find(|f| f.id == id)
 }
 
-/// The data files of `fig`, in a README cell: timing files in italics.
-fn data_cell(fig: &Figure) -> String {
-    if fig.data.is_empty() {
-        return "—".into();
-    }
-    fig.data
-        .iter()
-        .map(|f| {
-            if timing::is_timing(f) {
-                format!("*[`{f}`](data/{f})*")
-            } else {
-                format!("[`{f}`](data/{f})")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// `figures/README.md`: every figure, what it shows, where it comes from.
-pub fn readme() -> String {
-    let mut s = String::from(
-        "# Figures\n\n\
-         Written by `cargo xtask figures` (this file too, from the figure registry \
-         `xtask/src/registry.rs`) from the scene files in `scenes/` and the model of \
-         `docs/model.md`; the catalogue is `docs/figures.md`. Every figure has its data in \
-         `data/`: `cargo xtask figures` computes the data and draws each figure from it; \
-         `cargo xtask figures --draw-only` redraws every figure from the data as committed, \
-         without running anything. One figure alone: `cargo xtask figures --only ID` \
-         (with `--draw-only` too).\n\n\
-         **Wall times** are kept apart, in the files whose names end in `-timing.csv` \
-         (in italics below), with `data/machine-timing.csv` (the machine, its CPU and \
-         cores, the date and the Rust compiler they were measured with) and \
-         `data/run-timing.csv` (how long each step of the last full timed run took). \
-         `cargo xtask figures` reads them and never rewrites them, so on an unchanged \
-         checkout it leaves `git status` clean; `cargo xtask figures --timings` measures \
-         them again and rewrites them (run it whole, so that every timing file comes from \
-         one machine). The figures marked *timing only* are computed only then; the \
-         work-precision diagrams choose their points by cost when timed, and otherwise run \
-         the points their timing file lists (column `plan`), untimed.\n\n\
-         Animations of the report scenes (`anim/<scene>.gif`) are made from the scene runs \
-         by `cargo xtask figures` (not by `--draw-only`; `--no-anim` skips them).\n\n\
-         ## The report's figures\n\n\
-         | id | report | what it shows | scene files | data |\n|---|---|---|---|---|\n",
-    );
-    for f in FIGURES.iter().filter(|f| f.report.is_some()) {
-        let scenes: Vec<String> = f
-            .make
-            .scenes()
-            .iter()
-            .map(|s| format!("[`{s}`](../scenes/{s}.toml)"))
-            .collect();
-        let scenes = if scenes.is_empty() {
-            "—".to_string()
-        } else {
-            scenes.join(", ")
-        };
-        s.push_str(&format!(
-            "| [{id}]({id}.png) | {} | {} | {} | {} |\n",
-            f.report.unwrap_or_default(),
-            f.what,
-            scenes,
-            data_cell(f),
-            id = f.id
-        ));
-    }
-    s.push_str(
-        "\nThe report's scene runs are summarised in [`data/scenes.csv`](data/scenes.csv).\n\n\
-         ## The study's figures\n\n| id | what it shows | data |\n|---|---|---|\n",
-    );
-    for f in FIGURES.iter().filter(|f| f.report.is_none()) {
-        let note = match f.timing {
-            Timing::Only => " (*timing only*)",
-            _ => "",
-        };
-        s.push_str(&format!(
-            "| [{id}]({id}.png) | {}{note} | {} |\n",
-            f.what,
-            data_cell(f),
-            id = f.id
-        ));
-    }
-    s
+/// The catalogue of every figure, in the registry's order.
+pub fn entries() -> Vec<Entry<'static>> {
+    FIGURES.iter().map(Figure::entry).collect()
 }
 
 #[cfg(test)]
@@ -529,19 +452,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_figure_once_and_its_files_named_after_it() {
-        for (k, f) in FIGURES.iter().enumerate() {
-            assert!(FIGURES[..k].iter().all(|g| g.id != f.id), "{} twice", f.id);
-            for d in f.data {
-                assert!(d.starts_with(f.id) && d.ends_with(".csv"), "{}: {d}", f.id);
-            }
-            let timed = f.data.iter().filter(|d| timing::is_timing(d)).count();
-            match f.timing {
-                Timing::None => assert_eq!(timed, 0, "{}", f.id),
-                Timing::Alongside => assert!(timed > 0 && timed < f.data.len(), "{}", f.id),
-                Timing::Only => assert_eq!(timed, f.data.len(), "{}", f.id),
-            }
-        }
+    fn the_registry_keeps_the_catalogue_conventions() {
+        assert_eq!(paper::catalogue::check(&entries()), Ok(()));
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
         assert_eq!(FIGURES.len(), 48);
     }

@@ -20,6 +20,7 @@ pub mod convergence;
 pub mod divergence;
 pub mod folded;
 pub mod format;
+pub mod machine;
 pub mod matched;
 pub mod needs;
 pub mod plan;
@@ -29,6 +30,7 @@ pub mod report;
 pub mod report_model;
 pub mod rhs_cost;
 pub mod rigid_limit;
+pub mod scene_run;
 pub mod shard;
 pub mod snap;
 pub mod snap_tension;
@@ -37,6 +39,7 @@ pub mod stiffness;
 pub mod table;
 pub mod tip_mass;
 pub mod validation;
+pub mod viewer_peak;
 
 use chain_ode::Method;
 
