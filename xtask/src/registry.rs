@@ -11,7 +11,7 @@ use crate::ctx::Ctx;
 use crate::report::{
     Catenaries, LinspaceSlice, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan,
 };
-use crate::report_model::{ReportSnapshots, ReportVmax};
+use crate::report_model::{ReportSnapshots, ReportTip, ReportVmax};
 use crate::study;
 use paper::catalogue::Entry;
 
@@ -419,10 +419,23 @@ pub static FIGURES: &[Figure] = &[
     report_model!("rm03-horizontal-undamped", "Fig. 3, report's model, n = 25, r = 0", "the report's Fig. 3 from the report's model (`model.report = true`: its equations, clock and stepper; n = 25, r = 0, its dt = 0.01001 to its t = 10, every 25th step), beside fig03", "horizontal-undamped", 10.0),
     report_model!("rm04-horizontal-damped", "Fig. 4, report's model, n = 25, r = 0.001", "the report's Fig. 4 from the report's model (n = 25, r = 0.001, to its t = 10), beside fig04", "horizontal-damped", 10.0),
     report_model!("rm05-horizontal-settling", "Fig. 5, report's model, n = 25, r = 0.001", "the report's Fig. 5 from the report's model (n = 25, r = 0.001, to its t = 40), beside fig05", "horizontal-settling", 40.0),
+    report_model!("rm06-catenary-fall", "Fig. 6, report's model, n = 25, r = 0.001", "the report's Fig. 6 from the report's model (n = 25, r = 0.001, catenary to (5, 1), to its t = 15), beside fig06", "catenary-fall", 15.0),
     report_model!("rm07a-span-d1", "Fig. 7a, report's model", "the report's Fig. 7a from the report's model (n = 50, r = 0.0005, d = 1, to its t = 12), beside fig07a", "span-d1", 12.0),
     report_model!("rm07b-span-d3", "Fig. 7b, report's model", "the report's Fig. 7b from the report's model (n = 50, d = 3, to its t = 12), beside fig07b", "span-d3", 12.0),
     report_model!("rm07c-span-d5", "Fig. 7c, report's model", "the report's Fig. 7c from the report's model (n = 50, d = 5, to its t = 12), beside fig07c", "span-d5", 12.0),
     report_model!("rm07d-span-d6", "Fig. 7d, report's model", "the report's Fig. 7d from the report's model (n = 50, d = 6, stretched, to its t = 12), beside fig07d", "span-d6", 12.0),
+    Figure {
+        id: "rm08-span-tip-speed",
+        report: None,
+        what: "the report's Fig. 8 from the report's model (spans d = 1, 3, 5, 6, n = 50, to its t = 12): its own tip speed and velocity in its clock, and per span the run with RK4 for its stepper (the -cases file)",
+        data: &["rm08-span-tip-speed.csv", "rm08-span-tip-speed-cases.csv"],
+        timing: Timing::None,
+        make: &ReportTip {
+            title: "Fig. 8 from the report's model (n = 50, r = 0.0005)",
+            scenes: SPANS,
+            t_report: 12.0,
+        },
+    },
     Figure {
         id: "rm09-vmax-vs-span",
         report: None,
@@ -432,6 +445,34 @@ pub static FIGURES: &[Figure] = &[
         make: &ReportVmax {
             title: "Fig. 9 from the report's model",
             scene: "span-d3",
+            t_report: 12.0,
+        },
+    },
+    report_model!("rm10a-height-hm2", "Fig. 10a, report's model", "the report's Fig. 10a from the report's model (n = 50, r = 0.0005, P1 = (3, -2), to its t = 15), beside fig10a", "height-hm2", 15.0),
+    report_model!("rm10b-height-h0", "Fig. 10b, report's model", "the report's Fig. 10b from the report's model (P1 = (3, 0), to its t = 15), beside fig10b", "height-h0", 15.0),
+    report_model!("rm10c-height-h2", "Fig. 10c, report's model", "the report's Fig. 10c from the report's model (P1 = (3, 2), to its t = 15), beside fig10c", "height-h2", 15.0),
+    report_model!("rm10d-height-h4", "Fig. 10d, report's model", "the report's Fig. 10d from the report's model (P1 = (3, 4), to its t = 15), beside fig10d", "height-h4", 15.0),
+    Figure {
+        id: "rm11-height-tip-speed",
+        report: None,
+        what: "the report's Fig. 11 from the report's model (heights h = -2, 0, 2, 4, n = 50, to its t = 15): its own tip speed and velocity in its clock, and per height the run with RK4 for its stepper (the -cases file)",
+        data: &["rm11-height-tip-speed.csv", "rm11-height-tip-speed-cases.csv"],
+        timing: Timing::None,
+        make: &ReportTip {
+            title: "Fig. 11 from the report's model (n = 50, r = 0.0005)",
+            scenes: HEIGHTS,
+            t_report: 15.0,
+        },
+    },
+    Figure {
+        id: "rm12-folded",
+        report: None,
+        what: "the report's Fig. 12 from the report's model (the folded chain, n = 50, r = 0.001, to its t = 12), beside fig12, and the run with RK4 for its stepper (the -cases file)",
+        data: &["rm12-folded.csv", "rm12-folded-cases.csv"],
+        timing: Timing::None,
+        make: &ReportSnapshots {
+            title: "Fig. 12, report's model",
+            scene: "folded",
             t_report: 12.0,
         },
     },
@@ -455,6 +496,6 @@ mod tests {
     fn the_registry_keeps_the_catalogue_conventions() {
         assert_eq!(paper::catalogue::check(&entries()), Ok(()));
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 48);
+        assert_eq!(FIGURES.len(), 56);
     }
 }

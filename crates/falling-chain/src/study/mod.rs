@@ -28,6 +28,7 @@ pub mod plot;
 pub mod precision;
 pub mod report;
 pub mod report_model;
+pub mod report_model_tip;
 pub mod rhs_cost;
 pub mod rigid_limit;
 pub mod scene_run;
