@@ -28,32 +28,58 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
+use paper::catalogue;
 use rayon::prelude::*;
 
 use ctx::{write_text, Ctx};
 use registry::{Figure, Timing, FIGURES};
 
-const USAGE: &str =
-    "usage: cargo xtask figures [--only ID...] [--no-anim] [--draw-only | --timings]
-       cargo xtask paper [--check | --pdf]
+/// The workspace's automation: the figures, the paper and the scene keys.
+#[derive(clap::Parser)]
+#[command(name = "cargo xtask", bin_name = "cargo xtask")]
+enum Command {
+    /// Compute every figure's data into figures/data/ (reading the committed
+    /// wall times, never rewriting them), draw every figure from its data,
+    /// make the animations, write figures/README.md and paper/paper.md.
+    Figures(Args),
+    /// Fill paper/paper.tmpl.md from figures/data/.
+    Paper {
+        /// Fail if paper/paper.md is stale.
+        #[arg(long, conflicts_with = "pdf")]
+        check: bool,
+        /// Then typeset paper/*.md as paper/*.pdf with pandoc and headless
+        /// Chromium (apt-get install pandoc chromium); the PDFs are not
+        /// committed.
+        #[arg(long)]
+        pdf: bool,
+    },
+    /// Write the key table of scenes/README.md from the scene schema.
+    SceneKeys {
+        /// Fail if the table is stale.
+        #[arg(long)]
+        check: bool,
+    },
+}
 
-  figures              compute every figure's data into figures/data/ (reading the
-                       committed wall times, never rewriting them), draw every figure
-                       from its data, make the animations, write figures/README.md
-                       and paper/paper.md
-  --only ID...         only these figures (and `anim` for the animations); the
-                       paper and figures/data/scenes.csv are then left as they are
-  --no-anim            no animations
-  --draw-only          draw every figure from the data in figures/data/ as it is,
-                       computing nothing (no animations: they are made from runs)
-  --timings            also measure the wall times, and rewrite the timing files
-                       (figures/data/*-timing.csv, machine-timing.csv, and with no
-                       --only run-timing.csv)
-  paper [--check]      fill paper/paper.tmpl.md from figures/data/; --check fails
-                       if paper/paper.md is stale
-  paper --pdf          fill the paper, then typeset paper/*.md as paper/*.pdf with
-                       pandoc and headless Chromium (apt-get install pandoc chromium);
-                       the PDFs are not committed";
+#[derive(clap::Args)]
+struct Args {
+    /// Only these figures (and `anim` for the animations); the paper and
+    /// figures/data/scenes.csv are then left as they are.
+    #[arg(long, num_args = 1.., value_name = "ID")]
+    only: Vec<String>,
+    /// No animations.
+    #[arg(long = "no-anim", action = clap::ArgAction::SetFalse)]
+    anim: bool,
+    /// Draw every figure from the data in figures/data/ as it is, computing
+    /// nothing (no animations: they are made from runs).
+    #[arg(long, conflicts_with = "timings")]
+    draw_only: bool,
+    /// Also measure the wall times, and rewrite the timing files
+    /// (figures/data/*-timing.csv, machine-timing.csv, and with no --only
+    /// run-timing.csv).
+    #[arg(long)]
+    timings: bool,
+}
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -62,93 +88,22 @@ fn root() -> PathBuf {
         .to_path_buf()
 }
 
-struct Args {
-    only: Vec<String>,
-    anim: bool,
-    draw_only: bool,
-    timings: bool,
-}
-
-fn parse(args: &[String]) -> Result<Args, String> {
-    let mut out = Args {
-        only: vec![],
-        anim: true,
-        draw_only: false,
-        timings: false,
-    };
-    let mut in_only = false;
-    for a in args {
-        match a.as_str() {
-            "--only" => in_only = true,
-            "--no-anim" => out.anim = false,
-            "--draw-only" => out.draw_only = true,
-            "--timings" => out.timings = true,
-            s if in_only && !s.starts_with("--") => out.only.push(s.to_string()),
-            s => return Err(format!("unknown argument '{s}'\n{USAGE}")),
-        }
-        if a.starts_with("--") && a != "--only" {
-            in_only = false;
-        }
-    }
-    if out.draw_only && out.timings {
-        return Err("--draw-only measures nothing: it cannot take --timings".into());
-    }
-    for id in &out.only {
-        if registry::find(id).is_none() && id != "anim" {
-            let ids: Vec<&str> = FIGURES.iter().map(|f| f.id).collect();
-            return Err(format!(
-                "--only: unknown figure '{id}' (known: {}, anim)",
-                ids.join(", ")
-            ));
-        }
-    }
-    Ok(out)
-}
-
-/// The data files `compute` wrote must be the figure's declared ones: all
-/// of them, the timing files only with `--timings`.
-fn check_written(fig: &Figure, files: &[String], timings: bool) -> Result<(), String> {
-    let data: Vec<&str> = files
+/// Every `--only` id names a figure (or `anim`).
+fn check_only(args: &Args) -> Result<(), String> {
+    match args
+        .only
         .iter()
-        .filter_map(|f| f.strip_prefix("figures/data/"))
-        .collect();
-    for d in &data {
-        if !fig.data.contains(d) {
-            return Err(format!("wrote {d}, which the registry does not list"));
+        .find(|id| registry::find(id).is_none() && *id != "anim")
+    {
+        Some(id) => {
+            let ids: Vec<&str> = FIGURES.iter().map(|f| f.id).collect();
+            let ids = ids.join(", ");
+            Err(format!(
+                "--only: unknown figure '{id}' (known: {ids}, anim)"
+            ))
         }
+        None => Ok(()),
     }
-    for d in fig.data {
-        let expected = timings || !timing::is_timing(d);
-        if expected != data.contains(d) {
-            return Err(format!(
-                "{} {d}",
-                if expected {
-                    "did not write"
-                } else {
-                    "wrote without --timings"
-                }
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Files in `figures/data/` that no figure lists (left from an older layout).
-fn strays(ctx: &Ctx) -> Result<Vec<String>, String> {
-    let known = |name: &str| {
-        ["scenes.csv", timing::MACHINE, timing::RUN].contains(&name)
-            || FIGURES.iter().any(|f| f.data.contains(&name))
-    };
-    let mut out = vec![];
-    for entry in fs::read_dir(&ctx.data).map_err(|e| e.to_string())? {
-        let name = entry.map_err(|e| e.to_string())?.file_name();
-        let name = name.to_string_lossy();
-        if name.ends_with(".csv") && !known(&name) {
-            out.push(name.into_owned());
-        }
-    }
-    out.sort();
-    Ok(out)
 }
 
 fn figures_cmd(args: Args) -> Result<(), String> {
@@ -224,7 +179,7 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         }
         for (f, r) in results {
             match r.and_then(|files| {
-                check_written(f, &files, ctx.timings)?;
+                catalogue::check_written(&f.entry(), &files, ctx.timings)?;
                 Ok(files)
             }) {
                 Ok(files) => {
@@ -255,7 +210,7 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         .map(|f| f.make.draw(&ctx, f).map_err(|e| format!("{}: {e}", f.id)))
         .chain(anim_scenes.par_iter().map(|&name| {
             let run = ctx.run(name)?;
-            runs::animation(name, run, &anim_dir)?;
+            run.animation(name, &anim_dir)?;
             Ok(vec![format!("figures/anim/{name}.gif")])
         }))
         .collect();
@@ -271,10 +226,11 @@ fn figures_cmd(args: Args) -> Result<(), String> {
     }
     steps.push(("drawing and animations".into(), t0.elapsed().as_secs_f64()));
 
-    write_text(&ctx.out.join("README.md"), &registry::readme())?;
+    let entries = registry::entries();
+    write_text(&ctx.out.join("README.md"), &catalogue::readme(&entries))?;
     println!("wrote figures/README.md");
     if all {
-        for stray in strays(&ctx)? {
+        for stray in catalogue::strays(&ctx.data, &entries)? {
             println!("warning: figures/data/{stray} belongs to no figure (delete it?)");
         }
     }
@@ -317,40 +273,22 @@ fn figures_cmd(args: Args) -> Result<(), String> {
 /// `scenes/README.md` from falling-chain's scene schema; `--check` fails if
 /// it is stale (falling-chain's tests check it too).
 fn scene_keys(check: bool) -> Result<(), String> {
-    let path = root().join("scenes/README.md");
-    let text = fs::read_to_string(&path).map_err(|e| format!("scenes/README.md: {e}"))?;
-    let want = falling_chain::schema::with_markdown_table(&text)
-        .map_err(|e| format!("scenes/README.md: {e}"))?;
-    if want == text {
-        println!("scenes/README.md: the key table is up to date");
-    } else if check {
-        return Err("scenes/README.md: the key table differs from \
-                    crates/falling-chain/src/schema.rs (run `cargo xtask scene-keys`)"
-            .into());
-    } else {
-        fs::write(&path, want).map_err(|e| format!("scenes/README.md: {e}"))?;
-        println!("wrote scenes/README.md");
-    }
+    let done = falling_chain::schema::sync_readme(&root().join("scenes/README.md"), check)?;
+    println!("scenes/README.md: {done}");
     Ok(())
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match args.first().map(String::as_str) {
-        Some("figures") => parse(&args[1..]).and_then(figures_cmd),
-        Some("paper") => match &args[1..] {
-            [] => paper::fill::run(&root(), false),
-            [c] if c == "--check" => paper::fill::run(&root(), true),
-            [c] if c == "--pdf" => paper::fill::run(&root(), false)
-                .and_then(|()| paper::pdf::build(&root()).map(|_| ())),
-            _ => Err(USAGE.to_string()),
-        },
-        Some("scene-keys") => match &args[1..] {
-            [] => scene_keys(false),
-            [c] if c == "--check" => scene_keys(true),
-            _ => Err(USAGE.to_string()),
-        },
-        _ => Err(USAGE.to_string()),
+    let result = match <Command as clap::Parser>::parse() {
+        Command::Figures(args) => check_only(&args).and_then(|()| figures_cmd(args)),
+        Command::Paper { check, pdf } => paper::fill::run(&root(), check).and_then(|()| {
+            if pdf {
+                paper::pdf::build(&root()).map(|_| ())
+            } else {
+                Ok(())
+            }
+        }),
+        Command::SceneKeys { check } => scene_keys(check),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

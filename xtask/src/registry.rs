@@ -11,9 +11,9 @@ use crate::ctx::Ctx;
 use crate::report::{
     Catenaries, LinspaceSlice, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan,
 };
-use crate::report_model::{ReportSnapshots, ReportVmax};
+use crate::report_model::{ReportSnapshots, ReportTip, ReportVmax};
 use crate::study;
-use crate::timing;
+use paper::catalogue::Entry;
 
 /// How a figure makes its data and draws itself.
 pub trait Make: Sync {
@@ -36,18 +36,8 @@ pub trait Make: Sync {
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String>;
 }
 
-/// Whether a figure measures wall times.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Timing {
-    /// No wall times: its data reproduce to the byte.
-    None,
-    /// Reproducible data in `<id>*.csv`, wall times beside them in
-    /// `<id>*-timing.csv`, rewritten only by `--timings`.
-    Alongside,
-    /// Nothing but wall times: computed only by `--timings`; otherwise
-    /// drawn from the committed timing files.
-    Only,
-}
+/// Whether a figure measures wall times (`None`, `Alongside`, `Only`).
+pub use paper::catalogue::Timing;
 
 /// One figure.
 pub struct Figure {
@@ -66,6 +56,18 @@ impl Figure {
     /// The title prefix: `Fig. 7a` for a report figure, else the id.
     pub fn label(&self) -> &'static str {
         self.report.unwrap_or(self.id)
+    }
+
+    /// The figure as the catalogue lists it.
+    pub fn entry(&self) -> Entry<'static> {
+        Entry {
+            id: self.id,
+            report: self.report,
+            what: self.what,
+            scenes: self.make.scenes(),
+            data: self.data,
+            timing: self.timing,
+        }
     }
 }
 
@@ -427,10 +429,23 @@ pub static FIGURES: &[Figure] = &[
     report_model!("rm03-horizontal-undamped", "Fig. 3, report's model, n = 25, r = 0", "the report's Fig. 3 from the report's model (`model.report = true`: its equations, clock and stepper; n = 25, r = 0, its dt = 0.01001 to its t = 10, every 25th step), beside fig03", "horizontal-undamped", 10.0),
     report_model!("rm04-horizontal-damped", "Fig. 4, report's model, n = 25, r = 0.001", "the report's Fig. 4 from the report's model (n = 25, r = 0.001, to its t = 10), beside fig04", "horizontal-damped", 10.0),
     report_model!("rm05-horizontal-settling", "Fig. 5, report's model, n = 25, r = 0.001", "the report's Fig. 5 from the report's model (n = 25, r = 0.001, to its t = 40), beside fig05", "horizontal-settling", 40.0),
+    report_model!("rm06-catenary-fall", "Fig. 6, report's model, n = 25, r = 0.001", "the report's Fig. 6 from the report's model (n = 25, r = 0.001, catenary to (5, 1), to its t = 15), beside fig06", "catenary-fall", 15.0),
     report_model!("rm07a-span-d1", "Fig. 7a, report's model", "the report's Fig. 7a from the report's model (n = 50, r = 0.0005, d = 1, to its t = 12), beside fig07a", "span-d1", 12.0),
     report_model!("rm07b-span-d3", "Fig. 7b, report's model", "the report's Fig. 7b from the report's model (n = 50, d = 3, to its t = 12), beside fig07b", "span-d3", 12.0),
     report_model!("rm07c-span-d5", "Fig. 7c, report's model", "the report's Fig. 7c from the report's model (n = 50, d = 5, to its t = 12), beside fig07c", "span-d5", 12.0),
     report_model!("rm07d-span-d6", "Fig. 7d, report's model", "the report's Fig. 7d from the report's model (n = 50, d = 6, stretched, to its t = 12), beside fig07d", "span-d6", 12.0),
+    Figure {
+        id: "rm08-span-tip-speed",
+        report: None,
+        what: "the report's Fig. 8 from the report's model (spans d = 1, 3, 5, 6, n = 50, to its t = 12): its own tip speed and velocity in its clock, and per span the run with RK4 for its stepper (the -cases file)",
+        data: &["rm08-span-tip-speed.csv", "rm08-span-tip-speed-cases.csv"],
+        timing: Timing::None,
+        make: &ReportTip {
+            title: "Fig. 8 from the report's model (n = 50, r = 0.0005)",
+            scenes: SPANS,
+            t_report: 12.0,
+        },
+    },
     Figure {
         id: "rm09-vmax-vs-span",
         report: None,
@@ -443,6 +458,34 @@ pub static FIGURES: &[Figure] = &[
             t_report: 12.0,
         },
     },
+    report_model!("rm10a-height-hm2", "Fig. 10a, report's model", "the report's Fig. 10a from the report's model (n = 50, r = 0.0005, P1 = (3, -2), to its t = 15), beside fig10a", "height-hm2", 15.0),
+    report_model!("rm10b-height-h0", "Fig. 10b, report's model", "the report's Fig. 10b from the report's model (P1 = (3, 0), to its t = 15), beside fig10b", "height-h0", 15.0),
+    report_model!("rm10c-height-h2", "Fig. 10c, report's model", "the report's Fig. 10c from the report's model (P1 = (3, 2), to its t = 15), beside fig10c", "height-h2", 15.0),
+    report_model!("rm10d-height-h4", "Fig. 10d, report's model", "the report's Fig. 10d from the report's model (P1 = (3, 4), to its t = 15), beside fig10d", "height-h4", 15.0),
+    Figure {
+        id: "rm11-height-tip-speed",
+        report: None,
+        what: "the report's Fig. 11 from the report's model (heights h = -2, 0, 2, 4, n = 50, to its t = 15): its own tip speed and velocity in its clock, and per height the run with RK4 for its stepper (the -cases file)",
+        data: &["rm11-height-tip-speed.csv", "rm11-height-tip-speed-cases.csv"],
+        timing: Timing::None,
+        make: &ReportTip {
+            title: "Fig. 11 from the report's model (n = 50, r = 0.0005)",
+            scenes: HEIGHTS,
+            t_report: 15.0,
+        },
+    },
+    Figure {
+        id: "rm12-folded",
+        report: None,
+        what: "the report's Fig. 12 from the report's model (the folded chain, n = 50, r = 0.001, to its t = 12), beside fig12, and the run with RK4 for its stepper (the -cases file)",
+        data: &["rm12-folded.csv", "rm12-folded-cases.csv"],
+        timing: Timing::None,
+        make: &ReportSnapshots {
+            title: "Fig. 12, report's model",
+            scene: "folded",
+            t_report: 12.0,
+        },
+    },
 ];
 
 /// The figure called `id`.
@@ -450,88 +493,9 @@ pub fn find(id: &str) -> Option<&'static Figure> {
     FIGURES.iter().find(|f| f.id == id)
 }
 
-/// The data files of `fig`, in a README cell: timing files in italics.
-fn data_cell(fig: &Figure) -> String {
-    if fig.data.is_empty() {
-        return "—".into();
-    }
-    fig.data
-        .iter()
-        .map(|f| {
-            if timing::is_timing(f) {
-                format!("*[`{f}`](data/{f})*")
-            } else {
-                format!("[`{f}`](data/{f})")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// `figures/README.md`: every figure, what it shows, where it comes from.
-pub fn readme() -> String {
-    let mut s = String::from(
-        "# Figures\n\n\
-         Written by `cargo xtask figures` (this file too, from the figure registry \
-         `xtask/src/registry.rs`) from the scene files in `scenes/` and the model of \
-         `docs/model.md`; the catalogue is `docs/figures.md`. Every figure has its data in \
-         `data/`: `cargo xtask figures` computes the data and draws each figure from it; \
-         `cargo xtask figures --draw-only` redraws every figure from the data as committed, \
-         without running anything. One figure alone: `cargo xtask figures --only ID` \
-         (with `--draw-only` too).\n\n\
-         **Wall times** are kept apart, in the files whose names end in `-timing.csv` \
-         (in italics below), with `data/machine-timing.csv` (the machine, its CPU and \
-         cores, the date and the Rust compiler they were measured with) and \
-         `data/run-timing.csv` (how long each step of the last full timed run took). \
-         `cargo xtask figures` reads them and never rewrites them, so on an unchanged \
-         checkout it leaves `git status` clean; `cargo xtask figures --timings` measures \
-         them again and rewrites them (run it whole, so that every timing file comes from \
-         one machine). The figures marked *timing only* are computed only then; the \
-         work-precision diagrams choose their points by cost when timed, and otherwise run \
-         the points their timing file lists (column `plan`), untimed.\n\n\
-         Animations of the report scenes (`anim/<scene>.gif`) are made from the scene runs \
-         by `cargo xtask figures` (not by `--draw-only`; `--no-anim` skips them).\n\n\
-         ## The report's figures\n\n\
-         | id | report | what it shows | scene files | data |\n|---|---|---|---|---|\n",
-    );
-    for f in FIGURES.iter().filter(|f| f.report.is_some()) {
-        let scenes: Vec<String> = f
-            .make
-            .scenes()
-            .iter()
-            .map(|s| format!("[`{s}`](../scenes/{s}.toml)"))
-            .collect();
-        let scenes = if scenes.is_empty() {
-            "—".to_string()
-        } else {
-            scenes.join(", ")
-        };
-        s.push_str(&format!(
-            "| [{id}]({id}.png) | {} | {} | {} | {} |\n",
-            f.report.unwrap_or_default(),
-            f.what,
-            scenes,
-            data_cell(f),
-            id = f.id
-        ));
-    }
-    s.push_str(
-        "\nThe report's scene runs are summarised in [`data/scenes.csv`](data/scenes.csv).\n\n\
-         ## The study's figures\n\n| id | what it shows | data |\n|---|---|---|\n",
-    );
-    for f in FIGURES.iter().filter(|f| f.report.is_none()) {
-        let note = match f.timing {
-            Timing::Only => " (*timing only*)",
-            _ => "",
-        };
-        s.push_str(&format!(
-            "| [{id}]({id}.png) | {}{note} | {} |\n",
-            f.what,
-            data_cell(f),
-            id = f.id
-        ));
-    }
-    s
+/// The catalogue of every figure, in the registry's order.
+pub fn entries() -> Vec<Entry<'static>> {
+    FIGURES.iter().map(Figure::entry).collect()
 }
 
 #[cfg(test)]
@@ -539,20 +503,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_figure_once_and_its_files_named_after_it() {
-        for (k, f) in FIGURES.iter().enumerate() {
-            assert!(FIGURES[..k].iter().all(|g| g.id != f.id), "{} twice", f.id);
-            for d in f.data {
-                assert!(d.starts_with(f.id) && d.ends_with(".csv"), "{}: {d}", f.id);
-            }
-            let timed = f.data.iter().filter(|d| timing::is_timing(d)).count();
-            match f.timing {
-                Timing::None => assert_eq!(timed, 0, "{}", f.id),
-                Timing::Alongside => assert!(timed > 0 && timed < f.data.len(), "{}", f.id),
-                Timing::Only => assert_eq!(timed, f.data.len(), "{}", f.id),
-            }
-        }
+    fn the_registry_keeps_the_catalogue_conventions() {
+        assert_eq!(paper::catalogue::check(&entries()), Ok(()));
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 49);
+        assert_eq!(FIGURES.len(), 57);
     }
 }

@@ -5,7 +5,6 @@
 //! the drawing).
 
 use falling_chain::study::{accuracy, plot};
-use falling_chain::RunSummary;
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;
@@ -39,19 +38,7 @@ impl Make for ReportAccuracy {
         let runs = ctx.pool()?.install(|| {
             jobs.par_iter()
                 .map(|(scene, label, overrides)| {
-                    let prepared = ctx.prepare(scene, overrides)?;
-                    let traj = prepared.solve().map_err(|e| e.to_string())?;
-                    let fixed = prepared.method.accuracy_name() == "dt";
-                    let o = &prepared.options;
-                    let num = falling_chain::study::format::num;
-                    Ok(accuracy::Run {
-                        scene: scene.to_string(),
-                        label: label.clone(),
-                        summary: RunSummary::from_trajectory(scene, &traj),
-                        length: traj.chain.length(),
-                        dt: if fixed { num(o.dt) } else { String::new() },
-                        rtol: if fixed { String::new() } else { num(o.rtol) },
-                    })
+                    accuracy::Run::of(scene, label, &ctx.prepare(scene, overrides)?)
                 })
                 .collect::<Result<Vec<_>, String>>()
         })?;

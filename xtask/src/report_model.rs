@@ -1,11 +1,12 @@
 //! The report's own model as a control (`model.report = true`,
-//! `docs/model.md`, "The report's model"): its Figs. 3, 4, 5 and 7 as
+//! `docs/model.md`, "The report's model"): its Figs. 3 .. 7, 10 and 12 as
 //! snapshots of the report's model in its own clock ([`ReportSnapshots`],
-//! beside the corrected fig03 .. fig07), and its Fig. 9 with what each
-//! erratum changes ([`ReportVmax`]). `falling_chain::study::report_model`
+//! beside the corrected fig03 .. fig12), its Figs. 8 and 11 as its own tip
+//! speeds ([`ReportTip`]), and its Fig. 9 with what each erratum changes
+//! ([`ReportVmax`]). `falling_chain::study::report_model`
 //! makes the tables, its `plot` the drawings.
 
-use falling_chain::study::{plot, report_model};
+use falling_chain::study::{plot, report_model, report_model_tip};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -25,7 +26,8 @@ impl Make for ReportSnapshots {
     }
 
     /// `<id>.csv`: [`report_model::snapshots`] of the scene run as the
-    /// report ran it ([`report_model::overrides`]).
+    /// report ran it ([`report_model::overrides`]); and `<id>-cases.csv`,
+    /// [`report_model_tip::cases`], if the figure lists it.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let s = ctx.run(self.scene)?.scene.clone();
         let overrides = report_model::overrides(self.t_report);
@@ -35,7 +37,14 @@ impl Make for ReportSnapshots {
             .and_then(|p| p.solve())
             .map_err(|e| e.to_string())?;
         let csv = report_model::snapshots(&traj, report_model::snapshot_dt(self.t_report));
-        Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
+        let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
+        // A figure that lists `<id>-cases.csv` also has the pair of runs of
+        // its stepper.
+        if fig.data.len() > 1 {
+            let cases = report_model_tip::cases(&[(self.scene, &s)], self.t_report)?;
+            files.push(ctx.write(&format!("{}-cases.csv", fig.id), &cases)?);
+        }
+        Ok(files)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
@@ -78,5 +87,36 @@ impl Make for ReportVmax {
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let title = format!("{}: {}", fig.id, self.title);
         ctx.draw(fig, |r, s| plot::report_model::vmax(r, s, &title))
+    }
+}
+
+/// The report's Fig. 8 or 11 in its model: its own tip speed and velocity
+/// for `scenes`, and per scene the pair of runs of its stepper.
+pub struct ReportTip {
+    pub title: &'static str,
+    pub scenes: &'static [&'static str],
+    /// The report figure's time span, in its clock.
+    pub t_report: f64,
+}
+
+impl Make for ReportTip {
+    fn scenes(&self) -> Vec<&'static str> {
+        self.scenes.to_vec()
+    }
+
+    /// `<id>.csv` and `<id>-cases.csv`: [`report_model_tip::tables`].
+    fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let scenes = (self.scenes.iter())
+            .map(|&s| ctx.run(s).map(|r| (s, &r.scene)))
+            .collect::<Result<Vec<_>, String>>()?;
+        let (curves, cases) = report_model_tip::tables(&scenes, self.t_report)?;
+        Ok(vec![
+            ctx.write(&format!("{}.csv", fig.id), &curves)?,
+            ctx.write(&format!("{}-cases.csv", fig.id), &cases)?,
+        ])
+    }
+
+    fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        ctx.draw(fig, |r, s| plot::report_model::tip(r, s, self.title))
     }
 }

@@ -46,6 +46,36 @@ pub fn find() -> Option<PathBuf> {
         .find(|p| p.is_file())
 }
 
+/// A PNG screenshot of the page `html` (its text) at `width` x `height`
+/// CSS pixels, after evaluating `script` in it: the page is written to a
+/// scratch folder named after `tag` (removed afterwards), and a page that
+/// logs a console error or throws is an error listing them.
+pub fn screenshot_page(
+    chromium: &Path,
+    tag: &str,
+    html: &str,
+    (width, height): (u32, u32),
+    script: &str,
+) -> Result<Vec<u8>, String> {
+    let scratch = std::env::temp_dir().join(format!("falling-chain-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
+    let page = scratch.join("page.html");
+    let shot = std::fs::write(&page, html)
+        .map_err(|e| format!("{}: {e}", page.display()))
+        .and_then(|()| {
+            let mut b = Browser::launch(chromium, &scratch, width, height)?;
+            b.open(&page)?;
+            b.eval(script)?;
+            let errors = b.errors();
+            if !errors.is_empty() {
+                return Err(format!("the page logged errors: {errors:?}"));
+            }
+            b.screenshot()
+        });
+    let _ = std::fs::remove_dir_all(&scratch);
+    shot
+}
+
 /// One headless Chromium with one page attached.
 pub struct Browser {
     child: Child,

@@ -205,34 +205,57 @@ impl ReportModel {
     }
 }
 
-/// The tip speeds as the report's code computed them (erratum 5): the
-/// free end's point as its reconstruction `x_iz_phi`/`y_iz_phi` gives it,
-/// `P0 + l sum_{j=2}^{n-1} u_j + (l/2) u_n` (`u_j = (cos phi_j, sin phi_j)`:
-/// rod 1 left out of the sum, and the last rod's midpoint, not its end),
-/// differenced between consecutive samples, `|r(t_{k+1}) - r(t_k)| /
-/// (t_{k+1} - t_k)`; one `[t, speed]` per pair of samples, at the later time.
+/// The free end's point as the report's reconstruction `x_iz_phi`/`y_iz_phi`
+/// gives it (erratum 5), relative to `P0`: `l sum_{j=2}^{n-1} u_j + (l/2)
+/// u_n` (`u_j = (cos phi_j, sin phi_j)`: rod 1 left out of the sum, and the
+/// last rod's midpoint, not its end).
+fn report_tip(l: f64, phi: &[f64]) -> Vec2 {
+    let n = phi.len();
+    let mut r = [0.0, 0.0];
+    for (j, p) in phi.iter().enumerate().skip(1) {
+        let w = if j + 1 == n { 0.5 * l } else { l };
+        r[0] += w * p.cos();
+        r[1] += w * p.sin();
+    }
+    if n == 1 {
+        r = [0.5 * l * phi[0].cos(), 0.5 * l * phi[0].sin()];
+    }
+    r
+}
+
+/// The tip speeds as the report's code computed them (erratum 5): its
+/// point ([`report_tip`]) differenced between consecutive samples,
+/// `|r(t_{k+1}) - r(t_k)| / (t_{k+1} - t_k)`; one `[t, speed]` per pair of
+/// samples, at the later time.
 pub fn finite_difference_tip_speeds(chain: &Chain, times: &[f64], angles: &[&[f64]]) -> Vec<Vec2> {
     let l = chain.rod_length();
-    let tip = |phi: &[f64]| -> Vec2 {
-        let n = phi.len();
-        let mut r = [0.0, 0.0];
-        for (j, p) in phi.iter().enumerate().skip(1) {
-            let w = if j + 1 == n { 0.5 * l } else { l };
-            r[0] += w * p.cos();
-            r[1] += w * p.sin();
-        }
-        if n == 1 {
-            r = [0.5 * l * phi[0].cos(), 0.5 * l * phi[0].sin()];
-        }
-        r
-    };
     times
         .windows(2)
         .zip(angles.windows(2))
         .map(|(t, a)| {
-            let (r0, r1) = (tip(a[0]), tip(a[1]));
+            let (r0, r1) = (report_tip(l, a[0]), report_tip(l, a[1]));
             let v = (r1[0] - r0[0]).hypot(r1[1] - r0[1]) / (t[1] - t[0]);
             [t[1], v]
+        })
+        .collect()
+}
+
+/// The tip velocities behind [`finite_difference_tip_speeds`] (the report's
+/// Figs. 8b and 11b): `[t, v_x, v_y]`, `(r(t_{k+1}) - r(t_k)) / (t_{k+1} -
+/// t_k)` of the report's point, one per pair of samples, at the later time.
+pub fn finite_difference_tip_velocities(
+    chain: &Chain,
+    times: &[f64],
+    angles: &[&[f64]],
+) -> Vec<[f64; 3]> {
+    let l = chain.rod_length();
+    times
+        .windows(2)
+        .zip(angles.windows(2))
+        .map(|(t, a)| {
+            let (r0, r1) = (report_tip(l, a[0]), report_tip(l, a[1]));
+            let dt = t[1] - t[0];
+            [t[1], (r1[0] - r0[0]) / dt, (r1[1] - r0[1]) / dt]
         })
         .collect()
 }

@@ -799,6 +799,26 @@ pub fn with_markdown_table(readme: &str) -> Result<String, String> {
     ))
 }
 
+/// Brings the key table of the scene README at `path` (`scenes/README.md`)
+/// up to date, or with `check` only checks it: returns what was done, an
+/// error if it is stale under `check` or cannot be read or written.
+pub fn sync_readme(path: &std::path::Path, check: bool) -> Result<&'static str, String> {
+    let name = path.display();
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{name}: {e}"))?;
+    let want = with_markdown_table(&text).map_err(|e| format!("{name}: {e}"))?;
+    if want == text {
+        Ok("the key table is up to date")
+    } else if check {
+        Err(format!(
+            "{name}: the key table differs from crates/falling-chain/src/schema.rs \
+             (run `cargo xtask scene-keys`)"
+        ))
+    } else {
+        std::fs::write(path, want).map_err(|e| format!("{name}: {e}"))?;
+        Ok("the key table was rewritten")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,8 +1,11 @@
 //! The paper of the study, as a document tool apart from the figures:
 //! [`fill`] fills `paper/paper.tmpl.md` with numbers read from the CSV
 //! files of `figures/data/` and writes `paper/paper.md` (or checks that it
-//! is current); [`pdf`] typesets the filled paper as PDF. `cargo xtask
-//! paper [--check | --pdf]` and `cargo xtask figures` call them.
+//! is current); [`pdf`] typesets the filled paper as PDF; [`catalogue`]
+//! is the figure catalogue as plain data (`figures/README.md`, the checks of
+//! what each figure writes). `cargo xtask paper [--check | --pdf]` and
+//! `cargo xtask figures` call them.
 
+pub mod catalogue;
 pub mod fill;
 pub mod pdf;

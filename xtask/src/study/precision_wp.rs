@@ -11,11 +11,10 @@
 //! so that `<id>.csv` (steps, evaluations, errors: no wall time) is the
 //! same to the byte whenever the physics is.
 
-use falling_chain::study::divergence::{self, divergence};
+use falling_chain::study::divergence;
 use falling_chain::study::plan;
 use falling_chain::study::plot;
-use falling_chain::study::precision::{self, Checks};
-use falling_chain::Prepared;
+use falling_chain::study::precision::Checks;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -70,33 +69,33 @@ pub const STIFF_ROPE: Spec = Spec {
 
 impl Make for Spec {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let id = fig.id;
         let mut files = vec![];
-        let p = ctx.prepare::<&str>(self.scene, &[])?;
-        let (p, t_eval) = match self.eval {
-            Eval::End => {
-                let t_eval = p.options.t_end;
-                (p, t_eval)
-            }
-            Eval::BeforeSeparation => {
-                let div = divergence(&p).map_err(|e| e.to_string())?;
-                let undamped = divergence(&ctx.prepare(self.scene, &["chain.damping=0"])?)
-                    .map_err(|e| e.to_string())?;
-                let csv = divergence::csv_text(&[(p.chain.damping(), &div), (0.0, &undamped)]);
-                files.push(ctx.write(&format!("{}-divergence.csv", fig.id), &csv)?);
-                let t_eval = div.t_eval;
-                if t_eval < div.t_whip {
-                    return Err(format!(
-                        "{}: runs separate (t = {t_eval}) before the whip (t = {:.3})",
-                        fig.id, div.t_whip
-                    ));
-                }
-                (
-                    ctx.prepare(self.scene, &[format!("run.t_end={t_eval}")])?,
-                    t_eval,
-                )
-            }
+        let mut p = ctx.prepare::<&str>(self.scene, &[])?;
+        let mut t_eval = p.options.t_end;
+        if let Eval::BeforeSeparation = self.eval {
+            let undamped = ctx.prepare(self.scene, &["chain.damping=0"])?;
+            let (csv, t) =
+                divergence::evaluation(&p, &undamped).map_err(|e| format!("{id}: {e}"))?;
+            files.push(ctx.write(&format!("{id}-divergence.csv"), &csv)?);
+            (p, t_eval) = (ctx.prepare(self.scene, &[format!("run.t_end={t}")])?, t);
+        }
+        let checks = Checks {
+            check_dt: self.check_dt,
+            richardson: self.richardson,
         };
-        files.extend(study(ctx, fig, self, p, t_eval)?);
+        // The points: timed, or as the timing file's plan says.
+        let plan = (!ctx.timings)
+            .then(|| ctx.read(&format!("{id}-timing.csv")))
+            .transpose()?;
+        let (csv, timing) = ctx
+            .pool()?
+            .install(|| plan::tables(self.scene, &p, t_eval, checks, plan.as_ref()))
+            .map_err(|e| format!("{id}: {e} (`cargo xtask figures --only {id} --timings`)"))?;
+        files.push(ctx.write(&format!("{id}.csv"), &csv)?);
+        if let Some(timing) = timing {
+            files.push(ctx.write(&format!("{id}-timing.csv"), &timing)?);
+        }
         Ok(files)
     }
 
@@ -116,40 +115,4 @@ impl Make for Spec {
             .map_err(|e| e.to_string())?;
         Ok(ctx.drawn(&out))
     }
-}
-
-fn study(
-    ctx: &Ctx,
-    fig: &Figure,
-    spec: &Spec,
-    p: Prepared,
-    t_eval: f64,
-) -> Result<Vec<String>, String> {
-    let checks = Checks {
-        check_dt: spec.check_dt,
-        richardson: spec.richardson,
-    };
-    // The lines: timed, or as the timing file's plan says.
-    let jobs = if ctx.timings {
-        None
-    } else {
-        let timing = ctx.read(&format!("{}-timing.csv", fig.id))?;
-        Some(plan::plan_of(&timing).map_err(|e| {
-            format!(
-                "figures/data/{e}: run `cargo xtask figures --only {} --timings`",
-                fig.id
-            )
-        })?)
-    };
-    let (reference, rows) = ctx
-        .pool()?
-        .install(|| plan::rows(&p, t_eval, checks, jobs.as_deref()))
-        .map_err(|e| format!("{}: {e}", fig.id))?;
-    let csv = precision::csv_text(spec.scene, t_eval, &reference, &rows, None);
-    let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
-    if ctx.timings {
-        let timing = plan::timing_text(&rows);
-        files.push(ctx.write(&format!("{}-timing.csv", fig.id), &timing)?);
-    }
-    Ok(files)
 }

@@ -2,11 +2,10 @@
 //! (n = 400, r = 0) against the energy-conserving law, for `M / m_c` from
 //! 0.1 to 10: the fall time over free fall and the tip speed at the end of
 //! the fall. The runs and the table are the library's
-//! (`falling_chain::study::tip_mass`); this file keeps the choice of ratios
-//! and the drawing.
+//! (`falling_chain::study::tip_mass`), the drawing `study::plot::tip_mass`;
+//! this file keeps the choice of ratios.
 
-use falling_chain::study::tip_mass;
-use figures::{palette, LinePlot, RGBColor, Series, Style};
+use falling_chain::study::{plot, tip_mass};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -41,73 +40,6 @@ impl Make for TipMassFall {
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let id = fig.id;
-        let runs = ctx.read(&format!("{id}.csv"))?;
-        let (k, t, v) = (
-            runs.nums("ratio")?,
-            runs.nums("t_fall")?,
-            runs.nums("v_fall")?,
-        );
-        let (t_law, v_law) = (runs.nums("t_law")?, runs.nums("v_law")?);
-        let law = ctx.read(&format!("{id}-law.csv"))?;
-        let (lk, lt, lv) = (law.nums("ratio")?, law.nums("t_law")?, law.nums("v_final")?);
-        let black = RGBColor(0, 0, 0);
-        let zip = |a: &[f64], b: &[f64]| a.iter().copied().zip(b.iter().copied()).collect();
-        let mut left = LinePlot::new(
-            "fall time over free fall sqrt(2L/g)",
-            "M / m_c",
-            "t_fall / sqrt(2 L / g)",
-        );
-        left.series.push(
-            Series::new("law (full extension)", zip(&lk, &lt), Style::Dashed).with_color(black),
-        );
-        left.series.push(
-            Series::new("law at 0.99 (L - l)", zip(&k, &t_law), Style::Points)
-                .with_color(palette(1)),
-        );
-        left.series.push(
-            Series::new(
-                format!("n = {LINKS}, r = 0"),
-                zip(&k, &t),
-                Style::LinePoints,
-            )
-            .with_color(palette(0)),
-        );
-        left.log_x = true;
-        let mut right = LinePlot::new(
-            "tip speed at the end of the fall",
-            "M / m_c",
-            "|v| / sqrt(g L)",
-        );
-        right.series.push(
-            Series::new(
-                "law at full extension: sqrt(2 (1 + m_c / 4M))",
-                zip(&lk, &lv),
-                Style::Dashed,
-            )
-            .with_color(black),
-        );
-        right.series.push(
-            Series::new("law at 0.99 (L - l)", zip(&k, &v_law), Style::Points)
-                .with_color(palette(1)),
-        );
-        right.series.push(
-            Series::new(
-                format!("n = {LINKS}, r = 0"),
-                zip(&k, &v),
-                Style::LinePoints,
-            )
-            .with_color(palette(0)),
-        );
-        right.log_x = true;
-        right.log_y = true;
-        let out = figures::line_plot_pair(
-            &left,
-            &right,
-            "Folded chain with a tip mass M: runs against the energy-conserving law",
-            &ctx.stem(id),
-        )
-        .map_err(|e| format!("{id}: {e}"))?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, |r, s| plot::tip_mass::fall(r, s, LINKS))
     }
 }

@@ -645,7 +645,7 @@ pub fn solve(
     };
     let clock = Instant::now();
     // A rigid chain with a fixed pivot takes exactly the path it always took.
-    let (Run { outcome, segments }, obs) = if chain.is_elastic() {
+    let (run, obs) = if chain.is_elastic() {
         let mut obs = ChainObserver::new(
             chain,
             options.t_end,
@@ -667,7 +667,34 @@ pub fn solve(
         let run = registry::run(method, &mut ChainSystem::new(chain), &span, &mut obs);
         (run, obs)
     };
-    let mut obs = obs;
+    Ok(trajectory(
+        chain,
+        start,
+        method,
+        options,
+        (run, obs, path),
+        chain.energy_scale(),
+        clock,
+    ))
+}
+
+/// The trajectory of a finished run of `method` on `chain` from `start`:
+/// its summary from the observer `obs` (finished here) and the final
+/// state, and its status: a run that ended `ok` becomes `diverged` if its
+/// summary is not finite and `inaccurate` if its energy balance error
+/// exceeds `energy_scale`. `clock` started before the run (its wall time);
+/// `path` is the pivot's.
+fn trajectory(
+    chain: &Chain,
+    start: &State,
+    method: Method,
+    options: &SolveOptions,
+    (run, mut obs, path): (Run, ChainObserver, PivotPath),
+    energy_scale: f64,
+    clock: Instant,
+) -> Trajectory {
+    let Run { outcome, segments } = run;
+    let n = chain.links();
     let wall_seconds = clock.elapsed().as_secs_f64();
     obs.finish(outcome.t_reached, &outcome.y_end);
     let y = &outcome.y_end;
@@ -705,13 +732,13 @@ pub fn solve(
     let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
         let t = obs.t_nonfinite.unwrap_or(outcome.t_reached);
         (Status::Diverged, Some(t))
-    } else if outcome.status.is_ok() && summary.energy_balance_error > chain.energy_scale() {
+    } else if outcome.status.is_ok() && summary.energy_balance_error > energy_scale {
         let t = obs.t_inaccurate.unwrap_or(outcome.t_reached);
         (Status::Inaccurate, Some(t))
     } else {
         (outcome.status, outcome.t_failed)
     };
-    Ok(Trajectory {
+    Trajectory {
         chain: chain.clone(),
         anchor: start.anchor,
         pivot: path,
@@ -726,7 +753,7 @@ pub fn solve(
         times: std::mem::take(&mut obs.times),
         states: std::mem::take(&mut obs.states),
         final_state: outcome.y_end,
-    })
+    }
 }
 
 /// A rigid chain whose pivot is let go at `t_r` (`pivot.release`): held

@@ -69,7 +69,19 @@ pub(crate) fn run(
     span: &Span<'_>,
     obs: &mut dyn Observer,
 ) -> Run {
-    let mut run = (integrator(method).run)(problem, span, obs);
+    run_with(integrator(method), method, problem, span, obs)
+}
+
+/// [`run`] with the integrator `it` standing for `method` (the report's
+/// stepper is its model's `rk4`).
+pub(crate) fn run_with(
+    it: &Integrator,
+    method: Method,
+    problem: &mut dyn Problem,
+    span: &Span<'_>,
+    obs: &mut dyn Observer,
+) -> Run {
+    let mut run = (it.run)(problem, span, obs);
     if run.segments.is_empty() {
         run.segments.push(Segment {
             method,

@@ -14,17 +14,21 @@
 //! RK4's weights on the rates, with the angles frozen at `phi` for the
 //! first two stages and at the Euler update `phi1` for the last two (`W`
 //! takes the same stages as `w`): a first-order method, measured so by a
-//! test.
+//! test. It is a [`FixedStep`] of the one fixed-step loop
+//! ([`rk4::integrate`], which owns the step times, the budget, the checks
+//! and the observer), registered for this model as [`REPORT_RK4`]; the
+//! trajectory is assembled as [`super::solve`]'s, with the model's energy
+//! scale.
 
 use std::time::Instant;
 
-use super::integrator::{Run, Settings, Span};
+use super::integrator::{Integrator, Settings, Span};
 use super::observer::ChainObserver;
-use super::{registry, state_tip, state_tip_velocity, Method, SolveOptions, Summary, Trajectory};
+use super::rk4::{self, FixedStep, Work};
+use super::{registry, Method, SolveOptions, Trajectory};
 use crate::chain::{check, Chain, InvalidParameter};
-use crate::ode::{
-    all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
-};
+use crate::ode::OdeSystem;
+use crate::pivot::PivotPath;
 use crate::report::{ReportModel, ReportSystem};
 use crate::state::State;
 use crate::system::ChainSystem;
@@ -82,169 +86,78 @@ pub fn solve_report(
         settings: &settings,
     };
     let mut sys = ReportSystem::new(chain, model);
-    let Run { outcome, segments } = if method == Method::Rk4 && model.stepper {
-        let outcome = integrate(&mut sys, &span, &mut obs);
-        Run {
-            outcome,
-            segments: vec![super::Segment {
-                method,
-                t_start: 0.0,
-                t_end: options.t_end,
-            }],
-        }
+    let it = if method == Method::Rk4 && model.stepper {
+        &REPORT_RK4
     } else {
-        registry::run(method, &mut sys, &span, &mut obs)
+        registry::integrator(method)
     };
-    let wall_seconds = clock.elapsed().as_secs_f64();
-    obs.finish(outcome.t_reached, &outcome.y_end);
-    let y = &outcome.y_end;
-    let summary = Summary {
-        energy_start: obs.energy_start,
-        energy_end: obs.energy_end,
-        dissipated: y[2 * n],
-        energy_balance_error: obs.energy_balance_error,
-        max_energy_rise: obs.max_energy_rise,
-        tip_end: state_tip(chain, start.anchor, y),
-        tip_velocity_end: state_tip_velocity(chain, y),
-        tip_speed_max: obs.tip_speed_max,
-        t_tip_speed_max: obs.t_tip_speed_max,
-        // Tracked for elastic links only; the report's chain is rigid.
-        pivot_force_max: None,
-        wall_seconds,
-    };
-    let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
-        (
-            Status::Diverged,
-            Some(obs.t_nonfinite.unwrap_or(outcome.t_reached)),
-        )
-    } else if outcome.status.is_ok() && summary.energy_balance_error > model.energy_scale(chain) {
-        (
-            Status::Inaccurate,
-            Some(obs.t_inaccurate.unwrap_or(outcome.t_reached)),
-        )
-    } else {
-        (outcome.status, outcome.t_failed)
-    };
-    let mut segments = segments;
-    if let Some(s) = segments.last_mut() {
-        s.t_end = outcome.t_reached;
-    }
-    Ok(Trajectory {
-        chain: chain.clone(),
-        anchor: start.anchor,
-        // The report's pivot never moves (`model.report` refuses `pivot.*`).
-        pivot: crate::pivot::PivotPath::new(chain, start.anchor),
+    let run = registry::run_with(it, method, &mut sys, &span, &mut obs);
+    // The report's pivot never moves (`model.report` refuses `pivot.*`).
+    let path = PivotPath::new(chain, start.anchor);
+    Ok(super::trajectory(
+        chain,
+        start,
         method,
-        status,
-        t_end: options.t_end,
-        t_reached: outcome.t_reached,
-        t_failed,
-        stats: outcome.stats,
-        segments,
-        summary,
-        times: std::mem::take(&mut obs.times),
-        states: std::mem::take(&mut obs.states),
-        final_state: outcome.y_end,
-    })
+        options,
+        (run, obs, path),
+        model.energy_scale(chain),
+        clock,
+    ))
 }
 
-/// The report's stepper over `span` at steps of `span.settings.dt` (the
-/// last one shortened), on a system whose state is `[q (n), v (n), rest]`
-/// with `q' = v`; the observer sees each step with the cubic Hermite
-/// interpolant.
-pub(crate) fn integrate<S: OdeSystem>(
-    sys: &mut S,
-    span: &Span<'_>,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    Counted::run(sys, |sys| steps(sys, span, obs))
-}
+/// The report's stepper, on a system whose state is `[q (n), v (n),
+/// rest]` with `q' = v`, run by the one fixed-step loop
+/// ([`rk4::integrate`]).
+pub(crate) struct ReportStepper;
 
-fn steps<S: OdeSystem>(sys: &mut S, span: &Span<'_>, obs: &mut dyn Observer) -> Outcome {
-    let (t0, t_end, dt) = (span.t0, span.t_end, span.settings.dt);
-    let max_steps = span.settings.max_steps;
-    let d = sys.dim();
-    let n = (d - 1) / 2;
-    let mut y = span.y0.to_vec();
-    let mut f = vec![0.0; d];
-    let (mut k2, mut k3, mut k4) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
-    let (mut tmp, mut y1, mut f1) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
-    let mut stats = Stats::default();
-    let fail = Outcome::ended;
-
-    sys.rhs(t0, &y, &mut f);
-    if !all_finite(&f) {
-        return fail(Status::Diverged, t0, Some(t0), stats, y);
-    }
-    obs.start(t0, &y, &f);
-    let mut t = t0;
-    let mut k: u64 = 0;
-    while t < t_end {
-        if stats.steps >= max_steps {
-            return fail(Status::MaxSteps, t, Some(t), stats, y);
-        }
-        if obs.stop() {
-            return fail(Status::Interrupted, t, Some(t), stats, y);
-        }
-        let mut t1 = t0 + (k + 1) as f64 * dt;
-        if t1 > t_end - 1e-9 * dt {
-            t1 = t_end;
-        }
+impl FixedStep for ReportStepper {
+    fn step<S: OdeSystem>(
+        sys: &mut S,
+        t: f64,
+        t1: f64,
+        y: &[f64],
+        f: &[f64],
+        y1: &mut [f64],
+        w: &mut Work,
+    ) {
+        let d = y.len();
+        let n = (d - 1) / 2;
         let h = t1 - t;
         // The angles by explicit Euler first: the last two stages use them.
         for i in 0..n {
             y1[i] = y[i] + h * y[n + i];
         }
         // Stages in the rates (and W) only, at the angles `at`.
-        let stage = |out: &mut [f64], at: &[f64], y: &[f64], a: f64, k: &[f64]| {
+        let stage = |out: &mut [f64], at: &[f64], a: f64, k: &[f64]| {
             out[..n].copy_from_slice(&at[..n]);
             for i in n..d {
                 out[i] = y[i] + a * k[i];
             }
         };
-        stage(&mut tmp, &y, &y, 0.5 * h, &f);
-        sys.rhs(t, &tmp, &mut k2);
-        stage(&mut tmp, &y1, &y, 0.5 * h, &k2);
-        sys.rhs(t1, &tmp, &mut k3);
-        stage(&mut tmp, &y1, &y, h, &k3);
-        sys.rhs(t1, &tmp, &mut k4);
+        stage(&mut w.tmp, y, 0.5 * h, f);
+        sys.rhs(t, &w.tmp, &mut w.k2);
+        stage(&mut w.tmp, y1, 0.5 * h, &w.k2);
+        sys.rhs(t1, &w.tmp, &mut w.k3);
+        stage(&mut w.tmp, y1, h, &w.k3);
+        sys.rhs(t1, &w.tmp, &mut w.k4);
         for i in n..d {
-            y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+            y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (w.k2[i] + w.k3[i]) + w.k4[i]);
         }
-        if !all_finite(&y1) {
-            return fail(Status::Diverged, t, Some(t1), stats, y);
-        }
-        sys.rhs(t1, &y1, &mut f1);
-        if !all_finite(&f1) {
-            return fail(Status::Diverged, t, Some(t1), stats, y);
-        }
-        stats.steps += 1;
-        obs.step(&StepView {
-            t0: t,
-            t1,
-            y0: &y,
-            y1: &y1,
-            f1: &f1,
-            interpolant: &Hermite {
-                t0: t,
-                h,
-                y0: &y,
-                f0: &f,
-                y1: &y1,
-                f1: &f1,
-            },
-        });
-        std::mem::swap(&mut y, &mut y1);
-        std::mem::swap(&mut f, &mut f1);
-        t = t1;
-        k += 1;
     }
-    Outcome::ended(Status::Ok, t, None, stats, y)
 }
+
+/// `rk4` in the report's model with [`ReportModel::stepper`] set: the
+/// report's stepper, which its code calls RK4; `dt` sets its accuracy.
+pub(crate) const REPORT_RK4: Integrator = Integrator {
+    name: "rk4",
+    adaptive: false,
+    run: |p, s, obs| rk4::integrate::<ReportStepper, _>(p, s, obs).into(),
+};
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ode::Status;
     use crate::solve::test_problems::Quiet;
 
     /// `q'' = -q` as `[q, v, W]` with `W' = 0`: the layout the stepper reads.
@@ -286,7 +199,7 @@ mod tests {
             t_end: h,
             settings: &settings,
         };
-        let out = integrate(&mut Spring, &span, &mut Quiet);
+        let out = rk4::integrate::<ReportStepper, _>(&mut Spring, &span, &mut Quiet);
         assert_eq!(out.status, Status::Ok);
         assert_eq!(out.stats.steps, 1);
         assert!((out.y_end[0] - 1.1).abs() < 1e-15, "{:?}", out.y_end);

@@ -1,38 +1,99 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
-//! with the cubic Hermite interpolant as its continuous extension.
+//! with the cubic Hermite interpolant as its continuous extension, and the
+//! one fixed-step loop ([`integrate`] over a [`FixedStep`]), which the
+//! report's stepper (`report_run.rs`) shares.
 
-use super::integrator::Integrator;
+use super::integrator::{Integrator, Span};
 use crate::ode::{
     all_finite, Counted, Hermite, Observer, OdeSystem, Outcome, Stats, Status, StepView,
 };
 
-/// Integrates from `t0` to `t_end` with steps of `dt` (the last one shortened).
-pub(crate) fn integrate<S: OdeSystem + ?Sized>(
-    sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    dt: f64,
-    max_steps: u64,
-    obs: &mut dyn Observer,
-) -> Outcome {
-    Counted::run(sys, |sys| steps(sys, t0, y0, t_end, dt, max_steps, obs))
+/// A fixed-step method's step, as the one fixed-step loop ([`integrate`])
+/// sees it: the stages that take `(t, y)`, with `f = f(t, y)`, by `h` to
+/// `t1 = t + h` (the solution in `y1`). The loop owns the rest: the step
+/// times, the budget, the cancel check, the finiteness checks, `f(t1, y1)`,
+/// the observer with the cubic Hermite interpolant.
+pub(crate) trait FixedStep {
+    /// One step's stages, into `y1`, with `w`'s vectors as scratch.
+    fn step<S: OdeSystem>(
+        sys: &mut S,
+        t: f64,
+        t1: f64,
+        y: &[f64],
+        f: &[f64],
+        y1: &mut [f64],
+        w: &mut Work,
+    );
 }
 
-fn steps<S: OdeSystem>(
+/// A fixed step's scratch: three stage slopes and one stage state, each of
+/// the state's size, allocated once per run.
+pub(crate) struct Work {
+    pub k2: Vec<f64>,
+    pub k3: Vec<f64>,
+    pub k4: Vec<f64>,
+    pub tmp: Vec<f64>,
+}
+
+/// Classical RK4 on the whole state.
+pub(crate) struct Classic;
+
+impl FixedStep for Classic {
+    fn step<S: OdeSystem>(
+        sys: &mut S,
+        t: f64,
+        t1: f64,
+        y: &[f64],
+        f: &[f64],
+        y1: &mut [f64],
+        w: &mut Work,
+    ) {
+        let h = t1 - t;
+        let axpy = |out: &mut [f64], y: &[f64], a: f64, x: &[f64]| {
+            for i in 0..out.len() {
+                out[i] = y[i] + a * x[i];
+            }
+        };
+        axpy(&mut w.tmp, y, 0.5 * h, f);
+        sys.rhs(t + 0.5 * h, &w.tmp, &mut w.k2);
+        axpy(&mut w.tmp, y, 0.5 * h, &w.k2);
+        sys.rhs(t + 0.5 * h, &w.tmp, &mut w.k3);
+        axpy(&mut w.tmp, y, h, &w.k3);
+        sys.rhs(t1, &w.tmp, &mut w.k4);
+        for i in 0..y.len() {
+            y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (w.k2[i] + w.k3[i]) + w.k4[i]);
+        }
+    }
+}
+
+/// Integrates `sys` over `span` with the fixed-step method `M` at steps of
+/// `span.settings.dt` (the last one shortened), under the step budget
+/// `span.settings.max_steps`. Every right-hand side is counted.
+pub(crate) fn integrate<M: FixedStep, S: OdeSystem + ?Sized>(
     sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    dt: f64,
-    max_steps: u64,
+    span: &Span<'_>,
     obs: &mut dyn Observer,
 ) -> Outcome {
+    Counted::run(sys, |sys| steps::<M, _>(sys, span, obs))
+}
+
+fn steps<M: FixedStep, S: OdeSystem>(
+    sys: &mut S,
+    span: &Span<'_>,
+    obs: &mut dyn Observer,
+) -> Outcome {
+    let (t0, t_end, dt) = (span.t0, span.t_end, span.settings.dt);
+    let max_steps = span.settings.max_steps;
     let d = sys.dim();
-    let mut y = y0.to_vec();
+    let mut y = span.y0.to_vec();
     let mut f = vec![0.0; d];
-    let (mut k2, mut k3, mut k4) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
-    let (mut tmp, mut y1, mut f1) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
+    let mut w = Work {
+        k2: vec![0.0; d],
+        k3: vec![0.0; d],
+        k4: vec![0.0; d],
+        tmp: vec![0.0; d],
+    };
+    let (mut y1, mut f1) = (vec![0.0; d], vec![0.0; d]);
     let mut stats = Stats::default();
     let fail = Outcome::ended;
 
@@ -58,20 +119,7 @@ fn steps<S: OdeSystem>(
             t1 = t_end;
         }
         let h = t1 - t;
-        let axpy = |out: &mut [f64], y: &[f64], a: f64, x: &[f64]| {
-            for i in 0..out.len() {
-                out[i] = y[i] + a * x[i];
-            }
-        };
-        axpy(&mut tmp, &y, 0.5 * h, &f);
-        sys.rhs(t + 0.5 * h, &tmp, &mut k2);
-        axpy(&mut tmp, &y, 0.5 * h, &k2);
-        sys.rhs(t + 0.5 * h, &tmp, &mut k3);
-        axpy(&mut tmp, &y, h, &k3);
-        sys.rhs(t1, &tmp, &mut k4);
-        for i in 0..d {
-            y1[i] = y[i] + h / 6.0 * (f[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
-        }
+        M::step(sys, t, t1, &y, &f, &mut y1, &mut w);
         if !all_finite(&y1) {
             return fail(Status::Diverged, t, Some(t1), stats, y);
         }
@@ -107,18 +155,7 @@ fn steps<S: OdeSystem>(
 pub(crate) const RK4: Integrator = Integrator {
     name: "rk4",
     adaptive: false,
-    run: |p, s, obs| {
-        integrate(
-            p,
-            s.t0,
-            s.y0,
-            s.t_end,
-            s.settings.dt,
-            s.settings.max_steps,
-            obs,
-        )
-        .into()
-    },
+    run: |p, s, obs| integrate::<Classic, _>(p, s, obs).into(),
 };
 
 #[cfg(test)]
@@ -130,7 +167,21 @@ mod tests {
     #[test]
     fn a_step_budget_ends_with_max_steps_where_it_ran_out() {
         let mut sys = (OSCILLATOR.system)();
-        let out = integrate(&mut sys, 0.0, &[1.0, 0.0], 1.0, 0.01, 10, &mut Quiet);
+        let settings = crate::solve::integrator::Settings {
+            dt: 0.01,
+            rtol: 1e-6,
+            atol: 1e-8,
+            h_min: 0.0,
+            max_steps: 10,
+            h0: None,
+        };
+        let span = Span {
+            t0: 0.0,
+            y0: &[1.0, 0.0],
+            t_end: 1.0,
+            settings: &settings,
+        };
+        let out = integrate::<Classic, _>(&mut sys, &span, &mut Quiet);
         assert_eq!(out.status, Status::MaxSteps);
         assert!((out.t_reached - 0.1).abs() < 1e-12);
         assert_eq!(out.stats.steps, 10);

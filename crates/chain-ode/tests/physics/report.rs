@@ -318,3 +318,36 @@ fn the_reports_tip_speed_leaves_out_rod_one_and_ends_mid_rod() {
     assert!((v[0][1] - 0.5 * l).abs() < 1e-6, "{v:?}");
     assert_eq!(v[0][0], 1e-6);
 }
+
+#[test]
+fn the_reports_tip_velocity_is_the_chord_of_its_point() {
+    // A straight chain of n rods turning rigidly about P0 at rate w: the
+    // report's point lies at R = l (n - 1.5) from P0 (rod 1 left out, the
+    // last rod's midpoint), so between two samples it moves along the chord
+    // R (cos phi1 - cos phi0, sin phi1 - sin phi0).
+    let c = chain(5, 0.0, 1.0);
+    let l = c.rod_length();
+    let r = l * 3.5;
+    let (w, dt) = (2.0, 0.05);
+    let times = [0.0, dt, 2.0 * dt];
+    let at = |t: f64| vec![-0.4 + w * t; 5];
+    let (a0, a1, a2) = (at(times[0]), at(times[1]), at(times[2]));
+    let angles = [&a0[..], &a1[..], &a2[..]];
+    let v = chain_ode::report::finite_difference_tip_velocities(&c, &times, &angles);
+    let s = chain_ode::report::finite_difference_tip_speeds(&c, &times, &angles);
+    assert_eq!(v.len(), 2);
+    for k in 0..2 {
+        let (p0, p1) = (angles[k][0], angles[k + 1][0]);
+        let want = [
+            r * (p1.cos() - p0.cos()) / dt,
+            r * (p1.sin() - p0.sin()) / dt,
+        ];
+        assert_eq!(v[k][0], times[k + 1]);
+        assert!((v[k][1] - want[0]).abs() < 1e-12, "{v:?} {want:?}");
+        assert!((v[k][2] - want[1]).abs() < 1e-12, "{v:?} {want:?}");
+        // Its norm is the report's speed: the chord over the step, not w R.
+        assert!((v[k][1].hypot(v[k][2]) - s[k][1]).abs() < 1e-12);
+        let chord = 2.0 * r * (0.5 * w * dt).sin() / dt;
+        assert!((s[k][1] - chord).abs() < 1e-12, "{s:?} {chord}");
+    }
+}

@@ -12,6 +12,7 @@
 use std::fmt::Write as _;
 
 use super::format::num;
+use crate::scene::Prepared;
 use crate::RunSummary;
 
 /// RK4's steps: `0.01` halved three times, and `0.0035`, the report's step
@@ -52,6 +53,23 @@ pub struct Run {
     pub dt: String,
     /// `run.rtol` for an adaptive method, else empty.
     pub rtol: String,
+}
+
+impl Run {
+    /// Runs `prepared`, the setting `label` of scene `scene`.
+    pub fn of(scene: &str, label: &str, prepared: &Prepared) -> Result<Run, String> {
+        let traj = prepared.solve().map_err(|e| e.to_string())?;
+        let fixed = prepared.method.accuracy_name() == "dt";
+        let o = &prepared.options;
+        Ok(Run {
+            scene: scene.to_string(),
+            label: label.to_string(),
+            summary: RunSummary::from_trajectory(scene, &traj),
+            length: traj.chain.length(),
+            dt: if fixed { num(o.dt) } else { String::new() },
+            rtol: if fixed { String::new() } else { num(o.rtol) },
+        })
+    }
 }
 
 /// The CSV table of `runs`, which hold every setting of [`settings`] for

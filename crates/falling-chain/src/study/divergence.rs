@@ -74,6 +74,24 @@ pub fn divergence(p: &Prepared) -> Result<Divergence, Error> {
     })
 }
 
+/// Where the work-precision study of `p` evaluates its errors when its
+/// runs may separate: [`divergence`] of `p` and of `undamped` (the same
+/// scene with `r = 0`), their table ([`csv_text`]) and `t_eval`, the last
+/// time before `p`'s runs separate. Errs if they separate before the whip
+/// (an evaluation there would miss it).
+pub fn evaluation(p: &Prepared, undamped: &Prepared) -> Result<(String, f64), String> {
+    let div = divergence(p).map_err(|e| e.to_string())?;
+    let free = divergence(undamped).map_err(|e| e.to_string())?;
+    if div.t_eval < div.t_whip {
+        return Err(format!(
+            "runs separate (t = {}) before the whip (t = {:.3})",
+            div.t_eval, div.t_whip
+        ));
+    }
+    let csv = csv_text(&[(p.chain.damping(), &div), (0.0, &free)]);
+    Ok((csv, div.t_eval))
+}
+
 /// The table of how runs separate: `damping,t,tip_separation,amplification`
 /// for each `(damping, divergence)` (the amplification is the separation
 /// over [`PERTURBATION`]).

@@ -21,6 +21,7 @@ pub mod convergence;
 pub mod divergence;
 pub mod folded;
 pub mod format;
+pub mod machine;
 pub mod matched;
 pub mod needs;
 pub mod plan;
@@ -28,8 +29,10 @@ pub mod plot;
 pub mod precision;
 pub mod report;
 pub mod report_model;
+pub mod report_model_tip;
 pub mod rhs_cost;
 pub mod rigid_limit;
+pub mod scene_run;
 pub mod shard;
 pub mod snap;
 pub mod snap_tension;
@@ -38,6 +41,7 @@ pub mod stiffness;
 pub mod table;
 pub mod tip_mass;
 pub mod validation;
+pub mod viewer_peak;
 
 use chain_ode::Method;
 

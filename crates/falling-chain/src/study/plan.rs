@@ -65,6 +65,24 @@ pub fn rows(
     Ok((reference, rows))
 }
 
+/// A work-precision study's tables: its points ([`precision::csv_text`]
+/// of scene `scene` at `t_eval`) and, when timed (`plan` is `None`), its
+/// timing table ([`timing_text`]); else the points of the timing table
+/// `plan` ([`plan_of`]) are run once each, untimed, on the current rayon
+/// pool.
+pub fn tables(
+    scene: &str,
+    p: &Prepared,
+    t_eval: f64,
+    checks: Checks,
+    plan: Option<&Table>,
+) -> Result<(String, Option<String>), String> {
+    let jobs = plan.map(plan_of).transpose()?;
+    let (reference, points) = rows(p, t_eval, checks, jobs.as_deref())?;
+    let csv = precision::csv_text(scene, t_eval, &reference, &points, None);
+    Ok((csv, plan.is_none().then(|| timing_text(&points))))
+}
+
 /// The timing table: `method,param_name,param,plan,repeats,wall_median,note`,
 /// the plan and the median wall time (s) of each point's runs.
 pub fn timing_text(rows: &[Point]) -> String {

@@ -15,6 +15,7 @@ pub mod folded;
 pub mod report;
 pub mod report_model;
 pub mod timing;
+pub mod tip_mass;
 pub mod validation;
 
 use std::path::Path;

@@ -78,3 +78,57 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     ));
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }
+
+/// The report's Fig. 8 or 11 in its model, from `<id>.csv`
+/// (`scene,t,speed,v_x,v_y`) and `<id>-cases.csv`: its own tip speed
+/// against time (left) and velocity (right), one line per scene, each
+/// labelled with how its run as coded ended and with the largest of its
+/// speeds when its stepper is RK4 instead; the axes span the speeds of the
+/// runs that ended ok (a diverging run leaves them).
+pub fn tip(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let t = read("")?;
+    let c = read("-cases")?;
+    let (scene, time, speed) = (t.strs("scene")?, t.nums("t")?, t.nums("speed")?);
+    let (vx, vy) = (t.nums("v_x")?, t.nums("v_y")?);
+    let (cs, status, reached) = (c.strs("scene")?, c.strs("status")?, c.nums("t_reached")?);
+    let vmax = c.nums("vmax_fd")?;
+    let mut left = LinePlot::new(
+        "its own tip speed, its clock",
+        "t (report's clock)",
+        "tip speed",
+    );
+    let mut right = LinePlot::new("its own tip velocity", "v_x", "v_y");
+    right.equal_aspect = true;
+    // The ranges of the runs that ended ok: a diverging run's last
+    // differences (hundreds) would flatten every curve.
+    let top = (0..c.len())
+        .filter(|&k| status[k] == "ok")
+        .map(|k| vmax[k])
+        .fold(0.0, f64::max);
+    // A quarter above, to the next half unit.
+    let top = (2.5 * top).ceil() / 2.0;
+    if top > 0.0 {
+        left.y_range = Some((0.0, top));
+        (right.x_range, right.y_range) = (Some((-top, top)), Some((-top, top)));
+    }
+    // The cases come in pairs, as coded then with RK4 for the stepper.
+    for k in (0..c.len()).step_by(2) {
+        let name = cs[k];
+        let rows: Vec<usize> = (0..t.len()).filter(|&i| scene[i] == name).collect();
+        let label = format!(
+            "{name}: {} at t = {:.2}; RK4 stepper: max {:.2}",
+            status[k],
+            reached[k],
+            vmax.get(k + 1).copied().unwrap_or(f64::NAN)
+        );
+        left.series.push(Series::line(
+            label.clone(),
+            rows.iter().map(|&i| (time[i], speed[i])).collect(),
+        ));
+        right.series.push(Series::line(
+            name.to_string(),
+            rows.iter().map(|&i| (vx[i], vy[i])).collect(),
+        ));
+    }
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
