@@ -10,8 +10,11 @@ use super::Reader;
 use crate::study::folded::{FORCE_LAW_TO, WINDOW};
 use crate::study::table::distinct;
 
-/// The running means drawn (all are in the data).
-const SHOWN: [usize; 2] = [100, 400];
+/// The running means drawn (all are in the data): the finest run's, whose
+/// comparison with the law a coarser mean's pulses would hide.
+const SHOWN: [usize; 1] = [400];
+/// The run whose raw force is drawn (light, under the means).
+const RAW: &str = "400";
 
 pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
     let c = read("")?;
@@ -148,8 +151,12 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
         "ξ = x / L (fall x of the free end from its start, chain length L)",
         "vertical pull on P₀, downward / (M g)",
     );
-    let mut right = LinePlot::new("against time t", "t", "pull on P₀ / (M g)");
-    let light = RGBColor(190, 190, 190);
+    let mut right = LinePlot::new(
+        "span d = 3 (n = 50, r = 5e-4): pull against time t",
+        "t",
+        "pull on P₀ / (M g)",
+    );
+    let light = RGBColor(200, 200, 200);
     let mut momentum_notes = vec![];
     let folded: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "folded").collect();
     let ns = distinct(&folded.iter().map(|&k| links[k]).collect::<Vec<_>>());
@@ -162,12 +169,12 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
                 100.0 * (p[h] / law_p[h] - 1.0)
             ));
         }
-        if *n == "100" {
+        if *n == RAW {
             // The raw force of one n, to show the clicks the means smooth.
             left.series.insert(
                 0,
                 Series::line(
-                    "n = 100, raw",
+                    format!("n = {n}, raw"),
                     rows.iter().map(|&k| (xi[k], fy[k])).collect(),
                 )
                 .with_color(light),
@@ -187,15 +194,6 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
                 .with_color(palette(i)),
             );
         }
-        if i + 1 == ns.len() {
-            right.series.push(
-                Series::line(
-                    format!("folded, n = {n} (mean)"),
-                    averaged.iter().map(|&k| (t[k], mean[k])).collect(),
-                )
-                .with_color(palette(i)),
-            );
-        }
     }
     let black = RGBColor(0, 0, 0);
     left.series.push(
@@ -210,6 +208,13 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
     // fall) and the law's rise stay in the frame.
     left.x_range = Some((0.0, 1.0));
     left.log_y = true;
+    // Above the raw force's peak, a decade and a half for the legend.
+    let raw_top = folded
+        .iter()
+        .filter(|&&k| links[k] == RAW)
+        .map(|&k| fy[k])
+        .fold(1.0, f64::max);
+    left.y_range = Some((0.3, 30.0 * raw_top));
     left.annotations = vec![
         format!("mean: over {WINDOW} time units"),
         "momentum at ξ = 0.5".to_string(),
@@ -220,29 +225,31 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
     let span: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "span-d3").collect();
     right.series.push(
         Series::line(
-            "span-d3: vertical",
+            "vertical (downward)",
             span.iter().map(|&k| (t[k], fy[k])).collect(),
         )
         .with_color(palette(5)),
     );
     right.series.push(
         Series::new(
-            "span-d3: horizontal",
+            "horizontal",
             span.iter().map(|&k| (t[k], -fx[k])).collect(),
             Style::Dashed,
         )
         .with_color(palette(5)),
     );
     let peak = |f: &dyn Fn(usize) -> f64| span.iter().map(|&k| f(k)).fold(0.0, f64::max);
+    let top = peak(&|k| fy[k]);
     right.annotations = vec![
-        format!("span-d3: peak vertical pull {:.2} M g", peak(&|k| fy[k])),
+        format!("peak vertical pull {top:.2} M g"),
         format!(
             "(peak magnitude |F| {:.2} M g)",
             peak(&|k| fx[k].hypot(fy[k]))
         ),
     ];
-    right.y_range = Some((-0.2, 6.5));
-    let title = "Force F on the pivot P₀ (O(n) recursion) / weight M g of the chain (mass M)";
+    // Room above the peak for the legend and the note.
+    right.y_range = Some((-0.2, 1.45 * top));
+    let title = "Force F on the pivot P₀ / weight M g of the chain (mass M): two experiments";
     let out = figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())?;
     Ok(out)
 }
