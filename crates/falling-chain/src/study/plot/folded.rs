@@ -254,6 +254,16 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
     Ok(out)
 }
 
+/// Where the left panel of the tip's acceleration ends: beyond it the
+/// accelerations of the whip swing by thousands of g either way.
+const LINEAR_TO: f64 = 0.8;
+/// Where the right panel (the ratio to the law) begins.
+const RATIO_FROM: f64 = 0.7;
+
+/// Draws `tip_acceleration`'s tables: on linear axes (the accelerations
+/// change sign), the acceleration itself up to `xi = LINEAR_TO`, and its
+/// ratio to the law from `xi = RATIO_FROM` to the end, every sample drawn (none clipped)
+/// with the means of the `-at` table.
 pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
     let c = read("")?;
     let (links, xi, a, law) = (
@@ -262,48 +272,114 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
         c.nums("accel_over_g")?,
         c.nums("law_over_g")?,
     );
-    let mut p = LinePlot::new(
-        "folded chain, r = 0: why the tip beats g",
-        "x / L (fall of the free end from its start)",
+    let at = read("-at")?;
+    let (at_links, at_xi, at_mean, at_law_mean) = (
+        at.strs("links")?,
+        at.nums("xi")?,
+        at.nums("accel_mean_over_g")?,
+        at.nums("law_mean_over_g")?,
+    );
+    let mut left = LinePlot::new(
+        "downward tip acceleration, ξ ≤ 0.8",
+        "ξ = x / L (fall of the free end from its start)",
         "downward tip acceleration / g",
     );
-    p.log_y = true;
-    p.x_range = Some((0.0, 1.0));
-    p.y_range = Some((0.5, 200.0));
+    let mut right = LinePlot::new(
+        "ξ ≥ 0.7: every sample, over the law's",
+        "ξ = x / L",
+        "tip acceleration / the law's",
+    );
     let names = distinct(&links);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut notes: Vec<String> = vec![];
     for (i, n) in names.iter().enumerate() {
-        p.series.push(
+        let rows: Vec<usize> = (0..c.len()).filter(|&k| links[k] == *n).collect();
+        let near: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|&&k| xi[k] <= LINEAR_TO)
+            .map(|&k| (xi[k], a[k]))
+            .collect();
+        for p in &near {
+            lo = lo.min(p.1);
+            hi = hi.max(p.1);
+        }
+        left.series.push(
+            Series::line(format!("n = {n} (from the dynamics at each sample)"), near)
+                .with_color(palette(i)),
+        );
+        right.series.push(
             Series::line(
-                format!("n = {n} (from the dynamics at each sample)"),
-                (0..c.len())
-                    .filter(|&k| links[k] == *n && a[k] > 0.0)
-                    .map(|k| (xi[k], a[k]))
+                format!("n = {n}"),
+                rows.iter()
+                    .filter(|&&k| xi[k] >= RATIO_FROM && law[k].is_finite() && law[k] > 0.0)
+                    .map(|&k| (xi[k], a[k] / law[k]))
                     .collect(),
             )
             .with_color(palette(i)),
+        );
+        let means: Vec<(f64, f64)> = (0..at.len())
+            .filter(|&k| at_links[k] == *n && at_xi[k] >= RATIO_FROM && at_law_mean[k] > 0.0)
+            .map(|k| (at_xi[k], at_mean[k] / at_law_mean[k]))
+            .collect();
+        for k in (0..at.len()).filter(|&k| at_links[k] == *n && at_mean[k] < 0.0) {
+            notes.push(format!(
+                "n = {n}, ξ = {}: mean {:.1} g (the law's {:.0} g)",
+                at_xi[k], at_mean[k], at_law_mean[k]
+            ));
+        }
+        right.series.push(
+            Series::points(format!("n = {n}, mean over {WINDOW} time units"), means)
+                .with_color(palette(i)),
         );
     }
     // The law at the finest run's samples.
     let finest = names.last().copied().unwrap_or_default();
     let law_pts: Vec<(f64, f64)> = (0..c.len())
-        .filter(|&k| links[k] == finest)
+        .filter(|&k| links[k] == finest && xi[k] <= LINEAR_TO)
         .map(|k| (xi[k], law[k]))
         .collect();
-    p.series.push(
+    let black = RGBColor(0, 0, 0);
+    let gray = RGBColor(120, 120, 120);
+    left.series.push(
         Series::new(
-            "law: a = g [1 + xi (2 - xi) / (2 (1 - xi)^2)]",
+            "law: a = g [1 + ξ (2 - ξ) / (2 (1 - ξ)²)]",
             law_pts,
             Style::Dashed,
         )
-        .with_color(RGBColor(0, 0, 0)),
+        .with_color(black),
     );
-    p.series.push(
+    left.series.push(
         Series::new(
             "free fall: a = g",
-            vec![(0.0, 1.0), (1.0, 1.0)],
+            vec![(0.0, 1.0), (LINEAR_TO, 1.0)],
             Style::Dashed,
         )
-        .with_color(RGBColor(120, 120, 120)),
+        .with_color(gray),
     );
-    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+    left.x_range = Some((0.0, LINEAR_TO));
+    if lo.is_finite() {
+        // Room above the data for the legend.
+        left.y_range = Some((lo.min(0.0), 1.0 + 1.6 * (hi - 1.0)));
+    }
+    right.series.push(
+        Series::new(
+            "the law",
+            vec![(RATIO_FROM, 1.0), (1.0, 1.0)],
+            Style::Dashed,
+        )
+        .with_color(black),
+    );
+    right.series.push(
+        Series::new("zero", vec![(RATIO_FROM, 0.0), (1.0, 0.0)], Style::Line).with_color(gray),
+    );
+    right.x_range = Some((RATIO_FROM, 1.0));
+    // The negative means, as lines of the legend (blank swatches).
+    for line in notes {
+        right
+            .series
+            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+    }
+    let title =
+        "Folded chain, r = 0: why the tip beats g (linear axes: the acceleration changes sign)";
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
