@@ -85,6 +85,7 @@ macro_rules! snapshots {
                 title: $title,
                 scene: $scene,
                 every: 1,
+                shift: 0.0,
                 p1_label: None,
             },
         }
@@ -220,6 +221,7 @@ pub static FIGURES: &[Figure] = &[
             title: "folded chain, n = 50, r = 0.001",
             scene: "folded",
             every: 6,
+            shift: 0.6,
             p1_label: Some("free end at t = 0"),
         },
     },
