@@ -186,7 +186,7 @@ pub static FIGURES: &[Figure] = &[
         },
     },
     snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),
-    snapshots!("fig10b-height-h0", "Fig. 10b", "P1 = (3, 0), n = 50", "n = 50, P1 = (3, 0), r = 0.0005, t = 5.196", "height-h0"),
+    snapshots!("fig10b-height-h0", "Fig. 10b", "P1 = (3, 0), n = 50: Fig. 7b's scene run on to t = 5.196", "n = 50, P1 = (3, 0), r = 0.0005, t = 5.196: the scene of fig07b (which stops at 4.157) run on to the report's t = 15, as the report's Fig. 10b is", "height-h0"),
     snapshots!("fig10c-height-h2", "Fig. 10c", "P1 = (3, 2), n = 50", "n = 50, P1 = (3, 2), r = 0.0005, t = 5.196", "height-h2"),
     snapshots!("fig10d-height-h4", "Fig. 10d", "P1 = (3, 4), n = 50", "n = 50, P1 = (3, 4), r = 0.0005, t = 5.196", "height-h4"),
     Figure {
