@@ -232,7 +232,7 @@ pub static FIGURES: &[Figure] = &[
         what: "work-precision of the span d = 3 scene: tip position and maximum tip speed error \
                vs wall time and vs RHS evaluations, RK4 over dt, the adaptive methods over rtol, \
                against a DOPRI5 rtol 1e-13 reference checked by RK4 and BDF",
-        data: &["wp-span-d3.csv", "wp-span-d3-timing.csv"],
+        data: &["wp-span-d3.csv", "wp-span-d3-timing.csv", "wp-span-d3-cost-timing.csv"],
         timing: Timing::Alongside,
         make: &study::precision_wp::SPAN_D3,
     },
@@ -242,7 +242,7 @@ pub static FIGURES: &[Figure] = &[
         what: "work-precision of the folded scene (r = 0.001), evaluated at the last time before \
                two runs 1e-10 apart separate 1000-fold: its end, as they never do (its r = 0 \
                variant does after the whip; `data/wp-folded-divergence.csv`)",
-        data: &["wp-folded.csv", "wp-folded-divergence.csv", "wp-folded-timing.csv"],
+        data: &["wp-folded.csv", "wp-folded-divergence.csv", "wp-folded-timing.csv", "wp-folded-cost-timing.csv"],
         timing: Timing::Alongside,
         make: &study::precision_wp::FOLDED,
     },
@@ -251,7 +251,7 @@ pub static FIGURES: &[Figure] = &[
         report: None,
         what: "work-precision of the stiff rope (n = 100, r = 1): explicit methods held at their \
                stability limit, BDF not",
-        data: &["wp-stiff-rope.csv", "wp-stiff-rope-timing.csv"],
+        data: &["wp-stiff-rope.csv", "wp-stiff-rope-timing.csv", "wp-stiff-rope-cost-timing.csv"],
         timing: Timing::Alongside,
         make: &study::precision_wp::STIFF_ROPE,
     },
