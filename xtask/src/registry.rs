@@ -214,7 +214,7 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "fig12-folded",
         report: Some("Fig. 12"),
-        what: "n = 50 folded chain (25 down, 1 across, 24 up), r = 0.001, t = 4.157",
+        what: "n = 50 folded chain (25 down, 1 across, 24 up), r = 0.001, t = 4.157; a snapshot every 0.48, side by side",
         data: &["fig12-folded.csv"],
         timing: Timing::None,
         make: &Snapshots {
@@ -347,8 +347,8 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "normal-modes",
         report: None,
-        what: "lowest five frequencies of the linearised hanging chain vs n against \
-               (j_0k / 2) sqrt(g/L), with the fitted convergence order",
+        what: "relative error of the lowest five frequencies of the linearised hanging chain \
+               vs n from (j_0k / 2) sqrt(g/L), with the fitted C / n^p",
         data: &["normal-modes.csv", "normal-modes-fit.csv"],
         timing: Timing::None,
         make: &study::validation_modes::NormalModes,
@@ -356,8 +356,9 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "support-force",
         report: None,
-        what: "force on the pivot P0 in units of M g during the fall: folded (r = 0) against \
-               the law (M g / 4)(2 + 2 xi - 3 xi^2)/(1 - xi), and the span d = 3 scene",
+        what: "force on the pivot P0 in units of M g, one experiment per panel: the folded \
+               fall (r = 0) against xi and the law (M g / 4)(2 + 2 xi - 3 xi^2)/(1 - xi), and \
+               the span d = 3 fall against t",
         data: &["support-force.csv", "support-force-law.csv"],
         timing: Timing::None,
         make: &study::validation_folded::SupportForce,
