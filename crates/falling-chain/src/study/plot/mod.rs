@@ -497,3 +497,71 @@ pub fn stability(title: &str, csv: &str, path: &Path) -> Result<(), FigureError>
     let t = Table::parse("stability", csv).map_err(data)?;
     figures::category_map_to(&stability_map(&t, title).map_err(data)?, path)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::work_cost::UnitWeights;
+
+    fn point(
+        method: &str,
+        param: f64,
+        err: f64,
+        counts: (f64, f64, f64),
+        rhs_equiv: f64,
+    ) -> WpPoint {
+        WpPoint {
+            method: method.into(),
+            param_name: "rtol".into(),
+            param,
+            status: "ok".into(),
+            switched: false,
+            err_tip: err,
+            err_vmax: err / 2.0,
+            rhs_equiv,
+            rhs_evals: counts.0,
+            jacobian_evals: counts.1,
+            lu_factorizations: counts.2,
+            wall: 1e-3 / err.sqrt().sqrt(),
+        }
+    }
+
+    /// The work panel puts a BDF point at its residuals, Jacobians and
+    /// LUs times their weights (an explicit point at its right-hand
+    /// sides), or at its RHS equivalents without weights; and the y range
+    /// leaves the legend and the note over no point.
+    #[test]
+    fn the_work_panel_weighs_bdf_by_its_unit_costs() {
+        let rows = vec![
+            point("dopri5", 1e-6, 1e-6, (600.0, 0.0, 0.0), 600.0),
+            point("dopri5", 1e-8, 1e-8, (1200.0, 0.0, 0.0), 1200.0),
+            point("bdf", 1e-6, 1e-6, (100.0, 2.0, 10.0), 302.0),
+            point("bdf", 1e-8, 1e-8, (300.0, 4.0, 30.0), 704.0),
+        ];
+        let unit = UnitWeights {
+            residual: 1.5,
+            jacobian: 5.0,
+            lu: 10.0,
+        };
+        let weights = Weights {
+            bdf: unit,
+            dense: unit,
+        };
+        let xs = |pair: &PlotPair, name: &str| -> Vec<f64> {
+            let k = Method::ALL.iter().position(|m| m.as_str() == name).unwrap();
+            pair.right.series[k].points.iter().map(|p| p.0).collect()
+        };
+        let data = (4.0, rows);
+        let weighted = work_precision_weighted("test", &data, vec![], Some(weights));
+        assert_eq!(
+            xs(&weighted, "bdf"),
+            vec![150.0 + 10.0 + 100.0, 450.0 + 20.0 + 300.0]
+        );
+        assert_eq!(xs(&weighted, "dopri5"), vec![600.0, 1200.0]);
+        let plain = work_precision("test", &data, vec![]);
+        assert_eq!(xs(&plain, "bdf"), vec![302.0, 704.0]);
+        for panel in [&weighted.left, &weighted.right] {
+            assert_eq!(figures::line_plot_boxes(panel).unwrap().hidden, 0);
+        }
+    }
+}

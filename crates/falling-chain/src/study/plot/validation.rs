@@ -114,3 +114,19 @@ pub fn normal_modes(read: Reader, stem: &Path) -> Result<Output, String> {
     p.annotations = vec![format!("fit over n ≥ {fit_from}: error = C / n^p")];
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::two_digits;
+
+    /// The fitted coefficients as the legend prints them: two significant
+    /// digits, whatever their size.
+    #[test]
+    fn coefficients_keep_two_significant_digits() {
+        assert_eq!(two_digits(0.030617790075241774), "0.031");
+        assert_eq!(two_digits(1.0170717309734207), "1.0");
+        assert_eq!(two_digits(4.2081903440732376), "4.2");
+        assert_eq!(two_digits(10.022663429386704), "10");
+        assert_eq!(two_digits(17.53523819368095), "18");
+    }
+}
