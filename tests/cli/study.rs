@@ -440,7 +440,7 @@ fn the_plots_are_the_papers_drawing_of_the_table() {
     let svg = fs::read_to_string(&wp).unwrap();
     for text in [
         "Work-precision: span-d3 (n = 10)",
-        "reference: DOPRI5 rtol 1e-13, agrees with",
+        "reference: DOPRI5 rtol 1e-13; checks:",
         "DOPRI5 (rtol 1e-3",
         "DOP853 (rtol 1e-3",
     ] {

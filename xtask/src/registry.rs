@@ -87,6 +87,7 @@ macro_rules! snapshots {
                 title: $title,
                 scene: $scene,
                 every: 1,
+                shift: 0.0,
                 p1_label: None,
             },
         }
@@ -187,7 +188,7 @@ pub static FIGURES: &[Figure] = &[
         },
     },
     snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),
-    snapshots!("fig10b-height-h0", "Fig. 10b", "P1 = (3, 0), n = 50", "n = 50, P1 = (3, 0), r = 0.0005, t = 5.196", "height-h0"),
+    snapshots!("fig10b-height-h0", "Fig. 10b", "P1 = (3, 0), n = 50: Fig. 7b's scene run on to t = 5.196", "n = 50, P1 = (3, 0), r = 0.0005, t = 5.196: the scene of fig07b (which stops at 4.157) run on to the report's t = 15, as the report's Fig. 10b is", "height-h0"),
     snapshots!("fig10c-height-h2", "Fig. 10c", "P1 = (3, 2), n = 50", "n = 50, P1 = (3, 2), r = 0.0005, t = 5.196", "height-h2"),
     snapshots!("fig10d-height-h4", "Fig. 10d", "P1 = (3, 4), n = 50", "n = 50, P1 = (3, 4), r = 0.0005, t = 5.196", "height-h4"),
     Figure {
@@ -215,13 +216,14 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "fig12-folded",
         report: Some("Fig. 12"),
-        what: "n = 50 folded chain (25 down, 1 across, 24 up), r = 0.001, t = 4.157",
+        what: "n = 50 folded chain (25 down, 1 across, 24 up), r = 0.001, t = 4.157; a snapshot every 0.48, side by side",
         data: &["fig12-folded.csv"],
         timing: Timing::None,
         make: &Snapshots {
             title: "folded chain, n = 50, r = 0.001",
             scene: "folded",
             every: 6,
+            shift: 0.6,
             p1_label: Some("free end at t = 0"),
         },
     },
@@ -232,7 +234,7 @@ pub static FIGURES: &[Figure] = &[
         what: "work-precision of the span d = 3 scene: tip position and maximum tip speed error \
                vs wall time and vs RHS evaluations, RK4 over dt, the adaptive methods over rtol, \
                against a DOPRI5 rtol 1e-13 reference checked by RK4 and BDF",
-        data: &["wp-span-d3.csv", "wp-span-d3-timing.csv"],
+        data: &["wp-span-d3.csv", "wp-span-d3-timing.csv", "wp-span-d3-cost-timing.csv"],
         timing: Timing::Alongside,
         make: &study::precision_wp::SPAN_D3,
     },
@@ -242,7 +244,7 @@ pub static FIGURES: &[Figure] = &[
         what: "work-precision of the folded scene (r = 0.001), evaluated at the last time before \
                two runs 1e-10 apart separate 1000-fold: its end, as they never do (its r = 0 \
                variant does after the whip; `data/wp-folded-divergence.csv`)",
-        data: &["wp-folded.csv", "wp-folded-divergence.csv", "wp-folded-timing.csv"],
+        data: &["wp-folded.csv", "wp-folded-divergence.csv", "wp-folded-timing.csv", "wp-folded-cost-timing.csv"],
         timing: Timing::Alongside,
         make: &study::precision_wp::FOLDED,
     },
@@ -251,7 +253,7 @@ pub static FIGURES: &[Figure] = &[
         report: None,
         what: "work-precision of the stiff rope (n = 100, r = 1): explicit methods held at their \
                stability limit, BDF not",
-        data: &["wp-stiff-rope.csv", "wp-stiff-rope-timing.csv"],
+        data: &["wp-stiff-rope.csv", "wp-stiff-rope-timing.csv", "wp-stiff-rope-cost-timing.csv"],
         timing: Timing::Alongside,
         make: &study::precision_wp::STIFF_ROPE,
     },
@@ -347,8 +349,8 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "normal-modes",
         report: None,
-        what: "lowest five frequencies of the linearised hanging chain vs n against \
-               (j_0k / 2) sqrt(g/L), with the fitted convergence order",
+        what: "relative error of the lowest five frequencies of the linearised hanging chain \
+               vs n from (j_0k / 2) sqrt(g/L), with the fitted C / n^p",
         data: &["normal-modes.csv", "normal-modes-fit.csv"],
         timing: Timing::None,
         make: &study::validation_modes::NormalModes,
@@ -356,8 +358,9 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "support-force",
         report: None,
-        what: "force on the pivot P0 in units of M g during the fall: folded (r = 0) against \
-               the law (M g / 4)(2 + 2 xi - 3 xi^2)/(1 - xi), and the span d = 3 scene",
+        what: "force on the pivot P0 in units of M g, one experiment per panel: the folded \
+               fall (r = 0) against xi and the law (M g / 4)(2 + 2 xi - 3 xi^2)/(1 - xi), and \
+               the span d = 3 fall against t",
         data: &["support-force.csv", "support-force-law.csv"],
         timing: Timing::None,
         make: &study::validation_folded::SupportForce,

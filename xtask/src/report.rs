@@ -65,6 +65,9 @@ pub struct Snapshots {
     /// Draw every `every`-th snapshot (1: all) and always the last, so that
     /// the snapshots of a narrow chain stay apart.
     pub every: usize,
+    /// Offset panels: the k-th frame drawn moved right by `k shift` (0:
+    /// the frames drawn over each other).
+    pub shift: f64,
     /// The legend's name of `P1` when it is not the anchor the report calls
     /// P₁ (for the folded chain: where the free end starts).
     pub p1_label: Option<&'static str>,
@@ -89,7 +92,14 @@ impl Make for Snapshots {
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         ctx.draw(fig, |r, s| {
-            plot::report::snapshots(r, s, &title(fig, self.title), self.every, self.p1_label)
+            plot::report::snapshots(
+                r,
+                s,
+                &title(fig, self.title),
+                self.every,
+                self.shift,
+                self.p1_label,
+            )
         })
     }
 }

@@ -58,12 +58,12 @@ pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use pivot::{Pivot, PivotPath};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
-#[doc(hidden)]
-pub use solve::with_general_sparse_lu;
 pub use solve::{
     bdf_crossover_gamma, solve, solve_beam, solve_report, Accuracy, BeamRun, Method, Sample,
     Segment, SolveOptions, Summary, Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
     BDF_DENSE_MAX_LINKS, BEAM_MAX_STEPS, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
+#[doc(hidden)]
+pub use solve::{unit_costs, with_general_sparse_lu, UnitCosts};
 pub use state::{Start, StartError, State};
 pub use system::ChainSystem;

@@ -29,9 +29,10 @@ struct Sketch {
     p1: (f64, f64),
     /// Joints of the hanging chain.
     hanging: Vec<(f64, f64)>,
-    /// Two later shapes of the falling chain (illustrative: hanging chains
-    /// of the same length with the free end lower).
-    falling: [Vec<(f64, f64)>; 2],
+    /// Where the arrow of the released end's fall ends (no later shape is
+    /// drawn: the falling chain does not keep the hanging one's U; its
+    /// shapes are Figs. 3 to 12).
+    fall_to: (f64, f64),
 }
 
 const D: f64 = 3.6;
@@ -42,15 +43,11 @@ const RODS: usize = 12;
 impl Sketch {
     fn new() -> Sketch {
         let hanging = catenary_joints(D, H, L, RODS);
-        let falling = [
-            catenary_joints(D + 0.15, H - 1.2, L, RODS),
-            catenary_joints(D + 0.3, H - 2.5, L, RODS),
-        ];
         Sketch {
             p0: (0.0, 0.0),
             p1: (D, H),
             hanging,
-            falling,
+            fall_to: (D + 0.3, H - 2.5),
         }
     }
 }
@@ -175,7 +172,7 @@ impl Draw for Sketch {
         let ymin = self
             .hanging
             .iter()
-            .chain(self.falling.iter().flatten())
+            .chain(std::iter::once(&self.fall_to))
             .fold(0.0f64, |m, p| m.min(p.1));
         let (y0, y1) = (ymin - 0.3, H + 1.0);
         let m = 30.0 * t.scale;
@@ -237,16 +234,8 @@ impl Draw for Sketch {
             text(big, HPos::Left, VPos::Center),
         ))?;
 
-        // Later shapes of the falling chain, and the path of its end.
-        for (k, shape) in self.falling.iter().enumerate() {
-            let color = cool(0.55 + 0.45 * k as f64);
-            root.draw(&dashed(
-                shape.iter().map(|&p| px.p(p)).collect(),
-                color,
-                t.px(3.0),
-            ))?;
-        }
-        let end = *self.falling[1].last().unwrap_or(&self.p1);
+        // The path of the released end.
+        let end = self.fall_to;
         let fall = cool(1.0);
         arrow(
             root,

@@ -24,6 +24,8 @@ pub struct ChainSnapshots<'a> {
     pub colorbar_label: &'a str,
     /// Legend name of `p1` (default "P₁").
     pub p1_label: &'a str,
+    /// Label of the x axis (default "x").
+    pub x_label: &'a str,
 }
 
 impl<'a> ChainSnapshots<'a> {
@@ -39,6 +41,7 @@ impl<'a> ChainSnapshots<'a> {
             equal_aspect: true,
             colorbar_label: "t",
             p1_label: "P₁",
+            x_label: "x",
         }
     }
 
@@ -56,7 +59,7 @@ impl<'a> ChainSnapshots<'a> {
             p1: self.p1.map(|p| (p[0], p[1])),
             p1_label: self.p1_label,
             cbar_label: self.colorbar_label,
-            x_label: "x",
+            x_label: self.x_label,
             y_label: "y",
             equal_aspect: self.equal_aspect,
             x_range: self.x_range,

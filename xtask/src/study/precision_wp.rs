@@ -15,6 +15,7 @@ use falling_chain::study::divergence;
 use falling_chain::study::plan;
 use falling_chain::study::plot;
 use falling_chain::study::precision::Checks;
+use falling_chain::study::work_cost::{self, Weights};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -95,6 +96,9 @@ impl Make for Spec {
         files.push(ctx.write(&format!("{id}.csv"), &csv)?);
         if let Some(timing) = timing {
             files.push(ctx.write(&format!("{id}-timing.csv"), &timing)?);
+            // What BDF's units cost against a right-hand side, at the start.
+            let cost = work_cost::csv_text(&p.chain, &p.state)?;
+            files.push(ctx.write(&format!("{id}-cost-timing.csv"), &cost)?);
         }
         Ok(files)
     }
@@ -102,6 +106,7 @@ impl Make for Spec {
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let t = ctx.read(&format!("{}.csv", fig.id))?;
         let rows = plot::wp_points(&t, Some(&ctx.read(&format!("{}-timing.csv", fig.id))?))?;
+        let weights = Weights::from_table(&ctx.read(&format!("{}-cost-timing.csv", fig.id))?)?;
         let notes = match self.eval {
             Eval::End => vec![],
             Eval::BeforeSeparation => {
@@ -110,7 +115,7 @@ impl Make for Spec {
                 )?]
             }
         };
-        let out = plot::work_precision(self.label, &rows, notes)
+        let out = plot::work_precision_weighted(self.label, &rows, notes, Some(weights))
             .save(&ctx.stem(fig.id))
             .map_err(|e| e.to_string())?;
         Ok(ctx.drawn(&out))

@@ -28,6 +28,7 @@ mod sparse_lu;
 mod step_size;
 #[cfg(test)]
 mod test_problems;
+mod unit_costs;
 
 use std::fmt;
 use std::str::FromStr;
@@ -48,6 +49,8 @@ pub use integrator::Accuracy;
 use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
 pub use report_run::{solve_report, REPORT_METHODS};
+#[doc(hidden)]
+pub use unit_costs::{unit_costs, UnitCosts};
 
 /// An integration method. The variant is the public handle; its name and
 /// kind come from its integrator in the registry.

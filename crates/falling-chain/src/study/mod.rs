@@ -42,6 +42,7 @@ pub mod table;
 pub mod tip_mass;
 pub mod validation;
 pub mod viewer_peak;
+pub mod work_cost;
 
 use chain_ode::Method;
 

@@ -48,12 +48,15 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
     let gray = RGBColor(120, 120, 120);
     let top = vmax.iter().copied().fold(0.0, f64::max);
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+    let mut references = vec![];
     for (s, name) in scenes.iter().enumerate() {
         let rows = ladder(name);
         let reference_n = rows.first().map_or(0.0, |&k| reference[k]);
+        // The scenes' names are in the right panel's legend, in the same
+        // colours.
         left.series.push(
             Series::new(
-                *name,
+                "",
                 rows.iter().map(|&k| (links[k], vmax[k])).collect(),
                 Style::LinePoints,
             )
@@ -71,9 +74,10 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
                 }
             }
         }
+        references.push(reference_n);
         right.series.push(
             Series::new(
-                format!("{name}: max tip speed (reference: n = {reference_n})"),
+                *name,
                 below.iter().map(|&k| (links[k], dev_v[k])).collect(),
                 Style::LinePoints,
             )
@@ -81,20 +85,30 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
         );
         right.series.push(
             Series::new(
-                format!("{name}: tip path / L"),
+                "",
                 below.iter().map(|&k| (links[k], dev_path[k])).collect(),
                 Style::Dashed,
             )
             .with_color(palette(s)),
         );
     }
+    let (x0, x1) = (20.0, 2000.0);
+    right.series.push(
+        Series::new("dashed: tip path / L", vec![], Style::Dashed).with_color(RGBColor(0, 0, 0)),
+    );
     for (tol, label) in [(TOLS[0], "1% and 0.1%"), (TOLS[1], "")] {
-        right.series.push(
-            Series::new(label, vec![(20.0, tol), (4000.0, tol)], Style::Dashed).with_color(gray),
-        );
+        right
+            .series
+            .push(Series::new(label, vec![(x0, tol), (x1, tol)], Style::Dashed).with_color(gray));
     }
-    right.x_range = Some((20.0, 4000.0));
-    left.x_range = Some((20.0, 4000.0));
+    let names: Vec<String> = references.iter().map(|r| r.to_string()).collect();
+    let reference = distinct(&names.iter().map(String::as_str).collect::<Vec<_>>()).join(", ");
+    right.annotations = vec![
+        "solid: max tip speed".to_string(),
+        format!("against the reference n = {reference}"),
+    ];
+    right.x_range = Some((x0, x1));
+    left.x_range = Some((x0, x1));
     left.annotations = vec!["n for max tip speed within 1% / 0.1%:".to_string()];
     for k in 0..sm.len() {
         left.annotations
@@ -108,10 +122,9 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
     }
     // Room above the data for the boxes; on the right, half a decade
     // below the smallest deviation and room above for the legend.
-    left.y_range = Some((0.0, 1.75 * top));
+    left.y_range = Some((0.0, 1.6 * top));
     if lo.is_finite() {
-        let (a, b) = ((lo / 10f64.sqrt()).log10().floor(), (hi * 3.0).log10());
-        right.y_range = Some((10f64.powf(a), 10f64.powf(b + 0.75 * (b - a))));
+        right.y_range = Some((lo / 3.0, hi * 300.0));
     }
     let title = "Convergence in n at fixed total mass and bending viscosity (auto, rtol 1e-9)";
     let out = figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())?;

@@ -10,8 +10,11 @@ use super::Reader;
 use crate::study::folded::{FORCE_LAW_TO, WINDOW};
 use crate::study::table::distinct;
 
-/// The running means drawn (all are in the data).
-const SHOWN: [usize; 2] = [100, 400];
+/// The running means drawn (all are in the data): the finest run's, whose
+/// comparison with the law a coarser mean's pulses would hide.
+const SHOWN: [usize; 1] = [400];
+/// The run whose raw force is drawn (light, under the means).
+const RAW: &str = "400";
 
 pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
     let c = read("")?;
@@ -148,8 +151,12 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
         "ξ = x / L (fall x of the free end from its start, chain length L)",
         "vertical pull on P₀, downward / (M g)",
     );
-    let mut right = LinePlot::new("against time t", "t", "pull on P₀ / (M g)");
-    let light = RGBColor(190, 190, 190);
+    let mut right = LinePlot::new(
+        "span d = 3 (n = 50, r = 5e-4): pull against time t",
+        "t",
+        "pull on P₀ / (M g)",
+    );
+    let light = RGBColor(200, 200, 200);
     let mut momentum_notes = vec![];
     let folded: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "folded").collect();
     let ns = distinct(&folded.iter().map(|&k| links[k]).collect::<Vec<_>>());
@@ -162,12 +169,12 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
                 100.0 * (p[h] / law_p[h] - 1.0)
             ));
         }
-        if *n == "100" {
+        if *n == RAW {
             // The raw force of one n, to show the clicks the means smooth.
             left.series.insert(
                 0,
                 Series::line(
-                    "n = 100, raw",
+                    format!("n = {n}, raw"),
                     rows.iter().map(|&k| (xi[k], fy[k])).collect(),
                 )
                 .with_color(light),
@@ -187,15 +194,6 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
                 .with_color(palette(i)),
             );
         }
-        if i + 1 == ns.len() {
-            right.series.push(
-                Series::line(
-                    format!("folded, n = {n} (mean)"),
-                    averaged.iter().map(|&k| (t[k], mean[k])).collect(),
-                )
-                .with_color(palette(i)),
-            );
-        }
     }
     let black = RGBColor(0, 0, 0);
     left.series.push(
@@ -210,6 +208,13 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
     // fall) and the law's rise stay in the frame.
     left.x_range = Some((0.0, 1.0));
     left.log_y = true;
+    // Above the raw force's peak, a decade and a half for the legend.
+    let raw_top = folded
+        .iter()
+        .filter(|&&k| links[k] == RAW)
+        .map(|&k| fy[k])
+        .fold(1.0, f64::max);
+    left.y_range = Some((0.3, 30.0 * raw_top));
     left.annotations = vec![
         format!("mean: over {WINDOW} time units"),
         "momentum at ξ = 0.5".to_string(),
@@ -220,33 +225,45 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
     let span: Vec<usize> = (0..d.len()).filter(|&k| scene[k] == "span-d3").collect();
     right.series.push(
         Series::line(
-            "span-d3: vertical",
+            "vertical (downward)",
             span.iter().map(|&k| (t[k], fy[k])).collect(),
         )
         .with_color(palette(5)),
     );
     right.series.push(
         Series::new(
-            "span-d3: horizontal",
+            "horizontal",
             span.iter().map(|&k| (t[k], -fx[k])).collect(),
             Style::Dashed,
         )
         .with_color(palette(5)),
     );
     let peak = |f: &dyn Fn(usize) -> f64| span.iter().map(|&k| f(k)).fold(0.0, f64::max);
+    let top = peak(&|k| fy[k]);
     right.annotations = vec![
-        format!("span-d3: peak vertical pull {:.2} M g", peak(&|k| fy[k])),
+        format!("peak vertical pull {top:.2} M g"),
         format!(
             "(peak magnitude |F| {:.2} M g)",
             peak(&|k| fx[k].hypot(fy[k]))
         ),
     ];
-    right.y_range = Some((-0.2, 6.5));
-    let title = "Force F on the pivot P₀ (O(n) recursion) / weight M g of the chain (mass M)";
+    // Room above the peak for the legend and the note.
+    right.y_range = Some((-0.2, 1.45 * top));
+    let title = "Force F on the pivot P₀ / weight M g of the chain (mass M): two experiments";
     let out = figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())?;
     Ok(out)
 }
 
+/// Where the left panel of the tip's acceleration ends: beyond it the
+/// accelerations of the whip swing by thousands of g either way.
+const LINEAR_TO: f64 = 0.8;
+/// Where the right panel (the ratio to the law) begins.
+const RATIO_FROM: f64 = 0.7;
+
+/// Draws `tip_acceleration`'s tables: on linear axes (the accelerations
+/// change sign), the acceleration itself up to `xi = LINEAR_TO`, and its
+/// ratio to the law from `xi = RATIO_FROM` to the end, every sample drawn (none clipped)
+/// with the means of the `-at` table.
 pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
     let c = read("")?;
     let (links, xi, a, law) = (
@@ -255,48 +272,114 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
         c.nums("accel_over_g")?,
         c.nums("law_over_g")?,
     );
-    let mut p = LinePlot::new(
-        "folded chain, r = 0: why the tip beats g",
-        "x / L (fall of the free end from its start)",
+    let at = read("-at")?;
+    let (at_links, at_xi, at_mean, at_law_mean) = (
+        at.strs("links")?,
+        at.nums("xi")?,
+        at.nums("accel_mean_over_g")?,
+        at.nums("law_mean_over_g")?,
+    );
+    let mut left = LinePlot::new(
+        "downward tip acceleration, ξ ≤ 0.8",
+        "ξ = x / L (fall of the free end from its start)",
         "downward tip acceleration / g",
     );
-    p.log_y = true;
-    p.x_range = Some((0.0, 1.0));
-    p.y_range = Some((0.5, 200.0));
+    let mut right = LinePlot::new(
+        "ξ ≥ 0.7: every sample, over the law's",
+        "ξ = x / L",
+        "tip acceleration / the law's",
+    );
     let names = distinct(&links);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut notes: Vec<String> = vec![];
     for (i, n) in names.iter().enumerate() {
-        p.series.push(
+        let rows: Vec<usize> = (0..c.len()).filter(|&k| links[k] == *n).collect();
+        let near: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|&&k| xi[k] <= LINEAR_TO)
+            .map(|&k| (xi[k], a[k]))
+            .collect();
+        for p in &near {
+            lo = lo.min(p.1);
+            hi = hi.max(p.1);
+        }
+        left.series.push(
+            Series::line(format!("n = {n} (from the dynamics at each sample)"), near)
+                .with_color(palette(i)),
+        );
+        right.series.push(
             Series::line(
-                format!("n = {n} (from the dynamics at each sample)"),
-                (0..c.len())
-                    .filter(|&k| links[k] == *n && a[k] > 0.0)
-                    .map(|k| (xi[k], a[k]))
+                format!("n = {n}"),
+                rows.iter()
+                    .filter(|&&k| xi[k] >= RATIO_FROM && law[k].is_finite() && law[k] > 0.0)
+                    .map(|&k| (xi[k], a[k] / law[k]))
                     .collect(),
             )
             .with_color(palette(i)),
+        );
+        let means: Vec<(f64, f64)> = (0..at.len())
+            .filter(|&k| at_links[k] == *n && at_xi[k] >= RATIO_FROM && at_law_mean[k] > 0.0)
+            .map(|k| (at_xi[k], at_mean[k] / at_law_mean[k]))
+            .collect();
+        for k in (0..at.len()).filter(|&k| at_links[k] == *n && at_mean[k] < 0.0) {
+            notes.push(format!(
+                "n = {n}, ξ = {}: mean {:.1} g (the law's {:.0} g)",
+                at_xi[k], at_mean[k], at_law_mean[k]
+            ));
+        }
+        right.series.push(
+            Series::points(format!("n = {n}, mean over {WINDOW} time units"), means)
+                .with_color(palette(i)),
         );
     }
     // The law at the finest run's samples.
     let finest = names.last().copied().unwrap_or_default();
     let law_pts: Vec<(f64, f64)> = (0..c.len())
-        .filter(|&k| links[k] == finest)
+        .filter(|&k| links[k] == finest && xi[k] <= LINEAR_TO)
         .map(|k| (xi[k], law[k]))
         .collect();
-    p.series.push(
+    let black = RGBColor(0, 0, 0);
+    let gray = RGBColor(120, 120, 120);
+    left.series.push(
         Series::new(
-            "law: a = g [1 + xi (2 - xi) / (2 (1 - xi)^2)]",
+            "law: a = g [1 + ξ (2 - ξ) / (2 (1 - ξ)²)]",
             law_pts,
             Style::Dashed,
         )
-        .with_color(RGBColor(0, 0, 0)),
+        .with_color(black),
     );
-    p.series.push(
+    left.series.push(
         Series::new(
             "free fall: a = g",
-            vec![(0.0, 1.0), (1.0, 1.0)],
+            vec![(0.0, 1.0), (LINEAR_TO, 1.0)],
             Style::Dashed,
         )
-        .with_color(RGBColor(120, 120, 120)),
+        .with_color(gray),
     );
-    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+    left.x_range = Some((0.0, LINEAR_TO));
+    if lo.is_finite() {
+        // Room above the data for the legend.
+        left.y_range = Some((lo.min(0.0), 1.0 + 1.6 * (hi - 1.0)));
+    }
+    right.series.push(
+        Series::new(
+            "the law",
+            vec![(RATIO_FROM, 1.0), (1.0, 1.0)],
+            Style::Dashed,
+        )
+        .with_color(black),
+    );
+    right.series.push(
+        Series::new("zero", vec![(RATIO_FROM, 0.0), (1.0, 0.0)], Style::Line).with_color(gray),
+    );
+    right.x_range = Some((RATIO_FROM, 1.0));
+    // The negative means, as lines of the legend (blank swatches).
+    for line in notes {
+        right
+            .series
+            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+    }
+    let title =
+        "Folded chain, r = 0: why the tip beats g (linear axes: the acceleration changes sign)";
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }

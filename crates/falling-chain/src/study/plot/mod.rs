@@ -28,11 +28,16 @@ use figures::{
 use super::format::{exp, short_err};
 use super::stability::{Outcome, MAX_STEPS};
 use super::table::{distinct, parse_num, Table};
+use super::work_cost::{UnitWeights, Weights};
 
 /// What a drawing reads its tables with: the table of the given suffix
 /// (`""` for the main table, `"-law"`, `"-times"`, ...; the caller maps
 /// the suffix to a file).
 pub type Reader<'a> = &'a dyn Fn(&str) -> Result<Table, String>;
+
+/// The most lines of room a work-precision panel keeps above its data for
+/// its legend or note.
+const MAX_RESERVED_LINES: f64 = 12.0;
 
 /// Errors below this are drawn at it (a log axis cannot show 0).
 const DRAW_FLOOR: f64 = 1e-16;
@@ -51,6 +56,10 @@ pub struct WpPoint {
     pub err_tip: f64,
     pub err_vmax: f64,
     pub rhs_equiv: f64,
+    /// The counts of [`chain_ode::Stats`] the weighted work is made of.
+    pub rhs_evals: f64,
+    pub jacobian_evals: f64,
+    pub lu_factorizations: f64,
     /// Wall time (s; NaN: none).
     pub wall: f64,
 }
@@ -75,6 +84,11 @@ pub fn wp_points(t: &Table, timing: Option<&Table>) -> Result<(f64, Vec<WpPoint>
         t.nums("err_tip")?,
         t.nums("err_vmax")?,
         t.nums("rhs_equiv")?,
+    );
+    let (evals, jacs, lus) = (
+        t.nums("rhs_evals")?,
+        t.nums("jacobian_evals")?,
+        t.nums("lu_factorizations")?,
     );
     let walls: Vec<f64> = match timing {
         Some(w) => {
@@ -102,6 +116,9 @@ pub fn wp_points(t: &Table, timing: Option<&Table>) -> Result<(f64, Vec<WpPoint>
                 err_tip: err_tip[k],
                 err_vmax: err_vmax[k],
                 rhs_equiv: rhs[k],
+                rhs_evals: evals[k],
+                jacobian_evals: jacs[k],
+                lu_factorizations: lus[k],
                 wall: walls[k],
             })
         })
@@ -216,20 +233,31 @@ impl PlotPair {
 
 /// The work-precision pair of a table's rows ([`wp_points`]) of the scene
 /// called `label`, evaluated at `t_eval`, with `notes` added under the
-/// agreement of the reference with its checks.
-pub fn work_precision(
+/// agreement of the reference with its checks; the work is counted in
+/// right-hand sides (a Jacobian of BDF as one per JVP).
+pub fn work_precision(label: &str, rows: &(f64, Vec<WpPoint>), notes: Vec<String>) -> PlotPair {
+    work_precision_weighted(label, rows, notes, None)
+}
+
+/// As [`work_precision`], with the work of the implicit methods weighted
+/// by measured unit costs when `weights` are given
+/// ([`super::work_cost`]): every residual (with its Newton solve),
+/// Jacobian and LU factorisation in right-hand sides.
+pub fn work_precision_weighted(
     label: &str,
     (t_eval, rows): &(f64, Vec<WpPoint>),
     notes: Vec<String>,
+    weights: Option<Weights>,
 ) -> PlotPair {
     // The error the paper uses: the larger of the two relative errors.
     let y_label = "max(|Δr_tip| / L, |Δv_max| / v_max)";
     let mut left = LinePlot::new("error vs wall time", "wall time (s, median)", y_label);
-    let mut right = LinePlot::new(
-        "error vs work",
-        "RHS evaluations (+ one per JVP of BDF)",
-        y_label,
-    );
+    let work_label = if weights.is_some() {
+        "work in RHS (BDF's units at measured cost)"
+    } else {
+        "RHS evaluations (+ one per JVP of BDF)"
+    };
+    let mut right = LinePlot::new("error vs work", work_label, y_label);
     let floor = |e: f64| e.max(DRAW_FLOOR);
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     for (i, method) in Method::ALL.into_iter().enumerate() {
@@ -243,7 +271,12 @@ pub fn work_precision(
             Style::LinePoints
         };
         let wall = |pt: &WpPoint| pt.wall;
-        let work = |pt: &WpPoint| pt.rhs_equiv;
+        let work = |pt: &WpPoint| match weights
+            .and_then(|w| w.of(&pt.method, pt.lu_factorizations > 0.0))
+        {
+            Some(u) => u.work(pt.rhs_evals, pt.jacobian_evals, pt.lu_factorizations),
+            None => pt.rhs_equiv,
+        };
         for (plot, x, label) in [
             (&mut left, &wall as &dyn Fn(&WpPoint) -> f64, label.as_str()),
             (&mut right, &work, ""),
@@ -261,26 +294,9 @@ pub fn work_precision(
                 .push(Series::new(label, pts, style).with_color(color));
         }
     }
-    // Fitted to the data, with a third of a decade to spare below and
-    // room above for the legend and the note (one line each about 4% of
-    // the height).
-    let margin = 10f64.powf(1.0 / 3.0);
-    let lines = 8.0;
-    for plot in [&mut left, &mut right] {
-        plot.log_x = true;
-        plot.log_y = true;
-        if lo.is_finite() && hi > 0.0 {
-            let (a, b) = ((lo / margin).log10(), (hi * margin).log10());
-            let top = b + (b - a) * lines * 0.05 / (1.0 - lines * 0.05);
-            plot.y_range = Some((10f64.powf(a), 10f64.powf(top)));
-        }
-    }
     let mut text = vec![];
     if let Some((ref_rtol, agree)) = agreement(rows) {
-        text.push(format!(
-            "reference: DOPRI5 rtol {}, agrees with",
-            exp(ref_rtol)
-        ));
+        text.push(format!("reference: DOPRI5 rtol {}; checks:", exp(ref_rtol)));
         text.push(format!("  {}", agree.join(", ")));
     }
     text.push(format!("tip position error Δr_tip at t = {t_eval}"));
@@ -288,8 +304,53 @@ pub fn work_precision(
     if !auto.is_empty() && auto.iter().all(|pt| !pt.switched) {
         text.extend(same_as(&auto, rows));
     }
+    if let Some(w) = weights {
+        // One line: what a factorisation and a Jacobian cost (each
+        // residual with its solve costs about one RHS: in the caption).
+        let one = |u: UnitWeights| format!("{:.0}, {:.0}", u.lu, u.jacobian);
+        text.push(format!(
+            "LU, Jacobian in RHS: BDF {}; BDF-DENSE {}",
+            one(w.bdf),
+            one(w.dense)
+        ));
+    }
     text.extend(notes);
     right.annotations = text;
+    // Fitted to the data, with a third of a decade to spare below, and
+    // above only as much room as the legend and the note need to hide no
+    // data: none when they fit into a corner the data leave free (the
+    // lines fall to the lower right), else a line's height at a time
+    // (about 5% of the plot), the same for both panels.
+    let margin = 10f64.powf(1.0 / 3.0);
+    let range = |lines: f64| {
+        let (a, b) = ((lo / margin).log10(), (hi * margin).log10());
+        let top = b + (b - a) * lines * 0.05 / (1.0 - lines * 0.05);
+        (10f64.powf(a), 10f64.powf(top))
+    };
+    let mut lines = 0.0;
+    for plot in [&mut left, &mut right] {
+        plot.log_x = true;
+        plot.log_y = true;
+        if !(lo.is_finite() && hi > 0.0) {
+            continue;
+        }
+        while lines < MAX_RESERVED_LINES {
+            plot.y_range = Some(range(lines));
+            match figures::line_plot_boxes(plot) {
+                Ok(b) if b.hidden > 0 => lines += 1.0,
+                _ => break,
+            }
+        }
+    }
+    if lo.is_finite() && hi > 0.0 {
+        // A panel of the pair is narrower than the single plot the boxes
+        // were laid out in: a line more.
+        if lines > 0.0 {
+            lines += 1.0;
+        }
+        left.y_range = Some(range(lines));
+        right.y_range = Some(range(lines));
+    }
     let title =
         format!("Work-precision: {label}; error: larger of tip position, max tip speed errors");
     PlotPair { left, right, title }
@@ -437,4 +498,72 @@ pub fn stability_map<'a>(t: &Table, title: &'a str) -> Result<CategoryMap<'a>, S
 pub fn stability(title: &str, csv: &str, path: &Path) -> Result<(), FigureError> {
     let t = Table::parse("stability", csv).map_err(data)?;
     figures::category_map_to(&stability_map(&t, title).map_err(data)?, path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::work_cost::UnitWeights;
+
+    fn point(
+        method: &str,
+        param: f64,
+        err: f64,
+        counts: (f64, f64, f64),
+        rhs_equiv: f64,
+    ) -> WpPoint {
+        WpPoint {
+            method: method.into(),
+            param_name: "rtol".into(),
+            param,
+            status: "ok".into(),
+            switched: false,
+            err_tip: err,
+            err_vmax: err / 2.0,
+            rhs_equiv,
+            rhs_evals: counts.0,
+            jacobian_evals: counts.1,
+            lu_factorizations: counts.2,
+            wall: 1e-3 / err.sqrt().sqrt(),
+        }
+    }
+
+    /// The work panel puts a BDF point at its residuals, Jacobians and
+    /// LUs times their weights (an explicit point at its right-hand
+    /// sides), or at its RHS equivalents without weights; and the y range
+    /// leaves the legend and the note over no point.
+    #[test]
+    fn the_work_panel_weighs_bdf_by_its_unit_costs() {
+        let rows = vec![
+            point("dopri5", 1e-6, 1e-6, (600.0, 0.0, 0.0), 600.0),
+            point("dopri5", 1e-8, 1e-8, (1200.0, 0.0, 0.0), 1200.0),
+            point("bdf", 1e-6, 1e-6, (100.0, 2.0, 10.0), 302.0),
+            point("bdf", 1e-8, 1e-8, (300.0, 4.0, 30.0), 704.0),
+        ];
+        let unit = UnitWeights {
+            residual: 1.5,
+            jacobian: 5.0,
+            lu: 10.0,
+        };
+        let weights = Weights {
+            bdf: unit,
+            dense: unit,
+        };
+        let xs = |pair: &PlotPair, name: &str| -> Vec<f64> {
+            let k = Method::ALL.iter().position(|m| m.as_str() == name).unwrap();
+            pair.right.series[k].points.iter().map(|p| p.0).collect()
+        };
+        let data = (4.0, rows);
+        let weighted = work_precision_weighted("test", &data, vec![], Some(weights));
+        assert_eq!(
+            xs(&weighted, "bdf"),
+            vec![150.0 + 10.0 + 100.0, 450.0 + 20.0 + 300.0]
+        );
+        assert_eq!(xs(&weighted, "dopri5"), vec![600.0, 1200.0]);
+        let plain = work_precision("test", &data, vec![]);
+        assert_eq!(xs(&plain, "bdf"), vec![302.0, 704.0]);
+        for panel in [&weighted.left, &weighted.right] {
+            assert_eq!(figures::line_plot_boxes(panel).unwrap().hidden, 0);
+        }
+    }
 }

@@ -85,11 +85,16 @@ pub fn catenaries(read: Reader, stem: &Path, title: &str) -> Result<Output, Stri
     figures::colored_curves(&f, stem).map_err(|e| e.to_string())
 }
 
+/// Draws a snapshot table: every `every`-th frame and the last. With
+/// `shift > 0`, the `k`-th frame drawn is moved right by `k shift` (offset
+/// panels: the frames do not cover each other), the x axis is stretched
+/// to them, and `P0`, `P1` are those of the first frame.
 pub fn snapshots(
     read: Reader,
     stem: &Path,
     title: &str,
     every: usize,
+    shift: f64,
     p1_label: Option<&str>,
 ) -> Result<Output, String> {
     let t = read("")?;
@@ -115,9 +120,24 @@ pub fn snapshots(
         .enumerate()
         .filter(|(k, _)| k % every == 0 || *k == last)
         .map(|(_, f)| f)
+        .collect::<Vec<_>>();
+    let shown = frames.len();
+    let frames = frames
+        .into_iter()
+        .enumerate()
+        .map(|(k, (t, joints))| {
+            let dx = k as f64 * shift;
+            (t, joints.into_iter().map(|p| [p[0] + dx, p[1]]).collect())
+        })
         .collect();
+    let x_label = format!("x, the k-th snapshot shifted right by {shift} k");
     let mut f = ChainSnapshots::new(title, frames, p0);
     f.p1 = p1;
+    if shift > 0.0 {
+        f.equal_aspect = false;
+        f.x_range = Some((-0.5 * shift, (shown as f64 - 0.5) * shift));
+        f.x_label = &x_label;
+    }
     if let Some(label) = p1_label {
         f.p1_label = label;
     }
