@@ -13,6 +13,7 @@ pub mod elastic;
 pub mod folded;
 pub mod report;
 pub mod report_model;
+pub mod stiffness;
 pub mod timing;
 pub mod validation;
 
