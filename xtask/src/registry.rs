@@ -166,8 +166,12 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "fig09-vmax-vs-span",
         report: Some("Fig. 9"),
-        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): this model at the report's 14 spans, a dense sweep, the same at n = 200 with the continuum fixed, and the whip switch",
-        data: &["fig09-vmax-vs-span.csv"],
+        what: "maximum tip speed against the span d (n = 50, r = 0.0005, t = 4.157): this model at the report's 14 spans, a dense sweep, the same at n = 200 with the continuum fixed, both whip switches, the spans where n = 50 is within 1% of n = 200, and the narrow-span peak at n = 200 and 400 on finer spans",
+        data: &[
+            "fig09-vmax-vs-span.csv",
+            "fig09-vmax-vs-span-agreement.csv",
+            "fig09-vmax-vs-span-peak.csv",
+        ],
         timing: Timing::None,
         make: &VmaxVsSpan {
             title: "maximum tip speed against span d",
@@ -182,6 +186,7 @@ pub static FIGURES: &[Figure] = &[
             },
             dense: (0.3, 5.97, 120),
             refined: (200, 0.25, 5.95, 39),
+            peak: (&[200, 400], 0.1, 0.8, 15),
         },
     },
     snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),

@@ -32,6 +32,7 @@ pub mod rigid_limit;
 pub mod shard;
 pub mod snap;
 pub mod snap_tension;
+pub mod span_check;
 pub mod stability;
 pub mod stiffness;
 pub mod table;
