@@ -381,6 +381,27 @@ pub static FIGURES: &[Figure] = &[
         make: &study::elastic_rigid_limit::RigidLimit,
     },
     Figure {
+        id: "elastic-rigid-order",
+        report: None,
+        what: "an independent check of the dynamics: the elastic chain (maximal coordinates) \
+               against the rigid one (the angles) on span d = 3, the folded chain and the \
+               catenary fall before their whips, tip path and tip at the end vs EA = 1e3 .. \
+               1e5, and the order in 1/EA",
+        data: &["elastic-rigid-order.csv", "elastic-rigid-order-fit.csv"],
+        timing: Timing::None,
+        make: &study::elastic_rigid_order::RigidOrder,
+    },
+    Figure {
+        id: "span-friction",
+        report: None,
+        what: "sensitivity of the maximum tip speed to the joint friction r for the span \
+               scenes: r = 0 and 1e-5 .. 1e-2 (bracketing the report's 1e-4 .. 1e-3), at n = 50 \
+               (DOPRI5, rtol 1e-10) and on 200 rods with the continuum fixed (auto, rtol 1e-8)",
+        data: &["span-friction.csv", "span-friction-summary.csv"],
+        timing: Timing::None,
+        make: &study::span_friction::SpanFriction,
+    },
+    Figure {
         id: "snap-force",
         report: None,
         what: "the snap: peak support force and impulse against n (25 .. 400, total mass fixed) \
@@ -549,6 +570,6 @@ mod tests {
             }
         }
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 48);
+        assert_eq!(FIGURES.len(), 50);
     }
 }
