@@ -343,8 +343,11 @@ mod tests {
         let g = crossover(&[(1.0, 0.05), (10.0, 0.1), (1000.0, 10.0)]);
         assert!(g.is_some_and(|g| (g - 100.0).abs() < 1e-9), "{g:?}");
         assert_eq!(crossover(&[(1.0, 0.5), (10.0, 0.9)]), None);
-        // A noisy point above 1 below the crossover does not place it.
-        let g = crossover(&[(1.0, 2.0), (10.0, 0.1), (1000.0, 10.0)]);
-        assert!(g.is_some_and(|g| (g - 100.0).abs() < 1e-9), "{g:?}");
+        // A noisy point above 1 below the crossover does not place it: the
+        // last upward crossing, between 100 and 1000, at
+        // 100 * 10^(ln 2 / ln 20).
+        let g = crossover(&[(1.0, 0.5), (10.0, 2.0), (100.0, 0.5), (1000.0, 10.0)]);
+        let want = 100.0 * 10f64.powf(2f64.ln() / 20f64.ln());
+        assert!(g.is_some_and(|g| (g - want).abs() < 1e-9 * want), "{g:?}");
     }
 }
