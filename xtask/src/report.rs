@@ -5,6 +5,8 @@
 
 use falling_chain::study::plot;
 use falling_chain::study::report;
+use falling_chain::study::span_check;
+use falling_chain::study::table::Table;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -185,6 +187,9 @@ pub struct VmaxVsSpan {
     /// held fixed as `falling-chain converge` holds it (`m = M/n`,
     /// `r = eta n / L`), method `auto` at rtol 1e-8.
     pub refined: (usize, f64, f64, usize),
+    /// The refined chain's peak at narrow spans: its rods and twice them,
+    /// over `linspace(a, b, count)` (`falling_chain::study::span_check`).
+    pub peak: (&'static [usize], f64, f64, usize),
 }
 
 /// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
@@ -225,7 +230,16 @@ impl Make for VmaxVsSpan {
             &spans,
             ctx.jobs,
         )?;
-        Ok(vec![ctx.write(&format!("{}.csv", fig.id), &csv)?])
+        let table = Table::parse(fig.id, &csv)?;
+        let base = &ctx.run(self.scene)?.scene;
+        let agreement = span_check::agreement(base, &table, links, ctx.jobs)?;
+        let (rods, pa, pb, pc) = self.peak;
+        let peak = span_check::peak(base, rods, &report::linspace(pa, pb, pc), ctx.jobs)?;
+        Ok(vec![
+            ctx.write(&format!("{}.csv", fig.id), &csv)?,
+            ctx.write(&format!("{}-agreement.csv", fig.id), &agreement)?,
+            ctx.write(&format!("{}-peak.csv", fig.id), &peak)?,
+        ])
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {

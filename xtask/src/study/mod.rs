@@ -9,6 +9,7 @@
 //! `--timings`; untimed runs run in parallel on [`crate::ctx::Ctx::pool`].
 
 pub mod elastic_rigid_limit;
+pub mod elastic_rigid_order;
 pub mod elastic_snap_force;
 pub mod elastic_snap_tension;
 pub mod precision_beam;
@@ -17,6 +18,7 @@ pub mod precision_map;
 pub mod precision_matched;
 pub mod precision_stiffness;
 pub mod precision_wp;
+pub mod span_friction;
 pub mod tip_mass_fall;
 pub mod validation_convergence;
 pub mod validation_energy;

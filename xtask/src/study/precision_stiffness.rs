@@ -1,18 +1,8 @@
-//! `stiffness`: where the implicit method pays. DOPRI5 against the O(n) BDF
-//! over rods `n` and the damping rate `gamma = r / (m l^2)`, on the span
-//! d = 3 start (report chain, `r` set from `gamma`), `t_end = 1`, rtol 1e-6,
-//! atol 1e-8. The cell is DOPRI5's wall time over BDF's (median of 3 where a
-//! run is short).
-//!
-//! An explicit method on a stiff chain is held at its stability limit: its
-//! steps are all alike, and its cost is proportional to the time it covers.
-//! Where DOPRI5 would take far more than [`EXPLICIT_BUDGET`] seconds, it is
-//! stopped by a step budget and its wall time is extrapolated to `t_end`
-//! from the time it reached (`dopri5_extrapolated = 1` in the CSV).
-//!
-//! Also written: the crossover `gamma` for each `n` (where the ratio first
-//! exceeds 1, interpolated in `log gamma`) beside the rule `auto` uses
-//! ([`chain_ode::bdf_crossover_gamma`]), and BDF's wall time per step.
+//! `stiffness`: where the implicit method pays, at matched accuracy
+//! (`falling_chain::study::stiffness` says how). The grid: for each `n`, the
+//! damping rates a quarter decade apart (`1, 1.8, 3.2, 5.6` times a power
+//! of ten: `10^(j/4)` to two digits) for `j` in its range, placed around the
+//! crossover; the cells past DOPRI5's budget are not run.
 //!
 //! All of it is wall times: computed only by `--timings`, into
 //! `stiffness-timing.csv` and `stiffness-crossover-timing.csv`.
@@ -23,16 +13,28 @@ use falling_chain::study::stiffness;
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
 
-/// Rods.
-const RODS: [usize; 8] = [25, 50, 100, 200, 400, 800, 1600, 3200];
-/// Damping rates `gamma` (1/time).
-const GAMMAS: [f64; 8] = [1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3, 1e4, 1e5];
+/// Rods, and the range of `j` in `gamma = 10^(j/4)` (1/time, to two digits)
+/// for each.
+const GRID: [(usize, i32, i32); 4] = [(25, 0, 12), (100, 0, 12), (400, 2, 10), (1600, 6, 9)];
+
+/// `10^(j/4)` to two significant digits: 1, 1.8, 3.2, 5.6, 10, 18, ...
+/// (the nearest `f64` to the decimal, so that the CSV prints `1.8e1`).
+fn quarter_decade(j: i32) -> f64 {
+    const MANTISSA: [&str; 4] = ["1", "1.8", "3.2", "5.6"];
+    let (decade, k) = (j.div_euclid(4), j.rem_euclid(4));
+    let text = format!("{}e{decade}", MANTISSA[k as usize]);
+    text.parse().unwrap_or(f64::NAN)
+}
 
 pub struct Stiffness;
 
 impl Make for Stiffness {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let (cells, cross) = stiffness::tables(&RODS, &GAMMAS)?;
+        let grid: Vec<(usize, Vec<f64>)> = GRID
+            .iter()
+            .map(|&(n, j0, j1)| (n, (j0..=j1).map(quarter_decade).collect()))
+            .collect();
+        let (cells, cross) = stiffness::tables(&grid)?;
         Ok(vec![
             ctx.write(&format!("{}-timing.csv", fig.id), &cells)?,
             ctx.write(&format!("{}-crossover-timing.csv", fig.id), &cross)?,
@@ -40,6 +42,6 @@ impl Make for Stiffness {
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        ctx.draw(fig, plot::timing::stiffness)
+        ctx.draw(fig, plot::stiffness::stiffness)
     }
 }

@@ -217,36 +217,79 @@ pub fn vmax_vs_span(
     full.extend(ok(&format!("stretched-{fine}")));
     p.series
         .push(Series::points("stretched, d = L (n = 50, n = 200)", full));
-    // The whip switch of the n = 50 curve: a dashed line between the two
-    // spans where the time of the maximum jumps.
-    let before = ok("switch-before");
-    let after = ok("switch-after");
-    if let (Some(a), Some(b)) = (before.first(), after.first()) {
-        let (lo, hi) = v
-            .iter()
-            .copied()
-            .filter(|x| x.is_finite())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-                (l.min(x), h.max(x))
-            });
-        let at = 0.5 * (a.0 + b.0);
-        let times = |k: &str| {
-            (0..t.len())
-                .find(|&i| set[i] == k)
-                .map(|i| t.nums("t_tip_speed_max").map(|c| c[i]))
-        };
-        let (ta, tb) = match (times("switch-before"), times("switch-after")) {
-            (Some(a), Some(b)) => (a?, b?),
-            _ => (f64::NAN, f64::NAN),
+    // The narrow-span peak on finer spans (n = links and 2 links).
+    let pk = read("-peak")?;
+    let (pn, pd, pv, pst) = (
+        pk.strs("links")?,
+        pk.nums("d")?,
+        pk.nums("tip_speed_max")?,
+        pk.strs("status")?,
+    );
+    for (k, n) in distinct(&pn).into_iter().enumerate() {
+        let pts: Vec<(f64, f64)> = (0..pk.len())
+            .filter(|&j| pn[j] == n && pst[j] == "ok")
+            .map(|j| (pd[j], pv[j]))
+            .collect();
+        let style = if k == 0 {
+            Style::Points
+        } else {
+            Style::LinePoints
         };
         p.series.push(
+            Series::new(format!("n = {n}, finer spans near the peak"), pts, style)
+                .with_color(figures::palette(4 + k)),
+        );
+    }
+    // The whip switch of each curve: a dashed line between the two spans
+    // where the time of the maximum jumps.
+    let (lo, hi) = v
+        .iter()
+        .copied()
+        .filter(|x| x.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x), h.max(x))
+        });
+    let times = t.nums("t_tip_speed_max")?;
+    let row = |k: &str| (0..t.len()).find(|&i| set[i] == k);
+    for (suffix, who, grey) in [
+        ("", "n = 50", 90),
+        (&format!("-{fine}")[..], &format!("n = {links}")[..], 160),
+    ] {
+        let (Some(a), Some(b)) = (
+            row(&format!("switch-before{suffix}")),
+            row(&format!("switch-after{suffix}")),
+        ) else {
+            continue;
+        };
+        let at = 0.5 * (d[a] + d[b]);
+        p.series.push(
             Series::new(
-                format!("whip switch, d = {at:.2}: t of max {ta:.2} -> {tb:.2}"),
+                format!(
+                    "whip switch, {who}, d = {at:.2}: t of max {:.2} -> {:.2}",
+                    times[a], times[b]
+                ),
                 vec![(at, lo), (at, hi)],
                 Style::Dashed,
             )
-            .with_color(figures::RGBColor(90, 90, 90)),
+            .with_color(figures::RGBColor(grey, grey, grey)),
         );
     }
+    // Where n = 50 is within 1% of the refined chain, from the data.
+    let ag = read("-agreement")?;
+    let (kind, from, to) = (ag.strs("kind")?, ag.nums("d")?, ag.nums("d_to")?);
+    let ranges: Vec<String> = (0..ag.len())
+        .filter(|&j| kind[j] == "within")
+        .map(|j| {
+            if from[j] == to[j] {
+                format!("d = {:.2}", from[j])
+            } else {
+                format!("{:.2} ≤ d ≤ {:.2}", from[j], to[j])
+            }
+        })
+        .collect();
+    p.annotations.push(format!(
+        "n = 50 within 1% of n = {links} at: {}",
+        ranges.join(", ")
+    ));
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }

@@ -1,6 +1,6 @@
 //! The drawings of the wall-time studies: speed-ups at matched accuracy
 //! (`crate::study::matched`), the cost of a right-hand side
-//! (`crate::study::rhs_cost`) and where BDF pays (`crate::study::stiffness`).
+//! (`crate::study::rhs_cost`); where BDF pays is [`super::stiffness`].
 
 use std::path::Path;
 
@@ -8,7 +8,6 @@ use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
 use crate::study::rhs_cost::FIT_FROM;
-use crate::study::stiffness::EXPLICIT_BUDGET;
 use crate::study::table::distinct;
 
 /// The slope guides run this factor below the measured points.
@@ -144,63 +143,6 @@ pub fn rhs_cost(read: Reader, stem: &Path) -> Result<Output, String> {
         plot.series
             .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
     }
-    let out = figures::line_plot(&plot, stem).map_err(|e| e.to_string())?;
-    Ok(out)
-}
-
-/// Draws `stiffness`'s tables to `<stem>.png` and `.svg`.
-pub fn stiffness(read: Reader, stem: &Path) -> Result<Output, String> {
-    let t = read("-timing")?;
-    let (n, gamma, ratio) = (
-        t.strs("n")?,
-        t.nums("gamma")?,
-        t.nums("ratio_dopri5_over_bdf")?,
-    );
-    let c = read("-crossover-timing")?;
-    let crossings: Vec<f64> = c
-        .nums("gamma_crossover")?
-        .into_iter()
-        .filter(|g| g.is_finite())
-        .collect();
-    let rods = distinct(&n);
-    let mut plot = LinePlot::new(
-        "Where BDF pays: DOPRI5 wall time over BDF's (span d = 3, t = 1, rtol 1e-6)",
-        "damping rate γ = r / (m l²)",
-        "DOPRI5 time / BDF time",
-    );
-    plot.log_x = true;
-    plot.log_y = true;
-    for (k, rods_n) in rods.iter().enumerate() {
-        let pts = (0..t.len())
-            .filter(|&j| n[j] == *rods_n)
-            .map(|j| (gamma[j], ratio[j]))
-            .collect();
-        plot.series.push(
-            Series::new(format!("n = {rods_n}"), pts, Style::LinePoints).with_color(palette(k)),
-        );
-    }
-    let (g0, g1) = gamma
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &g| {
-            (a.0.min(g), a.1.max(g))
-        });
-    plot.series.push(
-        Series::new("equal cost", vec![(g0, 1.0), (g1, 1.0)], Style::Dashed)
-            .with_color(RGBColor(0, 0, 0)),
-    );
-    if let (Some(lo), Some(hi), [first, .., last]) = (
-        crossings.iter().copied().reduce(f64::min),
-        crossings.iter().copied().reduce(f64::max),
-        &rods[..],
-    ) {
-        plot.annotations.push(format!(
-            "crossover γ from {lo:.3} to {hi:.3} (×{:.1}) over n = {first}..{last}",
-            hi / lo,
-        ));
-    }
-    plot.annotations.push(format!(
-        "DOPRI5 beyond {EXPLICIT_BUDGET} s: extrapolated from the time reached"
-    ));
     let out = figures::line_plot(&plot, stem).map_err(|e| e.to_string())?;
     Ok(out)
 }
