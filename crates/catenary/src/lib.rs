@@ -23,8 +23,8 @@ mod rods;
 
 pub use continuous::Catenary;
 pub use discrete::{discrete_equilibrium, joints, DiscreteCatenary};
-pub use profiled::{discrete_equilibrium_rods, joints_rods, ProfiledCatenary};
 pub use error::{CatenaryError, Input, MAX_LINKS, MAX_MAGNITUDE, MIN_LENGTH};
+pub use profiled::{discrete_equilibrium_rods, joints_rods, ProfiledCatenary};
 
 /// A point `[x, y]` in the plane (length units, `y` up).
 pub type Point = [f64; 2];

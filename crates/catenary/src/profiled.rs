@@ -192,7 +192,9 @@ mod tests {
     #[test]
     fn a_tapered_chain_ends_at_p1_both_ways() {
         let n = 30;
-        let mu: Vec<f64> = (0..n).map(|i| 10.0 - 9.0 * (i as f64 + 0.5) / n as f64).collect();
+        let mu: Vec<f64> = (0..n)
+            .map(|i| 10.0 - 9.0 * (i as f64 + 0.5) / n as f64)
+            .collect();
         let s: f64 = mu.iter().sum();
         let mu: Vec<f64> = mu.iter().map(|m| m * n as f64 / s).collect();
         let lam = vec![1.0; n];

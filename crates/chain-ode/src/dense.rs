@@ -103,7 +103,13 @@ pub fn mt_rods(mu: &[f64], lambda: &[f64]) -> Mat<f64> {
 /// `A phi'' = b`, `A_ij = mt_ij cos(phi_i - phi_j)` ([`mt_rods`]) and
 /// `b_i = -sum_j mt_ij sin(phi_i - phi_j) w_j^2 - (g/l) lambda_i (S_{i+1} + mu_i/2) cos phi_i + gamma D_i(w)`
 /// (the potential `V = m g l sum_k mu_k y_k`), in mean-rod units.
-pub fn accelerations_rods(chain: &Chain, mu: &[f64], lambda: &[f64], phi: &[f64], w: &[f64]) -> Vec<f64> {
+pub fn accelerations_rods(
+    chain: &Chain,
+    mu: &[f64],
+    lambda: &[f64],
+    phi: &[f64],
+    w: &[f64],
+) -> Vec<f64> {
     let n = phi.len();
     let mt = mt_rods(mu, lambda);
     let below = masses_below(mu);
@@ -115,8 +121,7 @@ pub fn accelerations_rods(chain: &Chain, mu: &[f64], lambda: &[f64], phi: &[f64]
             let centripetal: f64 = (0..n)
                 .map(|j| mt[(i, j)] * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
-            -centripetal - g * lambda[i] * below[i].0 * phi[i].cos()
-                + gamma * damping_stencil(w, i)
+            -centripetal - g * lambda[i] * below[i].0 * phi[i].cos() + gamma * damping_stencil(w, i)
         })
         .collect();
     solve_spd(&a, &b)

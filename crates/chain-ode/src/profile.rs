@@ -186,7 +186,7 @@ impl Profile {
         }
         let field = self.first_given().unwrap_or("chain.rod_masses");
         check(
-            n > 0 && links % n == 0,
+            n > 0 && links.is_multiple_of(n),
             field,
             format!("refined only to a multiple of its {n} rods (a list cuts each rod into equal parts)"),
             format!("chain.links = {links}"),

@@ -112,15 +112,17 @@ impl Start {
                 let angles = match chain.rods() {
                     // Unequal rods: the minimum of the convex complementary
                     // energy (catenary::discrete_equilibrium_rods).
-                    Some(rods) => catenary::discrete_equilibrium_rods(
-                        p0,
-                        *p1,
-                        chain.length(),
-                        &rods.mass,
-                        &rods.length,
-                    )
-                    .map_err(StartError::Catenary)?
-                    .angles,
+                    Some(rods) => {
+                        catenary::discrete_equilibrium_rods(
+                            p0,
+                            *p1,
+                            chain.length(),
+                            &rods.mass,
+                            &rods.length,
+                        )
+                        .map_err(StartError::Catenary)?
+                        .angles
+                    }
                     None => {
                         catenary::discrete_equilibrium(p0, *p1, chain.length(), n)
                             .map_err(StartError::Catenary)?
