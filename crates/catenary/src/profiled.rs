@@ -145,14 +145,20 @@ pub fn discrete_equilibrium_rods(
         if !(sx.is_finite() && sy.is_finite()) {
             break;
         }
-        // Backtrack until Psi decreases (Armijo) and H stays > 0.
+        // Backtrack until Psi decreases (Armijo) or, where Psi's changes
+        // are below its rounding (next to the minimum), the end residual
+        // does (the Newton step descends both); H stays > 0.
         let p = psi(big_h, v);
         let slope = gx * sx + gy * sy;
+        let g0 = gx.hypot(gy);
         let mut step = 1.0;
         let mut moved = false;
         for _ in 0..60 {
             let (hn, vn) = (big_h + step * sx, v + step * sy);
-            if hn > 0.0 && psi(hn, vn) <= p + 1e-4 * step * slope {
+            let better = hn > 0.0
+                && (psi(hn, vn) <= p + 1e-4 * step * slope
+                    || gradient_norm(&weight, lambda, target, hn, vn) < (1.0 - 1e-4 * step) * g0);
+            if better {
                 (big_h, v) = (hn, vn);
                 moved = true;
                 break;
@@ -173,6 +179,17 @@ pub fn discrete_equilibrium_rods(
         });
     }
     Ok(out)
+}
+
+/// `|grad Psi(H, V)|`: the end point's miss in mean-rod lengths.
+fn gradient_norm(weight: &[f64], lambda: &[f64], target: [f64; 2], big_h: f64, v: f64) -> f64 {
+    let (mut gx, mut gy) = (-target[0], -target[1]);
+    for (&wi, &lam) in weight.iter().zip(lambda) {
+        let rho = big_h.hypot(v - wi);
+        gx += lam * big_h / rho;
+        gy += lam * (v - wi) / rho;
+    }
+    gx.hypot(gy)
 }
 
 #[cfg(test)]

@@ -37,6 +37,7 @@ pub mod stiffness;
 pub mod table;
 pub mod tip_mass;
 pub mod validation;
+pub mod whip_taper;
 
 use chain_ode::Method;
 

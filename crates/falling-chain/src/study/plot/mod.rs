@@ -15,6 +15,7 @@ pub mod report;
 pub mod report_model;
 pub mod timing;
 pub mod validation;
+pub mod whip_taper;
 
 use std::path::Path;
 
