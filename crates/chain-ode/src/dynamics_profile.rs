@@ -58,7 +58,7 @@ pub(crate) fn accelerations<T: Scalar>(
         let lw2 = w2 * lam;
         let (nx, ny) = (-s, c);
         let (nxx, nxy2, nyy) = (nx * nx, (nx * ny) * 2.0, ny * ny);
-        let d = (mxx * nxx + T::cst(mu / 3.0)) + (mxy * nxy2 + myy * nyy);
+        let d = (mxx * nxx + T::cst(mu * (1.0 / 3.0))) + (mxy * nxy2 + myy * nyy);
         let hx = mxx * nx + (mxy * ny + nx * (0.5 * mu));
         let hy = mxy * nx + (myy * ny + ny * (0.5 * mu));
         let mux = mxx * c + mxy * s;
