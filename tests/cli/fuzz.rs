@@ -127,6 +127,11 @@ struct Case {
     /// `pivot.frequency`, `pivot.jerk_time` and `pivot.release`.
     pivot: [f64; 6],
     moving: bool,
+    /// `chain.taper`, and the lists `chain.rod_masses`, `chain.rod_lengths`
+    /// (all written only when `profiled`; refused with elastic links, a tip
+    /// mass, bending, a moving pivot and the report's model).
+    taper: f64,
+    profiled: bool,
 }
 
 const COMMANDS: [&str; 11] = [
@@ -188,6 +193,8 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.01, 2.0, &[0.0, -1.0, f64::INFINITY]),
             number(0.0, 2.0, &[-1.0, f64::NAN, 1e300]),
             any::<bool>(),
+            number(0.5, 20.0, &[1.0, 0.0, -1.0, 1e300, f64::NAN]),
+            any::<bool>(),
         ),
     )
         .prop_map(
@@ -196,7 +203,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (p1, p1_on_circle, down, t_end, method, dt),
                 (rtol, atol, output_dt, h_min, extra, with_out),
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
-                (acc, amp, jerk, freq, jerk_time, release, moving),
+                (acc, amp, jerk, freq, jerk_time, release, moving, taper, profiled),
             )| Case {
                 command,
                 length,
@@ -225,6 +232,8 @@ fn case() -> impl Strategy<Value = Case> {
                 report,
                 pivot: [acc, amp, jerk, freq, jerk_time, release],
                 moving,
+                taper,
+                profiled,
             },
         )
 }
@@ -267,6 +276,19 @@ impl Case {
         writeln!(t, "axial_damping = {}", toml_f(self.axial_damping)).unwrap();
         writeln!(t, "bending_stiffness = {}", toml_f(self.bending_stiffness)).unwrap();
         writeln!(t, "tip_mass = {}", toml_f(self.tip_mass)).unwrap();
+        if self.profiled {
+            writeln!(t, "taper = {}", toml_f(self.taper)).unwrap();
+            // As many entries as rods where that is small, else a few.
+            let n = usize::try_from(self.links).unwrap_or(3).min(50);
+            let list = |k: usize| -> String {
+                let v: Vec<String> = (0..n).map(|i| format!("{}", 1 + (i * k) % 4)).collect();
+                v.join(", ")
+            };
+            if self.taper == 1.0 {
+                writeln!(t, "rod_masses = [{}]", list(3)).unwrap();
+            }
+            writeln!(t, "rod_lengths = [{}]", list(1)).unwrap();
+        }
         if self.moving {
             let [acc, amp, jerk, freq, jerk_time, release] = self.pivot.map(toml_f);
             writeln!(
@@ -627,6 +649,8 @@ fn the_fuzzer_draws_every_scene_key() {
             report: true,
             pivot: [0.0, 0.0, 0.0, 1.0, 1.0, 0.0],
             moving: true,
+            taper: 1.0,
+            profiled: true,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

@@ -323,6 +323,15 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         ),
         (vec![], "SCENE.toml/--from", "1 to 8"),
         (
+            vec![
+                scene("span-d3"),
+                "--set".into(),
+                format!("chain.rod_lengths=[{}]", ["1", "2"].repeat(25).join(", ")),
+            ],
+            "chain.rod_lengths",
+            "equal length",
+        ),
+        (
             vec![scene("span-d3"), "--method".into(), "rk4,nonesuch".into()],
             "run.method",
             "one of",

@@ -4,6 +4,8 @@
 //!   given arc length (parameter `a` found with argmin's `BrentRoot`).
 //! * [`discrete_equilibrium`]: the exact static equilibrium of `n` equal
 //!   rigid rods pinned at both ends, `tan(phi_i) = alpha + (i - 1/2) beta`.
+//! * [`discrete_equilibrium_rods`]: the same for rods of unequal mass and
+//!   length, `tan(phi_i) = (V - W_i) / H`, the minimum of a convex function.
 //!
 //! Conventions: `y` points up, gravity acts along `-y`; angles in radians
 //! from the horizontal, counter-clockwise; lengths in the caller's unit.
@@ -16,11 +18,13 @@
 mod continuous;
 mod discrete;
 mod error;
+mod profiled;
 mod rods;
 
 pub use continuous::Catenary;
 pub use discrete::{discrete_equilibrium, joints, DiscreteCatenary};
 pub use error::{CatenaryError, Input, MAX_LINKS, MAX_MAGNITUDE, MIN_LENGTH};
+pub use profiled::{discrete_equilibrium_rods, joints_rods, ProfiledCatenary};
 
 /// A point `[x, y]` in the plane (length units, `y` up).
 pub type Point = [f64; 2];

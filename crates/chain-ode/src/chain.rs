@@ -4,6 +4,7 @@ use std::borrow::Cow;
 use std::fmt;
 
 use crate::pivot::Pivot;
+use crate::profile::{Profile, Rods};
 
 /// The largest number of rods of a chain (`chain.links`): the same cap as
 /// the catenary's ([`catenary::MAX_LINKS`]), so that every chain has a
@@ -52,6 +53,12 @@ pub struct ChainParams {
     /// path, or let go at a time ([`Pivot`], the `pivot.*` keys). Rigid
     /// links only: an elastic chain refuses a pivot that is not fixed.
     pub pivot: Pivot,
+    /// How the mass `n m` and the length `L` are shared among the rods
+    /// ([`Profile`], the keys `chain.taper`, `chain.rod_masses`,
+    /// `chain.rod_lengths`); equal rods by default. Rigid links, no tip
+    /// mass, no bending stiffness and a fixed pivot only: the other
+    /// combinations are refused by the profile's key.
+    pub profile: Profile,
 }
 
 impl Default for ChainParams {
@@ -68,6 +75,7 @@ impl Default for ChainParams {
             bending_stiffness: 0.0,
             tip_mass: 0.0,
             pivot: Pivot::default(),
+            profile: Profile::default(),
         }
     }
 }
@@ -78,6 +86,8 @@ impl Default for ChainParams {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chain {
     params: ChainParams,
+    /// The rods' masses and lengths for a profiled chain, `None` for equal rods.
+    rods: Option<std::sync::Arc<Rods>>,
 }
 
 /// A parameter outside its accepted range. `Display` is one line naming the field.
@@ -192,6 +202,31 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         p.tip_mass,
     )?;
     p.pivot.validate()?;
+    p.profile.validate(p.links)?;
+    if let Some(key) = p.profile.first_given() {
+        // Combinations whose per-rod terms are not written: refused by the
+        // profile's key, in one line.
+        let other = if p.axial_stiffness.is_some() {
+            Some("elastic links (chain.axial_stiffness)")
+        } else if p.tip_mass != 0.0 {
+            Some("a tip mass (chain.tip_mass)")
+        } else if p.bending_stiffness != 0.0 {
+            Some("bending stiffness (chain.bending_stiffness)")
+        } else {
+            p.pivot.first_given()
+        };
+        if let Some(other) = other {
+            return Err(InvalidParameter {
+                field: key,
+                accepted: format!(
+                    "absent (equal rods) with {other}: a rod profile needs rigid links, \
+                     no tip mass, no bending stiffness and a fixed pivot"
+                )
+                .into(),
+                got: "a profile".into(),
+            });
+        }
+    }
     match p.pivot.first_given() {
         Some(key) if p.axial_stiffness.is_some() => Err(InvalidParameter {
             field: key,
@@ -209,7 +244,8 @@ impl Chain {
     /// of range. This is the one place a chain is validated.
     pub fn new(params: ChainParams) -> Result<Self, InvalidParameter> {
         validate(&params)?;
-        Ok(Self { params })
+        let rods = params.profile.rods(params.links).map(std::sync::Arc::new);
+        Ok(Self { params, rods })
     }
 
     /// The report's chain: `L = 6`, `m = 0.2` per rod, `g = 1`.
@@ -276,6 +312,12 @@ impl Chain {
         &self.params.pivot
     }
 
+    /// The rods' masses and lengths in mean-rod units for a profiled chain
+    /// ([`Rods`]), `None` for equal rods.
+    pub fn rods(&self) -> Option<&Rods> {
+        self.rods.as_deref()
+    }
+
     /// The tip mass in rod masses, `mu = M_t / m`: the recursion's and the
     /// dense reference's unit.
     pub fn tip_mass_ratio(&self) -> f64 {
@@ -323,6 +365,8 @@ impl Chain {
     ///
     /// * The tip mass `M_t` is a point mass: carried as it is.
     /// * The pivot's motion is carried as it is.
+    /// * The rod profile holds the continuum's mass per length and length
+    ///   fixed: a taper is carried; lists are cut ([`Profile`]'s refinement).
     /// * The axial stiffness `EA`, the axial viscosity `eta` and the bending
     ///   stiffness `EI` are continuum properties of the rope: carried as
     ///   they are (the joint spring `K = EA / l`, dashpot `eta / l` and
@@ -337,6 +381,7 @@ impl Chain {
             links,
             mass: self.total_mass() / n_new,
             damping: self.params.damping * n_new / n,
+            profile: self.params.profile.refined(self.params.links, links)?,
             ..self.params.clone()
         })
     }
@@ -475,6 +520,7 @@ mod tests {
             bending_stiffness: 0.03,
             tip_mass: 0.0,
             pivot: Pivot::default(),
+            profile: Profile::default(),
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -490,7 +536,10 @@ mod tests {
             bending_stiffness,
             tip_mass,
             pivot,
+            profile,
         } = refined.params().clone();
+        // Equal rods stay equal rods (a taper is carried: profile.rs).
+        assert_eq!(profile, given.profile);
         // The pivot's motion: carried.
         assert_eq!(pivot, given.pivot);
         // The tip mass is a point mass: carried.

@@ -114,6 +114,21 @@ impl ChainDae {
         }
     }
 
+    /// Rod `i`'s `(mu_i lambda_i^2, lambda_i)` and `1 / mu_i` (mean-rod
+    /// units; `(1, 1)` and `1` for equal rods, whose arithmetic these
+    /// factors leave bit for bit unchanged).
+    #[inline(always)]
+    fn rod(&self, i: usize) -> (f64, f64, f64) {
+        match self.chain.rods() {
+            Some(r) => (
+                r.mass[i] * r.length[i] * r.length[i],
+                r.length[i],
+                r.inv_mass[i],
+            ),
+            None => (1.0, 1.0, 1.0),
+        }
+    }
+
     /// Number of rods.
     pub fn links(&self) -> usize {
         self.n
@@ -188,8 +203,9 @@ impl ChainDae {
         for i in 0..n {
             let (s, c) = sin_cos(diff[i]);
             let w2 = diff[n + i] * diff[n + i];
-            let hx = 0.5 * (-alpha[i] * s - w2 * c);
-            let hy = 0.5 * (alpha[i] * c - w2 * s);
+            let half = 0.5 * self.rod(i).1;
+            let hx = half * (-alpha[i] * s - w2 * c);
+            let hy = half * (alpha[i] * c - w2 * s);
             f[2 * i] = ax + hx;
             f[2 * i + 1] = ay + hy;
             ax += 2.0 * hx;
@@ -202,11 +218,21 @@ impl ChainDae {
         } else {
             (0.0, 0.0)
         };
-        for i in (0..n).rev() {
-            fx += f[2 * i];
-            fy += f[2 * i + 1] + self.gl;
-            f[2 * i] = fx;
-            f[2 * i + 1] = fy;
+        if let Some(rods) = self.chain.rods() {
+            // Rod i's weight and inertia are mu_i times a mean rod's.
+            for i in (0..n).rev() {
+                fx += rods.mass[i] * f[2 * i];
+                fy += rods.mass[i] * (f[2 * i + 1] + self.gl);
+                f[2 * i] = fx;
+                f[2 * i + 1] = fy;
+            }
+        } else {
+            for i in (0..n).rev() {
+                fx += f[2 * i];
+                fy += f[2 * i + 1] + self.gl;
+                f[2 * i] = fx;
+                f[2 * i + 1] = fy;
+            }
         }
         if self.free {
             // f_0 vanishes (to rounding); its place holds a_0.
@@ -251,13 +277,17 @@ impl ChainDae {
         };
         let (moment, trans) = out[2 * n + 1..].split_at_mut(n);
         let (mut px, mut py) = (0.0, 0.0); // h_{i-1}
+        let mut inv_prev = 1.0; // 1 / mu_{i-1}
         for i in 0..n {
             let (s, c) = sin_cos(phi[i]);
             let (fx, fy) = force(i);
             let w2 = w[i] * w[i];
+            // Rod i's mu lambda^2, lambda and 1 / mu (all 1 for equal rods).
+            let (inertia, lam, inv_mu) = self.rod(i);
+            let half = 0.5 * lam;
             let (hx, hy) = (
-                0.5 * (-alpha[i] * s - w2 * c),
-                0.5 * (alpha[i] * c - w2 * s),
+                half * (-alpha[i] * s - w2 * c),
+                half * (alpha[i] * c - w2 * s),
             );
             let (gx, gy) = if i + 1 < n {
                 (f[2 * i + 2], f[2 * i + 3])
@@ -267,20 +297,23 @@ impl ChainDae {
             } else {
                 (0.0, 0.0)
             };
-            moment[i] = -alpha[i] / 12.0 - 0.5 * (-s * (fx + gx) + c * (fy + gy))
+            moment[i] = -(alpha[i] * inertia) / 12.0 - half * (-s * (fx + gx) + c * (fy + gy))
                 + self.gamma * damping_stencil(w, i);
             if self.kappa != 0.0 {
                 moment[i] += self.kappa * damping_stencil(phi, i);
             }
+            // Rod i's balance over mu_i, less rod i-1's over mu_{i-1}.
             if i == 0 {
-                trans[0] = fx - gx - hx - a0x;
-                trans[1] = fy - gy - self.gl - hy - a0y;
+                trans[0] = (fx - gx) * inv_mu - hx - a0x;
+                trans[1] = (fy - gy) * inv_mu - self.gl - hy - a0y;
             } else {
                 let (ex, ey) = force(i - 1);
-                trans[2 * i] = -ex + 2.0 * fx - gx - px - hx;
-                trans[2 * i + 1] = -ey + 2.0 * fy - gy - py - hy;
+                let both = inv_prev + inv_mu;
+                trans[2 * i] = -ex * inv_prev + fx * both - gx * inv_mu - px - hx;
+                trans[2 * i + 1] = -ey * inv_prev + fy * both - gy * inv_mu - py - hy;
             }
             (px, py) = (hx, hy);
+            inv_prev = inv_mu;
         }
     }
 
@@ -320,6 +353,9 @@ impl ChainDae {
         for i in 0..n {
             let (s, c) = sin_cos(phi[i]);
             let w2 = w[i] * w[i];
+            let (inertia, lam, inv_mu) = self.rod(i);
+            let half = 0.5 * lam;
+            let inv_prev = if i > 0 { self.rod(i - 1).2 } else { 1.0 };
             // The tip mass enters the last rod's rows through
             // `f_n = tip (f_i + h_i)`: `f_i` and `h_i` weigh `1 + tip` there.
             let tipped = i + 1 == n && self.tip != 0.0;
@@ -346,13 +382,13 @@ impl ChainDae {
                 emit(
                     m,
                     i,
-                    0.5 * (c * sx + s * sy) - self.kappa * f64::from(neighbours),
+                    half * (c * sx + s * sy) - self.kappa * f64::from(neighbours),
                 );
                 if i + 1 < n {
                     emit(m, i + 1, self.kappa);
                 }
             } else {
-                emit(m, i, 0.5 * (c * sx + s * sy));
+                emit(m, i, half * (c * sx + s * sy));
             }
             if i > 0 {
                 emit(m, n + i - 1, self.gamma);
@@ -368,13 +404,13 @@ impl ChainDae {
                 emit(m, k, own_force * (0.5 * s * (1.0 + self.tip)));
                 emit(m, k + 1, own_force * (-0.5 * c * (1.0 + self.tip)));
             } else {
-                emit(m, self.alpha(i), -1.0 / 12.0);
-                emit(m, k, own_force * (0.5 * s));
-                emit(m, k + 1, own_force * (-0.5 * c));
+                emit(m, self.alpha(i), -inertia / 12.0);
+                emit(m, k, own_force * (half * s));
+                emit(m, k + 1, own_force * (-half * c));
             }
             if i + 1 < n {
-                emit(m, k + 2, 0.5 * s);
-                emit(m, k + 3, -0.5 * c);
+                emit(m, k + 2, half * s);
+                emit(m, k + 3, -half * c);
             }
             // Translation: the terms -h_j of rods j = i-1 and j = i.
             let t = row_t(i);
@@ -393,32 +429,36 @@ impl ChainDae {
                     emit(t + 1, self.alpha(j), k1 * (-0.5 * cj));
                     continue;
                 }
-                // d(-h_j)/dphi_j = (alpha u_j + w^2 v_j) / 2.
-                emit(t, j, 0.5 * (a * cj - wj2 * sj));
-                emit(t + 1, j, 0.5 * (a * sj + wj2 * cj));
-                // d(-h_j)/dw_j = w_j u_j.
-                emit(t, n + j, w[j] * cj);
-                emit(t + 1, n + j, w[j] * sj);
-                // d(-h_j)/dalpha_j = -v_j / 2.
-                emit(t, self.alpha(j), 0.5 * sj);
-                emit(t + 1, self.alpha(j), -0.5 * cj);
+                // h_j carries rod j's length lambda_j (1 for equal rods).
+                let lj = if j == i { lam } else { self.rod(j).1 };
+                let hj = 0.5 * lj;
+                // d(-h_j)/dphi_j = lambda_j (alpha u_j + w^2 v_j) / 2.
+                emit(t, j, hj * (a * cj - wj2 * sj));
+                emit(t + 1, j, hj * (a * sj + wj2 * cj));
+                // d(-h_j)/dw_j = lambda_j w_j u_j.
+                emit(t, n + j, lj * (w[j] * cj));
+                emit(t + 1, n + j, lj * (w[j] * sj));
+                // d(-h_j)/dalpha_j = -lambda_j v_j / 2.
+                emit(t, self.alpha(j), hj * sj);
+                emit(t + 1, self.alpha(j), -hj * cj);
             }
             // Forces: f_{i-1} (-1), f_i (1 for the pivot's rod, else 2), f_{i+1} (-1).
+            // Each over its rod's mass: 1 / mu (all 1 for equal rods).
             if i > 0 {
                 // f_{i-1}: zero for a free pivot's f_0.
-                let prev = if free && i == 1 { 0.0 } else { -1.0 };
+                let prev = if free && i == 1 { 0.0 } else { -inv_prev };
                 emit(t, k - 2, prev);
                 emit(t + 1, k - 1, prev);
             }
-            let own = if i == 0 { 1.0 } else { 2.0 };
+            let own = if i == 0 { inv_mu } else { inv_prev + inv_mu };
             let own = if tipped { own - self.tip } else { own };
             // A free pivot's columns in f_0's place are a_0's: `- a_0`.
             let own = if free && i == 0 { -1.0 } else { own };
             emit(t, k, own);
             emit(t + 1, k + 1, own);
             if i + 1 < n {
-                emit(t, k + 2, -1.0);
-                emit(t + 1, k + 3, -1.0);
+                emit(t, k + 2, -inv_mu);
+                emit(t + 1, k + 3, -inv_mu);
             }
         }
     }

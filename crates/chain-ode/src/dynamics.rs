@@ -20,14 +20,14 @@ use crate::scalar::Scalar;
 #[derive(Clone, Debug)]
 pub struct Workspace<T> {
     /// `(sin phi_k, cos phi_k)`.
-    sc: Vec<(T, T)>,
+    pub(crate) sc: Vec<(T, T)>,
     /// `g_k = h_k / D_k`: `phi_k'' = q_k - g_k . a_{k-1}` (rod units).
-    g: Vec<[T; 2]>,
+    pub(crate) g: Vec<[T; 2]>,
     /// `q_k = e_k / D_k`.
-    q: Vec<T>,
+    pub(crate) q: Vec<T>,
     /// The joint acceleration as an affine map of the previous one:
     /// `a_k = T_k a_{k-1} + c_k`, stored `[T11, T12, T21, T22, c1, c2]`.
-    map: Vec<[T; 6]>,
+    pub(crate) map: Vec<[T; 6]>,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -127,6 +127,9 @@ pub fn accelerations_with<T: Scalar>(
 ) -> Reactions<T> {
     let n = chain.links();
     assert!(phi.len() == n && w.len() == n && acc.len() == n && ws.len() == n);
+    if let Some(rods) = chain.rods() {
+        return crate::dynamics_profile::accelerations(chain, rods, base, phi, w, acc, ws);
+    }
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
     // Bending: the generalised force `(EI / l) D_i(phi)` in rod units. Only
@@ -190,6 +193,23 @@ pub fn accelerations_with<T: Scalar>(
         ];
     }
 
+    forward_sweep(chain, base, [mxx, mxy, myy], [bx, by], acc, ws)
+}
+
+/// The forward sweep from the pivot, given the articulated body of the
+/// whole chain at joint 0 (`M_0 = [mxx, mxy, myy]`, `beta_0`) and the
+/// workspace's per-rod maps: every `phi_i''` into `acc`, and the reactions.
+#[inline(always)]
+pub(crate) fn forward_sweep<T: Scalar>(
+    chain: &Chain,
+    base: Base,
+    [mxx, mxy, myy]: [T; 3],
+    [bx, by]: [T; 2],
+    acc: &mut [T],
+    ws: &Workspace<T>,
+) -> Reactions<T> {
+    let zero = T::cst(0.0);
+    let one = T::cst(1.0);
     let l = chain.rod_length();
     // The pivot's acceleration a_0 (rod units) and force f_0 = M_0 a_0 + beta_0.
     let (a0x, a0y, f0x, f0y) = match base {

@@ -4,31 +4,44 @@
 //! `r_k = P0 + l sum_{j<=k} (cos phi_j, sin phi_j)`; the tip is `r_n`.
 
 use crate::chain::Chain;
+use crate::profile::Rods;
 use crate::scalar::sin_cos;
 
 /// A point or vector in the plane, `[x, y]`.
 pub type Vec2 = [f64; 2];
 
 /// Joint positions `r_0 = p0, r_1, .., r_n`.
+/// A profiled chain's rods have lengths `l_i = lambda_i l` ([`Chain::rods`]).
 pub fn joints(chain: &Chain, p0: Vec2, phi: &[f64]) -> Vec<Vec2> {
     let l = chain.rod_length();
     let mut r = p0;
     let mut out = Vec::with_capacity(phi.len() + 1);
     out.push(r);
-    for &p in phi {
+    for (i, &p) in phi.iter().enumerate() {
         let (s, c) = sin_cos(p);
-        r = [r[0] + l * c, r[1] + l * s];
+        let li = rod_length_of(chain, i, l);
+        r = [r[0] + li * c, r[1] + li * s];
         out.push(r);
     }
     out
 }
 
+/// The length of rod `i`: `l` for equal rods, `lambda_i l` for a profile.
+#[inline(always)]
+fn rod_length_of(chain: &Chain, i: usize, l: f64) -> f64 {
+    match chain.rods() {
+        Some(rods) => rods.length[i] * l,
+        None => l,
+    }
+}
+
 /// The free tip `r_n`.
 pub fn tip(chain: &Chain, p0: Vec2, phi: &[f64]) -> Vec2 {
     let l = chain.rod_length();
-    phi.iter().fold(p0, |r, &p| {
+    phi.iter().enumerate().fold(p0, |r, (i, &p)| {
         let (s, c) = sin_cos(p);
-        [r[0] + l * c, r[1] + l * s]
+        let li = rod_length_of(chain, i, l);
+        [r[0] + li * c, r[1] + li * s]
     })
 }
 
@@ -67,6 +80,36 @@ impl RodSums {
         self.joint_velocity = [jx + nx, jy + ny];
     }
 
+    /// Adds the next rod of a profiled chain: mass `mu`, length `lam`
+    /// (mean-rod units): its centre's velocity `joint + lam w v / 2` and
+    /// `mu (|v_c|^2 + lam^2 w^2 / 12)`.
+    #[inline(always)]
+    pub(crate) fn add_rod(&mut self, s: f64, c: f64, w: f64, mu: f64, lam: f64) {
+        let [jx, jy] = self.joint_velocity;
+        let (nx, ny) = (-s * w * lam, c * w * lam);
+        let (cx, cy) = (jx + 0.5 * nx, jy + 0.5 * ny);
+        self.twice_kinetic += mu * (cx * cx + cy * cy + (w * lam) * (w * lam) / 12.0);
+        self.joint_velocity = [jx + nx, jy + ny];
+    }
+
+    /// The sums over every rod of a profiled chain.
+    fn of_rods(rods: &Rods, phi: &[f64], w: &[f64]) -> Self {
+        let mut sums = Self::default();
+        for (i, (&p, &wk)) in phi.iter().zip(w).enumerate() {
+            let (s, c) = sin_cos(p);
+            sums.add_rod(s, c, wk, rods.mass[i], rods.length[i]);
+        }
+        sums
+    }
+
+    /// The sums of `chain` (equal or profiled rods).
+    fn of_chain(chain: &Chain, phi: &[f64], w: &[f64]) -> Self {
+        match chain.rods() {
+            Some(rods) => Self::of_rods(rods, phi, w),
+            None => Self::of(phi, w),
+        }
+    }
+
     /// The sums over every rod of `(phi, w)`.
     fn of(phi: &[f64], w: &[f64]) -> Self {
         let mut sums = Self::default();
@@ -86,13 +129,14 @@ impl RodSums {
 
 /// The exact tip velocity `l sum_j w_j (-sin phi_j, cos phi_j)`.
 pub fn tip_velocity(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec2 {
-    RodSums::of(phi, w).tip_velocity(chain.rod_length())
+    RodSums::of_chain(chain, phi, w).tip_velocity(chain.rod_length())
 }
 
 /// Kinetic energy: `sum_k (m/2)|v_ck|^2 + (J/2) w_k^2`, `J = m l^2 / 12`,
 /// plus `(M_t / 2) |v_tip|^2` for a tip mass (equal to `(m l^2 / 2) w^T A w`).
+/// A profiled chain's rods weigh `mu_i m` and measure `lambda_i l`.
 pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    let sums = RodSums::of(phi, w);
+    let sums = RodSums::of_chain(chain, phi, w);
     let t = 0.5 * chain.mass() * chain.rod_length().powi(2) * sums.twice_kinetic;
     if chain.tip_mass() != 0.0 {
         let v = sums.tip_velocity(chain.rod_length());
@@ -105,8 +149,14 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
 /// Potential energy `m g l sum_i q_i sin phi_i` ([`lever_arm`] `q_i`), plus
 /// `M_t g y_tip = M_t g l sum_i sin phi_i` for a tip mass; zero at the
 /// height of `P0`.
+///
+/// A profiled chain's is `m g l sum_i mu_i y_i`, `y_i` the height of rod
+/// `i`'s centre in `l`: `sum_{j<i} lambda_j sin phi_j + lambda_i sin phi_i / 2`.
 pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
     let n = phi.len();
+    if let Some(rods) = chain.rods() {
+        return chain.mass() * chain.gravity() * chain.rod_length() * rods_height_sum(rods, phi);
+    }
     let sum: f64 = phi
         .iter()
         .enumerate()
@@ -119,6 +169,18 @@ pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
     } else {
         v
     }
+}
+
+/// `sum_i mu_i y_i` of a profiled chain (see [`potential_energy`]), in `l`.
+pub(crate) fn rods_height_sum(rods: &Rods, phi: &[f64]) -> f64 {
+    let mut joint = 0.0;
+    let mut sum = 0.0;
+    for (i, p) in phi.iter().enumerate() {
+        let dy = rods.length[i] * sin_cos(*p).0;
+        sum += rods.mass[i] * (joint + 0.5 * dy);
+        joint += dy;
+    }
+    sum
 }
 
 /// Energy of the bending springs `U_b = (EI / 2l) sum_{i>=2} (phi_i - phi_{i-1})^2`

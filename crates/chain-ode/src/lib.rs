@@ -40,11 +40,13 @@ mod chain;
 pub mod dae;
 pub mod dense;
 pub mod dynamics;
+mod dynamics_profile;
 pub mod elastic;
 pub mod kinematics;
 pub mod modes;
 mod ode;
 pub mod pivot;
+pub mod profile;
 pub mod report;
 mod scalar;
 mod solve;
@@ -57,6 +59,7 @@ pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
 pub use pivot::{Pivot, PivotPath};
+pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 pub use solve::{
     bdf_crossover_gamma, solve, solve_beam, solve_report, Accuracy, BeamRun, Method, Sample,

@@ -154,6 +154,13 @@ impl ReportModel {
             "0 with model.report = true (the report's model has no tip mass)",
             chain.tip_mass(),
         )?;
+        if let Some(key) = chain.params().profile.first_given() {
+            return Err(InvalidParameter {
+                field: key,
+                accepted: "absent with model.report = true (the report's rods are equal)".into(),
+                got: "a rod profile".to_string(),
+            });
+        }
         if let Some(key) = chain.pivot().first_given() {
             return Err(InvalidParameter {
                 field: key,

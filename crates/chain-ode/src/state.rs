@@ -109,9 +109,27 @@ impl Start {
             }
             Self::Catenary { p1, .. } => {
                 finite_point(*p1, "start.p1")?;
-                let eq = catenary::discrete_equilibrium(p0, *p1, chain.length(), n)
-                    .map_err(StartError::Catenary)?;
-                (eq.angles, vec![0.0; n])
+                let angles = match chain.rods() {
+                    // Unequal rods: the minimum of the convex complementary
+                    // energy (catenary::discrete_equilibrium_rods).
+                    Some(rods) => {
+                        catenary::discrete_equilibrium_rods(
+                            p0,
+                            *p1,
+                            chain.length(),
+                            &rods.mass,
+                            &rods.length,
+                        )
+                        .map_err(StartError::Catenary)?
+                        .angles
+                    }
+                    None => {
+                        catenary::discrete_equilibrium(p0, *p1, chain.length(), n)
+                            .map_err(StartError::Catenary)?
+                            .angles
+                    }
+                };
+                (angles, vec![0.0; n])
             }
             Self::Folded { down, .. } => {
                 let down = down.unwrap_or(n / 2);

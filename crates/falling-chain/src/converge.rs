@@ -537,6 +537,66 @@ mod tests {
         assert!(check_tol(0.01).is_ok());
     }
 
+    /// The mass per length of each rod, `m_i / l_i`, and its midpoint's
+    /// arc length `s_i`, in physical units.
+    fn densities(c: &chain_ode::Chain) -> Vec<(f64, f64)> {
+        let rods = c.rods().unwrap();
+        let (m, l) = (c.mass(), c.rod_length());
+        let mut s = 0.0;
+        (0..c.links())
+            .map(|i| {
+                let li = rods.length[i] * l;
+                s += li;
+                (s - 0.5 * li, rods.mass[i] * m / li)
+            })
+            .collect()
+    }
+
+    /// A tapered scene refines by its profile: the continuum's mass per
+    /// length `rho(s)` (linear for a taper, piecewise constant for lists)
+    /// and its length are the same at every level, not equal rods.
+    #[test]
+    fn refinement_holds_the_profiles_continuum() {
+        let taper = Scene::from_toml_str(
+            "[chain]\nlinks = 10\ntaper = 10\n[start]\nkind = \"catenary\"\np1 = [3, 0]\n[run]\nt_end = 1\n",
+        )
+        .unwrap();
+        let coarse = taper.chain().unwrap();
+        let fine = refined_scene(&taper, 40).unwrap().chain().unwrap();
+        // rho(s) = a - b s through the coarse rods' midpoints.
+        let d = densities(&coarse);
+        let b = (d[0].1 - d[9].1) / (d[9].0 - d[0].0);
+        let a = d[0].1 + b * d[0].0;
+        assert!((a / (a - b * 6.0) - 10.0).abs() < 1e-12);
+        for (s, rho) in densities(&fine) {
+            assert!((rho - (a - b * s)).abs() < 1e-12 * a, "{s}: {rho}");
+        }
+        assert!((fine.total_mass() - coarse.total_mass()).abs() < 1e-12);
+        // Lists: each rod cut into equal parts, rho piecewise the same.
+        let lists = Scene::from_toml_str(
+            "[chain]\nlinks = 3\nrod_masses = [3, 2, 1]\nrod_lengths = [1, 2, 3]\n[start]\nkind = \"folded\"\n[run]\nt_end = 1\n",
+        )
+        .unwrap();
+        let coarse = densities(&lists.chain().unwrap());
+        let fine = refined_scene(&lists, 12).unwrap().chain().unwrap();
+        for (s, rho) in densities(&fine) {
+            // The coarse rod that holds s: boundaries at 1, 3 (of 6).
+            let k = if s < 1.0 {
+                0
+            } else if s < 3.0 {
+                1
+            } else {
+                2
+            };
+            assert!((rho - coarse[k].1).abs() < 1e-12 * rho, "{s}: {rho}");
+        }
+        let e = refined_scene(&lists, 5).unwrap_err().to_string();
+        assert!(
+            e.starts_with("chain.rod_masses") && !e.contains('\n'),
+            "{e}"
+        );
+    }
+
     #[test]
     fn refinement_keeps_mass_viscosity_and_fold_proportions() {
         let text = r#"

@@ -29,7 +29,8 @@ use std::str::FromStr;
 
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, solve_report, Chain, ChainParams, Method, Pivot, SolveOptions, Start, State, Trajectory,
+    solve, solve_report, Chain, ChainParams, Method, Pivot, Profile, SolveOptions, Start, State,
+    Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -71,6 +72,9 @@ struct ChainSection {
     axial_damping: f64,
     bending_stiffness: f64,
     tip_mass: f64,
+    taper: f64,
+    rod_masses: Option<Vec<f64>>,
+    rod_lengths: Option<Vec<f64>>,
 }
 
 /// The pivot's motion ([`chain_ode::Pivot`]).
@@ -216,6 +220,9 @@ impl Scene {
             axial_damping,
             bending_stiffness,
             tip_mass,
+            taper,
+            rod_masses,
+            rod_lengths,
         } = chain;
         let PivotSection {
             acceleration,
@@ -242,6 +249,11 @@ impl Scene {
                 jerk,
                 jerk_time,
                 release,
+            },
+            profile: Profile {
+                taper,
+                masses: rod_masses,
+                lengths: rod_lengths,
             },
         };
         // `schema::check` has made sure that each kind's required keys are there.
@@ -349,6 +361,7 @@ impl Scene {
             bending_stiffness,
             tip_mass,
             pivot,
+            profile,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
@@ -412,6 +425,29 @@ impl Scene {
             overrides::set_path(&mut tree, "chain.tip_mass", toml::Value::Float(tip_mass))?;
         } else if let Some(toml::Value::Table(section)) = tree.get_mut("chain") {
             section.remove("tip_mass");
+        }
+        // The profile's keys are written only when given, so that a scene
+        // of equal rods reads as it did before they existed.
+        let numbers =
+            |v: Vec<f64>| toml::Value::Array(v.into_iter().map(toml::Value::Float).collect());
+        let Profile {
+            taper,
+            masses,
+            lengths,
+        } = profile;
+        for (name, value) in [
+            ("taper", (taper != 1.0).then_some(toml::Value::Float(taper))),
+            ("rod_masses", masses.map(numbers)),
+            ("rod_lengths", lengths.map(numbers)),
+        ] {
+            match value {
+                Some(v) => overrides::set_path(&mut tree, &format!("chain.{name}"), v)?,
+                None => {
+                    if let Some(toml::Value::Table(section)) = tree.get_mut("chain") {
+                        section.remove(name);
+                    }
+                }
+            }
         }
         // Absent is rigid links: the key goes when the chain has none.
         match axial_stiffness {

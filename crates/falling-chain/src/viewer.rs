@@ -28,6 +28,20 @@ use crate::{Error, RunSummary};
 /// The most runs one page overlays (one colour each).
 pub const MAX_RUNS: usize = 8;
 
+/// The page builds the joints from one rod length `rod`: a chain whose rods
+/// differ in length (`chain.rod_lengths`) is refused in one line (`plot`
+/// and `animate` draw any chain). Rods of unequal mass alone are drawn.
+pub fn check_equal_rods(chain: &chain_ode::Chain) -> Result<(), Error> {
+    match chain.rods() {
+        Some(r) if r.length.iter().any(|&x| x != 1.0) => Err(Error::field(
+            "chain.rod_lengths",
+            "must be absent for view (its page draws rods of equal length; plot and animate \
+             draw unequal ones)",
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// The data a page holds, over all its runs, in bytes: each of `k` runs is
 /// thinned to `DATA_BUDGET_BYTES / k`. A 50-rod, 8 s run at the default
 /// output step (801 samples) takes about 0.5 MB, well inside one run's

@@ -24,6 +24,7 @@ pub mod validation_convergence;
 pub mod validation_energy;
 pub mod validation_folded;
 pub mod validation_modes;
+pub mod whip_taper;
 
 /// Least-squares fits for the figure files (the library's).
 #[allow(unused_imports, reason = "for the figure files that fit slopes")]

@@ -7,6 +7,7 @@ use crate::elastic;
 use crate::kinematics::{bending_energy, lever_arm, RodSums, Vec2};
 use crate::ode::{Cancel, Observer, StepView};
 use crate::pivot::PivotPath;
+use crate::profile::Rods;
 use crate::report::ReportModel;
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
@@ -24,6 +25,9 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
             tip_velocity: elastic::tip_velocity(chain, y),
             tip_acceleration: elastic::tip_acceleration(chain, y, f),
         };
+    }
+    if let Some(rods) = chain.rods() {
+        return metrics_rods(chain, rods, y, f);
     }
     let n = chain.links();
     let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
@@ -59,6 +63,33 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
         } else {
             e
         },
+        tip_velocity: sums.tip_velocity(l),
+        tip_acceleration: [l * ax, l * ay],
+    }
+}
+
+/// [`metrics`] of a profiled chain (rod masses `mu_i m`, lengths
+/// `lambda_i l`; no tip mass, no bending), in one pass.
+fn metrics_rods(chain: &Chain, rods: &Rods, y: &[f64], f: &[f64]) -> Metrics {
+    let n = chain.links();
+    let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
+    let mut sums = RodSums::default();
+    let (mut ax, mut ay) = (0.0, 0.0);
+    let (mut joint, mut v) = (0.0, 0.0);
+    for i in 0..n {
+        let (s, c) = crate::scalar::sin_cos(phi[i]);
+        let (wi, ai) = (w[i], acc[i]);
+        let (mu, lam) = (rods.mass[i], rods.length[i]);
+        sums.add_rod(s, c, wi, mu, lam);
+        v += mu * (joint + 0.5 * lam * s);
+        joint += lam * s;
+        ax += lam * (-ai * s - wi * wi * c);
+        ay += lam * (ai * c - wi * wi * s);
+    }
+    let l = chain.rod_length();
+    let ml2 = chain.mass() * l * l;
+    Metrics {
+        energy: 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v,
         tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }

@@ -4,7 +4,7 @@
 
 use chain_ode::dae::ChainDae;
 use chain_ode::dynamics::{accelerations, Workspace};
-use chain_ode::{solve, Chain, Method, SolveOptions, Start, Status};
+use chain_ode::{solve, Chain, Method, Profile, SolveOptions, Start, Status};
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use proptest::prelude::*;
@@ -90,18 +90,50 @@ fn noise(k: usize) -> f64 {
 
 #[test]
 fn the_analytic_jacobian_matches_central_differences() {
-    for (n, damping, ei) in [
-        (1, 0.3, 0.0),
-        (2, 0.0, 0.0),
-        (5, 0.02, 0.0),
-        (17, 1.0, 0.0),
-        (2, 0.0, 0.7),
-        (9, 0.05, 0.02),
+    // The last three: rods of unequal mass and length (a taper, lists).
+    let lists = |n: usize, k: usize| Some((0..n).map(|i| 1.0 + ((i * k) % 5) as f64).collect());
+    for (n, damping, ei, profile) in [
+        (1, 0.3, 0.0, Profile::default()),
+        (2, 0.0, 0.0, Profile::default()),
+        (5, 0.02, 0.0, Profile::default()),
+        (17, 1.0, 0.0, Profile::default()),
+        (2, 0.0, 0.7, Profile::default()),
+        (9, 0.05, 0.02, Profile::default()),
+        (
+            2,
+            0.1,
+            0.0,
+            Profile {
+                masses: lists(2, 3),
+                lengths: lists(2, 2),
+                ..Profile::default()
+            },
+        ),
+        (
+            7,
+            0.02,
+            0.0,
+            Profile {
+                taper: 10.0,
+                ..Profile::default()
+            },
+        ),
+        (
+            11,
+            0.0,
+            0.0,
+            Profile {
+                masses: lists(11, 3),
+                lengths: lists(11, 2),
+                ..Profile::default()
+            },
+        ),
     ] {
         let chain = Chain::new(chain_ode::ChainParams {
             links: n,
             damping,
             bending_stiffness: ei,
+            profile,
             ..chain_ode::ChainParams::default()
         })
         .unwrap();

@@ -23,8 +23,13 @@ proptest! {
         // Every rod as long as the others, and together as long as the
         // chain (which a wrong `rod_length` shared by both sides would not
         // be), each pointing along its angle from the horizontal.
-        let l = chain.length() / chain.links() as f64;
-        for (p, angle) in r.windows(2).zip(&phi) {
+        // A profiled chain's rods measure lambda_i l (lambda summing to n).
+        let l0 = chain.length() / chain.links() as f64;
+        let lam = |i: usize| chain.rods().map_or(1.0, |r| r.length[i]);
+        let total: f64 = (0..chain.links()).map(lam).sum::<f64>() * l0;
+        prop_assert!((total - chain.length()).abs() <= 1e-12 * chain.length());
+        for (i, (p, angle)) in r.windows(2).zip(&phi).enumerate() {
+            let l = lam(i) * l0;
             let (dx, dy) = (p[1][0] - p[0][0], p[1][1] - p[0][1]);
             prop_assert!((dx.hypot(dy) - l).abs() <= 1e-12 * chain.length());
             prop_assert!((dx - l * angle.cos()).abs() <= 1e-12 * chain.length());

@@ -20,13 +20,15 @@ mod failures;
 mod methods;
 mod modes;
 mod pivot;
+mod profile;
 mod report;
 mod rk4;
 mod tip_mass;
 mod validation;
 
 use chain_ode::{
-    solve, Chain, ChainParams, Method, SolveOptions, Start, State, Status, Trajectory, Vec2,
+    solve, Chain, ChainParams, Method, Profile, SolveOptions, Start, State, Status, Trajectory,
+    Vec2,
 };
 use proptest::prelude::*;
 
@@ -120,22 +122,73 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
         0.0f64..10.0,
         0.0f64..0.5,
         prop_oneof![Just(0.0), 0.0f64..2.0, 0.0f64..2.0],
+        // A rod profile: none, a taper, or random lists (0, 1, 2, 3).
+        prop_oneof![Just(0u8), Just(0u8), 1u8..=3],
+        0.01f64..100.0,
     )
-        .prop_flat_map(|(n, length, mass, gravity, damping, bending_stiffness)| {
-            let chain = Chain::new(ChainParams {
-                length,
-                links: n,
-                mass,
-                gravity,
-                damping,
-                bending_stiffness,
-                ..ChainParams::default()
-            })
-            .unwrap();
-            (
-                Just(chain),
-                prop::collection::vec(-7.0f64..7.0, n),
-                prop::collection::vec(-3.0f64..3.0, n),
-            )
-        })
+        .prop_flat_map(
+            |(n, length, mass, gravity, damping, bending_stiffness, profile, taper)| {
+                (
+                    Just((
+                        n,
+                        length,
+                        mass,
+                        gravity,
+                        damping,
+                        bending_stiffness,
+                        profile,
+                        taper,
+                    )),
+                    prop::collection::vec(0.05f64..5.0, n),
+                    prop::collection::vec(0.2f64..5.0, n),
+                    prop::collection::vec(-7.0f64..7.0, n),
+                    prop::collection::vec(-3.0f64..3.0, n),
+                )
+            },
+        )
+        .prop_map(
+            |(
+                (n, length, mass, gravity, damping, bending_stiffness, profile, taper),
+                masses,
+                lengths,
+                phi,
+                w,
+            )| {
+                // Profiles go without bending (refused together).
+                let profile = match profile {
+                    1 => Profile {
+                        taper,
+                        ..Profile::default()
+                    },
+                    2 => Profile {
+                        masses: Some(masses),
+                        lengths: Some(lengths),
+                        ..Profile::default()
+                    },
+                    3 => Profile {
+                        taper,
+                        lengths: Some(lengths),
+                        ..Profile::default()
+                    },
+                    _ => Profile::default(),
+                };
+                let bending_stiffness = if profile.is_uniform() {
+                    bending_stiffness
+                } else {
+                    0.0
+                };
+                let chain = Chain::new(ChainParams {
+                    length,
+                    links: n,
+                    mass,
+                    gravity,
+                    damping,
+                    bending_stiffness,
+                    profile,
+                    ..ChainParams::default()
+                })
+                .unwrap();
+                (chain, phi, w)
+            },
+        )
 }

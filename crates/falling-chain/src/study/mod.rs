@@ -46,6 +46,7 @@ pub mod tip_mass;
 pub mod validation;
 pub mod viewer_peak;
 pub mod work_cost;
+pub mod whip_taper;
 
 use chain_ode::Method;
 

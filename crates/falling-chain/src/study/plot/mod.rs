@@ -20,6 +20,7 @@ pub mod stiffness;
 pub mod timing;
 pub mod tip_mass;
 pub mod validation;
+pub mod whip_taper;
 
 use std::path::Path;
 
