@@ -1,7 +1,8 @@
 //! The paper of the study, as a document tool apart from the figures:
-//! [`fill`] fills `paper/paper.tmpl.md` with numbers read from the CSV
-//! files of `figures/data/` and writes `paper/paper.md` (or checks that it
-//! is current); [`pdf`] typesets the filled paper as PDF; [`catalogue`]
+//! [`fill`] fills `paper/paper.tmpl.md` and `paper/methods.tmpl.md` with
+//! numbers read from the CSV files of `figures/data/` and writes
+//! `paper/paper.md` and `paper/methods.md` (or checks that they
+//! are current); [`pdf`] typesets the filled papers as PDF; [`catalogue`]
 //! is the figure catalogue as plain data (`figures/README.md`, the checks of
 //! what each figure writes). `cargo xtask paper [--check | --pdf]` and
 //! `cargo xtask figures` call them.
