@@ -519,11 +519,6 @@ pub static FIGURES: &[Figure] = &[
     },
 ];
 
-/// The figure called `id`.
-pub fn find(id: &str) -> Option<&'static Figure> {
-    FIGURES.iter().find(|f| f.id == id)
-}
-
 /// The catalogue of every figure, in the registry's order.
 pub fn entries() -> Vec<Entry<'static>> {
     FIGURES.iter().map(Figure::entry).collect()
