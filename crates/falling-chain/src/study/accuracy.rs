@@ -75,10 +75,10 @@ impl Run {
 /// Every setting of [`settings`] of every scene of `scenes`, run on the
 /// current rayon pool (`prepare` gives a scene with overrides, ready to
 /// run), and their [`table`].
-pub fn scenes_table(
-    scenes: &[&str],
-    prepare: &(dyn Fn(&str, &[String]) -> Result<Prepared, String> + Sync),
-) -> Result<String, String> {
+pub fn scenes_table<F>(scenes: &[&str], prepare: &F) -> Result<String, String>
+where
+    F: Fn(&str, &[String]) -> Result<Prepared, String> + Sync,
+{
     use rayon::prelude::*;
     let jobs: Vec<(&str, String, Vec<String>)> = (scenes.iter())
         .flat_map(|&s| settings().into_iter().map(move |(l, o)| (s, l, o)))

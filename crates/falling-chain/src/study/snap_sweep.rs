@@ -48,7 +48,7 @@ pub fn sweep(
         }
     }
     jobs.sort_by_key(|j| std::cmp::Reverse(j.2));
-    let rows: Vec<Result<((usize, usize, usize), String), String>> = jobs
+    let mut rows = jobs
         .par_iter()
         .map(|&(sc, va, n, t_end)| {
             let (scene, base, _) = scenes[sc];
@@ -74,8 +74,7 @@ pub fn sweep(
             tick(note(scene, variant, n, &r));
             Ok(((sc, va, n), snap::snap_row(variant, &r)))
         })
-        .collect();
-    let mut rows = rows.into_iter().collect::<Result<Vec<_>, String>>()?;
+        .collect::<Result<Vec<_>, String>>()?;
     // Back in the order of the scenes, cases and n.
     rows.sort_by_key(|r| r.0);
     let mut csv = SNAP_HEADER.to_string();
