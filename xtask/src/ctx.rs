@@ -87,6 +87,17 @@ impl Ctx {
         Ok(self.relative(&self.data.join(file)))
     }
 
+    /// Writes each `(suffix, csv)` of `tables` as `<id><suffix>.csv`.
+    pub fn write_tables<S: AsRef<str>>(
+        &self,
+        id: &str,
+        tables: &[(&str, S)],
+    ) -> Result<Vec<String>, String> {
+        (tables.iter())
+            .map(|(suffix, csv)| self.write(&format!("{id}{suffix}.csv"), csv.as_ref()))
+            .collect()
+    }
+
     /// Reads `figures/data/<file>`.
     pub fn read(&self, file: &str) -> Result<Table, String> {
         Table::read(&self.data.join(file)).map_err(|e| {

@@ -21,7 +21,6 @@ mod timing;
 mod viewer_shot;
 
 use std::collections::BTreeSet;
-use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -86,24 +85,6 @@ fn root() -> PathBuf {
         .parent()
         .expect("xtask lives in the workspace")
         .to_path_buf()
-}
-
-/// Every `--only` id names a figure (or `anim`).
-fn check_only(args: &Args) -> Result<(), String> {
-    match args
-        .only
-        .iter()
-        .find(|id| registry::find(id).is_none() && *id != "anim")
-    {
-        Some(id) => {
-            let ids: Vec<&str> = FIGURES.iter().map(|f| f.id).collect();
-            let ids = ids.join(", ");
-            Err(format!(
-                "--only: unknown figure '{id}' (known: {ids}, anim)"
-            ))
-        }
-        None => Ok(()),
-    }
 }
 
 fn figures_cmd(args: Args) -> Result<(), String> {
@@ -240,11 +221,7 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         println!("wrote figures/data/{}", timing::MACHINE);
         if all {
             steps.push(("all".into(), clock.elapsed().as_secs_f64()));
-            let mut csv = String::from("step,seconds\n");
-            for (step, secs) in &steps {
-                writeln!(csv, "{step},{}", data::fixed(*secs, 1)).unwrap();
-            }
-            ctx.write(timing::RUN, &csv)?;
+            ctx.write(timing::RUN, &catalogue::run_timing(&steps))?;
             println!("wrote figures/data/{}", timing::RUN);
         }
     }
@@ -280,7 +257,8 @@ fn scene_keys(check: bool) -> Result<(), String> {
 
 fn main() -> ExitCode {
     let result = match <Command as clap::Parser>::parse() {
-        Command::Figures(args) => check_only(&args).and_then(|()| figures_cmd(args)),
+        Command::Figures(args) => catalogue::check_only(&registry::entries(), &args.only, "anim")
+            .and_then(|()| figures_cmd(args)),
         Command::Paper { check, pdf } => paper::fill::run(&root(), check).and_then(|()| {
             if pdf {
                 paper::pdf::build(&root()).map(|_| ())

@@ -8,11 +8,10 @@
 //! committed data, and `cargo xtask figures` is `compute` then `draw`.
 
 use crate::ctx::Ctx;
-use crate::report::{
-    Catenaries, LinspaceSlice, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan,
-};
+use crate::report::{Catenaries, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan};
 use crate::report_model::{ReportSnapshots, ReportTip, ReportVmax};
 use crate::study;
+use falling_chain::study::report::{LinspaceSlice, SpanParams};
 use paper::catalogue::Entry;
 
 /// How a figure makes its data and draws itself.
@@ -180,16 +179,18 @@ pub static FIGURES: &[Figure] = &[
             title: "maximum tip speed against span d",
             scene: "span-d3",
             stretched: "span-d6",
-            report_spans: LinspaceSlice {
-                start: 0.0,
-                stop: 6.0,
-                num: 20,
-                from: 5,
-                to: 19,
+            spans: SpanParams {
+                report: LinspaceSlice {
+                    start: 0.0,
+                    stop: 6.0,
+                    num: 20,
+                    from: 5,
+                    to: 19,
+                },
+                dense: (0.3, 5.97, 120),
+                refined: (200, 0.25, 5.95, 39),
+                peak: (&[200, 400], 0.1, 0.8, 15),
             },
-            dense: (0.3, 5.97, 120),
-            refined: (200, 0.25, 5.95, 39),
-            peak: (&[200, 400], 0.1, 0.8, 15),
         },
     },
     snapshots!("fig10a-height-hm2", "Fig. 10a", "P1 = (3, -2), n = 50", "n = 50, P1 = (3, -2), r = 0.0005, t = 5.196", "height-hm2"),
@@ -527,11 +528,6 @@ pub static FIGURES: &[Figure] = &[
         },
     },
 ];
-
-/// The figure called `id`.
-pub fn find(id: &str) -> Option<&'static Figure> {
-    FIGURES.iter().find(|f| f.id == id)
-}
 
 /// The catalogue of every figure, in the registry's order.
 pub fn entries() -> Vec<Entry<'static>> {

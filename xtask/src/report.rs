@@ -4,9 +4,7 @@
 //! runs to `figures/data/<id>*.csv`, `draw` draws from those files.
 
 use falling_chain::study::plot;
-use falling_chain::study::report;
-use falling_chain::study::span_check;
-use falling_chain::study::table::Table;
+use falling_chain::study::report::{self, SpanParams};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -14,15 +12,6 @@ use crate::runs::SceneRun;
 
 fn title(fig: &Figure, title: &str) -> String {
     format!("{}: {title}", fig.label())
-}
-
-fn drawn(
-    ctx: &Ctx,
-    fig: &Figure,
-    out: Result<figures::Output, figures::FigureError>,
-) -> Result<Vec<String>, String> {
-    out.map(|o| ctx.drawn(&o))
-        .map_err(|e| format!("{}: {e}", fig.id))
 }
 
 /// The schematic of the problem (no data).
@@ -33,7 +22,9 @@ impl Make for Sketch {
         Ok(vec![])
     }
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        drawn(ctx, fig, figures::sketch(&ctx.stem(fig.id)))
+        ctx.draw(fig, |_, stem| {
+            figures::sketch(stem).map_err(|e| e.to_string())
+        })
     }
 }
 
@@ -179,29 +170,7 @@ pub struct VmaxVsSpan {
     pub scene: &'static str,
     /// The stretched scene (d = L).
     pub stretched: &'static str,
-    /// The report's spans.
-    pub report_spans: LinspaceSlice,
-    /// `linspace(a, b, n)`.
-    pub dense: (f64, f64, usize),
-    /// The refined curve: `(links, linspace(a, b, count))`, the continuum
-    /// held fixed as `falling-chain converge` holds it (`m = M/n`,
-    /// `r = eta n / L`), method `auto` at rtol 1e-8.
-    pub refined: (usize, f64, f64, usize),
-    /// The refined chain's peak at narrow spans: its rods and twice them,
-    /// over `linspace(a, b, count)` (`falling_chain::study::span_check`).
-    pub peak: (&'static [usize], f64, f64, usize),
-}
-
-/// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
-/// values from `start` to `stop` (both included), of which those at the
-/// indices `from..to` are kept.
-#[derive(Clone, Copy, Debug)]
-pub struct LinspaceSlice {
-    pub start: f64,
-    pub stop: f64,
-    pub num: usize,
-    pub from: usize,
-    pub to: usize,
+    pub spans: SpanParams,
 }
 
 impl Make for VmaxVsSpan {
@@ -214,37 +183,20 @@ impl Make for VmaxVsSpan {
     /// (n = 50), `stretched` (n = 50, d = L), `n200` and `stretched-n200`
     /// (the refined chain), and `switch-before` / `switch-after` (and
     /// `-n200`): the two neighbouring spans of the dense curve between
-    /// which the time of the maximum jumps (the whip switch).
+    /// which the time of the maximum jumps (the whip switch); `-agreement`
+    /// and `-peak` ([`report::vmax_tables`]).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let r = self.report_spans;
-        let (links, a, b, count) = self.refined;
-        let spans = report::Spans {
-            report: report::linspace(r.start, r.stop, r.num)[r.from..r.to].to_vec(),
-            dense: report::linspace(self.dense.0, self.dense.1, self.dense.2),
-            refined: (links, report::linspace(a, b, count)),
-        };
         let stretched = ctx.run(self.stretched)?;
-        let csv = report::vmax_vs_span(
-            &ctx.run(self.scene)?.scene,
-            (&stretched.scene, &stretched.as_run()),
-            &spans,
-            ctx.jobs,
-        )?;
-        let table = Table::parse(fig.id, &csv)?;
+        let stretched = (&stretched.scene, &stretched.as_run());
         let base = &ctx.run(self.scene)?.scene;
-        let agreement = span_check::agreement(base, &table, links, ctx.jobs)?;
-        let (rods, pa, pb, pc) = self.peak;
-        let peak = span_check::peak(base, rods, &report::linspace(pa, pb, pc), ctx.jobs)?;
-        Ok(vec![
-            ctx.write(&format!("{}.csv", fig.id), &csv)?,
-            ctx.write(&format!("{}-agreement.csv", fig.id), &agreement)?,
-            ctx.write(&format!("{}-peak.csv", fig.id), &peak)?,
-        ])
+        let tables = report::vmax_tables(base, stretched, &self.spans, ctx.jobs)?;
+        ctx.write_tables(fig.id, &tables)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
+        let title = title(fig, self.title);
         ctx.draw(fig, |r, s| {
-            plot::report::vmax_vs_span(r, s, &title(fig, self.title), self.refined.0)
+            plot::report::vmax_vs_span(r, s, &title, self.spans.refined.0)
         })
     }
 }

@@ -5,7 +5,6 @@
 //! the drawing).
 
 use falling_chain::study::{accuracy, plot};
-use rayon::prelude::*;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -27,22 +26,10 @@ pub struct ReportAccuracy;
 
 impl Make for ReportAccuracy {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let jobs: Vec<(&str, String, Vec<String>)> = scenes()
-            .into_iter()
-            .flat_map(|s| {
-                accuracy::settings()
-                    .into_iter()
-                    .map(move |(l, o)| (s, l, o))
-            })
-            .collect();
-        let runs = ctx.pool()?.install(|| {
-            jobs.par_iter()
-                .map(|(scene, label, overrides)| {
-                    accuracy::Run::of(scene, label, &ctx.prepare(scene, overrides)?)
-                })
-                .collect::<Result<Vec<_>, String>>()
-        })?;
-        let csv = accuracy::table(&runs).map_err(|e| format!("{}: {e}", fig.id))?;
+        let prepare = |scene: &str, set: &[String]| ctx.prepare(scene, set);
+        let csv = (ctx.pool()?)
+            .install(|| accuracy::scenes_table(&scenes(), &prepare))
+            .map_err(|e| format!("{}: {e}", fig.id))?;
         Ok(vec![ctx.write(fig.data[0], &csv)?])
     }
 

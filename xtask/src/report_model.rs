@@ -25,26 +25,15 @@ impl Make for ReportSnapshots {
         vec![self.scene]
     }
 
-    /// `<id>.csv`: [`report_model::snapshots`] of the scene run as the
-    /// report ran it ([`report_model::overrides`]); and `<id>-cases.csv`,
-    /// [`report_model_tip::cases`], if the figure lists it.
+    /// `<id>.csv` and, if the figure lists it, `<id>-cases.csv`:
+    /// [`report_model::snapshot_tables`].
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let s = ctx.run(self.scene)?.scene.clone();
-        let overrides = report_model::overrides(self.t_report);
-        let traj = s
-            .with_overrides(&overrides)
-            .and_then(|s| s.prepare())
-            .and_then(|p| p.solve())
-            .map_err(|e| e.to_string())?;
-        let csv = report_model::snapshots(&traj, report_model::snapshot_dt(self.t_report));
-        let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
+        let scene = &ctx.run(self.scene)?.scene;
         // A figure that lists `<id>-cases.csv` also has the pair of runs of
         // its stepper.
-        if fig.data.len() > 1 {
-            let cases = report_model_tip::cases(&[(self.scene, &s)], self.t_report)?;
-            files.push(ctx.write(&format!("{}-cases.csv", fig.id), &cases)?);
-        }
-        Ok(files)
+        let cases = fig.data.len() > 1;
+        let tables = report_model::snapshot_tables(self.scene, scene, self.t_report, cases)?;
+        ctx.write_tables(fig.id, &tables)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {

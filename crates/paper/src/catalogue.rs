@@ -118,6 +118,35 @@ pub fn check_written(entry: &Entry, files: &[String], timings: bool) -> Result<(
     Ok(())
 }
 
+/// Checks `--only`: every id names an entry or is `extra` (`anim`).
+pub fn check_only(entries: &[Entry], only: &[String], extra: &str) -> Result<(), String> {
+    let known = |id: &str| id == extra || entries.iter().any(|e| e.id == id);
+    match only.iter().find(|id| !known(id)) {
+        Some(id) => {
+            let ids: Vec<&str> = entries.iter().map(|e| e.id).collect();
+            let ids = ids.join(", ");
+            Err(format!(
+                "--only: unknown figure '{id}' (known: {ids}, {extra})"
+            ))
+        }
+        None => Ok(()),
+    }
+}
+
+/// [`RUN`]: `step,seconds`, the wall time of each step of a full timed
+/// run (seconds, to a tenth).
+pub fn run_timing(steps: &[(String, f64)]) -> String {
+    let mut csv = String::from("step,seconds\n");
+    for (step, secs) in steps {
+        let _ = writeln!(
+            csv,
+            "{step},{}",
+            falling_chain::study::format::fixed(*secs, 1)
+        );
+    }
+    csv
+}
+
 /// The CSV files in `dir` (`figures/data/`) that no entry lists, sorted
 /// (left from an older layout).
 pub fn strays(dir: &Path, entries: &[Entry]) -> Result<Vec<String>, String> {
@@ -266,6 +295,15 @@ mod tests {
         assert_eq!(timed, "wrote without --timings b-timing.csv");
         let extra = check_written(&e, &w(&["b.csv", "x.csv"]), false).unwrap_err();
         assert!(extra.contains("x.csv"), "{extra}");
+    }
+
+    #[test]
+    fn only_names_known_figures() {
+        let es = [entry("a", &["a.csv"], Timing::None)];
+        let only = |ids: &[&str]| -> Vec<String> { ids.iter().map(|s| s.to_string()).collect() };
+        assert_eq!(check_only(&es, &only(&["a", "anim"]), "anim"), Ok(()));
+        let e = check_only(&es, &only(&["a", "b"]), "anim").unwrap_err();
+        assert_eq!(e, "--only: unknown figure 'b' (known: a, anim)");
     }
 
     #[test]

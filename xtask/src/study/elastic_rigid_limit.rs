@@ -10,8 +10,7 @@
 //! them as committed (`falling_chain::study::plot::elastic::rigid_limit`).
 
 use falling_chain::study::plot;
-use falling_chain::study::rigid_limit::{self, Options, RUNGS_HEADER, THRESHOLD_HEADER};
-use rayon::prelude::*;
+use falling_chain::study::rigid_limit::{self, Options};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -39,33 +38,13 @@ impl Make for RigidLimit {
     /// `elastic-rigid-limit-timing.csv` (every rung) and
     /// `elastic-rigid-limit-threshold-timing.csv` (each scene's answer).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let opts = Options::default();
-        let results: Vec<Result<rigid_limit::RigidLimit, String>> = ctx.pool()?.install(|| {
-            SCENES
-                .par_iter()
-                .map(|name| {
-                    let scene = ctx.scene::<&str>(name, &[])?;
-                    rigid_limit::rigid_limit(&scene, &opts).map_err(|e| format!("{name}: {e}"))
-                })
-                .collect()
-        });
-        let (mut rungs, mut answers) = (RUNGS_HEADER.to_string(), THRESHOLD_HEADER.to_string());
-        for r in results {
-            let r = r?;
-            rungs.push_str(&rigid_limit::rungs_csv(&r));
-            answers.push_str(&rigid_limit::threshold_csv(&r));
-            println!(
-                "  {}: {}: EA above {}",
-                fig.id,
-                r.scene,
-                r.threshold
-                    .map_or("none in the ladder".into(), |t| format!("{t:.3e}"))
-            );
-        }
-        Ok(vec![
-            ctx.write(&format!("{}-timing.csv", fig.id), &rungs)?,
-            ctx.write(&format!("{}-threshold-timing.csv", fig.id), &answers)?,
-        ])
+        let scenes = (SCENES.iter())
+            .map(|&name| Ok((name, ctx.scene::<&str>(name, &[])?)))
+            .collect::<Result<Vec<_>, String>>()?;
+        let tick = |note: String| println!("  {}: {note}", fig.id);
+        let tables =
+            (ctx.pool()?).install(|| rigid_limit::tables(&scenes, &Options::default(), &tick))?;
+        ctx.write_tables(fig.id, &tables)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {

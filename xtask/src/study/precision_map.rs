@@ -10,7 +10,7 @@
 
 use chain_ode::Method;
 use falling_chain::study::plot;
-use falling_chain::study::stability::{self, Row};
+use falling_chain::study::stability::{self, Row, Skip};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -23,8 +23,8 @@ struct MapScene {
     label: &'static str,
     scene: &'static str,
     overrides: &'static [&'static str],
-    /// Runs not made, with the reason: (method, tolerances below which).
-    skip: Option<(&'static [Method], f64, &'static str)>,
+    /// Runs not made, with the reason.
+    skip: Option<Skip>,
 }
 
 const SCENES: [MapScene; 5] = [
@@ -56,11 +56,11 @@ const SCENES: [MapScene; 5] = [
         overrides: &["chain.links=400", "chain.damping=5e-4"],
         // bdf-dense: 2.5 s per run at rtol 1e-2, 7 s at 1e-3, 11 s at 1e-4
         // (measured on two shared cores): dense 801 x 801 Jacobians and LU.
-        skip: Some((
-            &[Method::BdfDense],
-            1e-3,
-            "cost: bdf-dense at n = 400 takes 2.5 to 11 s per run (dense 801 x 801 Jacobian and LU)",
-        )),
+        skip: Some(Skip {
+            methods: &[Method::BdfDense],
+            below: 1e-3,
+            why: "cost: bdf-dense at n = 400 takes 2.5 to 11 s per run (dense 801 x 801 Jacobian and LU)",
+        }),
     },
     MapScene {
         key: "stiff-rope",
@@ -85,32 +85,17 @@ impl Make for StabilityMap {
                 })
             })
             .collect::<Result<_, String>>()?;
-        let jobs = stability::jobs(rows.len(), &Method::ALL);
-        let skip = |row: usize, method: Method, param: f64| {
-            SCENES[row]
-                .skip
-                .filter(|(ms, below, _)| ms.contains(&method) && param < *below)
-                .map(|(_, _, why)| why.to_string())
-        };
-        // Untimed runs: in parallel, at most `ctx.jobs` at once (the order
-        // of `jobs` is kept).
-        let cells = ctx
+        let skips: Vec<Option<Skip>> = SCENES.iter().map(|s| s.skip).collect();
+        // Untimed runs: in parallel, at most `ctx.jobs` at once (their order
+        // kept).
+        let tables = ctx
             .pool()?
-            .install(|| stability::run_cells(&rows, &jobs, &|_| true, &skip, None, &|| {}));
-        let csv = stability::csv_text(&rows, &cells, None);
-        let mut files = vec![ctx.write(&format!("{}.csv", fig.id), &csv)?];
-        if ctx.timings {
-            let timing = stability::timing_text(&rows, &cells);
-            files.push(ctx.write(&format!("{}-timing.csv", fig.id), &timing)?);
-        }
-        Ok(files)
+            .install(|| stability::map_tables(&rows, &skips, ctx.timings));
+        ctx.write_tables(fig.id, &tables)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
-        let t = ctx.read(&format!("{}.csv", fig.id))?;
         let title = "Where each method fails (each scene run to its end, step budget 2e5)";
-        let map = plot::stability_map(&t, title)?;
-        let out = figures::category_map(&map, &ctx.stem(fig.id)).map_err(|e| e.to_string())?;
-        Ok(ctx.drawn(&out))
+        ctx.draw(fig, |r, s| plot::stability_figure(r, s, title))
     }
 }

@@ -40,10 +40,7 @@ fn write_all(
     for n in notes {
         println!("  {id}: {n}");
     }
-    tables
-        .iter()
-        .map(|(suffix, csv)| ctx.write(&format!("{id}{suffix}.csv"), csv))
-        .collect()
+    ctx.write_tables(id, tables)
 }
 
 pub struct FoldedVsAnalytic;
@@ -71,22 +68,8 @@ impl Make for SupportForce {
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let runs = folded_runs(ctx)?;
         // The catenary scene for comparison, as the scene runs it (adaptive).
-        let span = ctx.scene(
-            "span-d3",
-            &[
-                "run.method=\"dopri5\"",
-                "run.rtol=1e-9",
-                "run.atol=1e-11",
-                "run.output_dt=0.002",
-            ],
-        )?;
-        let span_traj = span
-            .prepare()
-            .and_then(|p| p.solve())
-            .map_err(|e| e.to_string())?;
-        if !span_traj.status.is_ok() {
-            return Err(format!("{}: span-d3 status {}", fig.id, span_traj.status));
-        }
+        let span = ctx.scene::<&str>("span-d3", &[])?;
+        let span_traj = folded::span_run(&span).map_err(|e| format!("{}: span-d3: {e}", fig.id))?;
         let t = folded::support_force(runs, ("span-d3", &span_traj))?;
         write_all(ctx, fig.id, &[("", &t.force), ("-law", &t.law)], &t.notes)
     }

@@ -72,6 +72,23 @@ impl Run {
     }
 }
 
+/// Every setting of [`settings`] of every scene of `scenes`, run on the
+/// current rayon pool (`prepare` gives a scene with overrides, ready to
+/// run), and their [`table`].
+pub fn scenes_table<F>(scenes: &[&str], prepare: &F) -> Result<String, String>
+where
+    F: Fn(&str, &[String]) -> Result<Prepared, String> + Sync,
+{
+    use rayon::prelude::*;
+    let jobs: Vec<(&str, String, Vec<String>)> = (scenes.iter())
+        .flat_map(|&s| settings().into_iter().map(move |(l, o)| (s, l, o)))
+        .collect();
+    let runs = (jobs.par_iter())
+        .map(|(scene, label, set)| Run::of(scene, label, &prepare(scene, set)?))
+        .collect::<Result<Vec<_>, String>>()?;
+    table(&runs)
+}
+
 /// The CSV table of `runs`, which hold every setting of [`settings`] for
 /// each scene in that order. Errs if a reference run failed.
 pub fn table(runs: &[Run]) -> Result<String, String> {

@@ -261,6 +261,26 @@ fn running_mean(pts: &[(f64, f64)]) -> Vec<Option<f64>> {
 const FORCE_LAW_POINTS: usize = 1000;
 pub const FORCE_LAW_TO: f64 = 0.97;
 
+/// The catenary scene `span` run as [`support_force`] compares it:
+/// adaptive DOPRI5 at rtol 1e-9 (atol 1e-11), a sample every 0.002. Errs
+/// unless the run completes.
+pub fn span_run(span: &Scene) -> Result<Trajectory, String> {
+    let set = [
+        "run.method=\"dopri5\"",
+        "run.rtol=1e-9",
+        "run.atol=1e-11",
+        "run.output_dt=0.002",
+    ];
+    let traj = (span.with_overrides(&set))
+        .and_then(|s| s.prepare())
+        .and_then(|p| p.solve())
+        .map_err(|e| e.to_string())?;
+    if !traj.status.is_ok() {
+        return Err(format!("status {}", traj.status));
+    }
+    Ok(traj)
+}
+
 /// The pivot force at every sample of the folded falls `runs` and of the
 /// run `span_traj` of the scene called `span` (a catenary start, for
 /// comparison), and the law's.

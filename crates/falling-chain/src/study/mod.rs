@@ -37,6 +37,7 @@ pub mod rigid_order;
 pub mod scene_run;
 pub mod shard;
 pub mod snap;
+pub mod snap_sweep;
 pub mod snap_tension;
 pub mod span_check;
 pub mod stability;

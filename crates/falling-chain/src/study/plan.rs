@@ -83,6 +83,54 @@ pub fn tables(
     Ok((csv, plan.is_none().then(|| timing_text(&points))))
 }
 
+/// Where a work-precision figure evaluates its errors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Eval {
+    /// At the scene's end.
+    End,
+    /// At the last time before two runs started
+    /// [`super::divergence::PERTURBATION`] apart separate (their tip
+    /// distance amplified more than [`super::divergence::AMPLIFICATION_MAX`]
+    /// times), or at the end if they never do; measured for the scene and
+    /// for its `r = 0` variant ([`super::divergence::evaluation`]).
+    BeforeSeparation,
+}
+
+/// The tables of the work-precision figure of scene `scene`, as
+/// `(suffix, csv)` in the order written: `-divergence` (with
+/// [`Eval::BeforeSeparation`]), the points ([`tables`], `""`) and, when
+/// timed (`plan` is `None`), `-timing` and `-cost-timing` (what BDF's
+/// units cost against a right-hand side at the start,
+/// [`super::work_cost::csv_text`]). `prepare` gives the scene with the
+/// overrides passed (`chain.damping=0`, `run.t_end=...`) and no samples.
+pub fn figure(
+    scene: &str,
+    prepare: &dyn Fn(&[String]) -> Result<Prepared, String>,
+    eval: Eval,
+    checks: Checks,
+    plan: Option<&Table>,
+) -> Result<Vec<(&'static str, String)>, String> {
+    let mut files = vec![];
+    let mut p = prepare(&[])?;
+    let mut t_eval = p.options.t_end;
+    if eval == Eval::BeforeSeparation {
+        let undamped = prepare(&["chain.damping=0".into()])?;
+        let (csv, t) = super::divergence::evaluation(&p, &undamped)?;
+        files.push(("-divergence", csv));
+        (p, t_eval) = (prepare(&[format!("run.t_end={t}")])?, t);
+    }
+    let (csv, timing) = tables(scene, &p, t_eval, checks, plan)?;
+    files.push(("", csv));
+    if let Some(timing) = timing {
+        files.push(("-timing", timing));
+        files.push((
+            "-cost-timing",
+            super::work_cost::csv_text(&p.chain, &p.state)?,
+        ));
+    }
+    Ok(files)
+}
+
 /// The timing table: `method,param_name,param,plan,repeats,wall_median,note`,
 /// the plan and the median wall time (s) of each point's runs.
 pub fn timing_text(rows: &[Point]) -> String {

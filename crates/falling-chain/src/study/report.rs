@@ -301,3 +301,65 @@ pub fn vmax_vs_span(
     csv.push_str(&extra);
     Ok(csv)
 }
+
+/// The values `linspace(start, stop, num)[from..to]`: `num` evenly spaced
+/// values from `start` to `stop` (both included), of which those at the
+/// indices `from..to` are kept.
+#[derive(Clone, Copy, Debug)]
+pub struct LinspaceSlice {
+    pub start: f64,
+    pub stop: f64,
+    pub num: usize,
+    pub from: usize,
+    pub to: usize,
+}
+
+impl LinspaceSlice {
+    /// The values kept; errs if `from..to` is not within `0..num`.
+    pub fn values(&self) -> Result<Vec<f64>, String> {
+        let all = linspace(self.start, self.stop, self.num);
+        (all.get(self.from..self.to).map(<[f64]>::to_vec))
+            .ok_or_else(|| format!("spans {}..{} of {}", self.from, self.to, self.num))
+    }
+}
+
+/// The spans of Fig. 9 ([`vmax_tables`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SpanParams {
+    /// The report's spans (n = 50).
+    pub report: LinspaceSlice,
+    /// `linspace(a, b, n)` (n = 50).
+    pub dense: (f64, f64, usize),
+    /// The refined curve: `(links, linspace(a, b, count))`, the continuum
+    /// held fixed as `falling-chain converge` holds it (`m = M/n`,
+    /// `r = eta n / L`), method `auto` at rtol 1e-8.
+    pub refined: (usize, f64, f64, usize),
+    /// The refined chain's peak at narrow spans: its rods and twice them,
+    /// over `linspace(a, b, count)` ([`super::span_check::peak`]).
+    pub peak: (&'static [usize], f64, f64, usize),
+}
+
+/// Fig. 9's tables, as `(suffix, csv)`: [`vmax_vs_span`] of `base` (`""`),
+/// where the 50-rod curve agrees with the refined one
+/// ([`super::span_check::agreement`], `-agreement`) and the refined chain's
+/// narrow-span peak ([`super::span_check::peak`], `-peak`), `jobs` runs at
+/// once.
+pub fn vmax_tables(
+    base: &Scene,
+    stretched: (&Scene, &Run),
+    p: &SpanParams,
+    jobs: usize,
+) -> Result<Vec<(&'static str, String)>, String> {
+    let (links, a, b, count) = p.refined;
+    let spans = Spans {
+        report: p.report.values()?,
+        dense: linspace(p.dense.0, p.dense.1, p.dense.2),
+        refined: (links, linspace(a, b, count)),
+    };
+    let csv = vmax_vs_span(base, stretched, &spans, jobs)?;
+    let table = Table::parse("vmax-vs-span", &csv)?;
+    let agreement = super::span_check::agreement(base, &table, links, jobs)?;
+    let (rods, pa, pb, pc) = p.peak;
+    let peak = super::span_check::peak(base, rods, &linspace(pa, pb, pc), jobs)?;
+    Ok(vec![("", csv), ("-agreement", agreement), ("-peak", peak)])
+}

@@ -63,6 +63,28 @@ pub fn snapshots(traj: &Trajectory, every: f64) -> String {
     csv
 }
 
+/// The tables of a report figure's scene `scene` (called `name`) run as
+/// the report ran it ([`overrides`]) to `t_report`, as `(suffix, csv)`:
+/// its [`snapshots`] (`""`) and, with `cases`, the pair of runs of its
+/// stepper (`-cases`, [`super::report_model_tip::cases`]).
+pub fn snapshot_tables(
+    name: &str,
+    scene: &Scene,
+    t_report: f64,
+    cases: bool,
+) -> Result<Vec<(&'static str, String)>, String> {
+    let traj = (scene.with_overrides(&overrides(t_report)))
+        .and_then(|s| s.prepare())
+        .and_then(|p| p.solve())
+        .map_err(err)?;
+    let mut tables = vec![("", snapshots(&traj, snapshot_dt(t_report)))];
+    if cases {
+        let pair = super::report_model_tip::cases(&[(name, scene)], t_report)?;
+        tables.push(("-cases", pair));
+    }
+    Ok(tables)
+}
+
 /// The report's Fig. 9 as published, read off its page by eye (the
 /// centre of each marker against the y axis's labelled ticks 1.8 .. 2.5,
 /// about +-0.01), at [`report_spans`].

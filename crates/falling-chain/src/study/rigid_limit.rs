@@ -293,6 +293,31 @@ pub fn threshold_csv(r: &RigidLimit) -> String {
     )
 }
 
+/// The rigid limit of every scene of `scenes` (`(name, scene)`, run on the
+/// current rayon pool) with `opts`, as `(suffix, csv)`: every rung
+/// (`-timing`, [`rungs_csv`]) and each scene's answer (`-threshold-timing`,
+/// [`threshold_csv`]), both with wall times; `tick` gets a line per
+/// scene, in order.
+pub fn tables(
+    scenes: &[(&str, Scene)],
+    opts: &Options,
+    tick: &dyn Fn(String),
+) -> Result<Vec<(&'static str, String)>, String> {
+    use rayon::prelude::*;
+    let results: Vec<Result<RigidLimit, String>> = (scenes.par_iter())
+        .map(|(name, scene)| rigid_limit(scene, opts).map_err(|e| format!("{name}: {e}")))
+        .collect();
+    let (mut rungs, mut answers) = (RUNGS_HEADER.to_string(), THRESHOLD_HEADER.to_string());
+    for r in results {
+        let r = r?;
+        rungs.push_str(&rungs_csv(&r));
+        answers.push_str(&threshold_csv(&r));
+        let above = (r.threshold).map_or("none in the ladder".into(), |t| format!("{t:.3e}"));
+        tick(format!("{}: EA above {above}", r.scene));
+    }
+    Ok(vec![("-timing", rungs), ("-threshold-timing", answers)])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -199,6 +199,39 @@ pub fn run_cells(
         .collect()
 }
 
+/// Cells of a row not made, and why: those of `methods` at accuracies
+/// below `below` (for the cost of a run).
+#[derive(Clone, Copy, Debug)]
+pub struct Skip {
+    pub methods: &'static [Method],
+    pub below: f64,
+    pub why: &'static str,
+}
+
+/// The paper's map: every method at every accuracy on every row
+/// ([`jobs`], [`run_cells`] on the current rayon pool, each row's
+/// [`Skip`] honoured), as `(suffix, csv)`: the table ([`csv_text`], `""`)
+/// and, when `timings`, each run's wall time ([`timing_text`],
+/// `-timing`).
+pub fn map_tables(
+    rows: &[Row],
+    skips: &[Option<Skip>],
+    timings: bool,
+) -> Vec<(&'static str, String)> {
+    let jobs = jobs(rows.len(), &Method::ALL);
+    let skip = |row: usize, method: Method, param: f64| {
+        skips[row]
+            .filter(|s| s.methods.contains(&method) && param < s.below)
+            .map(|s| s.why.to_string())
+    };
+    let cells = run_cells(rows, &jobs, &|_| true, &skip, None, &|| {});
+    let mut files = vec![("", csv_text(rows, &cells, None))];
+    if timings {
+        files.push(("-timing", timing_text(rows, &cells)));
+    }
+    files
+}
+
 /// The table: a header line ([`COLUMNS`]) and a row per cell. With
 /// `provenance` (the CLI's), each row also has its wall time, its number
 /// and the provenance columns: `wall_seconds,run,runs,scene_hash`.

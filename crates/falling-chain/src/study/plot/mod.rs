@@ -26,10 +26,11 @@ use std::path::Path;
 
 use chain_ode::{Method, Status};
 use figures::{
-    palette, CategoryMap, CategoryPanel, FigureError, LinePlot, RGBColor, Series, Style,
+    palette, CategoryMap, CategoryPanel, FigureError, LinePlot, Output, RGBColor, Series, Style,
 };
 
 use super::format::{exp, short_err};
+use super::plan::Eval;
 use super::stability::{Outcome, MAX_STEPS};
 use super::table::{distinct, parse_num, Table};
 use super::work_cost::{UnitWeights, Weights};
@@ -243,6 +244,21 @@ pub fn work_precision(label: &str, rows: &(f64, Vec<WpPoint>), notes: Vec<String
     work_precision_weighted(label, rows, notes, None)
 }
 
+/// The paper's work-precision figure of the scene called `label`, from its
+/// tables (`""`, `-timing`, `-cost-timing` and, with
+/// [`Eval::BeforeSeparation`], `-divergence`, whose note it adds), its
+/// work weighted by the measured unit costs.
+pub fn wp_figure(read: Reader, stem: &Path, label: &str, eval: Eval) -> Result<Output, String> {
+    let rows = wp_points(&read("")?, Some(&read("-timing")?))?;
+    let weights = Weights::from_table(&read("-cost-timing")?)?;
+    let notes = match eval {
+        Eval::End => vec![],
+        Eval::BeforeSeparation => vec![super::divergence::note(&read("-divergence")?)?],
+    };
+    let pair = work_precision_weighted(label, &rows, notes, Some(weights));
+    pair.save(stem).map_err(|e| e.to_string())
+}
+
 /// As [`work_precision`], with the work of the implicit methods weighted
 /// by measured unit costs when `weights` are given
 /// ([`super::work_cost`]): every residual (with its Newton solve),
@@ -395,6 +411,13 @@ fn color(o: Outcome) -> RGBColor {
         Outcome::StepSizeTooSmall => RGBColor(204, 121, 167),
         Outcome::MaxSteps => RGBColor(0, 114, 178),
     }
+}
+
+/// The paper's stability map ([`stability_map`]) of its table (`""`),
+/// saved at `stem`.
+pub fn stability_figure(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let map = stability_map(&read("")?, title)?;
+    figures::category_map(&map, stem).map_err(|e| e.to_string())
 }
 
 /// Cell text: the energy error's power of ten for a completed run, the
