@@ -7,7 +7,8 @@
 //! `cargo xtask figures`: regenerates every figure of the registry
 //! (`registry.rs`, the catalogue of `docs/figures.md`) into `figures/`, its
 //! data into `figures/data/`, the animations, `figures/README.md` and
-//! `paper/paper.md`. `cargo xtask paper [--check]` fills the paper alone.
+//! the papers (`paper/paper.md`, `paper/methods.md`). `cargo xtask paper
+//! [--check]` fills the papers alone.
 
 mod ctx;
 mod data;
@@ -39,11 +40,11 @@ use registry::{Figure, Timing, FIGURES};
 enum Command {
     /// Compute every figure's data into figures/data/ (reading the committed
     /// wall times, never rewriting them), draw every figure from its data,
-    /// make the animations, write figures/README.md and paper/paper.md.
+    /// make the animations, write figures/README.md and the papers (paper/paper.md, paper/methods.md).
     Figures(Args),
-    /// Fill paper/paper.tmpl.md from figures/data/.
+    /// Fill the papers' templates (paper/paper.tmpl.md, paper/methods.tmpl.md) from figures/data/.
     Paper {
-        /// Fail if paper/paper.md is stale.
+        /// Fail if paper/paper.md or paper/methods.md is stale.
         #[arg(long, conflicts_with = "pdf")]
         check: bool,
         /// Then typeset paper/*.md as paper/*.pdf with pandoc and headless
