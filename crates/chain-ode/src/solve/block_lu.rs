@@ -556,44 +556,17 @@ mod tests {
     use super::*;
     use crate::ode::SemiExplicitDae;
     use crate::solve::diffsol_driver::slice;
+    use crate::solve::newton_matrix::NewtonMatrix;
     use crate::{dae::ChainDae, elastic::ElasticDae, Chain, ChainParams};
     use diffsol::Vector;
     use faer::sparse::{Pair, SymbolicSparseColMat};
 
-    /// A dense matrix on a sparsity pattern, as diffsol hands it over.
-    struct Dense {
-        dim: usize,
-        /// Row-major.
-        a: Vec<f64>,
-        pattern: SymbolicSparseColMat<usize>,
-        ctx: FaerContext,
+    /// The dense reference solve, on the Newton matrix's dense copy.
+    trait DenseSolve {
+        fn solve(&self, b: &[f64], transpose: bool) -> Vec<f64>;
     }
 
-    impl Dense {
-        /// `M - c J` of `dae` at `y`: the Newton matrix of a BDF step.
-        fn newton<D: SemiExplicitDae>(dae: &D, y: &[f64], c: f64) -> Self {
-            let dim = dae.dim();
-            let mut a = vec![0.0; dim * dim];
-            let mut pairs: Vec<Pair<usize, usize>> = Vec::new();
-            for i in 0..dae.differential_dim() {
-                a[i * dim + i] = 1.0;
-                pairs.push(Pair::new(i, i));
-            }
-            dae.jacobian_entries(0.0, y, &mut |r, col, j| {
-                a[r * dim + col] -= c * j;
-                pairs.push(Pair::new(r, col));
-            });
-            let pattern = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
-                .unwrap()
-                .0;
-            Self {
-                dim,
-                a,
-                pattern,
-                ctx: FaerContext::default(),
-            }
-        }
-
+    impl DenseSolve for NewtonMatrix {
         /// `A^-1 b` (`A^-T b`) by Gaussian elimination with partial pivoting
         /// on the whole matrix.
         fn solve(&self, b: &[f64], transpose: bool) -> Vec<f64> {
@@ -633,34 +606,6 @@ mod tests {
         }
     }
 
-    impl LinearOp for Dense {
-        type T = f64;
-        type V = FaerVec<f64>;
-        type M = FaerSparseMat<f64>;
-        type C = FaerContext;
-        fn nrows(&self) -> usize {
-            self.dim
-        }
-        fn ncols(&self) -> usize {
-            self.dim
-        }
-        fn context(&self) -> &FaerContext {
-            &self.ctx
-        }
-        fn matrix_inplace(&self, y: &mut FaerSparseMat<f64>) {
-            let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
-            let vals = y.inner_mut()[0].val_mut();
-            for c in 0..self.dim {
-                for k in col_ptr[c]..col_ptr[c + 1] {
-                    vals[k] = self.a[row_idx[k] * self.dim + c];
-                }
-            }
-        }
-        fn sparsity(&self) -> Option<SymbolicSparseColMat<usize>> {
-            Some(self.pattern.clone())
-        }
-    }
-
     /// A reproducible sequence in `[-1, 1)`.
     struct Lcg(u64);
     impl Lcg {
@@ -677,7 +622,7 @@ mod tests {
     /// transposed) against the dense solve; returns the largest error
     /// relative to the solution's size.
     fn worst_error<D: SemiExplicitDae>(dae: &D, y: &[f64], c: f64, rng: &mut Lcg) -> f64 {
-        let m = Dense::newton(dae, y, c);
+        let m = NewtonMatrix::of(dae, 0.0, y, c).unwrap();
         let log = Rc::new(LuLog::default());
         let mut lu = BlockLu::new(dae.blocks().unwrap(), log.clone());
         lu.set_sparsity(&m);
@@ -763,7 +708,7 @@ mod tests {
 
     /// A 6x6 tridiagonal matrix (4 on the diagonal, 1 beside it) as three
     /// blocks of two (unknown `u` in block `u / 2`).
-    fn three_blocks() -> Dense {
+    fn three_blocks() -> NewtonMatrix {
         let dim = 6;
         let mut a = vec![0.0; dim * dim];
         let mut pairs = Vec::new();
@@ -777,7 +722,7 @@ mod tests {
                 pairs.push(Pair::new(i + 1, i));
             }
         }
-        Dense {
+        NewtonMatrix {
             dim,
             a,
             pattern: SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)

@@ -20,6 +20,7 @@ mod explicit;
 mod integrator;
 #[cfg(test)]
 mod known_solutions;
+mod newton_matrix;
 mod observer;
 mod registry;
 mod report_run;
@@ -542,6 +543,17 @@ impl Trajectory {
     }
 }
 
+/// Refuses a start whose angles or rates are not one per rod.
+pub(crate) fn check_start(chain: &Chain, start: &State) -> Result<(), InvalidParameter> {
+    let n = chain.links();
+    check(
+        start.angles.len() == n && start.rates.len() == n,
+        "start",
+        "a state with chain.links angles and rates",
+        start.angles.len(),
+    )
+}
+
 /// Numbers in a state of `chain`'s model: `2 n + 1` for rigid links
 /// (`[phi, w, W]`), `6 n + 1` for elastic ones (see [`crate::elastic`]).
 pub(crate) fn state_len(chain: &Chain) -> usize {
@@ -626,13 +638,7 @@ pub fn solve(
     options: &SolveOptions,
 ) -> Result<Trajectory, InvalidParameter> {
     options.validate_for(chain, method)?;
-    let n = chain.links();
-    check(
-        start.angles.len() == n && start.rates.len() == n,
-        "start",
-        "a state with chain.links angles and rates",
-        start.angles.len(),
-    )?;
+    check_start(chain, start)?;
     let y0 = if chain.is_elastic() {
         elastic::start_state(chain, start)
     } else {

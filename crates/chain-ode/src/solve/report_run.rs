@@ -62,13 +62,7 @@ pub fn solve_report(
     )?;
     model.validate(chain)?;
     options.validate_for(chain, method)?;
-    let n = chain.links();
-    check(
-        start.angles.len() == n && start.rates.len() == n,
-        "start",
-        "a state with chain.links angles and rates",
-        start.angles.len(),
-    )?;
+    super::check_start(chain, start)?;
     let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
     let mut obs = ChainObserver::for_report(
         chain,

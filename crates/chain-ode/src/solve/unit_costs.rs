@@ -24,12 +24,12 @@ use std::hint::black_box;
 use std::rc::Rc;
 use std::time::Instant;
 
-use diffsol::{FaerContext, FaerSparseMat, FaerVec, Matrix, Vector};
-use diffsol_la::{LinearOp, LinearSolver};
-use faer::sparse::{Pair, SymbolicSparseColMat};
+use diffsol::{FaerVec, Vector};
+use diffsol_la::LinearSolver;
 use faer::Mat;
 
 use super::block_lu::BlockLu;
+use super::newton_matrix::NewtonMatrix;
 use super::sparse_lu::LuLog;
 use crate::dae::ChainDae;
 use crate::dynamics::Workspace;
@@ -87,69 +87,6 @@ fn per_call(mut f: impl FnMut()) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The Newton matrix `M - c J` of a DAE at a state, on its pattern, as
-/// diffsol hands it to the linear solver.
-struct Newton {
-    dim: usize,
-    /// Row-major, dense (only the pattern's entries are read).
-    a: Vec<f64>,
-    pattern: SymbolicSparseColMat<usize>,
-    ctx: FaerContext,
-}
-
-impl Newton {
-    fn of(dae: &ChainDae, y: &[f64], c: f64) -> Option<Self> {
-        let dim = dae.dim();
-        let mut a = vec![0.0; dim * dim];
-        let mut pairs: Vec<Pair<usize, usize>> = Vec::new();
-        for i in 0..dae.differential_dim() {
-            a[i * dim + i] = 1.0;
-            pairs.push(Pair::new(i, i));
-        }
-        dae.jacobian_entries(y, |r, col, j| {
-            a[r * dim + col] -= c * j;
-            pairs.push(Pair::new(r, col));
-        });
-        let pattern = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
-            .ok()?
-            .0;
-        Some(Self {
-            dim,
-            a,
-            pattern,
-            ctx: FaerContext::default(),
-        })
-    }
-}
-
-impl LinearOp for Newton {
-    type T = f64;
-    type V = FaerVec<f64>;
-    type M = FaerSparseMat<f64>;
-    type C = FaerContext;
-    fn nrows(&self) -> usize {
-        self.dim
-    }
-    fn ncols(&self) -> usize {
-        self.dim
-    }
-    fn context(&self) -> &FaerContext {
-        &self.ctx
-    }
-    fn matrix_inplace(&self, y: &mut FaerSparseMat<f64>) {
-        let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
-        let vals = y.inner_mut()[0].val_mut();
-        for c in 0..self.dim {
-            for k in col_ptr[c]..col_ptr[c + 1] {
-                vals[k] = self.a[row_idx[k] * self.dim + c];
-            }
-        }
-    }
-    fn sparsity(&self) -> Option<SymbolicSparseColMat<usize>> {
-        Some(self.pattern.clone())
-    }
-}
-
 /// The unit costs of `chain` at `state` (rigid links); `None` if the
 /// state is not the chain's size or a Newton matrix could not be built or
 /// factorised.
@@ -181,7 +118,7 @@ pub fn unit_costs(chain: &Chain, state: &State) -> Option<UnitCosts> {
     let mut sink = 0.0;
     let bdf_jacobian = per_call(|| dae.jacobian_entries(black_box(&yd), |_, _, v| sink += v));
     black_box(sink);
-    let newton = Newton::of(&dae, &yd, 1e-3)?;
+    let newton = NewtonMatrix::of(&dae, 0.0, &yd, 1e-3)?;
     let log = Rc::new(LuLog::default());
     let mut lu = BlockLu::new(SemiExplicitDae::blocks(&dae)?, log.clone());
     lu.set_sparsity(&newton);

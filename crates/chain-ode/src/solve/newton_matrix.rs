@@ -1,0 +1,74 @@
+//! The Newton matrix `M - c J` of a semi-explicit DAE at a state, held
+//! dense on its sparsity pattern, as diffsol hands it to a linear solver:
+//! what `unit_costs` times the linear solvers on, and what the block LU's
+//! tests solve against. Not on any solver's path (it is `O(dim^2)`).
+
+use diffsol::{FaerContext, FaerSparseMat, FaerVec, Matrix};
+use diffsol_la::LinearOp;
+use faer::sparse::{Pair, SymbolicSparseColMat};
+
+use crate::ode::SemiExplicitDae;
+
+pub(crate) struct NewtonMatrix {
+    pub(crate) dim: usize,
+    /// Row-major, dense (only the pattern's entries are handed over).
+    pub(crate) a: Vec<f64>,
+    pub(crate) pattern: SymbolicSparseColMat<usize>,
+    pub(crate) ctx: FaerContext,
+}
+
+impl NewtonMatrix {
+    /// `M - c J` of `dae` at `(t, y)` (`M` the identity on the
+    /// differential unknowns, zero on the algebraic ones); `None` if the
+    /// Jacobian's pattern is not a valid sparse pattern.
+    pub(crate) fn of<D: SemiExplicitDae>(dae: &D, t: f64, y: &[f64], c: f64) -> Option<Self> {
+        let dim = dae.dim();
+        let mut a = vec![0.0; dim * dim];
+        let mut pairs: Vec<Pair<usize, usize>> = Vec::new();
+        for i in 0..dae.differential_dim() {
+            a[i * dim + i] = 1.0;
+            pairs.push(Pair::new(i, i));
+        }
+        dae.jacobian_entries(t, y, &mut |r, col, j| {
+            a[r * dim + col] -= c * j;
+            pairs.push(Pair::new(r, col));
+        });
+        let pattern = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
+            .ok()?
+            .0;
+        Some(Self {
+            dim,
+            a,
+            pattern,
+            ctx: FaerContext::default(),
+        })
+    }
+}
+
+impl LinearOp for NewtonMatrix {
+    type T = f64;
+    type V = FaerVec<f64>;
+    type M = FaerSparseMat<f64>;
+    type C = FaerContext;
+    fn nrows(&self) -> usize {
+        self.dim
+    }
+    fn ncols(&self) -> usize {
+        self.dim
+    }
+    fn context(&self) -> &FaerContext {
+        &self.ctx
+    }
+    fn matrix_inplace(&self, y: &mut FaerSparseMat<f64>) {
+        let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
+        let vals = y.inner_mut()[0].val_mut();
+        for c in 0..self.dim {
+            for k in col_ptr[c]..col_ptr[c + 1] {
+                vals[k] = self.a[row_idx[k] * self.dim + c];
+            }
+        }
+    }
+    fn sparsity(&self) -> Option<SymbolicSparseColMat<usize>> {
+        Some(self.pattern.clone())
+    }
+}
