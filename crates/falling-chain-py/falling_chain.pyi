@@ -74,7 +74,10 @@ class Run:
 
     @property
     def summary(self) -> Dict[str, Any]:
-        """The ``simulate --json`` object as a dict."""
+        """The ``simulate --json`` object as a dict. Among its work counters,
+        ``error_test_failures``, ``newton_failures`` (the rejected attempts
+        by cause) and ``newton_iterations`` are the implicit methods' (bdf,
+        bdf-dense; 0 for the explicit ones)."""
     @property
     def t(self) -> _Float:
         """Sample times, shape (samples,)."""

@@ -17,6 +17,7 @@ mod common;
 mod converge;
 mod fuzz;
 mod hostile;
+mod newton_counters;
 mod pivot;
 mod plot;
 mod report;

@@ -97,10 +97,18 @@ fn main() {
                 walls.push(t.summary.wall_seconds);
                 tr = Some(t);
             }
-            let (wall, cpu) = (median(walls), if cpus.is_empty() { f64::NAN } else { median(cpus) });
+            let (wall, cpu) = (
+                median(walls),
+                if cpus.is_empty() {
+                    f64::NAN
+                } else {
+                    median(cpus)
+                },
+            );
             let tr = tr.unwrap();
             let sm = &tr.summary;
-            let e_tip = (sm.tip_end[0] - tip_ref[0]).hypot(sm.tip_end[1] - tip_ref[1]) / chain.length();
+            let e_tip =
+                (sm.tip_end[0] - tip_ref[0]).hypot(sm.tip_end[1] - tip_ref[1]) / chain.length();
             let e_v = (sm.tip_speed_max - vmax_ref).abs() / vmax_ref;
             let err = e_tip.max(e_v);
             let st = &tr.stats;
