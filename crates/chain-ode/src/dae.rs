@@ -247,26 +247,40 @@ impl ChainDae {
         self.rhs_at(0.0, y, out)
     }
 
+    /// The first `2n + 1` entries of `f(t, y)` ([`ChainDae::rhs_at`]), the
+    /// derivatives `[w, alpha, W']` of the differential unknowns, read off
+    /// `y` without the algebraic residuals: `w` and `alpha` are unknowns,
+    /// and `W'` is the dissipation rate (less a driven pivot's power). The
+    /// same arithmetic as `rhs_at`, which calls it. O(n), no trigonometry.
+    pub fn derivatives_at(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let n = self.n;
+        let w = &y[n..2 * n];
+        let alpha = &y[2 * n + 1..3 * n + 1];
+        let f = &y[3 * n + 1..];
+        out[..n].copy_from_slice(w);
+        out[n..2 * n].copy_from_slice(alpha);
+        out[2 * n] = dissipation_rate(&self.chain, w);
+        // A driven pivot's power.
+        if !self.free && self.pivot.is_driven() {
+            let v0 = self.pivot.drive(t)[1];
+            let ml = self.chain.mass() * self.chain.rod_length();
+            out[2 * n] -= ml * (f[0] * v0[0] + f[1] * v0[1]);
+        }
+    }
+
     /// `out = f(t, y)` (see [`ChainDae::rhs`]); `t` places a moving pivot.
     pub fn rhs_at(&self, t: f64, y: &[f64], out: &mut [f64]) {
         let n = self.n;
         let (phi, w) = (&y[..n], &y[n..2 * n]);
         let alpha = &y[2 * n + 1..3 * n + 1];
         let f = &y[3 * n + 1..];
-        out[..n].copy_from_slice(w);
-        out[n..2 * n].copy_from_slice(alpha);
-        out[2 * n] = dissipation_rate(&self.chain, w);
-        // The pivot: its acceleration a_0 (rod units) and, driven, its power.
+        self.derivatives_at(t, y, out);
+        // The pivot's acceleration a_0 (rod units).
         let (a0x, a0y) = if self.free {
             (f[0], f[1])
         } else {
             self.driven_acceleration(t)
         };
-        if !self.free && self.pivot.is_driven() {
-            let v0 = self.pivot.drive(t)[1];
-            let ml = self.chain.mass() * self.chain.rod_length();
-            out[2 * n] -= ml * (f[0] * v0[0] + f[1] * v0[1]);
-        }
         // f_j with f_0 = 0 for a free pivot.
         let force = |j: usize| {
             if j == 0 && self.free {
@@ -509,6 +523,10 @@ impl SemiExplicitDae for ChainDae {
     }
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
         ChainDae::rhs_at(self, t, y, out)
+    }
+    fn derivatives(&self, t: f64, y: &[f64], out: &mut [f64]) -> bool {
+        ChainDae::derivatives_at(self, t, y, out);
+        true
     }
     fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ChainDae::jacobian_entries(self, y, emit)

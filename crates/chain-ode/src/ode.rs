@@ -44,6 +44,16 @@ pub trait SemiExplicitDae {
     /// `out = f(t, y)`: the derivatives of the differential unknowns, then
     /// the residuals of the algebraic equations.
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]);
+    /// The derivatives of the differential unknowns alone, bit for bit the
+    /// first `differential_dim` entries of [`SemiExplicitDae::rhs`], into
+    /// `out[..differential_dim]` (`out` has `dim` entries; the rest are
+    /// left as they are), when the DAE can give them without its algebraic
+    /// residuals (the chain's: `w` and `alpha` are unknowns): `true`. The
+    /// default writes nothing and returns `false`; the caller then
+    /// evaluates `rhs`. The BDF's loop uses it for the observer's `f1`.
+    fn derivatives(&self, _t: f64, _y: &[f64], _out: &mut [f64]) -> bool {
+        false
+    }
     /// Entries of `df/dy` at `(t, y)` as `emit(row, column, value)`. The
     /// entries and their order must not depend on `t` or `y`: the pattern
     /// is built once, from the start.
@@ -69,6 +79,9 @@ impl<D: SemiExplicitDae + ?Sized> SemiExplicitDae for Box<D> {
     }
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
         (**self).rhs(t, y, out)
+    }
+    fn derivatives(&self, t: f64, y: &[f64], out: &mut [f64]) -> bool {
+        (**self).derivatives(t, y, out)
     }
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         (**self).jacobian_entries(t, y, emit)
