@@ -253,20 +253,13 @@ impl ChainDae {
         let (phi, w) = (&y[..n], &y[n..2 * n]);
         let alpha = &y[2 * n + 1..3 * n + 1];
         let f = &y[3 * n + 1..];
-        out[..n].copy_from_slice(w);
-        out[n..2 * n].copy_from_slice(alpha);
-        out[2 * n] = dissipation_rate(&self.chain, w);
-        // The pivot: its acceleration a_0 (rod units) and, driven, its power.
+        self.differential_rhs_at(t, y, out);
+        // The pivot's acceleration a_0 (rod units).
         let (a0x, a0y) = if self.free {
             (f[0], f[1])
         } else {
             self.driven_acceleration(t)
         };
-        if !self.free && self.pivot.is_driven() {
-            let v0 = self.pivot.drive(t)[1];
-            let ml = self.chain.mass() * self.chain.rod_length();
-            out[2 * n] -= ml * (f[0] * v0[0] + f[1] * v0[1]);
-        }
         // f_j with f_0 = 0 for a free pivot.
         let force = |j: usize| {
             if j == 0 && self.free {
@@ -314,6 +307,26 @@ impl ChainDae {
             }
             (px, py) = (hx, hy);
             inv_prev = inv_mu;
+        }
+    }
+
+    /// The first `2n + 1` entries of [`ChainDae::rhs_at`] alone, into
+    /// `out[..2n + 1]`: `phi' = w`, `w' = alpha` and `W' = 2R(w)` (less a
+    /// driven pivot's power), with no pass over the rods' residuals; the
+    /// right-hand side computes them here, so both agree bit for bit.
+    pub fn differential_rhs_at(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let n = self.n;
+        let w = &y[n..2 * n];
+        let alpha = &y[2 * n + 1..3 * n + 1];
+        let f = &y[3 * n + 1..];
+        out[..n].copy_from_slice(w);
+        out[n..2 * n].copy_from_slice(alpha);
+        out[2 * n] = dissipation_rate(&self.chain, w);
+        // A driven pivot's power.
+        if !self.free && self.pivot.is_driven() {
+            let v0 = self.pivot.drive(t)[1];
+            let ml = self.chain.mass() * self.chain.rod_length();
+            out[2 * n] -= ml * (f[0] * v0[0] + f[1] * v0[1]);
         }
     }
 
@@ -509,6 +522,9 @@ impl SemiExplicitDae for ChainDae {
     }
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
         ChainDae::rhs_at(self, t, y, out)
+    }
+    fn differential_rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        ChainDae::differential_rhs_at(self, t, y, out)
     }
     fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ChainDae::jacobian_entries(self, y, emit)

@@ -44,6 +44,16 @@ pub trait SemiExplicitDae {
     /// `out = f(t, y)`: the derivatives of the differential unknowns, then
     /// the residuals of the algebraic equations.
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]);
+    /// The first `differential_dim` entries of [`SemiExplicitDae::rhs`]
+    /// (the derivatives of the differential unknowns), bit for bit, into
+    /// the first `differential_dim` entries of `out` (length `dim`; the
+    /// rest may be overwritten or left as it is): what an observer of an
+    /// accepted step reads. The default evaluates the whole `rhs`; a DAE
+    /// whose derivatives cost less than its residuals (the chain's are
+    /// copies of unknowns and one sum) computes only them.
+    fn differential_rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        self.rhs(t, y, out)
+    }
     /// Entries of `df/dy` at `(t, y)` as `emit(row, column, value)`. The
     /// entries and their order must not depend on `t` or `y`: the pattern
     /// is built once, from the start.
@@ -69,6 +79,9 @@ impl<D: SemiExplicitDae + ?Sized> SemiExplicitDae for Box<D> {
     }
     fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
         (**self).rhs(t, y, out)
+    }
+    fn differential_rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        (**self).differential_rhs(t, y, out)
     }
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         (**self).jacobian_entries(t, y, emit)

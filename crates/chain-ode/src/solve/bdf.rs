@@ -203,6 +203,17 @@ impl<D: SemiExplicitDae> DaeEquations<D> {
             self.nonfinite.set(true);
         }
     }
+
+    /// The derivatives of the differential unknowns alone, into
+    /// `out[..differential_dim]` ([`SemiExplicitDae::differential_rhs`]),
+    /// for the observer; counted as a right-hand side and checked.
+    fn observed_rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        self.dae.differential_rhs(t, y, out);
+        self.rhs_evals.set(self.rhs_evals.get() + 1);
+        if !all_finite(&out[..self.dae.differential_dim()]) {
+            self.nonfinite.set(true);
+        }
+    }
 }
 
 /// The right-hand side `f(t, y)` and its Jacobian.
@@ -408,7 +419,7 @@ pub(crate) fn integrate_dae<D: SemiExplicitDae>(
     let eqn = &problem.eqn;
     // f1 for the observer: [w, alpha, 2R], the DAE's own derivatives.
     let hooks = Hooks {
-        rhs: &mut |t: f64, y: &[f64], f: &mut [f64]| eqn.rhs_slices(t, y, f),
+        rhs: &mut |t: f64, y: &[f64], f: &mut [f64]| eqn.observed_rhs(t, y, f),
         nonfinite: &eqn.nonfinite,
         linear_failed: &|| log.last_failed.get(),
     };

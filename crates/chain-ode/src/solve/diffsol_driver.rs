@@ -108,7 +108,8 @@ pub(crate) struct Driven {
 /// How the driver reaches the problem between diffsol's steps.
 pub(crate) struct Hooks<'h> {
     /// `rhs(t, y_full, f_full)`: the right-hand side at an accepted state,
-    /// for the observer's `f1` (its first `y.len()` entries).
+    /// for the observer's `f1`: only its first `y.len()` entries are read
+    /// (a DAE may leave the others as they were).
     pub rhs: StateRhs<'h>,
     /// Set by the caller's right-hand sides when they produce a non-finite
     /// value; cleared by the driver after every accepted step.
