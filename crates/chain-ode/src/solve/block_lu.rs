@@ -467,9 +467,10 @@ impl Factors {
         let l = &self.layout;
         let s = l.size;
         let csc = self.a.inner()[0].val();
+        let assembled = self.assembled.as_mut_slice();
         let mut finite = true;
         for (&slot, &v) in self.slots.iter().zip(csc) {
-            self.assembled[slot] = v;
+            assembled[slot] = v;
             finite &= v.is_finite();
         }
         if !finite {
