@@ -301,12 +301,12 @@ impl<D: SemiExplicitDae> LinearOp for DaeMass<'_, D> {
     fn gemv_inplace(&self, x: &Vf, _t: f64, beta: f64, y: &mut Vf) {
         let nd = self.0.dae.differential_dim();
         let (x, y) = (slice(x), slice_mut(y));
-        for (i, yi) in y.iter_mut().enumerate() {
-            *yi = if i < nd {
-                x[i] + beta * *yi
-            } else {
-                beta * *yi
-            };
+        let (yd, ya) = y.split_at_mut(nd);
+        for (yi, xi) in yd.iter_mut().zip(x) {
+            *yi = xi + beta * *yi;
+        }
+        for yi in ya {
+            *yi = beta * *yi;
         }
     }
 
