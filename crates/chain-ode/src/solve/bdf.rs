@@ -306,7 +306,7 @@ impl<D: SemiExplicitDae> LinearOp for DaeMass<'_, D> {
             *yi = xi + beta * *yi;
         }
         for yi in ya {
-            *yi = beta * *yi;
+            *yi *= beta;
         }
     }
 
