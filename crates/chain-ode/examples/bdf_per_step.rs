@@ -48,11 +48,18 @@ fn main() {
                     "sparse" => with_general_sparse_lu(run),
                     _ => panic!("block or sparse, not {which}"),
                 };
+                let st = &t.stats;
                 println!(
-                    "n {n} {which}: {} steps {} per step {:.3e} s",
+                    "n {n} {which}: {} steps {} per step {:.3e} s | rejected {} newton {} rhs {} \
+                     jacobians {} lu {}",
                     t.status,
-                    t.stats.steps,
-                    t.summary.wall_seconds / t.stats.steps as f64
+                    st.steps,
+                    t.summary.wall_seconds / st.steps as f64,
+                    st.rejected_steps,
+                    st.newton_iterations,
+                    st.rhs_evals,
+                    st.jacobian_evals,
+                    st.lu_factorizations,
                 );
             }
             continue;

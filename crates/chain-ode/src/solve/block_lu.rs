@@ -24,6 +24,15 @@
 //! 5 unknowns: about 400 multiply-adds to factorise and 75 per solve, with
 //! no ordering, no symbolic phase and no allocation after the first pattern.
 //!
+//! Memory is laid out for the sweeps (issue 20: at n = 3200 the factors
+//! outgrow the cache): the matrix is assembled into `[L_k | D_k | U_k]`
+//! blocks whose entries outside the pattern are zeroed once and never
+//! written again, so that nothing is cleared per factorisation; the factors
+//! go to two streams, `[D'_k^-1 | G_k]` read in order by the forward sweep
+//! and `X_k` read backwards by the back substitution; and the sweeps gather
+//! the right-hand side from, and scatter the solution to, the unknowns'
+//! own order themselves, checking finiteness as they write.
+//!
 //! Pivoting is confined to the diagonal blocks, so the factorisation relies
 //! on every `D'_k` being nonsingular; a zero or non-finite pivot, a
 //! non-finite matrix entry or a non-finite solution is a failure (logged; the
@@ -229,142 +238,190 @@ fn lu_solve(lu: &[f64], s: usize, piv: &[usize], b: &mut [f64], m: usize) {
     }
 }
 
-/// `x = A^-1 x` on the blocks (`transpose`: `A^-T`), with `values` holding
-/// `[L_k | D'_k | X_k]` per block and `inverse` the `D'_k^-1`.
-fn solve_blocks<const S: usize>(values: &[f64], inverse: &[f64], z: &mut [f64], transpose: bool) {
-    let blocks = values
-        .chunks_exact(3 * S * S)
-        .zip(inverse.chunks_exact(2 * S * S));
+/// `x = A^-1 x` on the blocks, reading and writing `x` through the
+/// layout's `order` (the gather into block order and the scatter back are
+/// part of the two sweeps); `forward` holds `[D'_k^-1 | G_k]` per block,
+/// `back` the `X_k`, `z` is scratch (`order.len()`). Returns whether every
+/// entry written is finite.
+fn solve_blocks<const S: usize>(
+    forward: &[f64],
+    back: &[f64],
+    order: &[usize],
+    x: &mut [f64],
+    z: &mut [f64],
+) -> bool {
     let mut carry = [0.0; S];
-    if transpose {
-        // A = Lb Ub (Lb: D'_k and L_k below; Ub: I and X_k above), so that
-        // A^T x = b is Ub^T y = b forward, then Lb^T x = y backward.
-        for ((blk, _), zk) in blocks.clone().zip(z.chunks_exact_mut(S)) {
-            // z_k -= X_{k-1}^T z_{k-1}, then the same for the next block.
-            for (zi, ci) in zk.iter_mut().zip(carry) {
-                *zi -= ci;
-            }
-            let x_k = &blk[2 * S * S..];
-            carry = [0.0; S];
-            for i in 0..S {
-                for j in 0..S {
-                    carry[j] += x_k[i * S + j] * zk[i];
-                }
-            }
+    // y_k = D'_k^-1 b_k - G_k y_{k-1} with G_k = D'_k^-1 L_k: only the
+    // second product waits for the previous block.
+    for ((inv, zk), uk) in forward
+        .chunks_exact(2 * S * S)
+        .zip(z.chunks_exact_mut(S))
+        .zip(order.chunks_exact(S))
+    {
+        let (d_inv, g_k) = inv.split_at(S * S);
+        let mut b = [0.0; S];
+        for (bj, &u) in b.iter_mut().zip(uk) {
+            *bj = x[u];
         }
-        let mut below = [0.0; S];
-        for ((blk, inv), zk) in blocks.rev().zip(z.chunks_exact_mut(S).rev()) {
-            let mut t = [0.0; S];
-            for i in 0..S {
-                t[i] = zk[i] - below[i];
+        let mut t = [0.0; S];
+        for i in 0..S {
+            let mut acc = 0.0;
+            for j in 0..S {
+                acc += d_inv[i * S + j] * b[j];
             }
-            let mut y = [0.0; S];
-            for i in 0..S {
-                for j in 0..S {
-                    y[j] += inv[i * S + j] * t[i];
-                }
-            }
-            zk.copy_from_slice(&y);
-            // Block k-1 subtracts L_k^T x_k.
-            let l_k = &blk[..S * S];
-            below = [0.0; S];
-            for i in 0..S {
-                for j in 0..S {
-                    below[j] += l_k[i * S + j] * y[i];
-                }
-            }
+            t[i] = acc;
         }
-    } else {
-        // y_k = D'_k^-1 b_k - G_k y_{k-1} with G_k = D'_k^-1 L_k: only the
-        // second product waits for the previous block.
-        for ((_, inv), zk) in blocks.clone().zip(z.chunks_exact_mut(S)) {
-            let (d_inv, g_k) = inv.split_at(S * S);
-            let mut t = [0.0; S];
-            for i in 0..S {
-                let mut acc = 0.0;
-                for j in 0..S {
-                    acc += d_inv[i * S + j] * zk[j];
-                }
-                t[i] = acc;
+        for i in 0..S {
+            let mut acc = 0.0;
+            for j in 0..S {
+                acc += g_k[i * S + j] * carry[j];
             }
-            for i in 0..S {
-                let mut acc = 0.0;
-                for j in 0..S {
-                    acc += g_k[i * S + j] * carry[j];
-                }
-                zk[i] = t[i] - acc;
+            zk[i] = t[i] - acc;
+        }
+        carry.copy_from_slice(zk);
+    }
+    // x_k = y_k - X_k x_{k+1}, written to x in place.
+    carry = [0.0; S];
+    let mut finite = true;
+    for ((x_k, zk), uk) in back
+        .chunks_exact(S * S)
+        .zip(z.chunks_exact(S))
+        .zip(order.chunks_exact(S))
+        .rev()
+    {
+        let mut next = [0.0; S];
+        for i in 0..S {
+            let mut acc = zk[i];
+            for j in 0..S {
+                acc -= x_k[i * S + j] * carry[j];
             }
-            carry.copy_from_slice(zk);
+            next[i] = acc;
+        }
+        for (&v, &u) in next.iter().zip(uk) {
+            x[u] = v;
+            finite &= v.is_finite();
+        }
+        carry = next;
+    }
+    finite
+}
+
+/// `z = A^-T z` on the blocks (`z` in block order), with `assembled`
+/// holding `[L_k | D_k | U_k]` per block, `forward` the `D'_k^-1` (and
+/// `G_k`), `back` the `X_k`.
+fn solve_transposed<const S: usize>(
+    assembled: &[f64],
+    forward: &[f64],
+    back: &[f64],
+    z: &mut [f64],
+) {
+    let mut carry = [0.0; S];
+    // A = Lb Ub (Lb: D'_k and L_k below; Ub: I and X_k above), so that
+    // A^T x = b is Ub^T y = b forward, then Lb^T x = y backward.
+    for (x_k, zk) in back.chunks_exact(S * S).zip(z.chunks_exact_mut(S)) {
+        // z_k -= X_{k-1}^T z_{k-1}, then the same for the next block.
+        for (zi, ci) in zk.iter_mut().zip(carry) {
+            *zi -= ci;
         }
         carry = [0.0; S];
-        for ((blk, _), zk) in blocks.rev().zip(z.chunks_exact_mut(S).rev()) {
-            let x_k = &blk[2 * S * S..];
-            for i in 0..S {
-                let mut acc = zk[i];
-                for j in 0..S {
-                    acc -= x_k[i * S + j] * carry[j];
-                }
-                zk[i] = acc;
+        for i in 0..S {
+            for j in 0..S {
+                carry[j] += x_k[i * S + j] * zk[i];
             }
-            carry.copy_from_slice(zk);
+        }
+    }
+    let mut below = [0.0; S];
+    for ((blk, inv), zk) in assembled
+        .chunks_exact(3 * S * S)
+        .zip(forward.chunks_exact(2 * S * S))
+        .zip(z.chunks_exact_mut(S))
+        .rev()
+    {
+        let mut t = [0.0; S];
+        for i in 0..S {
+            t[i] = zk[i] - below[i];
+        }
+        let mut y = [0.0; S];
+        for i in 0..S {
+            for j in 0..S {
+                y[j] += inv[i * S + j] * t[i];
+            }
+        }
+        zk.copy_from_slice(&y);
+        // Block k-1 subtracts L_k^T x_k.
+        let l_k = &blk[..S * S];
+        below = [0.0; S];
+        for i in 0..S {
+            for j in 0..S {
+                below[j] += l_k[i * S + j] * y[i];
+            }
         }
     }
 }
 
-/// [`solve_blocks`] for the block size `s` (`1..=MAX_BLOCK`).
-fn solve_sized(s: usize, values: &[f64], inverse: &[f64], z: &mut [f64], transpose: bool) {
-    match s {
-        1 => solve_blocks::<1>(values, inverse, z, transpose),
-        2 => solve_blocks::<2>(values, inverse, z, transpose),
-        3 => solve_blocks::<3>(values, inverse, z, transpose),
-        4 => solve_blocks::<4>(values, inverse, z, transpose),
-        5 => solve_blocks::<5>(values, inverse, z, transpose),
-        6 => solve_blocks::<6>(values, inverse, z, transpose),
-        7 => solve_blocks::<7>(values, inverse, z, transpose),
-        _ => solve_blocks::<MAX_BLOCK>(values, inverse, z, transpose),
-    }
+/// Calls `$f::<S>($args)` for the block size `$s` (`1..=MAX_BLOCK`): every
+/// size compiled on its own, so that the small loops unroll.
+macro_rules! sized {
+    ($s:expr, $f:ident($($arg:expr),*)) => {
+        match $s {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            6 => $f::<6>($($arg),*),
+            7 => $f::<7>($($arg),*),
+            _ => $f::<MAX_BLOCK>($($arg),*),
+        }
+    };
 }
 
 /// The block Thomas factorisation of [`Factors::factorise`] for the block
-/// size `S`: `values` holds `[L_k | D_k | U_k]` per block (left as
-/// `[L_k | D'_k (LU) | X_k]`), `inverse` receives `[D'_k^-1 | D'_k^-1 L_k]`.
-/// The same operations in the same order for every `S`, compiled for each
-/// so that the small loops unroll. `false` on a zero or non-finite pivot.
+/// size `S`: `assembled` holds `[L_k | D_k | U_k]` per block (read only);
+/// `forward` receives `[D'_k^-1 | G_k = D'_k^-1 L_k]` and `back` the
+/// `X_k = D'_k^-1 U_k`, block by block. The same operations in the same
+/// order for every `S`, compiled for each so that the small loops unroll.
+/// `false` on a zero or non-finite pivot.
 fn factorise_blocks<const S: usize>(
-    values: &mut [f64],
-    inverse: &mut [f64],
+    assembled: &[f64],
+    forward: &mut [f64],
+    back: &mut [f64],
     piv: &mut [usize],
-    blocks: usize,
 ) -> bool {
     let (s, ss) = (S, S * S);
     let mut product = [0.0; MAX_BLOCK * MAX_BLOCK];
+    let mut dk = [0.0; MAX_BLOCK * MAX_BLOCK];
     let piv = &mut piv[..s];
-    for k in 0..blocks {
-        let (head, tail) = values.split_at_mut(3 * ss * k);
-        let blk = &mut tail[..3 * ss];
-        if k > 0 {
+    let mut x_prev: &[f64] = &[];
+    for ((blk, fwd), x_k) in assembled
+        .chunks_exact(3 * ss)
+        .zip(forward.chunks_exact_mut(2 * ss))
+        .zip(back.chunks_exact_mut(ss))
+    {
+        let (lk, rest) = blk.split_at(ss);
+        let (dv, uk) = rest.split_at(ss);
+        let d = &mut dk[..ss];
+        d.copy_from_slice(dv);
+        if !x_prev.is_empty() {
             // D_k -= L_k X_{k-1}.
-            let x = &head[3 * ss * (k - 1) + 2 * ss..3 * ss * k];
             let p = &mut product[..ss];
             p.fill(0.0);
             for i in 0..s {
                 for j in 0..s {
-                    let lij = blk[i * s + j];
+                    let lij = lk[i * s + j];
                     for c in 0..s {
-                        p[i * s + c] += lij * x[j * s + c];
+                        p[i * s + c] += lij * x_prev[j * s + c];
                     }
                 }
             }
-            for (dv, pv) in blk[ss..2 * ss].iter_mut().zip(p.iter()) {
+            for (dv, pv) in d.iter_mut().zip(p.iter()) {
                 *dv -= pv;
             }
         }
-        let (lk, rest) = blk.split_at_mut(ss);
-        let (d, u) = rest.split_at_mut(ss);
         if !dense_lu(d, s, piv) {
             return false;
         }
-        let (inv, g) = inverse[2 * ss * k..2 * ss * (k + 1)].split_at_mut(ss);
+        let (inv, g) = fwd.split_at_mut(ss);
         inv.fill(0.0);
         for i in 0..s {
             inv[i * s + i] = 1.0;
@@ -373,8 +430,10 @@ fn factorise_blocks<const S: usize>(
         // G_k = D'_k^-1 L_k, for the forward solve.
         g.copy_from_slice(lk);
         lu_solve(d, s, piv, g, s);
-        // X_k = D'_k^-1 U_k, in place of U_k.
-        lu_solve(d, s, piv, u, s);
+        // X_k = D'_k^-1 U_k, for the back substitution and the next block.
+        x_k.copy_from_slice(uk);
+        lu_solve(d, s, piv, x_k, s);
+        x_prev = x_k;
     }
     true
 }
@@ -384,13 +443,18 @@ struct Factors {
     layout: BlockLayout,
     /// diffsol's Newton matrix in CSC, as it writes it.
     a: FaerSparseMat<f64>,
-    /// The storage slot of each CSC value.
-    slots: Vec<usize>,
-    /// Per block `[L_k | D'_k (LU) | X_k]`, then the lone diagonals.
-    values: Vec<f64>,
-    /// `[D'_k^-1 | D'_k^-1 L_k]` per block, row-major: the solves are then
-    /// products of small dense blocks.
-    inverse: Vec<f64>,
+    /// The storage slot in `assembled` of each CSC value (32 bits: half the
+    /// memory traffic of the scatter).
+    slots: Vec<u32>,
+    /// The matrix per block, `[L_k | D_k | U_k]` (each `S x S`, row-major),
+    /// then the lone diagonals. Entries outside the pattern stay zero: only
+    /// the slots are ever written.
+    assembled: Vec<f64>,
+    /// `[D'_k^-1 | G_k = D'_k^-1 L_k]` per block, row-major: the forward
+    /// solve is then products of small dense blocks read in one stream.
+    forward: Vec<f64>,
+    /// `X_k = D'_k^-1 U_k` per block: the back substitution's stream.
+    back: Vec<f64>,
     /// Pivots of the current block's LU.
     piv: [usize; MAX_BLOCK],
     /// The last factorisation succeeded.
@@ -403,31 +467,23 @@ impl Factors {
     fn factorise(&mut self) -> bool {
         let l = &self.layout;
         let s = l.size;
-        let ss = s * s;
         let csc = self.a.inner()[0].val();
-        if !csc.iter().all(|v| v.is_finite()) {
-            return false;
-        }
-        self.values.fill(0.0);
+        let assembled = self.assembled.as_mut_slice();
+        let mut finite = true;
         for (&slot, &v) in self.slots.iter().zip(csc) {
-            self.values[slot] = v;
+            assembled[slot as usize] = v;
+            finite &= v.is_finite();
         }
-        let lone = &self.values[3 * ss * l.blocks()..];
-        if lone.contains(&0.0) {
+        if !finite {
             return false;
         }
         let blocks = l.blocks();
-        let (values, inverse, piv) = (&mut self.values, &mut self.inverse, &mut self.piv);
-        match s {
-            1 => factorise_blocks::<1>(values, inverse, piv, blocks),
-            2 => factorise_blocks::<2>(values, inverse, piv, blocks),
-            3 => factorise_blocks::<3>(values, inverse, piv, blocks),
-            4 => factorise_blocks::<4>(values, inverse, piv, blocks),
-            5 => factorise_blocks::<5>(values, inverse, piv, blocks),
-            6 => factorise_blocks::<6>(values, inverse, piv, blocks),
-            7 => factorise_blocks::<7>(values, inverse, piv, blocks),
-            _ => factorise_blocks::<MAX_BLOCK>(values, inverse, piv, blocks),
+        let (assembled, lone) = self.assembled.split_at(3 * s * s * blocks);
+        if lone.contains(&0.0) {
+            return false;
         }
+        let (forward, back, piv) = (&mut self.forward, &mut self.back, &mut self.piv);
+        sized!(s, factorise_blocks(assembled, forward, back, piv))
     }
 
     /// `x = A^-1 x` (`transpose`: `x = A^-T x`); `false` if the result is
@@ -435,19 +491,28 @@ impl Factors {
     fn solve(&self, x: &mut [f64], transpose: bool) -> bool {
         let l = &self.layout;
         let mut z = self.work.borrow_mut();
-        for (zp, &u) in z.iter_mut().zip(&l.order) {
-            *zp = x[u];
-        }
         let split = 3 * l.size * l.size * l.blocks();
-        let (values, lone) = self.values.split_at(split);
-        solve_sized(l.size, values, &self.inverse, &mut z, transpose);
-        for (&zp, &u) in z.iter().zip(&l.order) {
-            x[u] = zp;
-        }
+        let (assembled, lone) = self.assembled.split_at(split);
+        let (forward, back) = (&self.forward, &self.back);
+        let mut finite = if transpose {
+            for (zp, &u) in z.iter_mut().zip(&l.order) {
+                *zp = x[u];
+            }
+            sized!(l.size, solve_transposed(assembled, forward, back, &mut z));
+            let mut finite = true;
+            for (&zp, &u) in z.iter().zip(&l.order) {
+                x[u] = zp;
+                finite &= zp.is_finite();
+            }
+            finite
+        } else {
+            sized!(l.size, solve_blocks(forward, back, &l.order, x, &mut z))
+        };
         for (&u, &d) in l.lone.iter().zip(lone) {
             x[u] /= d;
+            finite &= x[u].is_finite();
         }
-        x.iter().all(|v| v.is_finite())
+        finite
     }
 }
 
@@ -506,7 +571,7 @@ impl LinearSolver<FaerSparseMat<f64>> for BlockLu {
             let mut slots = Vec::with_capacity(row_idx.len());
             for c in 0..pattern.ncols() {
                 for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
-                    slots.push(layout.slot(r, c)?);
+                    slots.push(u32::try_from(layout.slot(r, c)?).ok()?);
                 }
             }
             Some((layout, slots))
@@ -516,8 +581,9 @@ impl LinearSolver<FaerSparseMat<f64>> for BlockLu {
         };
         let (blocks, ss) = (layout.blocks(), layout.size * layout.size);
         self.factors = Some(Factors {
-            values: vec![0.0; 3 * ss * blocks + layout.lone.len()],
-            inverse: vec![0.0; 2 * ss * blocks],
+            assembled: vec![0.0; 3 * ss * blocks + layout.lone.len()],
+            forward: vec![0.0; 2 * ss * blocks],
+            back: vec![0.0; ss * blocks],
             piv: [0; MAX_BLOCK],
             work: RefCell::new(vec![0.0; layout.order.len()]),
             layout,

@@ -9,6 +9,7 @@ use crate::ode::{Cancel, Observer, StepView};
 use crate::pivot::PivotPath;
 use crate::profile::Rods;
 use crate::report::ReportModel;
+use crate::scalar::Scalar;
 
 /// Energy, tip velocity and tip acceleration of `y = [phi, w, W]` with
 /// `f = y'`, fused into one pass over the rods.
@@ -18,7 +19,12 @@ pub(crate) struct Metrics {
     pub tip_acceleration: Vec2,
 }
 
-pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
+///
+/// `trig` is scratch for `(sin phi_i, cos phi_i)` (grown to `n` if shorter:
+/// the observer sizes it once), computed in one pass that vectorises, as the
+/// recursion's are ([`Scalar::sin_cos_all`], bit for bit the per-rod
+/// [`crate::scalar::sin_cos`]).
+pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Metrics {
     if chain.is_elastic() {
         return Metrics {
             energy: elastic::energy(chain, y),
@@ -31,13 +37,18 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64]) -> Metrics {
     }
     let n = chain.links();
     let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
+    if trig.len() < n {
+        trig.resize(n, (0.0, 0.0));
+    }
+    let trig = &mut trig[..n];
+    f64::sin_cos_all(phi, trig);
     // The kinematics' per-rod kernel, the potential's lever arms, and the
     // tip acceleration, in one pass.
     let mut sums = RodSums::default();
     let (mut ax, mut ay) = (0.0, 0.0);
     let mut v = 0.0;
     for i in 0..n {
-        let (s, c) = crate::scalar::sin_cos(phi[i]);
+        let (s, c) = trig[i];
         let (wi, ai) = (w[i], acc[i]);
         sums.add(s, c, wi);
         v += lever_arm(n, i) * s;
@@ -98,8 +109,15 @@ fn metrics_rods(chain: &Chain, rods: &Rods, y: &[f64], f: &[f64]) -> Metrics {
 /// [`metrics`] at `t` in the inertial frame of a moving pivot: its
 /// velocity and acceleration added to the tip's, its energy terms to `E`.
 /// A fixed pivot's are [`metrics`] exactly.
-pub(crate) fn metrics_at(chain: &Chain, path: &PivotPath, t: f64, y: &[f64], f: &[f64]) -> Metrics {
-    let mut m = metrics(chain, y, f);
+pub(crate) fn metrics_at(
+    chain: &Chain,
+    path: &PivotPath,
+    t: f64,
+    y: &[f64],
+    f: &[f64],
+    trig: &mut Vec<(f64, f64)>,
+) -> Metrics {
+    let mut m = metrics(chain, y, f, trig);
     if path.is_fixed() || chain.is_elastic() {
         return m;
     }
@@ -162,6 +180,8 @@ pub(crate) struct ChainObserver {
     slope: f64,
     started: bool,
     buf: Vec<f64>,
+    /// Scratch of [`metrics`]: `(sin phi_i, cos phi_i)` of every rod.
+    trig: Vec<(f64, f64)>,
     /// The report's model, whose own energy the balance checks (`None`:
     /// the chain's model).
     report: Option<ReportModel>,
@@ -216,6 +236,7 @@ impl ChainObserver {
             slope: 0.0,
             started: false,
             buf: vec![0.0; dim],
+            trig: vec![(0.0, 0.0); chain.links()],
             report: None,
         }
     }
@@ -407,7 +428,7 @@ impl Observer for ChainObserver {
             return;
         }
         self.started = true;
-        let mut m = metrics_at(&self.chain, &self.path, t0, y0, f0);
+        let mut m = metrics_at(&self.chain, &self.path, t0, y0, f0, &mut self.trig);
         m.energy = self.energy_of(y0, m.energy);
         self.t_origin = t0;
         self.energy_start = m.energy;
@@ -427,7 +448,14 @@ impl Observer for ChainObserver {
 
     fn step(&mut self, step: &StepView<'_>) {
         let n = self.chain.links();
-        let mut m = metrics_at(&self.chain, &self.path, step.t1, step.y1, step.f1);
+        let mut m = metrics_at(
+            &self.chain,
+            &self.path,
+            step.t1,
+            step.y1,
+            step.f1,
+            &mut self.trig,
+        );
         m.energy = self.energy_of(step.y1, m.energy);
         let dissipated = step.y1[2 * n];
         // NaN-propagating maxima: `f64::max` would drop a NaN and hide it.

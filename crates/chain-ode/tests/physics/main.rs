@@ -19,6 +19,7 @@ mod elastic;
 mod failures;
 mod methods;
 mod modes;
+mod observed_rhs;
 mod pivot;
 mod profile;
 mod report;
