@@ -11,6 +11,7 @@
 )]
 
 mod browser;
+mod browser_profile;
 mod catenary;
 mod cluster;
 mod common;

@@ -616,8 +616,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
                 None => base.clone(),
             };
             let run = scene.prepare()?;
-            viewer::check_links("chain.links", run.chain.links())?;
-            viewer::check_equal_rods(&run.chain)?;
+            viewer::check_chain("chain.links", &run.chain)?;
             let label = match method {
                 Some(m) if methods.len() > 1 => format!("{} ({m})", scene.name()),
                 _ => scene.name().to_string(),
