@@ -21,6 +21,7 @@ mod methods;
 mod modes;
 mod pivot;
 mod profile;
+mod profile_compression;
 mod report;
 mod rk4;
 mod tip_mass;
