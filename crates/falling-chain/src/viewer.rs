@@ -462,6 +462,40 @@ mod tests {
         assert_eq!(runs[1]["phi"][1].as_f64(), Some(-1.0));
     }
 
+    /// A profiled run's lengths and densities take at most
+    /// [`PROFILE_BYTES`] a rod, and two frames of the most profiled rods a
+    /// page draws fit each of 8 runs' share with them.
+    #[test]
+    fn a_profile_fits_its_bytes_and_the_most_profiled_rods_fit_the_budget() {
+        let n = 1000;
+        // Long mantissas and two-digit negative exponents: the widest values.
+        let profile = RodProfile {
+            lengths: (0..n)
+                .map(|i| 1.234_567_89e-11 * (1.0 + i as f64 * 1e-3))
+                .collect(),
+            density: (0..n)
+                .map(|i| 9.876_54e-12 * (1.0 + i as f64 * 1e-3))
+                .collect(),
+        };
+        let bare = page("t", &[toy(None)]).len();
+        let mut run = toy(None);
+        run.profile = Some(profile.clone());
+        let with = page("t", &[run]);
+        // Less the two nulls the bare page holds.
+        let extra = with.len() + ",\"rod_lengths\":null,\"density\":null".len() - bare;
+        assert!(extra <= fixed_bytes(n, true), "{extra} bytes");
+        let back = &data_of(&with)["runs"][0];
+        for (k, v) in back["rod_lengths"].as_array().unwrap().iter().enumerate() {
+            let v = v.as_f64().unwrap();
+            assert!((v / profile.lengths[k] - 1.0).abs() < 5e-7, "{k}: {v}");
+        }
+        let frame = MAX_VIEW_PROFILED_LINKS * ANGLE_BYTES + SCALAR_BYTES;
+        assert!(
+            fixed_bytes(MAX_VIEW_PROFILED_LINKS, true) + 2 * frame <= DATA_BUDGET_BYTES / MAX_RUNS
+        );
+        assert_eq!(fixed_bytes(n, false), 0);
+    }
+
     #[test]
     fn thinning_keeps_the_budget_the_first_and_the_last_sample() {
         for (samples, links) in [(801, 50), (801, 400), (100_001, 50), (3, 10_000)] {
