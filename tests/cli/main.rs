@@ -20,6 +20,7 @@ mod fuzz;
 mod hostile;
 mod pivot;
 mod plot;
+mod progress;
 mod report;
 mod scenes;
 mod simulate;
