@@ -120,6 +120,17 @@ class Run:
         """The scene that ran (with the keyword flags of ``simulate`` applied)."""
     def joints(self, k: int) -> _Float:
         """The joints r_0 = P0 .. r_n (the tip) at sample ``k``, shape (n + 1, 2)."""
+    @property
+    def rod_lengths(self) -> _Float:
+        """Each rod's length l_1..l_n (length unit), pivot to tip, shape
+        (n,): ``chain.length / n`` each for equal rods, else as the profile
+        (``chain.taper``, ``chain.rod_masses``, ``chain.rod_lengths``)
+        shares the length; they sum to ``chain.length``."""
+    @property
+    def rod_masses(self) -> _Float:
+        """Each rod's mass m_1..m_n (mass unit), pivot to tip, shape (n,):
+        ``chain.mass`` each for equal rods, else as the profile shares the
+        chain's mass ``n chain.mass``."""
     def __len__(self) -> int: ...
     def _repr_html_(self) -> str:
         """The run as ``falling-chain view``'s page (play, scrub, the tip

@@ -27,7 +27,7 @@ const HEIGHT: u32 = 900;
 
 /// A browser, or `None` (said once on the terminal) when there is no
 /// Chromium and this is not CI. Under `CI=true` a missing browser fails.
-fn open(page: &Path, scratch_dir: &Path) -> Option<Browser> {
+pub(crate) fn open(page: &Path, scratch_dir: &Path) -> Option<Browser> {
     static SKIPPED: Once = Once::new();
     let Some(chromium) = browser::find() else {
         assert!(
@@ -49,17 +49,17 @@ fn open(page: &Path, scratch_dir: &Path) -> Option<Browser> {
 }
 
 /// Runs `view` with `args` into `dir/name` and expects exit `code`.
-fn page(dir: &Path, name: &str, args: &[&str], code: i32) -> std::path::PathBuf {
+pub(crate) fn page(dir: &Path, name: &str, args: &[&str], code: i32) -> std::path::PathBuf {
     let (page, o) = view(dir, name, args);
     assert_eq!(o.status.code(), Some(code), "{}", stderr(&o));
     page
 }
 
 /// JavaScript: the chain canvas's RGBA pixels as one array.
-const PIXELS: &str = "Array.from(document.getElementById('chain').getContext('2d')\
+pub(crate) const PIXELS: &str = "Array.from(document.getElementById('chain').getContext('2d')\
     .getImageData(0, 0, 640, 540).data)";
 
-fn pixels(b: &mut Browser) -> Vec<u8> {
+pub(crate) fn pixels(b: &mut Browser) -> Vec<u8> {
     b.eval(PIXELS)
         .unwrap()
         .as_array()
@@ -70,14 +70,14 @@ fn pixels(b: &mut Browser) -> Vec<u8> {
 }
 
 /// How many pixels are not white.
-fn inked(px: &[u8]) -> usize {
+pub(crate) fn inked(px: &[u8]) -> usize {
     px.chunks(4)
         .filter(|p| p[0] < 250 || p[1] < 250 || p[2] < 250)
         .count()
 }
 
 /// How many pixels are within 12 of the colour `#rrggbb` in each channel.
-fn of_colour(px: &[u8], hex: &str) -> usize {
+pub(crate) fn of_colour(px: &[u8], hex: &str) -> usize {
     let c: Vec<i32> = (0..3)
         .map(|k| i32::from_str_radix(&hex[1 + 2 * k..3 + 2 * k], 16).unwrap())
         .collect();
@@ -86,7 +86,7 @@ fn of_colour(px: &[u8], hex: &str) -> usize {
         .count()
 }
 
-fn no_errors(b: &mut Browser) {
+pub(crate) fn no_errors(b: &mut Browser) {
     let errors = b.errors();
     assert!(errors.is_empty(), "console errors: {errors:?}");
 }

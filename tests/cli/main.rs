@@ -11,6 +11,7 @@
 )]
 
 mod browser;
+mod browser_profile;
 mod catenary;
 mod cluster;
 mod common;
@@ -20,6 +21,7 @@ mod hostile;
 mod newton_counters;
 mod pivot;
 mod plot;
+mod progress;
 mod report;
 mod scenes;
 mod simulate;

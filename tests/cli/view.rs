@@ -326,10 +326,12 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
             vec![
                 scene("span-d3"),
                 "--set".into(),
-                format!("chain.rod_lengths=[{}]", ["1", "2"].repeat(25).join(", ")),
+                "chain.links=5001".into(),
+                "--set".into(),
+                "chain.taper=10".into(),
             ],
-            "chain.rod_lengths",
-            "equal length",
+            "chain.links",
+            "5000 rods of unequal",
         ),
         (
             vec![scene("span-d3"), "--method".into(), "rk4,nonesuch".into()],

@@ -19,6 +19,7 @@ mod continuous;
 mod discrete;
 mod error;
 mod profiled;
+mod profiled_kink;
 mod rods;
 
 pub use continuous::Catenary;

@@ -59,10 +59,13 @@ pub fn joints_rods(p0: Point, length: f64, lambda: &[f64], angles: &[f64]) -> Ve
 }
 
 /// The equilibrium of rods of relative masses `mu` and lengths `lambda`
-/// (each summing to `n = mu.len()`, equal lengths) pinned at `p0` and `p1`,
-/// total length `length`; ends at `p1` to `1e-12 * length`. Needs a slack
-/// chain in tension (`length > |p1 - p0|`, `x1 != x0`); a taut chain is
-/// straight.
+/// (each summing to `n = mu.len()`) pinned at `p0` and `p1`, total length
+/// `length`; ends at `p1` to `1e-12 * length`. Needs a slack chain
+/// (`length > |p1 - p0|`, `x1 != x0`, at least 2 rods); a taut chain is
+/// straight. Every rod is in tension (`tension > 0`) unless `p1` lies
+/// within rod `j`'s length of the end of the chain folded with rods
+/// `0..j` straight down and the rest straight up: then rod `j` is in
+/// compression, `tension < 0` (`profiled_kink.rs`), as for equal rods.
 pub fn discrete_equilibrium_rods(
     p0: Point,
     p1: Point,
@@ -101,10 +104,12 @@ pub fn discrete_equilibrium_rods(
         let phi = h.atan2(dx.abs());
         return Ok(finish(vec![phi; links], f64::INFINITY, 0.0, 0));
     }
-    // The equal rods' solution on the same span: the start.
+    // The equal rods' solution on the same span: the start (and the checks
+    // of a vertical span and of one rod).
     let uniform = crate::discrete_equilibrium(p0, p1, length, links)?;
     let n = links as f64;
-    let (mut big_h, mut v) = (1.0 / uniform.beta, n + uniform.alpha / uniform.beta);
+    // Equal rods in compression (beta < 0) start the convex solve at H > 0.
+    let (mut big_h, mut v) = ((1.0 / uniform.beta).abs(), n + uniform.alpha / uniform.beta);
     // W_i = S_{i+1} + mu_i / 2.
     let mut below = 0.0;
     let mut weight = vec![0.0; links];
@@ -113,6 +118,23 @@ pub fn discrete_equilibrium_rods(
         below += mu[i];
     }
     let target = [dx.abs() / l, h / l];
+    // A rod in compression (the end within a rod of a folded chain's end),
+    // or next to it: Newton about that kink (`profiled_kink.rs`).
+    let (kink, ratio) = crate::profiled_kink::nearest_kink(lambda, target);
+    let about_kink = || {
+        crate::profiled_kink::solve_near_kink(lambda, &weight, target, kink, 1e-14 * n)
+            .map(|k| finish(k.angles, k.tension, k.vertical, k.iterations))
+    };
+    if ratio <= 1.0 {
+        return match about_kink() {
+            Some(out) if out.end_error <= END_TOL * length => Ok(out),
+            other => Err(CatenaryError::NoConvergence {
+                solver: "discrete equilibrium of unequal rods, one in compression (Newton)",
+                iterations: other.as_ref().map_or(0, |o| o.iterations),
+                residual: other.map_or(f64::NAN, |o| o.end_error),
+            }),
+        };
+    }
     let psi = |hh: f64, vv: f64| -> f64 {
         let s: f64 = weight
             .iter()
@@ -170,7 +192,14 @@ pub fn discrete_equilibrium_rods(
         }
     }
     let angles: Vec<f64> = weight.iter().map(|&wi| (v - wi).atan2(big_h)).collect();
-    let out = finish(angles, big_h, v, iterations);
+    let mut out = finish(angles, big_h, v, iterations);
+    // Next to a kink Psi is nearly singular: the polar chart there.
+    if (out.end_error.is_nan() || out.end_error > END_TOL * length) && ratio < 2.0 {
+        if let Some(k) = about_kink().filter(|k| k.tension > 0.0 && k.end_error <= END_TOL * length)
+        {
+            out = k;
+        }
+    }
     if out.end_error.is_nan() || out.end_error > END_TOL * length {
         return Err(CatenaryError::NoConvergence {
             solver: "discrete equilibrium of unequal rods (Newton)",

@@ -47,6 +47,7 @@ pub mod modes;
 mod ode;
 pub mod pivot;
 pub mod profile;
+mod profile_refine;
 pub mod report;
 mod scalar;
 mod solve;

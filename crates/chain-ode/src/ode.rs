@@ -290,9 +290,19 @@ impl std::fmt::Display for Status {
 
 /// A flag that stops a run from outside, shared between the caller and the
 /// run (clones share it). The run checks it after every accepted step and
-/// ends with [`Status::Interrupted`] once it is set.
+/// ends with [`Status::Interrupted`] once it is set. It also carries the
+/// time the run last recorded a sample ([`Cancel::reached`]), for a caller
+/// that shows progress from another thread.
 #[derive(Clone, Debug, Default)]
-pub struct Cancel(std::sync::Arc<std::sync::atomic::AtomicBool>);
+pub struct Cancel(std::sync::Arc<Shared>);
+
+/// What a [`Cancel`]'s clones share.
+#[derive(Debug, Default)]
+struct Shared {
+    stop: std::sync::atomic::AtomicBool,
+    /// The bits of the last recorded sample's time (0.0 before any).
+    time: std::sync::atomic::AtomicU64,
+}
 
 impl Cancel {
     /// A flag that is not set.
@@ -302,15 +312,30 @@ impl Cancel {
 
     /// Sets the flag: every run holding a clone stops at its next step.
     pub fn cancel(&self) {
-        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+        self.0
+            .stop
+            .store(true, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// True once [`Cancel::cancel`] was called on this flag or a clone.
     pub fn is_cancelled(&self) -> bool {
-        self.0.load(std::sync::atomic::Ordering::Relaxed)
+        self.0.stop.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// Notes `t` (time units) as the time the run has reached: called by
+    /// the run at each sample it records (never inside a step).
+    pub fn report(&self, t: f64) {
+        self.0
+            .time
+            .store(t.to_bits(), std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// The time of the last sample a run holding this flag recorded (0
+    /// before the first; the latest of any of them when several share it).
+    pub fn reached(&self) -> f64 {
+        f64::from_bits(self.0.time.load(std::sync::atomic::Ordering::Relaxed))
     }
 }
-
 /// Two flags are equal when they are the same flag.
 impl PartialEq for Cancel {
     fn eq(&self, other: &Self) -> bool {

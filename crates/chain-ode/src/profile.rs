@@ -176,25 +176,28 @@ impl Profile {
         })
     }
 
-    /// The same continuum cut into `links` rods: a taper is a continuum
-    /// property and is carried; lists (a piecewise constant mass per length)
-    /// are refined by cutting each rod into `links / n` equal parts, which
-    /// needs `links` to be a multiple of the `n` they were given for.
+    /// The same continuum cut into `links` rods (any number, finer or
+    /// coarser): a taper is a continuum property and is carried; lists (a
+    /// piecewise constant mass per length over arc length) are cut again by
+    /// [`crate::profile_refine`]: the masses integrated over each new rod,
+    /// the lengths keeping the arc length as a function of the fractional
+    /// joint index (equal rods stay equal), each rod of the list cut into
+    /// `links / n` equal parts when `links` is a multiple of the `n` it was
+    /// given for.
     pub(crate) fn refined(&self, n: usize, links: usize) -> Result<Self, InvalidParameter> {
         if self.masses.is_none() && self.lengths.is_none() {
             return Ok(self.clone());
         }
         let field = self.first_given().unwrap_or("chain.rod_masses");
         check(
-            n > 0 && links.is_multiple_of(n),
+            n > 0 && links > 0,
             field,
-            format!("refined only to a multiple of its {n} rods (a list cuts each rod into equal parts)"),
+            "refined to at least one rod",
             format!("chain.links = {links}"),
         )?;
-        let k = links / n;
         let cut = |list: &Option<Vec<f64>>| {
             list.as_ref()
-                .map(|l| l.iter().flat_map(|&x| std::iter::repeat_n(x, k)).collect())
+                .map(|l| crate::profile_refine::refine_list(l, links))
         };
         Ok(Self {
             taper: self.taper,
@@ -280,13 +283,18 @@ mod tests {
     }
 
     #[test]
-    fn lists_refine_by_whole_cuts() {
+    fn lists_refine_by_whole_cuts_and_by_any_cut() {
         let p = Profile {
             masses: Some(vec![3.0, 1.0]),
             ..Profile::default()
         };
         let q = p.refined(2, 6).unwrap();
         assert_eq!(q.masses.unwrap(), vec![3.0, 3.0, 3.0, 1.0, 1.0, 1.0]);
-        assert_eq!(p.refined(2, 5).unwrap_err().field, "chain.rod_masses");
+        // Any number: the mean over each new rod's span.
+        let q = p.refined(2, 5).unwrap().masses.unwrap();
+        for (a, b) in q.iter().zip([3.0, 3.0, 2.0, 1.0, 1.0]) {
+            assert!((a - b).abs() < 1e-15, "{q:?}");
+        }
+        assert_eq!(p.refined(2, 0).unwrap_err().field, "chain.rod_masses");
     }
 }

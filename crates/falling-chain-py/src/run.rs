@@ -253,6 +253,35 @@ impl Run {
         self.head.samples
     }
 
+    /// Each rod's length l_1..l_n (the scene's length unit), pivot to tip,
+    /// shape (n,): `chain.length / n` each for equal rods, else as the
+    /// profile (`chain.taper`, `chain.rod_masses`, `chain.rod_lengths`)
+    /// shares the length; they sum to `chain.length`.
+    #[getter]
+    fn rod_lengths<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let chain = &self.head.chain;
+        let (n, l) = (chain.links(), chain.rod_length());
+        let v = match chain.rods() {
+            Some(r) => r.length.iter().map(|lam| lam * l).collect(),
+            None => vec![l; n],
+        };
+        array1(py, v).map(|a| a.into_bound(py))
+    }
+
+    /// Each rod's mass m_1..m_n (the scene's mass unit), pivot to tip,
+    /// shape (n,): `chain.mass` each for equal rods, else as the profile
+    /// shares the chain's mass `n chain.mass`.
+    #[getter]
+    fn rod_masses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let chain = &self.head.chain;
+        let (n, m) = (chain.links(), chain.mass());
+        let v = match chain.rods() {
+            Some(r) => r.mass.iter().map(|mu| mu * m).collect(),
+            None => vec![m; n],
+        };
+        array1(py, v).map(|a| a.into_bound(py))
+    }
+
     /// The run as `falling-chain view`'s page, in an `<iframe srcdoc>`:
     /// what Jupyter shows for a `Run`.
     fn _repr_html_(&self, py: Python<'_>) -> PyResult<String> {
@@ -277,6 +306,11 @@ impl Run {
 }
 
 impl Run {
+    /// The chain that ran.
+    pub(crate) fn chain(&self) -> &Chain {
+        &self.head.chain
+    }
+
     /// The run as the viewer's page holds it, thinned to `budget` bytes
     /// (`falling_chain::viewer`), from the arrays this run holds.
     pub(crate) fn view_run(
@@ -284,8 +318,10 @@ impl Run {
         py: Python<'_>,
         budget: usize,
     ) -> PyResult<::falling_chain::viewer::ViewRun> {
-        use ::falling_chain::viewer::{keeps, stride_for, ViewRun};
+        use ::falling_chain::viewer::{fixed_bytes, keeps, stride_for, RodProfile, ViewRun};
         let (samples, n) = (self.head.samples, self.head.chain.links());
+        let profile = RodProfile::of(&self.head.chain);
+        let budget = budget.saturating_sub(fixed_bytes(n, profile.is_some()));
         let broken = |what: &str| {
             PyIndexError::new_err(format!("the run's {what} array is not C-contiguous"))
         };
@@ -327,6 +363,8 @@ impl Run {
             // A moving or released pivot: its place in every kept sample,
             // the first of the joints kept for it.
             pivot: (!self.head.chain.pivot().is_fixed()).then(Vec::new),
+            // Unequal rods: their lengths and densities.
+            profile,
             source: None,
         };
         for k in (0..samples).filter(|&k| keeps(k, samples, stride)) {

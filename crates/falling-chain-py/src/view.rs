@@ -39,6 +39,9 @@ pub fn view(py: Python<'_>, runs: &Bound<'_, PyAny>, path: PathBuf) -> PyResult<
             ),
         )));
     }
+    for run in &runs {
+        viewer::check_chain("runs", run.chain()).map_err(value_error)?;
+    }
     check_writable("path", &path).map_err(value_error)?;
     let budget = DATA_BUDGET_BYTES / runs.len();
     let mut pages = runs

@@ -14,6 +14,7 @@ pub mod converge;
 pub mod csv;
 pub mod error;
 pub mod overrides;
+pub mod progress;
 pub mod render;
 pub mod run_csv;
 pub mod scene;

@@ -304,6 +304,17 @@ struct SimulateArgs {
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     json: bool,
+    /// Print the time reached on stderr every SECONDS of wall time (default
+    /// 5), for a long run; on by default when stderr is a terminal. Never
+    /// on stdout.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        num_args = 0..=1,
+        default_missing_value = "5",
+        allow_negative_numbers = true
+    )]
+    progress: Option<f64>,
 }
 
 /// The most snapshots `plot` draws.
@@ -349,13 +360,26 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         }
     }
     let run = scene.prepare()?;
+    let every = match args.progress {
+        Some(s) if s.is_finite() && (0.01..=3600.0).contains(&s) => Some(s),
+        Some(s) => {
+            return Err(Error::field(
+                "--progress",
+                format!("must be a number of seconds in 0.01..=3600 (got {s})"),
+            ))
+        }
+        None => std::io::IsTerminal::is_terminal(&std::io::stderr()).then_some(5.0),
+    };
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let forces = args
         .forces
         .as_deref()
         .map(|o| begin("--forces", o))
         .transpose()?;
-    let traj = run.solve()?;
+    let traj = match every {
+        None => run.solve()?,
+        Some(every) => falling_chain::progress::solve_showing(&run, every)?,
+    };
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
         println!("{}", summary.to_json());
@@ -616,8 +640,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
                 None => base.clone(),
             };
             let run = scene.prepare()?;
-            viewer::check_links("chain.links", run.chain.links())?;
-            viewer::check_equal_rods(&run.chain)?;
+            viewer::check_chain("chain.links", &run.chain)?;
             let label = match method {
                 Some(m) if methods.len() > 1 => format!("{} ({m})", scene.name()),
                 _ => scene.name().to_string(),

@@ -131,6 +131,8 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
         }),
         // The CSV's rows are placed from one recovered pivot: fixed.
         pivot: None,
+        // A CSV does not hold the rods' lengths: equal rods.
+        profile: None,
         source: Some(
             path.file_name()
                 .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),

@@ -164,6 +164,20 @@ impl Prepared {
         })
     }
 
+    /// [`Prepared::solve`] with `cancel` in its options: the caller can stop
+    /// the run, and read the time it has reached ([`Cancel::reached`]) from
+    /// another thread.
+    pub fn solve_with(&self, cancel: chain_ode::Cancel) -> Result<Trajectory, Error> {
+        let options = SolveOptions {
+            cancel: Some(cancel),
+            ..self.options.clone()
+        };
+        Ok(match self.report {
+            None => solve(&self.chain, &self.state, self.method, &options)?,
+            Some(model) => solve_report(&self.chain, &self.state, model, self.method, &options)?,
+        })
+    }
+
     /// An error naming `model.report` if this is the report's model: for
     /// the commands that run the corrected model only (`what`).
     pub fn require_corrected(&self, what: &str) -> Result<(), Error> {

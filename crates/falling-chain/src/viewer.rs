@@ -16,7 +16,14 @@
 //! colour along the chain. `pivot`, `null` for a fixed pivot, else `x, y`
 //! of `P0` per kept sample in a row (a moving or released pivot, the
 //! `pivot.*` keys), from which the page builds that frame's joints instead
-//! of `anchor`. `source` names the CSV a run was read from.
+//! of `anchor`. `rod_lengths` and `density`, both `null` for equal rods,
+//! else (a per-rod profile: `chain.taper`, `chain.rod_masses`,
+//! `chain.rod_lengths`) n values once per run: each rod's length in the
+//! scene's length unit (7 significant digits), which replaces `rod` in the
+//! joints `P0 + sum l_i (cos, sin)`, and its mass per length over the
+//! chain's mean `M / L` (3 digits), which sets the rod's line width (in
+//! proportion to its square root: the diameter of a rod of one material).
+//! `source` names the CSV a run was read from.
 
 use std::fmt::Write as _;
 
@@ -28,20 +35,6 @@ use crate::{Error, RunSummary};
 /// The most runs one page overlays (one colour each).
 pub const MAX_RUNS: usize = 8;
 
-/// The page builds the joints from one rod length `rod`: a chain whose rods
-/// differ in length (`chain.rod_lengths`) is refused in one line (`plot`
-/// and `animate` draw any chain). Rods of unequal mass alone are drawn.
-pub fn check_equal_rods(chain: &chain_ode::Chain) -> Result<(), Error> {
-    match chain.rods() {
-        Some(r) if r.length.iter().any(|&x| x != 1.0) => Err(Error::field(
-            "chain.rod_lengths",
-            "must be absent for view (its page draws rods of equal length; plot and animate \
-             draw unequal ones)",
-        )),
-        _ => Ok(()),
-    }
-}
-
 /// The data a page holds, over all its runs, in bytes: each of `k` runs is
 /// thinned to `DATA_BUDGET_BYTES / k`. A 50-rod, 8 s run at the default
 /// output step (801 samples) takes about 0.5 MB, well inside one run's
@@ -52,12 +45,61 @@ pub const DATA_BUDGET_BYTES: usize = 1_800_000;
 /// budget ([`DATA_BUDGET_BYTES`]).
 pub const MAX_VIEW_LINKS: usize = 10_000;
 
+/// The most rods of a profiled chain (unequal rods) a page draws: its
+/// per-rod lengths and densities ([`PROFILE_BYTES`] a rod, once per run)
+/// and two frames of each of 8 runs must fit the budget.
+pub const MAX_VIEW_PROFILED_LINKS: usize = 5_000;
+
+/// Bytes of one rod's length and density in the data (`1.234567e-1,` and
+/// `1.23e-1,`, with room for a sign or a wider exponent).
+pub const PROFILE_BYTES: usize = 24;
+
 /// Bytes of one angle in the data (`-1.570796,`).
 const ANGLE_BYTES: usize = 10;
 /// Bytes of one force value (`-1.2345e-3,`).
 const FORCE_BYTES: usize = 11;
 /// Bytes of the per-sample scalars (t, speed, energy, dissipated).
 const SCALAR_BYTES: usize = 4 * 24;
+
+/// Each rod's length and mass per length of a profiled chain (unequal
+/// rods), from the pivot to the tip.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RodProfile {
+    /// `l_i` in the scene's length unit (summing to `L`).
+    pub lengths: Vec<f64>,
+    /// `(m_i / l_i) / (M / L)`: the rod's mass per length over the chain's
+    /// mean (dimensionless; all 1 for equal rods).
+    pub density: Vec<f64>,
+}
+
+impl RodProfile {
+    /// The profile of `chain`; `None` for equal rods (the page then uses
+    /// one rod length, `L / n`).
+    pub fn of(chain: &chain_ode::Chain) -> Option<Self> {
+        let rods = chain.rods()?;
+        let l = chain.rod_length();
+        Some(Self {
+            lengths: rods.length.iter().map(|lam| lam * l).collect(),
+            density: rods
+                .mass
+                .iter()
+                .zip(&rods.length)
+                .map(|(mu, lam)| mu / lam)
+                .collect(),
+        })
+    }
+}
+
+/// The bytes of a run's data that do not depend on its samples: the
+/// per-rod profile of `links` rods, if it has one. A run's samples are
+/// thinned to its share of the budget less these.
+pub fn fixed_bytes(links: usize, profiled: bool) -> usize {
+    if profiled {
+        links * PROFILE_BYTES
+    } else {
+        0
+    }
+}
 
 /// Joint forces of one run: n + 1 values per kept sample, in a row.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -89,6 +131,9 @@ pub struct ViewRun {
     /// The pivot `P0` of every kept sample, `x, y` each, for a moving or
     /// released pivot (`pivot.*` keys); `None`: fixed at `anchor`.
     pub pivot: Option<Vec<f64>>,
+    /// The rods' lengths and densities of a profiled chain; `None`: `links`
+    /// equal rods of length `rod` and equal density.
+    pub profile: Option<RodProfile>,
     /// The file a run was read from (`--from`), shown on the page.
     pub source: Option<String>,
 }
@@ -138,6 +183,24 @@ pub fn check_links(field: &str, links: usize) -> Result<(), Error> {
     }
 }
 
+/// Checks that a page can draw `chain`: at most [`MAX_VIEW_LINKS`] rods,
+/// or [`MAX_VIEW_PROFILED_LINKS`] for unequal rods (whose lengths and
+/// densities the page holds too); the error names `field`.
+pub fn check_chain(field: &str, chain: &chain_ode::Chain) -> Result<(), Error> {
+    let links = chain.links();
+    check_links(field, links)?;
+    if chain.rods().is_some() && links > MAX_VIEW_PROFILED_LINKS {
+        return Err(Error::field(
+            field,
+            format!(
+                "the viewer draws at most {MAX_VIEW_PROFILED_LINKS} rods of unequal mass or \
+                 length (got {links})"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl ViewRun {
     /// A finished (or failed) run, thinned to `budget` bytes, with its
     /// `simulate --json` summary.
@@ -155,6 +218,8 @@ impl ViewRun {
     ) -> Self {
         let links = traj.chain.links();
         let samples = traj.len();
+        let profile = RodProfile::of(&traj.chain);
+        let budget = budget.saturating_sub(fixed_bytes(links, profile.is_some()));
         let stride = stride_for(samples, links, if forces { 2 } else { 0 }, budget);
         let kept = samples.div_ceil(stride) + 1;
         let mut run = Self {
@@ -174,6 +239,7 @@ impl ViewRun {
             phi: Vec::with_capacity(kept * links),
             forces: None,
             pivot: (!traj.pivot.is_fixed()).then(|| Vec::with_capacity(2 * kept)),
+            profile,
             source: None,
         };
         let (mut tension, mut shear) = (Vec::new(), Vec::new());
@@ -237,6 +303,17 @@ impl ViewRun {
         write_array(out, "phi", &self.phi, |out, v| {
             let _ = write!(out, "{:.6}", finite(v));
         });
+        match &self.profile {
+            None => out.push_str(",\"rod_lengths\":null,\"density\":null"),
+            Some(p) => {
+                write_array(out, "rod_lengths", &p.lengths, |out, v| {
+                    let _ = write!(out, "{:.6e}", finite(v));
+                });
+                write_array(out, "density", &p.density, |out, v| {
+                    let _ = write!(out, "{:.2e}", finite(v));
+                });
+            }
+        }
         match &self.pivot {
             None => out.push_str(",\"pivot\":null"),
             Some(p) => write_array(out, "pivot", p, |out, v| {
@@ -358,6 +435,7 @@ mod tests {
             phi: vec![0.0, -1.0, -0.5, -1.5],
             forces,
             pivot: None,
+            profile: None,
             source: None,
         }
     }
@@ -382,6 +460,40 @@ mod tests {
         assert_eq!(runs[0]["forces"], Value::Null);
         assert_eq!(runs[1]["forces"]["tension"].as_array().unwrap().len(), 6);
         assert_eq!(runs[1]["phi"][1].as_f64(), Some(-1.0));
+    }
+
+    /// A profiled run's lengths and densities take at most
+    /// [`PROFILE_BYTES`] a rod, and two frames of the most profiled rods a
+    /// page draws fit each of 8 runs' share with them.
+    #[test]
+    fn a_profile_fits_its_bytes_and_the_most_profiled_rods_fit_the_budget() {
+        let n = 1000;
+        // Long mantissas and two-digit negative exponents: the widest values.
+        let profile = RodProfile {
+            lengths: (0..n)
+                .map(|i| 1.234_567_89e-11 * (1.0 + i as f64 * 1e-3))
+                .collect(),
+            density: (0..n)
+                .map(|i| 9.876_54e-12 * (1.0 + i as f64 * 1e-3))
+                .collect(),
+        };
+        let bare = page("t", &[toy(None)]).len();
+        let mut run = toy(None);
+        run.profile = Some(profile.clone());
+        let with = page("t", &[run]);
+        // Less the two nulls the bare page holds.
+        let extra = with.len() + ",\"rod_lengths\":null,\"density\":null".len() - bare;
+        assert!(extra <= fixed_bytes(n, true), "{extra} bytes");
+        let back = &data_of(&with)["runs"][0];
+        for (k, v) in back["rod_lengths"].as_array().unwrap().iter().enumerate() {
+            let v = v.as_f64().unwrap();
+            assert!((v / profile.lengths[k] - 1.0).abs() < 5e-7, "{k}: {v}");
+        }
+        let frame = MAX_VIEW_PROFILED_LINKS * ANGLE_BYTES + SCALAR_BYTES;
+        assert!(
+            fixed_bytes(MAX_VIEW_PROFILED_LINKS, true) + 2 * frame <= DATA_BUDGET_BYTES / MAX_RUNS
+        );
+        assert_eq!(fixed_bytes(n, false), 0);
     }
 
     #[test]

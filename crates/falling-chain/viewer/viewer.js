@@ -23,8 +23,8 @@
       if (x < xmin) xmin = x; if (x > xmax) xmax = x;
       if (y < ymin) ymin = y; if (y > ymax) ymax = y;
       for (let j = 0; j < n; j++) {
-        const a = r.phi[f * n + j];
-        x += r.rod * Math.cos(a); y += r.rod * Math.sin(a);
+        const a = r.phi[f * n + j], l = r.rod_lengths ? r.rod_lengths[j] : r.rod;
+        x += l * Math.cos(a); y += l * Math.sin(a);
         xs[f * m + j + 1] = x; ys[f * m + j + 1] = y;
         if (x < xmin) xmin = x; if (x > xmax) xmax = x;
         if (y < ymin) ymin = y; if (y > ymax) ymax = y;
@@ -33,7 +33,11 @@
     const e0 = r.energy.length ? r.energy[0] : 0;
     const balance = r.energy.map((e, k) => e + r.dissipated[k] - e0);
     const change = r.energy.map((e) => e - e0);
-    return Object.assign({}, r, { xs, ys, m, frames, color: COLORS[i % COLORS.length],
+    // Line width of each rod (px), as the square root of its mass per
+    // length over the mean (the diameter of a rod of one material); null
+    // for equal rods, drawn at one width.
+    const widths = r.density ? r.density.map((d) => Math.min(Math.max(3 * Math.sqrt(d), 0.75), 10)) : null;
+    return Object.assign({}, r, { xs, ys, m, frames, widths, color: COLORS[i % COLORS.length],
       bounds: [xmin, xmax, ymin, ymax], balance, change });
   }
 
@@ -101,6 +105,7 @@
 
   const drawnTip = runs.map(() => null);
   const drawnFrame = runs.map(() => -1);
+  const drawnPivot = runs.map(() => null);
 
   function drawChain(t) {
     cx.clearRect(0, 0, chain.width, chain.height);
@@ -123,11 +128,17 @@
       cx.globalAlpha = 1;
       const forces = range && r.forces && r.forces[forceKind];
       cx.lineWidth = forces ? 3.5 : 2; cx.lineJoin = "round"; cx.lineCap = "round";
-      if (forces) {
-        const w = range[1] - range[0];
+      if (forces || r.widths) {
+        // Rod by rod: its colour by the joint force, its width by its
+        // mass per length.
+        const w = range ? range[1] - range[0] : 1;
+        cx.strokeStyle = r.color;
         for (let j = 0; j < r.links; j++) {
-          const mean = 0.5 * (forces[f * r.m + j] + forces[f * r.m + j + 1]);
-          cx.strokeStyle = ramp((mean - range[0]) / w);
+          if (forces) {
+            const mean = 0.5 * (forces[f * r.m + j] + forces[f * r.m + j + 1]);
+            cx.strokeStyle = ramp((mean - range[0]) / w);
+          }
+          if (r.widths) cx.lineWidth = r.widths[j] * (forces ? 1.75 : 1);
           cx.beginPath();
           cx.moveTo(view.px(r.xs[base + j]), view.py(r.ys[base + j]));
           cx.lineTo(view.px(r.xs[base + j + 1]), view.py(r.ys[base + j + 1]));
@@ -150,11 +161,15 @@
         cx.fillText(r.label + ": " + r.status + " at t = " + fmt(r.t_failed), 12, 20 + 18 * i);
       }
     });
-    // The pivot P0 of the first run.
-    if (runs.length) {
+    // The pivot P0 of each run where it is now (a moving or released
+    // pivot moves; a fixed one is the run's anchor).
+    runs.forEach((r, i) => {
+      const f = drawnFrame[i];
+      if (f < 0) return;
+      drawnPivot[i] = [r.xs[f * r.m], r.ys[f * r.m]];
       cx.fillStyle = "#000";
-      cx.fillRect(view.px(runs[0].anchor[0]) - 3, view.py(runs[0].anchor[1]) - 3, 6, 6);
-    }
+      cx.fillRect(view.px(drawnPivot[i][0]) - 3, view.py(drawnPivot[i][1]) - 3, 6, 6);
+    });
     if (range) drawColorBar(range);
   }
 
@@ -378,6 +393,9 @@
     pause: () => setPlaying(false),
     playing: () => playing,
     drawnTip: (i) => drawnTip[i],
+    drawnPivot: (i) => drawnPivot[i],
+    // The line width (px) of rod j of run i, as drawn without forces.
+    rodWidth: (i, j) => (runs[i].widths ? runs[i].widths[j] : 2),
     // Joint j (0 = P0) of run i as drawn now.
     joint: (i, j) => {
       const r = runs[i], f = drawnFrame[i];

@@ -11,6 +11,7 @@
 mod continuous;
 mod discrete;
 mod errors;
+mod profiled_compression;
 mod random;
 
 use catenary::Point;

@@ -278,6 +278,10 @@ impl ChainObserver {
     fn record(&mut self, t: f64, y: &[f64]) {
         self.times.push(t);
         self.states.extend_from_slice(y);
+        // Progress for a caller watching from another thread (per sample).
+        if let Some(c) = &self.cancel {
+            c.report(t);
+        }
     }
 
     /// Records the final state if the last sample is not already it.
@@ -507,6 +511,10 @@ impl Observer for ChainObserver {
                     self.states.extend_from_slice(&self.buf);
                 }
                 self.next_sample += 1;
+                // Progress for a caller watching from another thread.
+                if let Some(c) = &self.cancel {
+                    c.report(ts);
+                }
             }
         }
     }

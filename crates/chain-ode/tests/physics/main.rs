@@ -22,6 +22,7 @@ mod modes;
 mod observed_rhs;
 mod pivot;
 mod profile;
+mod profile_compression;
 mod report;
 mod rk4;
 mod tip_mass;
