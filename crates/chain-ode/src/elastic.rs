@@ -31,6 +31,21 @@
 //! `W' = 2R = C sum |d_k'|^2 + r sum (w_{i+1} - w_i)^2`. As `EA -> inf` at
 //! fixed `n` the gaps close and this is the rigid pinned chain.
 //!
+//! Every key of issue 18 works here too (`docs/model.md`, "Elastic links
+//! with a rod profile, a tip mass and a moving or released pivot"):
+//!
+//! * a rod profile: rod `i` has `m_i`, `J_i = m_i l_i^2 / 12`, `h_i = l_i / 2`;
+//!   joint `k` carries rod `k`'s compliance, `K_k = EA / l_k`, `C_k = eta / l_k`
+//!   (in series, `L / EA`), and its bending spring is `EI / ((l_{k-1} + l_k) / 2)`;
+//! * a tip mass `M`: the last rod and `M` are one rigid body (`tip_body`);
+//! * a driven pivot: positions and velocities are relative to `P0(t)`, every
+//!   rod feels `-m_i P0''(t)`, and `W' = 2R - F_0 . P0'` counts the support's
+//!   work ([`frame_energy`] turns the energy into the inertial frame's);
+//! * a released pivot: joint 0 has no spring (`solve` splits the run at `t_r`).
+//!
+//! Equal rods with no tip mass and a fixed pivot keep the arithmetic of the
+//! scalars above bit for bit.
+//!
 //! The state is laid out `[theta (n), w (n), W, x (n), y (n), vx (n), vy (n)]`
 //! (`6 n + 1` numbers): its first `2 n + 1` mean what the rigid chain's do
 //! (angles, rates, dissipated work), so that a sample of either model reads
