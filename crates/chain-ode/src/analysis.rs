@@ -54,7 +54,7 @@ pub fn pivot_forces(traj: &Trajectory) -> Vec<(f64, Vec2)> {
             .map(|k| {
                 (
                     traj.times[k],
-                    elastic::joint_forces(&traj.chain, traj.state(k))[0],
+                    elastic::pivot_force_at(&traj.chain, traj.times[k], traj.state(k)),
                 )
             })
             .collect();

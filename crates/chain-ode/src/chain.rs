@@ -46,18 +46,18 @@ pub struct ChainParams {
     /// is free). Default 0. Works with rigid and elastic links.
     pub bending_stiffness: f64,
     /// A point mass `M_t` (mass, at least 0) at the free end, pinned to the
-    /// last rod's tip. Default 0. Rigid links only: an elastic chain
-    /// refuses `M_t > 0` (`chain.tip_mass`).
+    /// last rod's tip. Default 0. Works with rigid and elastic links.
     pub tip_mass: f64,
     /// How the pivot `P0` moves: fixed (the default), along a prescribed
-    /// path, or let go at a time ([`Pivot`], the `pivot.*` keys). Rigid
-    /// links only: an elastic chain refuses a pivot that is not fixed.
+    /// path, or let go at a time ([`Pivot`], the `pivot.*` keys). Works
+    /// with rigid and elastic links.
     pub pivot: Pivot,
     /// How the mass `n m` and the length `L` are shared among the rods
     /// ([`Profile`], the keys `chain.taper`, `chain.rod_masses`,
-    /// `chain.rod_lengths`); equal rods by default. Rigid links, no tip
-    /// mass, no bending stiffness and a fixed pivot only: the other
-    /// combinations are refused by the profile's key.
+    /// `chain.rod_lengths`); equal rods by default. Elastic links take any
+    /// combination; rigid links only without a tip mass, bending stiffness
+    /// or a moving pivot: the other combinations are refused by the
+    /// profile's key.
     pub profile: Profile,
 }
 
@@ -195,19 +195,14 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         "a finite number >= 0",
         p.tip_mass,
     )?;
-    check(
-        p.tip_mass == 0.0 || p.axial_stiffness.is_none(),
-        "chain.tip_mass",
-        "0 with elastic links (chain.axial_stiffness given): a tip mass needs rigid links",
-        p.tip_mass,
-    )?;
     p.pivot.validate()?;
     p.profile.validate(p.links)?;
     if let Some(key) = p.profile.first_given() {
         // Combinations whose per-rod terms are not written: refused by the
         // profile's key, in one line.
+        // Elastic links take every combination (`elastic.rs`).
         let other = if p.axial_stiffness.is_some() {
-            Some("elastic links (chain.axial_stiffness)")
+            None
         } else if p.tip_mass != 0.0 {
             Some("a tip mass (chain.tip_mass)")
         } else if p.bending_stiffness != 0.0 {
@@ -219,24 +214,16 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
             return Err(InvalidParameter {
                 field: key,
                 accepted: format!(
-                    "absent (equal rods) with {other}: a rod profile needs rigid links, \
-                     no tip mass, no bending stiffness and a fixed pivot"
+                    "absent (equal rods) with {other}: a rod profile on rigid links needs \
+                     no tip mass, no bending stiffness and a fixed pivot (elastic links \
+                     take them all)"
                 )
                 .into(),
                 got: "a profile".into(),
             });
         }
     }
-    match p.pivot.first_given() {
-        Some(key) if p.axial_stiffness.is_some() => Err(InvalidParameter {
-            field: key,
-            accepted: "absent with elastic links (chain.axial_stiffness given): a moving or \
-                       released pivot needs rigid links"
-                .into(),
-            got: "a value".into(),
-        }),
-        _ => Ok(()),
-    }
+    Ok(())
 }
 
 impl Chain {
@@ -494,13 +481,11 @@ mod tests {
         }
         assert!(Chain::report(50, 5e-4).is_ok());
         assert!(Chain::new(ChainParams::default()).is_ok());
-        // A tip mass needs rigid links: refused, by name, on an elastic chain.
+        // A tip mass works with rigid and elastic links.
         let mut p = with("chain.tip_mass", 0.5);
         assert!(Chain::new(p.clone()).is_ok());
         p.axial_stiffness = Some(1e4);
-        let e = Chain::new(p).unwrap_err();
-        assert_eq!(e.field, "chain.tip_mass");
-        assert!(!e.to_string().contains('\n'));
+        assert!(Chain::new(p).is_ok());
     }
 
     /// The refinement carries every field: each is set to a value no

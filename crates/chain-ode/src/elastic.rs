@@ -31,6 +31,21 @@
 //! `W' = 2R = C sum |d_k'|^2 + r sum (w_{i+1} - w_i)^2`. As `EA -> inf` at
 //! fixed `n` the gaps close and this is the rigid pinned chain.
 //!
+//! Every key of issue 18 works here too (`docs/model.md`, "Elastic links
+//! with a rod profile, a tip mass and a moving or released pivot"):
+//!
+//! * a rod profile: rod `i` has `m_i`, `J_i = m_i l_i^2 / 12`, `h_i = l_i / 2`;
+//!   joint `k` carries rod `k`'s compliance, `K_k = EA / l_k`, `C_k = eta / l_k`
+//!   (in series, `L / EA`), and its bending spring is `EI / ((l_{k-1} + l_k) / 2)`;
+//! * a tip mass `M`: the last rod and `M` are one rigid body (`tip_body`);
+//! * a driven pivot: positions and velocities are relative to `P0(t)`, every
+//!   rod feels `-m_i P0''(t)`, and `W' = 2R - F_0 . P0'` counts the support's
+//!   work ([`frame_energy`] turns the energy into the inertial frame's);
+//! * a released pivot: joint 0 has no spring (`solve` splits the run at `t_r`).
+//!
+//! Equal rods with no tip mass and a fixed pivot keep the arithmetic of the
+//! scalars above bit for bit.
+//!
 //! The state is laid out `[theta (n), w (n), W, x (n), y (n), vx (n), vy (n)]`
 //! (`6 n + 1` numbers): its first `2 n + 1` mean what the rigid chain's do
 //! (angles, rates, dissipated work), so that a sample of either model reads
@@ -43,36 +58,93 @@ use crate::dae::ChainDae;
 use crate::dynamics::{damping_stencil, Workspace};
 use crate::kinematics::Vec2;
 use crate::ode::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
+use crate::pivot::Pivot;
 use crate::scalar::{sin_cos, Dual, Scalar};
 use crate::state::State;
 
+/// Per-rod values of a profiled elastic chain (physical units): rod `i`'s
+/// half length, inverse mass and inverse moment of inertia, and joint `k`'s
+/// spring, dashpot and bending spring.
+#[derive(Clone, Debug)]
+struct PerRod {
+    /// `h_i = l_i / 2`.
+    h: Vec<f64>,
+    /// `1 / m_i`.
+    inv_m: Vec<f64>,
+    /// `1 / J_i`, `J_i = m_i l_i^2 / 12`.
+    inv_j: Vec<f64>,
+    /// Joint `k`'s spring `K_k = EA / l_k` (the joint at the start of rod `k`
+    /// carries rod `k`'s compliance `l_k / EA`).
+    k: Vec<f64>,
+    /// Joint `k`'s dashpot `C_k = eta / l_k`.
+    c: Vec<f64>,
+    /// Joint `k`'s bending spring `EI / ((l_{k-1} + l_k) / 2)` (`k >= 1`;
+    /// entry 0 unused: the pivot has none).
+    kb: Vec<f64>,
+}
+
 /// The constants of the elastic chain's right-hand side.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Springs {
     n: usize,
-    /// Half the rod length `h = l / 2`.
+    /// Half the rod length `h = l / 2` (equal rods).
     h: f64,
-    /// `1 / m`.
+    /// `1 / m` (equal rods).
     inv_m: f64,
-    /// `1 / J`, `J = m l^2 / 12`.
+    /// `1 / J`, `J = m l^2 / 12` (equal rods).
     inv_j: f64,
     g: f64,
-    /// Joint spring `K = EA / l`.
+    /// Joint spring `K = EA / l` (equal rods).
     k: f64,
-    /// Joint dashpot `C = eta / l`.
+    /// Joint dashpot `C = eta / l` (equal rods).
     c: f64,
     /// Joint friction `r`.
     r: f64,
-    /// Bending spring `EI / l`.
+    /// Bending spring `EI / l` (equal rods).
     kb: f64,
+    /// The per-rod values of a profiled chain; `None` for equal rods, whose
+    /// arithmetic is then the scalars above, bit for bit.
+    rods: Option<std::sync::Arc<PerRod>>,
+    /// The last rod's mass `m_{n-1}` (with the tip mass, one rigid body).
+    m_last: f64,
+    /// The tip mass `M_t` (0: none).
+    tip_mass: f64,
+    /// The pivot's prescribed motion (read only when `driven`).
+    pivot: Pivot,
+    /// True when the pivot moves: the state is then relative to `P0(t)`,
+    /// and every rod feels the frame's acceleration `-m_i P0''(t)`.
+    driven: bool,
+    /// True once the pivot is let go: joint 0 has no spring.
+    released: bool,
 }
 
 impl Springs {
     fn of(chain: &Chain) -> Self {
         let l = chain.rod_length();
         let m = chain.mass();
+        let rods = chain.rods().map(|r| {
+            let ea = chain.axial_stiffness().unwrap_or(0.0);
+            let (eta, ei) = (chain.axial_damping(), chain.bending_stiffness());
+            let n = r.length.len();
+            let li = |i: usize| l * r.length[i];
+            let mi = |i: usize| m * r.mass[i];
+            std::sync::Arc::new(PerRod {
+                h: (0..n).map(|i| 0.5 * li(i)).collect(),
+                inv_m: (0..n).map(|i| 1.0 / mi(i)).collect(),
+                inv_j: (0..n).map(|i| 12.0 / (mi(i) * li(i) * li(i))).collect(),
+                k: (0..n).map(|i| ea / li(i)).collect(),
+                c: (0..n).map(|i| eta / li(i)).collect(),
+                kb: (0..n)
+                    .map(|k| match k {
+                        0 => 0.0,
+                        _ => ei / (0.5 * (li(k - 1) + li(k))),
+                    })
+                    .collect(),
+            })
+        });
+        let n = chain.links();
         Self {
-            n: chain.links(),
+            n,
             h: 0.5 * l,
             inv_m: 1.0 / m,
             inv_j: 12.0 / (m * l * l),
@@ -83,6 +155,90 @@ impl Springs {
             c: chain.joint_damping(),
             r: chain.damping(),
             kb: chain.bending_spring(),
+            rods,
+            m_last: rod_mass(chain, n - 1),
+            tip_mass: chain.tip_mass(),
+            pivot: *chain.pivot(),
+            driven: chain.pivot().is_driven(),
+            // Let go at t = 0: no joint-0 spring from the start (a later
+            // release is `ElasticSystem::set_released`'s, in `solve`).
+            released: chain.pivot().release == Some(0.0),
+        }
+    }
+
+    #[inline(always)]
+    fn h(&self, i: usize) -> f64 {
+        self.rods.as_ref().map_or(self.h, |r| r.h[i])
+    }
+    #[inline(always)]
+    fn inv_m(&self, i: usize) -> f64 {
+        self.rods.as_ref().map_or(self.inv_m, |r| r.inv_m[i])
+    }
+    #[inline(always)]
+    fn inv_j(&self, i: usize) -> f64 {
+        self.rods.as_ref().map_or(self.inv_j, |r| r.inv_j[i])
+    }
+    #[inline(always)]
+    fn k(&self, i: usize) -> f64 {
+        self.rods.as_ref().map_or(self.k, |r| r.k[i])
+    }
+    #[inline(always)]
+    fn c(&self, i: usize) -> f64 {
+        self.rods.as_ref().map_or(self.c, |r| r.c[i])
+    }
+
+    /// The bending springs' torque on rod `i`: `(EI / l) D_i(theta)` for
+    /// equal rods, `kb_{i+1} (theta_{i+1} - theta_i) - kb_i (theta_i -
+    /// theta_{i-1})` with each joint's own spring for a profile.
+    #[inline(always)]
+    fn bending<T: Scalar>(&self, theta: &[T], i: usize) -> T {
+        match &self.rods {
+            None => damping_stencil(theta, i) * self.kb,
+            Some(r) => {
+                let mut b = T::cst(0.0);
+                if i > 0 {
+                    b += (theta[i - 1] - theta[i]) * r.kb[i];
+                }
+                if i + 1 < self.n {
+                    b += (theta[i + 1] - theta[i]) * r.kb[i + 1];
+                }
+                b
+            }
+        }
+    }
+}
+
+/// Rod `i`'s mass `m_i` (physical units): `m`, or `mu_i m` for a profile.
+pub fn rod_mass(chain: &Chain, i: usize) -> f64 {
+    match chain.rods() {
+        None => chain.mass(),
+        Some(r) => chain.mass() * r.mass[i],
+    }
+}
+
+/// Rod `i`'s half length `h_i = l_i / 2` (physical units).
+pub fn rod_half_length(chain: &Chain, i: usize) -> f64 {
+    match chain.rods() {
+        None => 0.5 * chain.rod_length(),
+        Some(r) => 0.5 * (chain.rod_length() * r.length[i]),
+    }
+}
+
+/// Joint `k`'s spring and dashpot `(K_k, C_k) = (EA, eta) / l_k`: the joint
+/// at the start of rod `k` carries that rod's compliance (`K = EA / l` for
+/// equal rods; 0 for rigid links).
+pub fn joint_spring(chain: &Chain, k: usize) -> (f64, f64) {
+    match chain.rods() {
+        None => (
+            chain.joint_stiffness().unwrap_or(0.0),
+            chain.joint_damping(),
+        ),
+        Some(r) => {
+            let lk = chain.rod_length() * r.length[k];
+            (
+                chain.axial_stiffness().unwrap_or(0.0) / lk,
+                chain.axial_damping() / lk,
+            )
         }
     }
 }
@@ -93,34 +249,53 @@ fn offsets(n: usize) -> [usize; 7] {
     [0, n, 2 * n, 2 * n + 1, 3 * n + 1, 4 * n + 1, 5 * n + 1]
 }
 
-/// `dy = f(y)` for the elastic chain, over any scalar (`f64`, or a dual
-/// number for the exact Jacobian-vector product). One pass over the joints,
-/// no allocation: `sc` holds `(sin, cos)` of the angles.
-fn rhs_generic<T: Scalar>(p: &Springs, y: &[T], dy: &mut [T], sc: &mut [(T, T)]) {
+/// `dy = f(y)` at `t` for the elastic chain, over any scalar (`f64`, or a
+/// dual number for the exact Jacobian-vector product). One pass over the
+/// joints, no allocation: `sc` holds `(sin, cos)` of the angles.
+fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [(T, T)]) {
     let n = p.n;
     let [_, ow, owk, ox, oy, ovx, ovy] = offsets(n);
     let theta = &y[..n];
     let w = &y[ow..owk];
     T::sin_cos_all(theta, sc);
     let zero = T::cst(0.0);
+    // The frame's velocity and acceleration `P0'(t), P0''(t)` (driven only).
+    let [_, v0, a0] = if p.driven {
+        p.pivot.drive(t)
+    } else {
+        [[0.0; 2]; 3]
+    };
+    // The support's power on the chain, `F_0 . P0'`.
+    let mut support = zero;
     // Force of joint k on rod k, from the previous iteration: F_{k-1}.
     let (mut fpx, mut fpy) = (zero, zero);
     // End of rod k - 1 and its velocity (the pivot for k = 0).
     let (mut ex, mut ey, mut evx, mut evy) = (zero, zero, zero, zero);
     let mut dissipated = zero;
     for k in 0..=n {
-        // The force of joint k on rod k (zero at the free tip, k = n).
+        // The force of joint k on rod k (zero at the free tip, k = n, and
+        // at a released pivot).
         let (fx, fy) = if k < n {
             let (s, c) = sc[k];
-            let (hs, hc) = (s * p.h, c * p.h);
+            let h = p.h(k);
+            let (hs, hc) = (s * h, c * h);
             let (hsw, hcw) = (hs * w[k], hc * w[k]);
             let (x, yy, vx, vy) = (y[ox + k], y[oy + k], y[ovx + k], y[ovy + k]);
             let (dx, dyy) = (x - hc - ex, yy - hs - ey);
             let (ddx, ddy) = ((vx + hsw) - evx, (vy - hcw) - evy);
-            dissipated += (ddx * ddx + ddy * ddy) * p.c;
             // This rod's end, for the next joint.
             (ex, ey, evx, evy) = (x + hc, yy + hs, vx - hsw, vy + hcw);
-            (-(dx * p.k) - ddx * p.c, -(dyy * p.k) - ddy * p.c)
+            if k == 0 && p.released {
+                (zero, zero)
+            } else {
+                let (kk, cc) = (p.k(k), p.c(k));
+                dissipated += (ddx * ddx + ddy * ddy) * cc;
+                let f = (-(dx * kk) - ddx * cc, -(dyy * kk) - ddy * cc);
+                if k == 0 && p.driven {
+                    support = f.0 * v0[0] + f.1 * v0[1];
+                }
+                f
+            }
         } else {
             (zero, zero)
         };
@@ -129,15 +304,27 @@ fn rhs_generic<T: Scalar>(p: &Springs, y: &[T], dy: &mut [T], sc: &mut [(T, T)])
             let i = k - 1;
             let (s, c) = sc[i];
             let (sx, sy) = (fpx + fx, fpy + fy);
-            let torque = -((c * sy - s * sx) * p.h)
-                + damping_stencil(w, i) * p.r
-                + damping_stencil(theta, i) * p.kb;
+            let torque =
+                -((c * sy - s * sx) * p.h(i)) + damping_stencil(w, i) * p.r + p.bending(theta, i);
             dy[i] = w[i];
-            dy[ow + i] = torque * p.inv_j;
             dy[ox + i] = y[ovx + i];
             dy[oy + i] = y[ovy + i];
-            dy[ovx + i] = (fpx - fx) * p.inv_m;
-            dy[ovy + i] = (fpy - fy) * p.inv_m - T::cst(p.g);
+            if k == n && p.tip_mass != 0.0 {
+                // The last rod and the tip mass, one rigid body (fx = fy = 0).
+                let [ax, ay, al] = tip_body(p, (s, c), w[i], (fpx, fpy), torque, a0);
+                dy[ow + i] = al;
+                dy[ovx + i] = ax;
+                dy[ovy + i] = ay;
+            } else {
+                let (inv_m, inv_j) = (p.inv_m(i), p.inv_j(i));
+                dy[ow + i] = torque * inv_j;
+                dy[ovx + i] = (fpx - fx) * inv_m;
+                dy[ovy + i] = (fpy - fy) * inv_m - T::cst(p.g);
+                if p.driven {
+                    dy[ovx + i] -= T::cst(a0[0]);
+                    dy[ovy + i] -= T::cst(a0[1]);
+                }
+            }
         }
         (fpx, fpy) = (fx, fy);
     }
@@ -147,6 +334,48 @@ fn rhs_generic<T: Scalar>(p: &Springs, y: &[T], dy: &mut [T], sc: &mut [(T, T)])
         friction += dw * dw;
     }
     dy[owk] = dissipated + friction * p.r;
+    if p.driven {
+        dy[owk] -= support;
+    }
+}
+
+/// The last rod (mass `m`, half length `h`, `J = m h^2 / 3`) and the tip
+/// mass `M` at its end, one rigid body in the rod's coordinates `(c, theta)`:
+/// with `e = M h`, `m_t = m + M`, the field `G = (a0_x, g + a0_y)` (gravity
+/// and the frame's acceleration), the force `F` of the last joint on the rod
+/// and the joints' torque `tau` about the rod's centre,
+///
+/// ```text
+/// m_t c'' + e (alpha v - w^2 u) = F - m_t G =: Q_c
+/// (J + M h^2) alpha + e v . c'' = tau - e G . v =: Q_theta
+/// alpha = (Q_theta - e v . Q_c / m_t) / (J + m M h^2 / m_t)
+/// c''   = (Q_c + e (w^2 u - alpha v)) / m_t
+/// ```
+///
+/// (Lagrange's equations of `T = m |c'|^2/2 + J w^2/2 + M |c' + h w v|^2/2`;
+/// the 3x3 mass matrix solved in closed form). Returns `[c''_x, c''_y, alpha]`.
+#[inline(always)]
+fn tip_body<T: Scalar>(
+    p: &Springs,
+    (s, c): (T, T),
+    w: T,
+    (fx, fy): (T, T),
+    torque: T,
+    a0: Vec2,
+) -> [T; 3] {
+    let (m, mm) = (p.m_last, p.tip_mass);
+    let h = p.h(p.n - 1);
+    let mt = m + mm;
+    let e = mm * h;
+    let (gx, gy) = (a0[0], p.g + a0[1]);
+    let (qx, qy) = (fx - T::cst(mt * gx), fy - T::cst(mt * gy));
+    let q_theta = torque - (c * gy - s * gx) * e;
+    let den = m * h * h / 3.0 + m * mm * h * h / mt;
+    let alpha = (q_theta - (c * qy - s * qx) * (e / mt)) * (1.0 / den);
+    let ew2 = w * w * e;
+    let ax = (qx + ew2 * c + alpha * s * e) * (1.0 / mt);
+    let ay = (qy + ew2 * s - alpha * c * e) * (1.0 / mt);
+    [ax, ay, alpha]
 }
 
 /// The elastic chain as `y' = f(y)`, with preallocated scratch.
@@ -185,19 +414,27 @@ impl ElasticSystem {
         6 * self.chain.links() + 1
     }
 
-    /// `dy = f(y)`: O(n), allocation-free. Autonomous: `t` is unused.
-    pub fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
-        rhs_generic(&self.springs, y, dy, &mut self.sc);
+    /// Lets the pivot go (`true`: joint 0 has no spring from now on) or
+    /// holds it.
+    pub fn set_released(&mut self, released: bool) {
+        self.springs.released = released;
+    }
+
+    /// `dy = f(y)` at `t` (`t` read only for a driven pivot): O(n),
+    /// allocation-free.
+    pub fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        rhs_generic(&self.springs, t, y, dy, &mut self.sc);
     }
 
     /// The exact Jacobian-vector product, by dual numbers through the same
     /// right-hand side.
-    pub fn jvp(&mut self, _t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+    pub fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
         for ((d, &yi), &vi) in self.dual_y.iter_mut().zip(y).zip(v) {
             *d = Dual::new(yi, vi);
         }
         rhs_generic(
             &self.springs,
+            t,
             &self.dual_y,
             &mut self.dual_dy,
             &mut self.dual_sc,
@@ -228,7 +465,7 @@ impl OdeSystem for ElasticSystem {
 impl Problem for ElasticSystem {
     fn banded_dae(&self, _t0: f64, y0: &[f64]) -> Option<BandedDae> {
         Some(BandedDae {
-            dae: Box::new(ElasticDae::new(&self.chain)),
+            dae: Box::new(ElasticDae::new(&self.chain).released(self.springs.released)),
             y0: y0.to_vec(),
         })
     }
@@ -273,6 +510,12 @@ impl ElasticDae {
             }),
         }
     }
+
+    /// This DAE with the pivot let go (`true`: no joint-0 spring) or held.
+    pub fn released(mut self, released: bool) -> Self {
+        self.springs.released = released;
+        self
+    }
 }
 
 impl SemiExplicitDae for ElasticDae {
@@ -282,11 +525,11 @@ impl SemiExplicitDae for ElasticDae {
     fn differential_dim(&self) -> usize {
         6 * self.springs.n + 1
     }
-    fn rhs(&self, _t: f64, y: &[f64], out: &mut [f64]) {
-        ElasticDae::rhs(self, y, out)
+    fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        ElasticDae::rhs_at(self, t, y, out)
     }
-    fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
-        ElasticDae::jacobian_entries(self, y, emit)
+    fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        ElasticDae::jacobian_entries_at(self, t, y, emit)
     }
     /// Rod `i` holds `theta_i, w_i, x_i, y_i, vx_i, vy_i` (and rod 0 `W`):
     /// each rod's accelerations read only its neighbours.
@@ -305,10 +548,15 @@ impl SemiExplicitDae for ElasticDae {
 }
 
 impl ElasticDae {
-    /// `out = f(y)`, as [`ElasticSystem::rhs`].
+    /// `out = f(y)` at `t = 0`, as [`ElasticSystem::rhs`].
     pub fn rhs(&self, y: &[f64], out: &mut [f64]) {
+        self.rhs_at(0.0, y, out);
+    }
+
+    /// `out = f(y)` at `t`, as [`ElasticSystem::rhs`].
+    pub fn rhs_at(&self, t: f64, y: &[f64], out: &mut [f64]) {
         let mut s = self.scratch.borrow_mut();
-        rhs_generic(&self.springs, y, out, &mut s.sc);
+        rhs_generic(&self.springs, t, y, out, &mut s.sc);
     }
 
     /// Every entry of `df/dy` at `y` but the row of `W` (dense, and read by
@@ -316,6 +564,12 @@ impl ElasticDae {
     /// as `emit(row, column, value)`; the entries and their order depend
     /// on `n` only.
     pub fn jacobian_entries(&self, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        self.jacobian_entries_at(0.0, y, emit);
+    }
+
+    /// [`ElasticDae::jacobian_entries`] at `t` (the entries do not depend
+    /// on `t`: a driven pivot's frame adds a force independent of the state).
+    pub fn jacobian_entries_at(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         let n = self.springs.n;
         let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
         // theta' = w, x' = vx, y' = vy.
@@ -336,7 +590,7 @@ impl ElasticDae {
                 for j in (colour..n).step_by(3) {
                     s.dual_y[kind + j].d = 1.0;
                 }
-                rhs_generic(&self.springs, &s.dual_y, &mut s.dual_dy, &mut s.dual_sc);
+                rhs_generic(&self.springs, t, &s.dual_y, &mut s.dual_dy, &mut s.dual_sc);
                 for j in (colour..n).step_by(3) {
                     for i in j.saturating_sub(1)..(j + 2).min(n) {
                         for &row in &rows {
@@ -349,12 +603,22 @@ impl ElasticDae {
     }
 }
 
+/// True when `chain` is a plain elastic chain: equal rods, no tip mass, a
+/// fixed pivot. Its statics, readers and energy keep the arithmetic they
+/// always had, bit for bit.
+fn is_plain(chain: &Chain) -> bool {
+    chain.rods().is_none() && chain.tip_mass() == 0.0 && chain.pivot().is_fixed()
+}
+
 /// The rigid chain's static joint forces `F_k` (force of joint `k` on rod
 /// `k`, physical units) in the shape `phi`, the tip held by the force that
 /// balances the rods' moments best (least squares over the rods; exact for
 /// a shape in static equilibrium, such as the catenary, the hanging and the
 /// folded starts). Returns the forces and the holding force `H` on the tip.
 fn static_forces(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
+    if !is_plain(chain) {
+        return static_forces_general(chain, phi);
+    }
     let n = phi.len();
     let (l, m, g) = (chain.rod_length(), chain.mass(), chain.gravity());
     let kb = chain.bending_spring();
@@ -372,35 +636,82 @@ fn static_forces(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
         rx += ax * b;
         ry += ay * b;
     }
-    let tr = nxx + nyy;
-    let det = nxx * nyy - nxy * nxy;
-    let h = if det > 1e-12 * tr * tr {
-        [(nyy * rx - nxy * ry) / det, (nxx * ry - nxy * rx) / det]
-    } else if tr > 0.0 {
-        // Rank one (every rod parallel): the least-norm solution.
-        [rx / tr, ry / tr]
-    } else {
-        [0.0, 0.0]
-    };
+    let h = least_squares_holding([nxx, nxy, nyy], [rx, ry]);
     let forces = (0..n)
         .map(|i| [-h[0], -h[1] + (n - i) as f64 * m * g])
         .collect();
     (forces, h)
 }
 
+/// The 2x2 normal equations `N H = r` of the holding force: `H`, or the
+/// least-norm solution when every rod is parallel (rank one).
+fn least_squares_holding([nxx, nxy, nyy]: [f64; 3], [rx, ry]: [f64; 2]) -> Vec2 {
+    let tr = nxx + nyy;
+    let det = nxx * nyy - nxy * nxy;
+    if det > 1e-12 * tr * tr {
+        [(nyy * rx - nxy * ry) / det, (nxx * ry - nxy * rx) / det]
+    } else if tr > 0.0 {
+        // Rank one (every rod parallel): the least-norm solution.
+        [rx / tr, ry / tr]
+    } else {
+        [0.0, 0.0]
+    }
+}
+
+/// [`static_forces`] with per-rod masses `m_i` and lengths `l_i`, a tip
+/// mass `M_t`, each joint's bending spring, and the field
+/// `G = (a0_x, g + a0_y)` of gravity and the pivot's acceleration at
+/// `t = 0` (the rods feel `-m_i G`). With `S_i = M_t + sum_{j >= i} m_j`,
+/// `F_i = -H + S_i G`, and rod `i`'s moment about its centre,
+/// `-(l_i / 2) u_i x (F_i + F_{i+1}) + tau_i = 0`, reads
+/// `l_i (s_i H_x - c_i H_y) = tau_i - (l_i / 2) (S_i + S_{i+1}) (c_i G_y - s_i G_x)`.
+/// A pivot let go at `t = 0` holds nothing: every force is zero (the chain
+/// falls freely; its unstretched state is its own equilibrium in free fall).
+fn static_forces_general(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
+    let n = phi.len();
+    if chain.pivot().release == Some(0.0) {
+        return (vec![[0.0, 0.0]; n], [0.0, 0.0]);
+    }
+    let a0 = chain.pivot().acceleration_at(0.0);
+    let gv = [a0[0], chain.gravity() + a0[1]];
+    let p = Springs::of(chain);
+    // S_i, from the tip.
+    let mut beyond = vec![chain.tip_mass(); n + 1];
+    for i in (0..n).rev() {
+        beyond[i] = beyond[i + 1] + rod_mass(chain, i);
+    }
+    let (mut nxx, mut nxy, mut nyy, mut rx, mut ry) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (i, &q) in phi.iter().enumerate() {
+        let (s, c) = sin_cos(q);
+        let l = 2.0 * p.h(i);
+        let (ax, ay) = (l * s, -l * c);
+        let b = p.bending(phi, i) - 0.5 * l * (beyond[i] + beyond[i + 1]) * (c * gv[1] - s * gv[0]);
+        nxx += ax * ax;
+        nxy += ax * ay;
+        nyy += ay * ay;
+        rx += ax * b;
+        ry += ay * b;
+    }
+    let h = least_squares_holding([nxx, nxy, nyy], [rx, ry]);
+    let forces = (0..n)
+        .map(|i| [-h[0] + beyond[i] * gv[0], -h[1] + beyond[i] * gv[1]])
+        .collect();
+    (forces, h)
+}
+
 /// The elastic chain's state at the start `state` (angles and rates of the
 /// rigid description): the rods at the angles and rates given, each gap
-/// pre-stretched by the static force of its joint, `d_k = -F_k / K`
+/// pre-stretched by the static force of its joint, `d_k = -F_k / K_k`
 /// (`static_forces`: the tip held as the start holds it), with zero gap
 /// rates. A start in static equilibrium (hanging, catenary, folded) is then
 /// the elastic chain's own equilibrium, held at the tip by the same force.
+/// Positions and velocities are relative to the pivot `P0(t)` (the start's
+/// anchor for a fixed pivot). A pivot let go at `t = 0` starts unstretched.
 ///
 /// Panics unless `chain` is elastic and `state` has `chain.links` angles and
 /// rates (as `solve` checks first).
 pub fn start_state(chain: &Chain, state: &State) -> Vec<f64> {
     let n = chain.links();
-    let k = chain.joint_stiffness().unwrap_or(f64::INFINITY);
-    let h = 0.5 * chain.rod_length();
     let (forces, _) = static_forces(chain, &state.angles);
     let [_, ow, owk, ox, oy, ovx, ovy] = offsets(n);
     let mut y = vec![0.0; 6 * n + 1];
@@ -408,6 +719,11 @@ pub fn start_state(chain: &Chain, state: &State) -> Vec<f64> {
     y[ow..owk].copy_from_slice(&state.rates);
     let (mut ex, mut ey, mut evx, mut evy) = (0.0, 0.0, 0.0, 0.0);
     for i in 0..n {
+        let h = rod_half_length(chain, i);
+        let k = match joint_spring(chain, i).0 {
+            k if k > 0.0 => k,
+            _ => f64::INFINITY,
+        };
         let (s, c) = sin_cos(state.angles[i]);
         let w = state.rates[i];
         let [fx, fy] = forces[i];
@@ -426,21 +742,28 @@ pub fn holding_force(chain: &Chain, state: &State) -> Vec2 {
     static_forces(chain, &state.angles).1
 }
 
+/// True when joint 0 has no spring at `t`: the pivot let go at `t_r = 0`,
+/// or at `t > t_r` (at `t_r` itself the run still holds it).
+pub fn pivot_free_at(chain: &Chain, t: f64) -> bool {
+    chain.pivot().release.is_some_and(|tr| tr == 0.0 || t > tr)
+}
+
 /// The joints `r_0 = p0, r_1, .., r_n` of an elastic state `y` with the pivot
 /// at `p0`: `r_0` is the pivot, `r_k` (`0 < k < n`) the midpoint of the gap
 /// between rods `k - 1` and `k`, `r_n` the end of the last rod (the tip).
 pub fn joints(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
     let n = chain.links();
-    let h = 0.5 * chain.rod_length();
     let [_, _, _, ox, oy, _, _] = offsets(n);
     let mut out = Vec::with_capacity(n + 1);
     out.push(p0);
     for k in 1..=n {
+        let h0 = rod_half_length(chain, k - 1);
         let (s0, c0) = sin_cos(y[k - 1]);
-        let end = [y[ox + k - 1] + h * c0, y[oy + k - 1] + h * s0];
+        let end = [y[ox + k - 1] + h0 * c0, y[oy + k - 1] + h0 * s0];
         let r = if k < n {
+            let h1 = rod_half_length(chain, k);
             let (s1, c1) = sin_cos(y[k]);
-            let start = [y[ox + k] - h * c1, y[oy + k] - h * s1];
+            let start = [y[ox + k] - h1 * c1, y[oy + k] - h1 * s1];
             [0.5 * (end[0] + start[0]), 0.5 * (end[1] + start[1])]
         } else {
             end
@@ -450,29 +773,43 @@ pub fn joints(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
     out
 }
 
+/// [`joints`] at `t`: once the pivot is let go, `r_0` is the start of the
+/// first rod (the free end), not the frame's origin `p0`.
+pub fn joints_at(chain: &Chain, t: f64, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
+    let mut out = joints(chain, p0, y);
+    if pivot_free_at(chain, t) {
+        let n = chain.links();
+        let h = rod_half_length(chain, 0);
+        let (s, c) = sin_cos(y[0]);
+        out[0] = [p0[0] + y[2 * n + 1] - h * c, p0[1] + y[3 * n + 1] - h * s];
+    }
+    out
+}
+
 /// The tip, the end of the last rod, for the pivot at `p0`.
 pub fn tip(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec2 {
     let n = chain.links();
-    let h = 0.5 * chain.rod_length();
+    let h = rod_half_length(chain, n - 1);
     let [_, _, _, ox, oy, _, _] = offsets(n);
     let (s, c) = sin_cos(y[n - 1]);
     [p0[0] + y[ox + n - 1] + h * c, p0[1] + y[oy + n - 1] + h * s]
 }
 
-/// The tip velocity `c_{n-1}' + h w_{n-1} v_{n-1}`.
+/// The tip velocity `c_{n-1}' + h w_{n-1} v_{n-1}` (relative to the pivot).
 pub fn tip_velocity(chain: &Chain, y: &[f64]) -> Vec2 {
     let n = chain.links();
-    let h = 0.5 * chain.rod_length();
+    let h = rod_half_length(chain, n - 1);
     let [_, ow, _, _, _, ovx, ovy] = offsets(n);
     let (s, c) = sin_cos(y[n - 1]);
     let w = y[ow + n - 1];
     [y[ovx + n - 1] - h * s * w, y[ovy + n - 1] + h * c * w]
 }
 
-/// The tip acceleration, from the state `y` and its derivative `f`.
+/// The tip acceleration (relative to the pivot), from the state `y` and its
+/// derivative `f`.
 pub fn tip_acceleration(chain: &Chain, y: &[f64], f: &[f64]) -> Vec2 {
     let n = chain.links();
-    let h = 0.5 * chain.rod_length();
+    let h = rod_half_length(chain, n - 1);
     let [_, ow, _, _, _, ovx, ovy] = offsets(n);
     let (s, c) = sin_cos(y[n - 1]);
     let (w, a) = (y[ow + n - 1], f[ow + n - 1]);
@@ -483,24 +820,34 @@ pub fn tip_acceleration(chain: &Chain, y: &[f64], f: &[f64]) -> Vec2 {
 }
 
 /// The forces of the joints `0..=n` on the rod after each (physical units;
-/// joint `n`, the free tip, is zero): the springs' `F_k = -K d_k - C d_k'`.
+/// joint `n`, the free tip, is zero): the springs' `F_k = -K_k d_k - C_k d_k'`.
 pub fn joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
     let n = chain.links();
-    let p = Springs::of(chain);
     let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
     let mut out = Vec::with_capacity(n + 1);
     let (mut ex, mut ey, mut evx, mut evy) = (0.0, 0.0, 0.0, 0.0);
     for k in 0..n {
+        let h = rod_half_length(chain, k);
+        let (kk, cc) = joint_spring(chain, k);
         let (s, c) = sin_cos(y[k]);
-        let (hs, hc) = (p.h * s, p.h * c);
+        let (hs, hc) = (h * s, h * c);
         let w = y[ow + k];
         let (x, yy, vx, vy) = (y[ox + k], y[oy + k], y[ovx + k], y[ovy + k]);
         let (dx, dyy) = (x - hc - ex, yy - hs - ey);
         let (ddx, ddy) = (vx + hs * w - evx, vy - hc * w - evy);
-        out.push([-p.k * dx - p.c * ddx, -p.k * dyy - p.c * ddy]);
+        out.push([-kk * dx - cc * ddx, -kk * dyy - cc * ddy]);
         (ex, ey, evx, evy) = (x + hc, yy + hs, vx - hs * w, vy + hc * w);
     }
     out.push([0.0, 0.0]);
+    out
+}
+
+/// [`joint_forces`] at `t`: joint 0's is zero once the pivot is let go.
+pub fn joint_forces_at(chain: &Chain, t: f64, y: &[f64]) -> Vec<Vec2> {
+    let mut out = joint_forces(chain, y);
+    if pivot_free_at(chain, t) {
+        out[0] = [0.0, 0.0];
+    }
     out
 }
 
@@ -509,19 +856,33 @@ pub fn joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
 /// [`joint_forces`], in O(1).
 pub fn pivot_force(chain: &Chain, y: &[f64]) -> Vec2 {
     let n = chain.links();
-    let p = Springs::of(chain);
+    let h = rod_half_length(chain, 0);
+    let (kk, cc) = joint_spring(chain, 0);
     let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
     let (s, c) = sin_cos(y[0]);
-    let (hs, hc) = (p.h * s, p.h * c);
+    let (hs, hc) = (h * s, h * c);
     let w = y[ow];
     let (dx, dyy) = (y[ox] - hc, y[oy] - hs);
     let (ddx, ddy) = (y[ovx] + hs * w, y[ovy] - hc * w);
-    [-p.k * dx - p.c * ddx, -p.k * dyy - p.c * ddy]
+    [-kk * dx - cc * ddx, -kk * dyy - cc * ddy]
+}
+
+/// [`pivot_force`] at `t`: zero once the pivot is let go.
+pub fn pivot_force_at(chain: &Chain, t: f64, y: &[f64]) -> Vec2 {
+    if pivot_free_at(chain, t) {
+        [0.0, 0.0]
+    } else {
+        pivot_force(chain, y)
+    }
 }
 
 /// The energy `T + V + U_el + U_b` of the elastic state `y` (zero
-/// potential at the pivot's height).
+/// potential at the pivot's height; positions and velocities relative to
+/// the pivot: the frame's own terms are [`frame_energy`]'s).
 pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
+    if !is_plain(chain) {
+        return energy_general(chain, false, y);
+    }
     let n = chain.links();
     let p = Springs::of(chain);
     let m = chain.mass();
@@ -540,6 +901,99 @@ pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
     }
     let bend: f64 = y[..n].windows(2).map(|q| (q[1] - q[0]).powi(2)).sum();
     0.5 * t + m * p.g * v + 0.5 * p.k * u + 0.5 * p.kb * bend
+}
+
+/// [`energy`] at `t`: joint 0's spring energy is left out once the pivot
+/// is let go (the run moves it into the work `W` at the release).
+pub fn energy_at(chain: &Chain, t: f64, y: &[f64]) -> f64 {
+    if pivot_free_at(chain, t) {
+        energy_general(chain, true, y)
+    } else {
+        energy(chain, y)
+    }
+}
+
+/// [`energy`] for any elastic chain: rod masses `m_i`, inertias `J_i`,
+/// joint springs `K_k`, each joint's bending spring, the tip mass
+/// (`M_t |v_tip|^2 / 2 + M_t g y_tip`); `free0`: no joint-0 spring. One
+/// pass, no allocation.
+fn energy_general(chain: &Chain, free0: bool, y: &[f64]) -> f64 {
+    let n = chain.links();
+    let g = chain.gravity();
+    let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
+    let (mut t, mut v, mut u) = (0.0, 0.0, 0.0);
+    let (mut ex, mut ey) = (0.0, 0.0);
+    for i in 0..n {
+        let (m, h) = (rod_mass(chain, i), rod_half_length(chain, i));
+        let kk = joint_spring(chain, i).0;
+        let (s, c) = sin_cos(y[i]);
+        let w = y[ow + i];
+        let (x, yy, vx, vy) = (y[ox + i], y[oy + i], y[ovx + i], y[ovy + i]);
+        t += m * (vx * vx + vy * vy) + m * h * h / 3.0 * w * w;
+        v += m * yy;
+        let (dx, dyy) = (x - h * c - ex, yy - h * s - ey);
+        if i > 0 || !free0 {
+            u += kk * (dx * dx + dyy * dyy);
+        }
+        (ex, ey) = (x + h * c, yy + h * s);
+    }
+    let mut bend = 0.0;
+    let ei = chain.bending_stiffness();
+    for k in 1..n {
+        let share = rod_half_length(chain, k - 1) + rod_half_length(chain, k);
+        bend += ei / share * (y[k] - y[k - 1]).powi(2);
+    }
+    let mt = chain.tip_mass();
+    let tip_term = if mt != 0.0 {
+        let [tvx, tvy] = tip_velocity(chain, y);
+        let tip_y = tip(chain, [0.0, 0.0], y)[1];
+        0.5 * mt * (tvx * tvx + tvy * tvy) + mt * g * tip_y
+    } else {
+        0.0
+    };
+    0.5 * t + g * v + 0.5 * u + 0.5 * bend + tip_term
+}
+
+/// Joint 0's spring energy `K_0 |d_0|^2 / 2`: what leaves the chain when
+/// the pivot is let go (the run adds it to the work `W` then, so that the
+/// balance `E + W = E(0)` holds across the release).
+pub fn pivot_spring_energy(chain: &Chain, y: &[f64]) -> f64 {
+    let n = chain.links();
+    let h = rod_half_length(chain, 0);
+    let (s, c) = sin_cos(y[0]);
+    let (dx, dy) = (y[2 * n + 1] - h * c, y[3 * n + 1] - h * s);
+    0.5 * joint_spring(chain, 0).0 * (dx * dx + dy * dy)
+}
+
+/// The momentum `sum m_i c_i' + M_t v_tip` of the elastic state `y`
+/// relative to the pivot.
+pub fn momentum(chain: &Chain, y: &[f64]) -> Vec2 {
+    let n = chain.links();
+    let [_, _, _, _, _, ovx, ovy] = offsets(n);
+    let mut p = [0.0, 0.0];
+    for i in 0..n {
+        let m = rod_mass(chain, i);
+        p[0] += m * y[ovx + i];
+        p[1] += m * y[ovy + i];
+    }
+    let mt = chain.tip_mass();
+    if mt != 0.0 {
+        let v = tip_velocity(chain, y);
+        p[0] += mt * v[0];
+        p[1] += mt * v[1];
+    }
+    p
+}
+
+/// The energy a pivot moved by `d` (from the anchor, at the velocity `v0`)
+/// adds to [`energy`] to make it the inertial frame's: with `P` the
+/// [`momentum`] relative to the pivot and `M = sum m_i + M_t`,
+/// `v0 . P + M |v0|^2 / 2 + M g d_y`.
+pub fn frame_energy(chain: &Chain, d: Vec2, v0: Vec2, y: &[f64]) -> f64 {
+    let p = momentum(chain, y);
+    let m = chain.total_mass() + chain.tip_mass();
+    (v0[0] * p[0] + v0[1] * p[1])
+        + m * (0.5 * (v0[0] * v0[0] + v0[1] * v0[1]) + chain.gravity() * d[1])
 }
 
 /// The rigid chain's joint forces in the state `[phi, w, ..]` (physical

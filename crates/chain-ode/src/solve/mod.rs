@@ -16,6 +16,7 @@ mod diffsol_driver;
 mod dop853;
 mod dop853_tableau;
 mod dopri5;
+mod elastic_run;
 mod explicit;
 mod integrator;
 #[cfg(test)]
@@ -36,7 +37,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use crate::chain::{check, Chain, InvalidParameter};
-use crate::elastic::{self, ElasticSystem};
+use crate::elastic;
 use crate::kinematics::{energy, joints, tip, tip_velocity, Vec2};
 use crate::ode::{Cancel, Stats, Status};
 use crate::pivot::PivotPath;
@@ -494,6 +495,10 @@ impl Trajectory {
     /// The joints `r_0 = P0, .., r_n` of sample `k`, for either model (for
     /// rigid links, `kinematics::joints` of its angles from the pivot there).
     pub fn joints(&self, k: usize) -> Vec<Vec2> {
+        if self.chain.is_elastic() {
+            let p0 = self.pivot_at(k)[0];
+            return elastic::joints_at(&self.chain, self.times[k], p0, self.state(k));
+        }
         state_joints(&self.chain, self.pivot_at(k)[0], self.state(k))
     }
 
@@ -517,6 +522,9 @@ impl Trajectory {
     /// (`kinematics::energy`, in the inertial frame for a moving pivot),
     /// `T + V + U_el + U_b` for elastic ones.
     pub fn energy(&self, k: usize) -> f64 {
+        if self.chain.is_elastic() {
+            return elastic_energy_at(&self.chain, self.times[k], self.state(k));
+        }
         let e = state_energy(&self.chain, self.state(k));
         if self.pivot.is_fixed() {
             return e;
@@ -575,6 +583,18 @@ pub(crate) fn state_energy(chain: &Chain, y: &[f64]) -> f64 {
     }
 }
 
+/// The energy of an elastic state at `t` in the inertial frame: the
+/// chain's own ([`elastic::energy_at`], relative to the pivot) plus, for a
+/// driven pivot, the frame's terms ([`elastic::frame_energy`]).
+pub(crate) fn elastic_energy_at(chain: &Chain, t: f64, y: &[f64]) -> f64 {
+    let e = elastic::energy_at(chain, t, y);
+    if !chain.pivot().is_driven() {
+        return e;
+    }
+    let [d, v0, _] = chain.pivot().drive(t);
+    e + elastic::frame_energy(chain, d, v0, y)
+}
+
 /// The tip velocity of a state of either model.
 pub(crate) fn state_tip_velocity(chain: &Chain, y: &[f64]) -> Vec2 {
     if chain.is_elastic() {
@@ -608,7 +628,7 @@ pub(crate) fn state_joints(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
 pub(crate) fn state_joint_forces(chain: &Chain, t: f64, free: bool, y: &[f64]) -> Vec<Vec2> {
     let n = chain.links();
     let forces = if chain.is_elastic() {
-        elastic::joint_forces(chain, y)
+        elastic::joint_forces_at(chain, t, y)
     } else {
         elastic::rigid_joint_forces_at(chain, t, free, y)
     };
@@ -655,14 +675,7 @@ pub fn solve(
     let clock = Instant::now();
     // A rigid chain with a fixed pivot takes exactly the path it always took.
     let (run, obs) = if chain.is_elastic() {
-        let mut obs = ChainObserver::new(
-            chain,
-            options.t_end,
-            options.output_dt,
-            options.cancel.clone(),
-        );
-        let run = registry::run(method, &mut ElasticSystem::new(chain), &span, &mut obs);
-        (run, obs)
+        elastic_run::run(chain, method, options, &span, &path)
     } else if chain.pivot().release.is_some() {
         run_with_release(chain, start, method, options, &span, &mut path)
     } else {

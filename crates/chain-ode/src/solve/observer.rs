@@ -117,6 +117,9 @@ pub(crate) fn metrics_at(
     f: &[f64],
     trig: &mut Vec<(f64, f64)>,
 ) -> Metrics {
+    if chain.is_elastic() && !path.is_fixed() {
+        return elastic_metrics_at(chain, t, y, f);
+    }
     let mut m = metrics(chain, y, f, trig);
     if path.is_fixed() || chain.is_elastic() {
         return m;
@@ -129,6 +132,23 @@ pub(crate) fn metrics_at(
     let [v, a] = [frame.velocity, a0];
     m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
     m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
+    m
+}
+
+/// [`metrics`] of an elastic chain whose pivot moves or is let go, at `t`
+/// in the inertial frame: the energy without joint 0's spring once let go,
+/// and a driven pivot's frame terms, velocity and acceleration added.
+fn elastic_metrics_at(chain: &Chain, t: f64, y: &[f64], f: &[f64]) -> Metrics {
+    let mut m = Metrics {
+        energy: super::elastic_energy_at(chain, t, y),
+        tip_velocity: elastic::tip_velocity(chain, y),
+        tip_acceleration: elastic::tip_acceleration(chain, y, f),
+    };
+    if chain.pivot().is_driven() {
+        let [_, v, a] = chain.pivot().drive(t);
+        m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
+        m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
+    }
     m
 }
 
@@ -305,8 +325,11 @@ impl ChainObserver {
 
     /// The moving pivot's energy terms at `t` (0 for a fixed one).
     fn frame_energy(&self, t: f64, y: &[f64]) -> f64 {
-        if self.path.is_fixed() || self.chain.is_elastic() {
+        if self.path.is_fixed() {
             return 0.0;
+        }
+        if self.chain.is_elastic() {
+            return super::elastic_energy_at(&self.chain, t, y) - state_energy(&self.chain, y);
         }
         let n = self.chain.links();
         self.path
@@ -317,8 +340,12 @@ impl ChainObserver {
     /// The tip velocity at `t` in the inertial frame.
     fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
         let v = state_tip_velocity(&self.chain, y);
-        if self.path.is_fixed() || self.chain.is_elastic() {
+        if self.path.is_fixed() {
             return v;
+        }
+        if self.chain.is_elastic() {
+            let v0 = self.chain.pivot().drive(t)[1];
+            return [v[0] + v0[0], v[1] + v0[1]];
         }
         let n = self.chain.links();
         let v0 = self.path.at(&self.chain, t, &y[..n], &y[n..2 * n])[1];
@@ -337,7 +364,7 @@ impl ChainObserver {
     /// (a NaN is kept, as the tip speed's is). Rigid links: nothing.
     fn note_pivot_force(&mut self, t: f64, y: &[f64]) {
         if self.chain.is_elastic() {
-            let f = elastic::pivot_force(&self.chain, y);
+            let f = elastic::pivot_force_at(&self.chain, t, y);
             let f = f[0].hypot(f[1]);
             if f > self.pivot_force_max || f.is_nan() {
                 self.pivot_force_max = f;

@@ -16,6 +16,7 @@ mod dae;
 mod dopri5;
 mod dynamics;
 mod elastic;
+mod elastic_scenes;
 mod failures;
 mod methods;
 mod modes;

@@ -130,6 +130,9 @@ fn energy_is_conserved_with_a_tip_mass_under_every_method() {
             (e1 - e0).abs() < 1e-5 * chain.energy_scale(),
             "{method:?}: {e0} -> {e1}"
         );
+        // The observer's balance too (its own one-pass energy).
+        let err = traj.summary.energy_balance_error;
+        assert!(err < 1e-5 * chain.energy_scale(), "{method:?}: {err:e}");
     }
 }
 

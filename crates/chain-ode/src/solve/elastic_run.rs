@@ -1,0 +1,62 @@
+//! A run of the elastic chain (`chain.axial_stiffness`): one span, or, for a
+//! pivot let go at `0 < t_r < t_end` (`pivot.release`), two: held up to
+//! `t_r`, then without the joint-0 spring. At the release the spring's
+//! energy `K_0 |d_0|^2 / 2` leaves the chain: it is added to the work `W`
+//! there, so that the balance `E + W = E(0)` holds across the cut.
+
+use super::integrator::{Run, Span};
+use super::observer::ChainObserver;
+use super::{registry, Method, SolveOptions};
+use crate::chain::Chain;
+use crate::elastic::{self, ElasticSystem};
+use crate::pivot::PivotPath;
+
+/// Runs `method` on the elastic `chain` over `span`, the pivot on `path`.
+pub(super) fn run(
+    chain: &Chain,
+    method: Method,
+    options: &SolveOptions,
+    span: &Span<'_>,
+    path: &PivotPath,
+) -> (Run, ChainObserver) {
+    let mut obs = ChainObserver::with_path(
+        chain,
+        path.clone(),
+        options.t_end,
+        options.output_dt,
+        options.cancel.clone(),
+    );
+    // `ElasticSystem::new` lets go at t = 0 already (`pivot.release = 0`).
+    let mut sys = ElasticSystem::new(chain);
+    let t_release = match chain.pivot().release {
+        Some(tr) if tr > span.t0 && tr < span.t_end => tr,
+        _ => {
+            let run = registry::run(method, &mut sys, span, &mut obs);
+            return (run, obs);
+        }
+    };
+    let held = Span {
+        t_end: t_release,
+        ..*span
+    };
+    let first = registry::run(method, &mut sys, &held, &mut obs);
+    if !first.outcome.status.is_ok() || first.outcome.t_reached < t_release {
+        return (first, obs);
+    }
+    let mut y = first.outcome.y_end.clone();
+    let n = chain.links();
+    y[2 * n] += elastic::pivot_spring_energy(chain, &y);
+    sys.set_released(true);
+    let done = first.outcome.stats;
+    let settings = span.settings.after(&done);
+    let rest = Span {
+        t0: t_release,
+        y0: &y,
+        t_end: span.t_end,
+        settings: &settings,
+    };
+    let mut second = registry::run(method, &mut sys, &rest, &mut obs);
+    second.outcome.stats += done;
+    second.segments.splice(0..0, first.segments);
+    (second, obs)
+}
