@@ -55,9 +55,9 @@ pub struct ChainParams {
     pub pivot: Pivot,
     /// How the mass `n m` and the length `L` are shared among the rods
     /// ([`Profile`], the keys `chain.taper`, `chain.rod_masses`,
-    /// `chain.rod_lengths`); equal rods by default. Rigid links, no tip
-    /// mass, no bending stiffness and a fixed pivot only: the other
-    /// combinations are refused by the profile's key.
+    /// `chain.rod_lengths`); equal rods by default. Rigid links only (with
+    /// any tip mass, bending stiffness and pivot): elastic links are refused
+    /// by the profile's key.
     pub profile: Profile,
 }
 
@@ -206,21 +206,17 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
     if let Some(key) = p.profile.first_given() {
         // Combinations whose per-rod terms are not written: refused by the
         // profile's key, in one line.
+        // (Rigid links take a tip mass, bending and a moving pivot with it.)
         let other = if p.axial_stiffness.is_some() {
             Some("elastic links (chain.axial_stiffness)")
-        } else if p.tip_mass != 0.0 {
-            Some("a tip mass (chain.tip_mass)")
-        } else if p.bending_stiffness != 0.0 {
-            Some("bending stiffness (chain.bending_stiffness)")
         } else {
-            p.pivot.first_given()
+            None
         };
         if let Some(other) = other {
             return Err(InvalidParameter {
                 field: key,
                 accepted: format!(
-                    "absent (equal rods) with {other}: a rod profile needs rigid links, \
-                     no tip mass, no bending stiffness and a fixed pivot"
+                    "absent (equal rods) with {other}: a rod profile needs rigid links"
                 )
                 .into(),
                 got: "a profile".into(),
