@@ -561,3 +561,70 @@ fn a_profiled_pivot_released_late_frees_the_centre_of_mass() {
     assert!(checked > 500);
     assert!(tr.summary.energy_balance_error < 1e-7 * chain.energy_scale());
 }
+
+/// The support's force along a run with a moving pivot: a hanging
+/// profiled chain with a tip mass, its support accelerating at `a`
+/// vertically, hangs still and is carried by `(0, M (g + a))`, `M` the
+/// whole mass (`analysis::pivot_forces`, which takes the pivot's
+/// acceleration at each sample); let go, the support carries nothing.
+#[test]
+fn the_support_force_of_a_moving_or_released_profiled_pivot() {
+    let (g, a) = (1.0, 0.4);
+    for (pivot, load) in [
+        (
+            Pivot {
+                acceleration: [0.0, a],
+                ..Pivot::default()
+            },
+            g + a,
+        ),
+        (
+            Pivot {
+                release: Some(0.3),
+                ..Pivot::default()
+            },
+            0.0,
+        ),
+    ] {
+        let chain = Chain::new(ChainParams {
+            links: 10,
+            length: 2.0,
+            mass: 0.05,
+            gravity: g,
+            tip_mass: 0.2,
+            bending_stiffness: 1e-3,
+            pivot,
+            profile: Profile {
+                taper: 4.0,
+                lengths: Some((0..10).map(|i| 1.0 + (i % 3) as f64).collect()),
+                ..Profile::default()
+            },
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let s = Start::Angles {
+            p0: [0.0, 0.0],
+            angles: vec![-std::f64::consts::FRAC_PI_2; 10],
+            rates: None,
+        }
+        .state(&chain)
+        .unwrap();
+        let o = SolveOptions {
+            t_end: 1.0,
+            output_dt: Some(0.1),
+            ..SolveOptions::default()
+        }
+        .at_accuracy(Method::Dopri5, 1e-10);
+        let tr = solve(&chain, &s, Method::Dopri5, &o).unwrap();
+        assert_eq!(tr.status, Status::Ok);
+        let weight = chain.total_mass() + chain.tip_mass();
+        for (t, f) in chain_ode::analysis::pivot_forces(&tr) {
+            let want = if t < 0.3 && load == 0.0 { g } else { load };
+            assert!(
+                f[0].abs() < 1e-9 && (f[1] - weight * want).abs() < 1e-9,
+                "t = {t}: {f:?} vs {}",
+                weight * want
+            );
+        }
+    }
+}
