@@ -128,8 +128,8 @@ struct Case {
     pivot: [f64; 6],
     moving: bool,
     /// `chain.taper`, and the lists `chain.rod_masses`, `chain.rod_lengths`
-    /// (all written only when `profiled`; refused with elastic links, a tip
-    /// mass, bending, a moving pivot and the report's model).
+    /// (all written only when `profiled`; refused with elastic links and
+    /// the report's model).
     taper: f64,
     profiled: bool,
 }

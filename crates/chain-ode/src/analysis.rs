@@ -47,7 +47,8 @@ pub fn pivot_force(sys: &mut ChainSystem, angles: &[f64], rates: &[f64]) -> Vec2
 }
 
 /// `(t, pivot force on rod 1)` at every sample of `traj`: the recursion's
-/// for rigid links, the pivot spring's for elastic ones.
+/// for rigid links (with a moving pivot, at its acceleration at `t`; zero
+/// once released), the pivot spring's for elastic ones.
 pub fn pivot_forces(traj: &Trajectory) -> Vec<(f64, Vec2)> {
     if traj.chain.is_elastic() {
         return (0..traj.len())
@@ -60,8 +61,21 @@ pub fn pivot_forces(traj: &Trajectory) -> Vec<(f64, Vec2)> {
             .collect();
     }
     let mut sys = ChainSystem::new(&traj.chain);
+    if traj.pivot.is_fixed() {
+        return traj
+            .samples()
+            .map(|s| (s.t, pivot_force(&mut sys, s.angles, s.rates)))
+            .collect();
+    }
+    // A moving pivot: the force with its acceleration at each sample's time
+    // (zero once it is let go).
+    let mut dy = vec![0.0; sys.dim()];
     traj.samples()
-        .map(|s| (s.t, pivot_force(&mut sys, s.angles, s.rates)))
+        .map(|s| {
+            sys.set_released(traj.pivot.is_free_at(s.t));
+            let y = ChainSystem::pack(s.angles, s.rates, 0.0);
+            (s.t, sys.rhs_at(s.t, &y, &mut dy).pivot_force)
+        })
         .collect()
 }
 

@@ -54,10 +54,9 @@ pub struct ChainParams {
     pub pivot: Pivot,
     /// How the mass `n m` and the length `L` are shared among the rods
     /// ([`Profile`], the keys `chain.taper`, `chain.rod_masses`,
-    /// `chain.rod_lengths`); equal rods by default. Elastic links take any
-    /// combination; rigid links only without a tip mass, bending stiffness
-    /// or a moving pivot: the other combinations are refused by the
-    /// profile's key.
+    /// `chain.rod_lengths`); equal rods by default. It combines with every
+    /// other term (tip mass, bending, a moving or released pivot) on rigid
+    /// and on elastic links.
     pub profile: Profile,
 }
 
@@ -197,32 +196,8 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
     )?;
     p.pivot.validate()?;
     p.profile.validate(p.links)?;
-    if let Some(key) = p.profile.first_given() {
-        // Combinations whose per-rod terms are not written: refused by the
-        // profile's key, in one line.
-        // Elastic links take every combination (`elastic.rs`).
-        let other = if p.axial_stiffness.is_some() {
-            None
-        } else if p.tip_mass != 0.0 {
-            Some("a tip mass (chain.tip_mass)")
-        } else if p.bending_stiffness != 0.0 {
-            Some("bending stiffness (chain.bending_stiffness)")
-        } else {
-            p.pivot.first_given()
-        };
-        if let Some(other) = other {
-            return Err(InvalidParameter {
-                field: key,
-                accepted: format!(
-                    "absent (equal rods) with {other}: a rod profile on rigid links needs \
-                     no tip mass, no bending stiffness and a fixed pivot (elastic links \
-                     take them all)"
-                )
-                .into(),
-                got: "a profile".into(),
-            });
-        }
-    }
+    // A profile takes every other term, on rigid and on elastic links
+    // (`dynamics_profile.rs`, `elastic.rs`).
     Ok(())
 }
 

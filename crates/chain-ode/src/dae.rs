@@ -20,6 +20,8 @@
 //! balance `mu a_n = f_n - mu (0, g/l)` less rod `n`'s (`a_n - c_n''/l = h_n`)
 //! gives `f_n = tip (f_{n-1} + h_{n-1})` (0-based rods), `tip = mu / (1 + mu)`,
 //! which is substituted in the last rod's two rows: the unknowns stay the same.
+//! (Unequal rods, the last of mass `mu_l`: `f_n = tip (f_{n-1} + mu_l h_{n-1})`,
+//! `tip = mu / (mu_l + mu)`.)
 //!
 //! A moving pivot (`pivot.*`, [`crate::pivot`]) adds its acceleration
 //! `a_0 = P0''(t) / l` to rod 0's centre (`- a_0` in rod 0's translation
@@ -45,7 +47,7 @@
 use std::cell::RefCell;
 
 use crate::chain::Chain;
-use crate::dynamics::{accelerations_with, damping_stencil, Base, Workspace};
+use crate::dynamics::{accelerations_with, damping_stencil, joint_stencil, Base, Workspace};
 use crate::kinematics::dissipation_rate;
 use crate::ode::SemiExplicitDae;
 use crate::pivot::Pivot;
@@ -64,8 +66,12 @@ pub struct ChainDae {
     kappa: f64,
     /// The tip mass in rod masses, `mu = M_t / m`.
     mu: f64,
-    /// `mu / (1 + mu)`: the tip mass's force on its joint, `f_n = tip (f_{n-1} + h_{n-1})`.
+    /// `mu / (mu_l + mu)`: the tip mass's force on its joint,
+    /// `f_n = tip (f_{n-1} + mu_l h_{n-1})`, `mu_l` the last rod's mass
+    /// (1 for equal rods).
     tip: f64,
+    /// `mu_l`, the last rod's mass in mean-rod masses (1 for equal rods).
+    last_mass: f64,
     /// The pivot's prescribed motion (used while not released).
     pivot: Pivot,
     /// The pivot is free: `f_0 = 0`, and `f_0`'s unknowns hold `a_0`.
@@ -78,6 +84,10 @@ pub struct ChainDae {
 impl ChainDae {
     /// The DAE of a validated chain.
     pub fn new(chain: &Chain) -> Self {
+        let last_mass = chain
+            .rods()
+            .and_then(|r| r.mass.last().copied())
+            .unwrap_or(1.0);
         Self {
             chain: chain.clone(),
             n: chain.links(),
@@ -85,7 +95,8 @@ impl ChainDae {
             gamma: chain.damping_rate(),
             kappa: chain.bending_rate(),
             mu: chain.tip_mass_ratio(),
-            tip: chain.tip_mass_ratio() / (1.0 + chain.tip_mass_ratio()),
+            tip: chain.tip_mass_ratio() / (last_mass + chain.tip_mass_ratio()),
+            last_mass,
             pivot: *chain.pivot(),
             free: false,
             trig: RefCell::new(vec![(0.0, 0.0); chain.links()]),
@@ -314,15 +325,22 @@ impl ChainDae {
             let (gx, gy) = if i + 1 < n {
                 (f[2 * i + 2], f[2 * i + 3])
             } else if self.tip != 0.0 {
-                // The tip mass's joint: `f_n = tip (f_{n-1} + h_{n-1})`.
-                (self.tip * (fx + hx), self.tip * (fy + hy))
+                // The tip mass's joint: `f_n = tip (f_{n-1} + mu_l h_{n-1})`.
+                (
+                    self.tip * (fx + self.last_mass * hx),
+                    self.tip * (fy + self.last_mass * hy),
+                )
             } else {
                 (0.0, 0.0)
             };
             moment[i] = -(alpha[i] * inertia) / 12.0 - half * (-s * (fx + gx) + c * (fy + gy))
                 + self.gamma * damping_stencil(w, i);
             if self.kappa != 0.0 {
-                moment[i] += self.kappa * damping_stencil(phi, i);
+                moment[i] += self.kappa
+                    * match self.chain.rods() {
+                        Some(r) => joint_stencil(phi, &r.joint, i),
+                        None => damping_stencil(phi, i),
+                    };
             }
             // Rod i's balance over mu_i, less rod i-1's over mu_{i-1}.
             if i == 0 {
@@ -397,17 +415,25 @@ impl ChainDae {
             let m = row_m(i);
             let neighbours = (i > 0) as u8 + (i + 1 < n) as u8;
             if self.kappa != 0.0 {
-                // The bending springs: kappa D_i(phi).
+                // The bending springs: kappa D_i(phi), each joint's spring
+                // k_j times kappa for unequal rods (1 for equal rods).
+                let (k_up, k_down) = match self.chain.rods() {
+                    Some(r) => (
+                        if i > 0 { r.joint[i] } else { 0.0 },
+                        if i + 1 < n { r.joint[i + 1] } else { 0.0 },
+                    ),
+                    None => (1.0, 1.0),
+                };
                 if i > 0 {
-                    emit(m, i - 1, self.kappa);
+                    emit(m, i - 1, self.kappa * k_up);
                 }
-                emit(
-                    m,
-                    i,
-                    half * (c * sx + s * sy) - self.kappa * f64::from(neighbours),
-                );
+                let own = match self.chain.rods() {
+                    Some(_) => self.kappa * (k_up + k_down),
+                    None => self.kappa * f64::from(neighbours),
+                };
+                emit(m, i, half * (c * sx + s * sy) - own);
                 if i + 1 < n {
-                    emit(m, i + 1, self.kappa);
+                    emit(m, i + 1, self.kappa * k_down);
                 }
             } else {
                 emit(m, i, half * (c * sx + s * sy));
@@ -421,10 +447,17 @@ impl ChainDae {
             }
             let k = self.force(i);
             if tipped {
-                // v_i . h_i = alpha_i / 2.
-                emit(m, self.alpha(i), -1.0 / 12.0 - 0.25 * self.tip);
-                emit(m, k, own_force * (0.5 * s * (1.0 + self.tip)));
-                emit(m, k + 1, own_force * (-0.5 * c * (1.0 + self.tip)));
+                // v_i . h_i = lambda_i alpha_i / 2, and f_n = tip (f_i + mu_i h_i).
+                if self.chain.rods().is_some() {
+                    let tip_h = self.tip * self.last_mass * half * half;
+                    emit(m, self.alpha(i), -inertia / 12.0 - tip_h);
+                    emit(m, k, own_force * (half * s * (1.0 + self.tip)));
+                    emit(m, k + 1, own_force * (-half * c * (1.0 + self.tip)));
+                } else {
+                    emit(m, self.alpha(i), -1.0 / 12.0 - 0.25 * self.tip);
+                    emit(m, k, own_force * (0.5 * s * (1.0 + self.tip)));
+                    emit(m, k + 1, own_force * (-0.5 * c * (1.0 + self.tip)));
+                }
             } else {
                 emit(m, self.alpha(i), -inertia / 12.0);
                 emit(m, k, own_force * (half * s));
@@ -441,7 +474,7 @@ impl ChainDae {
                 let (sj, cj) = if j == i { (s, c) } else { sin_cos(phi[j]) };
                 let wj2 = if j == i { w2 } else { w[j] * w[j] };
                 let a = alpha[j];
-                if tipped && j == i {
+                if tipped && j == i && self.chain.rods().is_none() {
                     let k1 = 1.0 + self.tip;
                     emit(t, j, k1 * (0.5 * (a * cj - wj2 * sj)));
                     emit(t + 1, j, k1 * (0.5 * (a * sj + wj2 * cj)));
@@ -451,9 +484,18 @@ impl ChainDae {
                     emit(t + 1, self.alpha(j), k1 * (-0.5 * cj));
                     continue;
                 }
+                // The tip mass's `f_n / mu_i = tip (f_i / mu_i + h_i)` on
+                // the last of unequal rods: h_i weighs 1 + tip.
+                let k1 = if tipped && j == i {
+                    1.0 + self.tip
+                } else {
+                    1.0
+                };
                 // h_j carries rod j's length lambda_j (1 for equal rods).
                 let lj = if j == i { lam } else { self.rod(j).1 };
                 let hj = 0.5 * lj;
+                let hj = k1 * hj;
+                let lj = k1 * lj;
                 // d(-h_j)/dphi_j = lambda_j (alpha u_j + w^2 v_j) / 2.
                 emit(t, j, hj * (a * cj - wj2 * sj));
                 emit(t + 1, j, hj * (a * sj + wj2 * cj));
@@ -473,7 +515,7 @@ impl ChainDae {
                 emit(t + 1, k - 1, prev);
             }
             let own = if i == 0 { inv_mu } else { inv_prev + inv_mu };
-            let own = if tipped { own - self.tip } else { own };
+            let own = if tipped { own - self.tip * inv_mu } else { own };
             // A free pivot's columns in f_0's place are a_0's: `- a_0`.
             let own = if free && i == 0 { -1.0 } else { own };
             emit(t, k, own);

@@ -67,12 +67,13 @@ pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// The mass below rod `i` and half of its own, `S_{i+1} + mu_i / 2`, and
-/// the rods below it, `S_{i+1}` (mean-rod masses `mu`), for every `i`.
-fn masses_below(mu: &[f64]) -> Vec<(f64, f64)> {
+/// The mass below rod `i` and half of its own, `S_{i+1} + mu_i / 2 + mu_t`,
+/// and the mass below it, `S_{i+1} + mu_t` (mean-rod masses `mu`, the tip
+/// mass `mu_t` beyond the last rod), for every `i`.
+fn masses_below(mu: &[f64], mu_t: f64) -> Vec<(f64, f64)> {
     let n = mu.len();
     let mut out = vec![(0.0, 0.0); n];
-    let mut below = 0.0;
+    let mut below = mu_t;
     for i in (0..n).rev() {
         out[i] = (below + 0.5 * mu[i], below);
         below += mu[i];
@@ -87,8 +88,15 @@ fn masses_below(mu: &[f64]) -> Vec<(f64, f64)> {
 /// `S_{k+1}` the mass of the rods below rod `k`) and
 /// `lambda_i^2 (S_{i+1} + mu_i / 3)` on it. Equal rods give [`mt`].
 pub fn mt_rods(mu: &[f64], lambda: &[f64]) -> Mat<f64> {
+    mt_rods_tip(mu, lambda, 0.0)
+}
+
+/// [`mt_rods`] with a tip mass `mu_t` (mean-rod masses) at the free end,
+/// `r_n = l sum_j lambda_j u_j`: its `(mu_t / 2) |r_n'|^2` adds
+/// `mu_t lambda_i lambda_j` to every entry, i.e. `S_{k+1}` counts it.
+pub fn mt_rods_tip(mu: &[f64], lambda: &[f64], mu_t: f64) -> Mat<f64> {
     let n = mu.len();
-    let below = masses_below(mu);
+    let below = masses_below(mu, mu_t);
     Mat::from_fn(n, n, |i, j| {
         let k = i.max(j);
         if i == j {
@@ -99,10 +107,54 @@ pub fn mt_rods(mu: &[f64], lambda: &[f64]) -> Mat<f64> {
     })
 }
 
+/// The chain's rods as the dense reference reads them: masses `mu_i`,
+/// lengths `lambda_i` (all 1 for equal rods), the tip mass `mu_t`, and the
+/// joints' bending springs `k_i` in the mean rod's `EI / l`,
+/// `2 / (lambda_{i-1} + lambda_i)` (`k_0 = 0`: the pivot has none), written
+/// here from the lengths, not read from [`crate::Rods::joint`].
+struct Layout {
+    mu: Vec<f64>,
+    lambda: Vec<f64>,
+    mu_t: f64,
+    joint: Vec<f64>,
+}
+
+impl Layout {
+    fn of(chain: &Chain) -> Self {
+        let n = chain.links();
+        match chain.rods() {
+            Some(r) => Self::from(&r.mass, &r.length, chain.tip_mass_ratio()),
+            None => Self::from(&vec![1.0; n], &vec![1.0; n], chain.tip_mass_ratio()),
+        }
+    }
+
+    fn from(mu: &[f64], lambda: &[f64], mu_t: f64) -> Self {
+        let n = mu.len();
+        let joint = (0..n)
+            .map(|i| {
+                if i == 0 {
+                    0.0
+                } else {
+                    1.0 / (0.5 * (lambda[i - 1] + lambda[i]))
+                }
+            })
+            .collect();
+        Self {
+            mu: mu.to_vec(),
+            lambda: lambda.to_vec(),
+            mu_t,
+            joint,
+        }
+    }
+}
+
 /// `phi''` of a profiled chain ([`crate::Rods`]) by the dense solve of
-/// `A phi'' = b`, `A_ij = mt_ij cos(phi_i - phi_j)` ([`mt_rods`]) and
-/// `b_i = -sum_j mt_ij sin(phi_i - phi_j) w_j^2 - (g/l) lambda_i (S_{i+1} + mu_i/2) cos phi_i + gamma D_i(w)`
-/// (the potential `V = m g l sum_k mu_k y_k`), in mean-rod units.
+/// `A phi'' = b`, `A_ij = mt_ij cos(phi_i - phi_j)` ([`mt_rods_tip`]) and
+/// `b_i = -sum_j mt_ij sin(phi_i - phi_j) w_j^2 - (g/l) lambda_i (S_{i+1} + mu_i/2) cos phi_i + gamma D_i(w) + kappa K_i(phi)`
+/// (the potential `V = m g l sum_k mu_k y_k`, `S_{i+1}` with the tip mass;
+/// `K_i` the joint springs' stencil), in mean-rod units, the pivot fixed.
+/// `mu` and `lambda` are the chain's rods (given, so that a test may pass
+/// its own).
 pub fn accelerations_rods(
     chain: &Chain,
     mu: &[f64],
@@ -110,21 +162,139 @@ pub fn accelerations_rods(
     phi: &[f64],
     w: &[f64],
 ) -> Vec<f64> {
+    let layout = Layout::from(mu, lambda, chain.tip_mass_ratio());
+    pivot_dynamics(chain, &layout, Pivoted::Fixed, phi, w).0
+}
+
+/// How the pivot is held in [`accelerations_on`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Pivoted {
+    /// Pinned.
+    Fixed,
+    /// Moved with the given acceleration `P0''` (physical units).
+    Driven([f64; 2]),
+    /// Free: no force at the pivot.
+    Free,
+}
+
+/// The rigid chain with its pivot `P0` as two more coordinates, every term
+/// included (unequal rods, tip mass, friction, bending), by a dense solve:
+/// `phi''`, `P0''` and the pivot's force on rod 1 (physical units).
+///
+/// In rod units (`P` = `P0 / l`), with `B_i = lambda_i (S_{i+1} + mu_i/2 + mu_t)`
+/// (the mass beyond rod `i`'s centre) and `M = n + mu_t`, the Lagrangian
+/// `T = (m l^2 / 2) (M |P'|^2 + 2 P' . sum_i B_i w_i v_i + w^T A w)`,
+/// `V = m g l (M P_y + sum_i B_i sin phi_i)` gives
+///
+/// ```text
+/// A phi'' + B v P''   = b                                  (the angles)
+/// sum_i B_i v_i phi_i'' + M P'' = F / (m l) + sum_i B_i w_i^2 u_i - M (0, g/l)   (the pivot)
+/// ```
+///
+/// with `b` of [`accelerations_rods`]. A fixed pivot solves the first with
+/// `P'' = 0`; a driven one moves `B v P''` to the right; a free one
+/// (`F = 0`) solves both, an SPD system of `n + 2` unknowns. The force `F`
+/// then follows from the second line.
+pub fn accelerations_on(
+    chain: &Chain,
+    pivot: Pivoted,
+    phi: &[f64],
+    w: &[f64],
+) -> (Vec<f64>, [f64; 2], [f64; 2]) {
+    pivot_dynamics(chain, &Layout::of(chain), pivot, phi, w)
+}
+
+fn pivot_dynamics(
+    chain: &Chain,
+    rods: &Layout,
+    pivot: Pivoted,
+    phi: &[f64],
+    w: &[f64],
+) -> (Vec<f64>, [f64; 2], [f64; 2]) {
     let n = phi.len();
-    let mt = mt_rods(mu, lambda);
-    let below = masses_below(mu);
+    let (mu, lambda) = (&rods.mu, &rods.lambda);
+    let mt = mt_rods_tip(mu, lambda, rods.mu_t);
+    let below = masses_below(mu, rods.mu_t);
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
-    let a = Mat::from_fn(n, n, |i, j| mt[(i, j)] * (phi[i] - phi[j]).cos());
-    let b: Vec<f64> = (0..n)
+    let kappa = chain.bending_rate();
+    let l = chain.rod_length();
+    let m_tot: f64 = mu.iter().sum::<f64>() + rods.mu_t;
+    let lever: Vec<f64> = (0..n).map(|i| lambda[i] * below[i].0).collect();
+    let (v, u): (Vec<[f64; 2]>, Vec<[f64; 2]>) = phi
+        .iter()
+        .map(|p| ([-p.sin(), p.cos()], [p.cos(), p.sin()]))
+        .unzip();
+    let mut b: Vec<f64> = (0..n)
         .map(|i| {
             let centripetal: f64 = (0..n)
                 .map(|j| mt[(i, j)] * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
-            -centripetal - g * lambda[i] * below[i].0 * phi[i].cos() + gamma * damping_stencil(w, i)
+            let mut springs = 0.0;
+            if i > 0 {
+                springs += rods.joint[i] * (phi[i - 1] - phi[i]);
+            }
+            if i + 1 < n {
+                springs += rods.joint[i + 1] * (phi[i + 1] - phi[i]);
+            }
+            -centripetal - g * lever[i] * phi[i].cos()
+                + gamma * damping_stencil(w, i)
+                + kappa * springs
         })
         .collect();
-    solve_spd(&a, &b)
+    // The pivot's row: sum_i B_i w_i^2 u_i - M (0, g/l), less the force.
+    let mut p_rhs = [0.0, -m_tot * g];
+    for i in 0..n {
+        for k in 0..2 {
+            p_rhs[k] += lever[i] * w[i] * w[i] * u[i][k];
+        }
+    }
+    let a = Mat::from_fn(n, n, |i, j| mt[(i, j)] * (phi[i] - phi[j]).cos());
+    let (alpha, p2) = match pivot {
+        Pivoted::Fixed | Pivoted::Driven(_) => {
+            let p2 = match pivot {
+                Pivoted::Driven([x, y]) => [x / l, y / l],
+                _ => [0.0, 0.0],
+            };
+            for i in 0..n {
+                b[i] -= lever[i] * (v[i][0] * p2[0] + v[i][1] * p2[1]);
+            }
+            (solve_spd(&a, &b), p2)
+        }
+        Pivoted::Free => {
+            let big = Mat::from_fn(n + 2, n + 2, |i, j| match (i < n, j < n) {
+                (true, true) => a[(i, j)],
+                (true, false) => lever[i] * v[i][j - n],
+                (false, true) => lever[j] * v[j][i - n],
+                (false, false) => {
+                    if i == j {
+                        m_tot
+                    } else {
+                        0.0
+                    }
+                }
+            });
+            let mut rhs = b.clone();
+            rhs.extend_from_slice(&p_rhs);
+            let x = solve_spd(&big, &rhs);
+            (x[..n].to_vec(), [x[n], x[n + 1]])
+        }
+    };
+    // F / (m l) = sum_i B_i v_i phi_i'' + M P'' - (pivot's right-hand side).
+    let mut f = [0.0; 2];
+    for k in 0..2 {
+        f[k] = m_tot * p2[k] - p_rhs[k];
+        for i in 0..n {
+            f[k] += lever[i] * v[i][k] * alpha[i];
+        }
+    }
+    let ml = chain.mass() * l;
+    let force = if pivot == Pivoted::Free {
+        [0.0, 0.0]
+    } else {
+        [f[0] * ml, f[1] * ml]
+    };
+    (alpha, [p2[0] * l, p2[1] * l], force)
 }
 
 /// `x` of `a x = b` by Cholesky; NaN everywhere if `a` is not SPD.
@@ -160,7 +330,7 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
     let n = phi.len();
     let a = match chain.rods() {
         Some(rods) => {
-            let mt = mt_rods(&rods.mass, &rods.length);
+            let mt = mt_rods_tip(&rods.mass, &rods.length, chain.tip_mass_ratio());
             Mat::from_fn(n, n, |i, j| mt[(i, j)] * (phi[i] - phi[j]).cos())
         }
         None => mass_matrix_with_tip(phi, chain.tip_mass_ratio()),

@@ -95,6 +95,23 @@ pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
     d
 }
 
+/// The bending springs' generalised force on rod `i` of unequal rods, over
+/// the mean rod's `EI / l`: `k_i (phi_{i-1} - phi_i) + k_{i+1} (phi_{i+1} - phi_i)`,
+/// `k` the joints' relative springs ([`crate::Rods::joint`], `k_0 = 0`: the
+/// pivot has none). Equal rods (`k = 1`) have [`damping_stencil`] of `phi`.
+#[inline(always)]
+pub(crate) fn joint_stencil<T: Scalar>(phi: &[T], k: &[f64], i: usize) -> T {
+    let n = phi.len();
+    let mut d = T::cst(0.0);
+    if i > 0 {
+        d += (phi[i - 1] - phi[i]) * k[i];
+    }
+    if i + 1 < n {
+        d += (phi[i + 1] - phi[i]) * k[i + 1];
+    }
+    d
+}
+
 /// Angular accelerations `acc = phi''` for angles `phi` and rates `w`, in O(n)
 /// without allocation, the pivot fixed. Returns the pivot force and the tip
 /// acceleration.

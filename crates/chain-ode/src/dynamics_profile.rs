@@ -24,14 +24,22 @@
 //! ```
 //!
 //! With `mu_i = lambda_i = 1` these are the equal rods' sweeps.
+//!
+//! A tip mass `mu_t = M_t / m` is the articulated body beyond the last rod,
+//! `M_n = mu_t I`, `beta_n = mu_t (0, g/l)` (zero without one), as for equal
+//! rods. Bending adds the joint springs' torque to `tau_i`:
+//! `kappa (k_i (phi_{i-1} - phi_i) + k_{i+1} (phi_{i+1} - phi_i))`, each
+//! joint's spring `k_i = 2 / (lambda_{i-1} + lambda_i)` in units of the mean
+//! rod's `EI / l` ([`Rods::joint`]). Neither is evaluated when absent: a
+//! profile without them runs the arithmetic it ran before they were added.
 
 use crate::chain::Chain;
-use crate::dynamics::{damping_stencil, Base, Reactions, Workspace};
+use crate::dynamics::{damping_stencil, joint_stencil, Base, Reactions, Workspace};
 use crate::profile::Rods;
 use crate::scalar::Scalar;
 
-/// [`crate::dynamics::accelerations_with`] for a profiled chain: no tip
-/// mass and no bending (a profiled chain has neither).
+/// [`crate::dynamics::accelerations_with`] for a profiled chain, with its
+/// tip mass and bending springs.
 pub(crate) fn accelerations<T: Scalar>(
     chain: &Chain,
     rods: &Rods,
@@ -45,10 +53,14 @@ pub(crate) fn accelerations<T: Scalar>(
     assert!(rods.mass.len() == n && rods.length.len() == n);
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
+    let kappa = chain.bending_rate();
+    let bend = kappa != 0.0;
     let zero = T::cst(0.0);
     let one = T::cst(1.0);
-    let (mut mxx, mut mxy, mut myy) = (zero, zero, zero);
-    let (mut bx, mut by) = (zero, zero);
+    // The tip mass `mu_t` (zero without one: the same arithmetic as before).
+    let mu_t = chain.tip_mass_ratio();
+    let (mut mxx, mut mxy, mut myy) = (T::cst(mu_t), zero, T::cst(mu_t));
+    let (mut bx, mut by) = (zero, T::cst(mu_t * g));
     T::sin_cos_all(phi, &mut ws.sc);
     for i in (0..n).rev() {
         let (s, c) = ws.sc[i];
@@ -64,8 +76,13 @@ pub(crate) fn accelerations<T: Scalar>(
         let mux = mxx * c + mxy * s;
         let muy = mxy * c + myy * s;
         let dinv = one / d;
-        let e_fixed = damping_stencil(w, i) * (gamma * inv_lam) - c * (0.5 * mu * g)
-            + lw2 * (nx * mux + ny * muy);
+        let torques = if bend {
+            damping_stencil(w, i) * (gamma * inv_lam)
+                + joint_stencil(phi, &rods.joint, i) * (kappa * inv_lam)
+        } else {
+            damping_stencil(w, i) * (gamma * inv_lam)
+        };
+        let e_fixed = torques - c * (0.5 * mu * g) + lw2 * (nx * mux + ny * muy);
         let e = e_fixed - (nx * bx + ny * by);
         let qi = e * dinv;
         let (gx, gy) = (hx * dinv, hy * dinv);

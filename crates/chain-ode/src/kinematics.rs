@@ -151,11 +151,17 @@ pub fn kinetic_energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
 /// height of `P0`.
 ///
 /// A profiled chain's is `m g l sum_i mu_i y_i`, `y_i` the height of rod
-/// `i`'s centre in `l`: `sum_{j<i} lambda_j sin phi_j + lambda_i sin phi_i / 2`.
+/// `i`'s centre in `l`: `sum_{j<i} lambda_j sin phi_j + lambda_i sin phi_i / 2`,
+/// plus `M_t g y_tip`, `y_tip = l sum_i lambda_i sin phi_i`, for a tip mass.
 pub fn potential_energy(chain: &Chain, phi: &[f64]) -> f64 {
     let n = phi.len();
     if let Some(rods) = chain.rods() {
-        return chain.mass() * chain.gravity() * chain.rod_length() * rods_height_sum(rods, phi);
+        let v = chain.mass() * chain.gravity() * chain.rod_length() * rods_height_sum(rods, phi);
+        if chain.tip_mass() == 0.0 {
+            return v;
+        }
+        let y_tip = tip(chain, [0.0, 0.0], phi)[1];
+        return v + chain.tip_mass() * chain.gravity() * y_tip;
     }
     let sum: f64 = phi
         .iter()
@@ -184,11 +190,19 @@ pub(crate) fn rods_height_sum(rods: &Rods, phi: &[f64]) -> f64 {
 }
 
 /// Energy of the bending springs `U_b = (EI / 2l) sum_{i>=2} (phi_i - phi_{i-1})^2`
-/// (0 for `EI = 0`).
+/// (0 for `EI = 0`). Unequal rods' joint `i` has the spring
+/// `EI / ((l_{i-1} + l_i) / 2)` ([`Rods::joint`]):
+/// `U_b = (EI / 2l) sum_i k_i (phi_i - phi_{i-1})^2`.
 pub fn bending_energy(chain: &Chain, phi: &[f64]) -> f64 {
     let k = chain.bending_spring();
     if k == 0.0 {
         return 0.0;
+    }
+    if let Some(rods) = chain.rods() {
+        let sum: f64 = (1..phi.len())
+            .map(|i| rods.joint[i] * (phi[i] - phi[i - 1]).powi(2))
+            .sum();
+        return 0.5 * k * sum;
     }
     0.5 * k * phi.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
 }

@@ -183,17 +183,45 @@ impl Pivot {
     }
 }
 
+/// The weight of rod `i`'s direction in the centre of mass, `q_i + mu`
+/// (the mass beyond rod `i`'s centre, tip mass included, in rod masses and
+/// lengths), for rods taken from the pivot down: `above` is the mass of
+/// the rods before rod `i` (updated) and `total` their sum over all rods.
+/// Unequal rods: `lambda_i (S_{i+1} + mu_i / 2 + mu_t)`,
+/// `S_{i+1} = total - above - mu_i`.
+#[inline(always)]
+fn rod_weight(chain: &Chain, n: usize, i: usize, total: f64, above: &mut f64) -> f64 {
+    let mu_t = chain.tip_mass_ratio();
+    match chain.rods() {
+        Some(r) => {
+            let q = r.length[i] * ((total - *above - 0.5 * r.mass[i]) + mu_t);
+            *above += r.mass[i];
+            q
+        }
+        None => lever_arm(n, i) + mu_t,
+    }
+}
+
+/// The rods' total mass in mean-rod masses (`n` to rounding; 0 for equal
+/// rods, whose weights do not read it).
+fn rods_total(chain: &Chain) -> f64 {
+    chain.rods().map_or(0.0, |r| r.mass.iter().sum())
+}
+
 /// The centre of mass relative to `P0` and its velocity, `c_rel` and
 /// `c_rel'` (tip mass included): `l sum_i (q_i + mu) u_i / (n + mu)` and
-/// `l sum_i (q_i + mu) w_i v_i / (n + mu)`. O(n).
+/// `l sum_i (q_i + mu) w_i v_i / (n + mu)`. O(n). Unequal rods weigh rod
+/// `i`'s direction by `lambda_i (S_{i+1} + mu_i / 2 + mu)` (the mass beyond
+/// its centre, `S_{i+1}` the rods' beyond it; `sum mu_i = n`).
 pub fn centre_of_mass(chain: &Chain, phi: &[f64], w: &[f64]) -> [Vec2; 2] {
     let n = phi.len();
     let mu = chain.tip_mass_ratio();
     let k = chain.rod_length() / (n as f64 + mu);
     let (mut c, mut v) = ([0.0, 0.0], [0.0, 0.0]);
+    let (total, mut above) = (rods_total(chain), 0.0);
     for i in 0..n {
         let (s, co) = sin_cos(phi[i]);
-        let q = lever_arm(n, i) + mu;
+        let q = rod_weight(chain, n, i, total, &mut above);
         c[0] += q * co;
         c[1] += q * s;
         v[0] -= q * w[i] * s;
@@ -272,15 +300,17 @@ impl PivotPath {
 }
 
 /// The centre of mass's acceleration relative to `P0`,
-/// `c_rel'' = l sum_i (q_i + mu) (alpha_i v_i - w_i^2 u_i) / (n + mu)`. O(n).
+/// `c_rel'' = l sum_i (q_i + mu) (alpha_i v_i - w_i^2 u_i) / (n + mu)`
+/// (unequal rods' weights as in [`centre_of_mass`]). O(n).
 pub fn centre_of_mass_acceleration(chain: &Chain, phi: &[f64], w: &[f64], alpha: &[f64]) -> Vec2 {
     let n = phi.len();
     let mu = chain.tip_mass_ratio();
     let k = chain.rod_length() / (n as f64 + mu);
     let mut a = [0.0, 0.0];
+    let (total, mut above) = (rods_total(chain), 0.0);
     for i in 0..n {
         let (s, c) = sin_cos(phi[i]);
-        let q = lever_arm(n, i) + mu;
+        let q = rod_weight(chain, n, i, total, &mut above);
         let w2 = w[i] * w[i];
         a[0] += q * (-alpha[i] * s - w2 * c);
         a[1] += q * (alpha[i] * c - w2 * s);

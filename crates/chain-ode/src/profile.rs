@@ -67,6 +67,12 @@ pub struct Rods {
     pub inv_mass: Vec<f64>,
     /// `1 / lambda_i`.
     pub inv_length: Vec<f64>,
+    /// The bending spring of joint `i` (between rods `i - 1` and `i`) in
+    /// units of the mean rod's `EI / l`: `2 / (lambda_{i-1} + lambda_i)`,
+    /// one over the joint's share of length, the distance between the two
+    /// rods' centres (`docs/model.md`, "Bending of unequal rods"). Entry 0,
+    /// the pivot, is 0: it has no spring.
+    pub joint: Vec<f64>,
 }
 
 impl Profile {
@@ -168,7 +174,14 @@ impl Profile {
             }
         };
         let inv = |v: &[f64]| v.iter().map(|x| 1.0 / x).collect();
+        let joint = (0..links)
+            .map(|i| match i {
+                0 => 0.0,
+                _ => 2.0 / (length[i - 1] + length[i]),
+            })
+            .collect();
         Some(Rods {
+            joint,
             inv_mass: inv(&mass),
             inv_length: inv(&length),
             mass,

@@ -248,7 +248,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(1.0)),
         kinds: Kinds::Any,
-        doc: "the ratio of the mass per length at the pivot to that at the tip, in 0.001..=1000 (`10`: tapered 10:1): the mass per length falls linearly in arc length, the total mass stays `n m`; `1` is equal rods; rigid links, no tip mass, no bending stiffness, a fixed pivot",
+        doc: "the ratio of the mass per length at the pivot to that at the tip, in 0.001..=1000 (`10`: tapered 10:1): the mass per length falls linearly in arc length, the total mass stays `n m`; `1` is equal rods; rigid or elastic links, with any tip mass, bending stiffness and pivot",
         example: "10",
         out_of_range: Some("0"),
     },

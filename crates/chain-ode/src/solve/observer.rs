@@ -80,7 +80,8 @@ pub(crate) fn metrics(chain: &Chain, y: &[f64], f: &[f64], trig: &mut Vec<(f64, 
 }
 
 /// [`metrics`] of a profiled chain (rod masses `mu_i m`, lengths
-/// `lambda_i l`; no tip mass, no bending), in one pass.
+/// `lambda_i l`), in one pass; a tip mass and the bending springs add
+/// their terms only when the chain has them.
 fn metrics_rods(chain: &Chain, rods: &Rods, y: &[f64], f: &[f64]) -> Metrics {
     let n = chain.links();
     let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
@@ -99,8 +100,18 @@ fn metrics_rods(chain: &Chain, rods: &Rods, y: &[f64], f: &[f64]) -> Metrics {
     }
     let l = chain.rod_length();
     let ml2 = chain.mass() * l * l;
+    let mut e = 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v;
+    if chain.tip_mass() != 0.0 {
+        // `(M_t / 2) |v_tip|^2 + M_t g y_tip`, the tip's height `l joint`.
+        let [vx, vy] = sums.tip_velocity(l);
+        e += 0.5 * chain.tip_mass() * (vx * vx + vy * vy)
+            + chain.tip_mass() * chain.gravity() * (l * joint);
+    }
+    if chain.bending_spring() != 0.0 {
+        e += bending_energy(chain, phi);
+    }
     Metrics {
-        energy: 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v,
+        energy: e,
         tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }

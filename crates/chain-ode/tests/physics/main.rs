@@ -24,6 +24,7 @@ mod observed_rhs;
 mod pivot;
 mod profile;
 mod profile_compression;
+mod profile_terms;
 mod report;
 mod rk4;
 mod tip_mass;
@@ -116,7 +117,9 @@ pub fn all_finite(y: &[f64]) -> bool {
 
 /// A random chain of 1 to `max_links` rods in a random state: any length,
 /// mass, gravity, friction and bending stiffness (none in a third of the
-/// cases), angles anywhere, rates up to 3 rad/time.
+/// cases), a tip mass (none in half of the cases), a rod profile (none in
+/// two fifths), angles anywhere, rates up to 3 rad/time. Every term goes
+/// with every other.
 pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f64>, Vec<f64>)> {
     (
         1usize..=max_links,
@@ -128,9 +131,11 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
         // A rod profile: none, a taper, or random lists (0, 1, 2, 3).
         prop_oneof![Just(0u8), Just(0u8), 1u8..=3],
         0.01f64..100.0,
+        // The tip mass in rod masses.
+        prop_oneof![Just(0.0), 0.0f64..3.0],
     )
         .prop_flat_map(
-            |(n, length, mass, gravity, damping, bending_stiffness, profile, taper)| {
+            |(n, length, mass, gravity, damping, bending_stiffness, profile, taper, tip)| {
                 (
                     Just((
                         n,
@@ -141,6 +146,7 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
                         bending_stiffness,
                         profile,
                         taper,
+                        tip,
                     )),
                     prop::collection::vec(0.05f64..5.0, n),
                     prop::collection::vec(0.2f64..5.0, n),
@@ -151,13 +157,12 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
         )
         .prop_map(
             |(
-                (n, length, mass, gravity, damping, bending_stiffness, profile, taper),
+                (n, length, mass, gravity, damping, bending_stiffness, profile, taper, tip),
                 masses,
                 lengths,
                 phi,
                 w,
             )| {
-                // Profiles go without bending (refused together).
                 let profile = match profile {
                     1 => Profile {
                         taper,
@@ -175,11 +180,6 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
                     },
                     _ => Profile::default(),
                 };
-                let bending_stiffness = if profile.is_uniform() {
-                    bending_stiffness
-                } else {
-                    0.0
-                };
                 let chain = Chain::new(ChainParams {
                     length,
                     links: n,
@@ -187,6 +187,7 @@ pub fn chain_and_state(max_links: usize) -> impl Strategy<Value = (Chain, Vec<f6
                     gravity,
                     damping,
                     bending_stiffness,
+                    tip_mass: tip * mass,
                     profile,
                     ..ChainParams::default()
                 })
