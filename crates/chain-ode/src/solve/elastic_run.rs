@@ -35,28 +35,10 @@ pub(super) fn run(
             return (run, obs);
         }
     };
-    let held = Span {
-        t_end: t_release,
-        ..*span
-    };
-    let first = registry::run(method, &mut sys, &held, &mut obs);
-    if !first.outcome.status.is_ok() || first.outcome.t_reached < t_release {
-        return (first, obs);
-    }
-    let mut y = first.outcome.y_end.clone();
     let n = chain.links();
-    y[2 * n] += elastic::pivot_spring_energy(chain, &y);
-    sys.set_released(true);
-    let done = first.outcome.stats;
-    let settings = span.settings.after(&done);
-    let rest = Span {
-        t0: t_release,
-        y0: &y,
-        t_end: span.t_end,
-        settings: &settings,
-    };
-    let mut second = registry::run(method, &mut sys, &rest, &mut obs);
-    second.outcome.stats += done;
-    second.segments.splice(0..0, first.segments);
-    (second, obs)
+    let run = super::run_cut(method, &mut sys, span, &mut obs, t_release, |sys, y, _| {
+        y[2 * n] += elastic::pivot_spring_energy(chain, y);
+        sys.set_released(true);
+    });
+    (run, obs)
 }

@@ -813,30 +813,58 @@ fn run_with_release(
         return (run, obs);
     }
     let mut obs = new_observer(path);
+    let run = run_cut(
+        method,
+        &mut sys,
+        span,
+        &mut obs,
+        t_release,
+        |sys, y, obs| {
+            path.release(chain, t_release, &y[..n], &y[n..2 * n]);
+            obs.path = path.clone();
+            sys.set_released(true);
+        },
+    );
+    (run, obs)
+}
+
+/// Runs `method` over `span` in two pieces cut at `t_cut` (inside the
+/// span), from one observer (as `auto`'s handover): the first piece up to
+/// `t_cut`, then `cut` with the system, the state reached at `t_cut` (which
+/// it may change) and the observer, then the second piece from there. The
+/// statistics are summed and the segments joined; a first piece that fails
+/// or is stopped ends the whole run there. A pivot let go at `t_cut` is the
+/// one use, for the rigid and the elastic chain.
+fn run_cut<S: crate::ode::Problem>(
+    method: Method,
+    sys: &mut S,
+    span: &Span<'_>,
+    obs: &mut ChainObserver,
+    t_cut: f64,
+    cut: impl FnOnce(&mut S, &mut [f64], &mut ChainObserver),
+) -> Run {
     let held = Span {
-        t_end: t_release,
+        t_end: t_cut,
         ..*span
     };
-    let first = registry::run(method, &mut sys, &held, &mut obs);
-    if !first.outcome.status.is_ok() || first.outcome.t_reached < t_release {
-        return (first, obs);
+    let first = registry::run(method, sys, &held, obs);
+    if !first.outcome.status.is_ok() || first.outcome.t_reached < t_cut {
+        return first;
     }
-    let y = &first.outcome.y_end;
-    path.release(chain, t_release, &y[..n], &y[n..2 * n]);
-    obs.path = path.clone();
-    sys.set_released(true);
+    let mut y = first.outcome.y_end.clone();
+    cut(sys, &mut y, obs);
     let done = first.outcome.stats;
     let settings = span.settings.after(&done);
     let rest = Span {
-        t0: t_release,
-        y0: y,
+        t0: t_cut,
+        y0: &y,
         t_end: span.t_end,
         settings: &settings,
     };
-    let mut second = registry::run(method, &mut sys, &rest, &mut obs);
+    let mut second = registry::run(method, sys, &rest, obs);
     second.outcome.stats += done;
     second.segments.splice(0..0, first.segments);
-    (second, obs)
+    second
 }
 
 #[cfg(test)]
