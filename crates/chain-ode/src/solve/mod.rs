@@ -893,6 +893,77 @@ mod tests {
         }
     }
 
+    /// A run cut in two (a pivot let go mid-run) is the two pieces run
+    /// one after the other: the same end state, and the work of both
+    /// counted, for an explicit and an implicit method.
+    #[test]
+    fn a_run_cut_in_two_is_its_two_pieces_with_both_pieces_work() {
+        let chain = Chain::report(8, 5e-4).unwrap();
+        let start = Start::Catenary {
+            p0: [0.0, 0.0],
+            p1: [3.0, 0.0],
+        }
+        .state(&chain)
+        .unwrap();
+        let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
+        let options = SolveOptions {
+            t_end: 2.0,
+            ..Default::default()
+        };
+        let settings = Settings::of(&options);
+        let path = PivotPath::new(&chain, start.anchor);
+        let observer = || {
+            ChainObserver::with_path(
+                &chain,
+                path.clone(),
+                options.t_end,
+                options.output_dt,
+                options.cancel.clone(),
+            )
+        };
+        let span = Span {
+            t0: 0.0,
+            y0: &y0,
+            t_end: 2.0,
+            settings: &settings,
+        };
+        for method in [Method::Dopri5, Method::Bdf] {
+            let mut sys = ChainSystem::new(&chain);
+            let mut obs = observer();
+            let held = Span { t_end: 1.0, ..span };
+            let first = registry::run(method, &mut sys, &held, &mut obs).outcome;
+            let y1 = first.y_end.clone();
+            let after = settings.after(&first.stats);
+            let rest = Span {
+                t0: 1.0,
+                y0: &y1,
+                t_end: 2.0,
+                settings: &after,
+            };
+            let second = registry::run(method, &mut sys, &rest, &mut obs).outcome;
+
+            let mut sys = ChainSystem::new(&chain);
+            let mut obs = observer();
+            let cut = run_cut(method, &mut sys, &span, &mut obs, 1.0, |_, _, _| {}).outcome;
+            assert_eq!(cut.status, Status::Ok, "{method}");
+            assert_eq!(cut.y_end, second.y_end, "{method}");
+            let (a, b, c) = (first.stats, second.stats, cut.stats);
+            assert!(a.steps > 0 && b.steps > 0, "{method}");
+            assert_eq!(c.steps, a.steps + b.steps, "{method}");
+            assert_eq!(
+                c.rejected_steps,
+                a.rejected_steps + b.rejected_steps,
+                "{method}"
+            );
+            assert_eq!(c.rhs_evals, a.rhs_evals + b.rhs_evals, "{method}");
+            assert_eq!(
+                c.lu_factorizations,
+                a.lu_factorizations + b.lu_factorizations,
+                "{method}"
+            );
+        }
+    }
+
     #[test]
     fn every_method_stops_at_the_step_its_observer_asks() {
         let chain = Chain::report(8, 5e-4).unwrap();
