@@ -19,10 +19,31 @@
 //! with each `D'_k` factorised by dense LU with partial pivoting (within the
 //! block) and kept as its inverse beside `G_k = D'_k^-1 L_k`. The solve is
 //! then small dense products, forward `y_k = D'_k^-1 b_k - G_k y_{k-1}` and
-//! back `x_k = y_k - X_k x_{k+1}`; the factorisation and the solve are
-//! both compiled for each block size (the small loops unroll). Per rod of
-//! 5 unknowns: about 400 multiply-adds to factorise and 75 per solve, with
-//! no ordering, no symbolic phase and no allocation after the first pattern.
+//! back `x_k = y_k - X_k x_{k+1}`.
+//!
+//! Before that, the unknowns whose rows are *local* (every entry in their
+//! own block's columns) are condensed out: the chain's `phi_i' = w_i` and
+//! `w_i' = alpha_i`, whose Newton rows are `[1, -c]` on the rod's own
+//! unknowns. With the `P` local unknowns of each block first and the other
+//! `Q = S - P` after them, block row `k` reads `D_PP x_P + D_PQ x_Q = b_P`
+//! on its local rows, so `x_P = y_P - Z_k x_Q` with `y_P = D_PP^-1 b_P` and
+//! `Z_k = D_PP^-1 D_PQ`; put into the other rows, which reach the local
+//! columns of blocks `k - 1`, `k` and `k + 1` only, it leaves the Schur
+//! complement, block tridiagonal in `Q x Q` blocks,
+//!
+//! ```text
+//! L'_k = L_QQ - L_QP Z_{k-1},   D'_k = D_QQ - D_QP Z_k,   U'_k = U_QQ - U_QP Z_{k+1},
+//! b'_k = b_Q - L_QP y_{P,k-1} - D_QP y_{P,k} - U_QP y_{P,k+1},
+//! ```
+//!
+//! which the block Thomas algorithm above factorises and solves. The rigid
+//! chain's blocks shrink from 5 to 3 unknowns (`alpha_i`, `f_i`), the
+//! elastic chain's from 6 to 3 and BEAM's from 4 to 3: per rod of the rigid
+//! chain about 190 multiply-adds to factorise (540 without the
+//! condensation) and 55 per solve (75). The factorisation and the solve are
+//! compiled for each shape (the small loops unroll), with no ordering, no
+//! symbolic phase and no allocation after the first pattern. Only the
+//! shapes in [`CONDENSED`] are condensed; any other is factorised whole.
 //!
 //! Memory is laid out for the sweeps (issue 20: at n = 3200 the factors
 //! outgrow the cache): the matrix is assembled into `[L_k | D_k | U_k]`
@@ -31,10 +52,13 @@
 //! go to two streams, `[D'_k^-1 | G_k]` read in order by the forward sweep
 //! and `X_k` read backwards by the back substitution; and the sweeps gather
 //! the right-hand side from, and scatter the solution to, the unknowns'
-//! own order themselves, checking finiteness as they write.
+//! own order themselves (the forward sweep computing each block's `y_P`
+//! one block ahead, the back sweep recovering `x_P`), checking finiteness
+//! as they write.
 //!
 //! Pivoting is confined to the diagonal blocks, so the factorisation relies
-//! on every `D'_k` being nonsingular; a zero or non-finite pivot, a
+//! on every `D_PP` and `D'_k` being nonsingular (the chain's `D_PP` is
+//! unit upper triangular); a zero or non-finite pivot, a
 //! non-finite matrix entry or a non-finite solution is a failure (logged; the
 //! solve returns an error, which diffsol treats as a failed Newton iteration
 //! and answers with a smaller step). If a matrix with a usable structure
@@ -52,6 +76,50 @@ use faer::sparse::SymbolicSparseColMatRef;
 use super::diffsol_driver::slice_mut;
 use super::sparse_lu::LuLog;
 
+/// Calls `$f::<S>($args)` for the block size `$s` (`1..=MAX_BLOCK`): every
+/// size compiled on its own, so that the small loops unroll.
+macro_rules! sized {
+    ($s:expr, $f:ident($($arg:expr),*)) => {
+        match $s {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            6 => $f::<6>($($arg),*),
+            7 => $f::<7>($($arg),*),
+            _ => $f::<MAX_BLOCK>($($arg),*),
+        }
+    };
+}
+
+/// Calls `$f::<P, Q>($args)` for `$s = P + Q` unknowns per block of which
+/// `$p = P` are local: the shapes in [`CONDENSED`], and every block size
+/// with none local, each compiled on its own so that the small loops
+/// unroll. [`BlockLayout::new`] condenses no other shape.
+macro_rules! shaped {
+    ($s:expr, $p:expr, $f:ident($($arg:expr),*)) => {
+        match ($s, $p) {
+            (5, 2) => $f::<2, 3>($($arg),*),
+            (6, 3) => $f::<3, 3>($($arg),*),
+            (4, 1) => $f::<1, 3>($($arg),*),
+            (1, _) => $f::<0, 1>($($arg),*),
+            (2, _) => $f::<0, 2>($($arg),*),
+            (3, _) => $f::<0, 3>($($arg),*),
+            (4, _) => $f::<0, 4>($($arg),*),
+            (5, _) => $f::<0, 5>($($arg),*),
+            (6, _) => $f::<0, 6>($($arg),*),
+            (7, _) => $f::<0, 7>($($arg),*),
+            _ => $f::<0, MAX_BLOCK>($($arg),*),
+        }
+    };
+}
+
+/// The shapes `(S, P)` whose local unknowns are condensed: the rigid chain
+/// (`phi_i`, `w_i` of 5), the elastic one (`theta_i`, `x_i`, `y_i` of 6)
+/// and BEAM (`theta_i` of 4).
+const CONDENSED: [(usize, usize); 3] = [(5, 2), (6, 3), (4, 1)];
+
 /// Where each unknown sits: in a block of the chain, all blocks of one
 /// size `S`, or alone (its row and column hold only the diagonal entry, as
 /// the chain's `W` does, whose row is left out of the Jacobian).
@@ -59,6 +127,12 @@ use super::sparse_lu::LuLog;
 pub(crate) struct BlockLayout {
     /// The block size `S`.
     size: usize,
+    /// `P`, the unknowns of every block whose rows hold entries in their own
+    /// block's columns only (the chain's `phi_i` and `w_i`): placed first in
+    /// each block and condensed out before the block Thomas algorithm (see
+    /// the module doc). Zero when the blocks do not all have the same
+    /// number of them, or when they would leave nothing to condense onto.
+    local: usize,
     /// `order[p]`: the unknown at position `p` (block `p / S`).
     order: Vec<usize>,
     /// `place[u]`: `Ok(position)` in the blocks, or `Err(index)` in `lone`.
@@ -103,15 +177,39 @@ impl BlockLayout {
         if size == 0 || size > MAX_BLOCK || count.iter().any(|&s| s != size) {
             return None;
         }
-        let mut next: Vec<usize> = (0..blocks).map(|k| k * size).collect();
+        // A row is local when every entry of it lies in its own block.
+        let mut local_row: Vec<bool> = coupled.clone();
+        for c in 0..dim {
+            for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+                if !coupled[c] || block[c] != block[r] {
+                    local_row[r] = false;
+                }
+            }
+        }
+        let mut locals = vec![0usize; blocks];
+        for (u, &k) in block.iter().enumerate() {
+            if local_row[u] {
+                locals[k] += 1;
+            }
+        }
+        let local =
+            if locals.iter().all(|&p| p == locals[0]) && CONDENSED.contains(&(size, locals[0])) {
+                locals[0]
+            } else {
+                0
+            };
+        // Each block: its local unknowns first (when condensing), then the rest.
+        let mut next: Vec<[usize; 2]> = (0..blocks).map(|k| [k * size, k * size + local]).collect();
         let mut order = vec![0; blocks * size];
         let mut place = vec![Err(0); dim];
         let mut lone = Vec::new();
         for (u, &k) in block.iter().enumerate() {
             if coupled[u] {
-                order[next[k]] = u;
-                place[u] = Ok(next[k]);
-                next[k] += 1;
+                let side = usize::from(!(local > 0 && local_row[u]));
+                let at = next[k][side];
+                order[at] = u;
+                place[u] = Ok(at);
+                next[k][side] += 1;
             } else {
                 place[u] = Err(lone.len());
                 lone.push(u);
@@ -119,6 +217,7 @@ impl BlockLayout {
         }
         let layout = Self {
             size,
+            local,
             order,
             place,
             lone,
@@ -238,70 +337,307 @@ fn lu_solve(lu: &[f64], s: usize, piv: &[usize], b: &mut [f64], m: usize) {
     }
 }
 
-/// `x = A^-1 x` on the blocks, reading and writing `x` through the
-/// layout's `order` (the gather into block order and the scatter back are
-/// part of the two sweeps); `forward` holds `[D'_k^-1 | G_k]` per block,
-/// `back` the `X_k`, `z` is scratch (`order.len()`). Returns whether every
-/// entry written is finite.
-fn solve_blocks<const S: usize>(
+/// The local factors of one block for [`condense`]: with `D_PP`, `D_PQ`
+/// the local rows of the diagonal block `d` (`S x S`, `S = P + Q`,
+/// row-major; the first `P` unknowns local), `out` receives `[D_PP^-1 | Z
+/// = D_PP^-1 D_PQ]` (`P x P`, then `P x Q`, row-major). `false` on a zero
+/// or non-finite pivot.
+fn local_factors<const P: usize, const Q: usize>(d: &[f64], out: &mut [f64]) -> bool {
+    let s = P + Q;
+    let mut a = [0.0; MAX_BLOCK * MAX_BLOCK];
+    let mut piv = [0usize; MAX_BLOCK];
+    for i in 0..P {
+        for j in 0..P {
+            a[i * P + j] = d[i * s + j];
+        }
+    }
+    if !dense_lu(&mut a[..P * P], P, &mut piv[..P]) {
+        return false;
+    }
+    let (inv, z) = out.split_at_mut(P * P);
+    inv.fill(0.0);
+    for i in 0..P {
+        inv[i * P + i] = 1.0;
+    }
+    lu_solve(&a[..P * P], P, &piv[..P], inv, P);
+    for i in 0..P {
+        for j in 0..Q {
+            z[i * Q + j] = d[i * s + P + j];
+        }
+    }
+    lu_solve(&a[..P * P], P, &piv[..P], z, Q);
+    true
+}
+
+/// `out = M_QQ - M_QP Z` for one `S x S` block `m` (row-major, the first
+/// `P` unknowns local) and the `Z` of its column's block (`None`: `M` is
+/// zero, the left block of the first row or the right one of the last);
+/// `coupling` receives `M_QP` (`Q x P`) at stride `3 P`.
+fn reduce_block<const P: usize, const Q: usize>(
+    m: &[f64],
+    z: Option<&[f64]>,
+    out: &mut [f64],
+    coupling: &mut [f64],
+) {
+    let s = P + Q;
+    for i in 0..Q {
+        for l in 0..P {
+            coupling[i * 3 * P + l] = m[(P + i) * s + l];
+        }
+        for j in 0..Q {
+            let mut acc = m[(P + i) * s + P + j];
+            if let Some(z) = z {
+                for l in 0..P {
+                    acc -= m[(P + i) * s + l] * z[l * Q + j];
+                }
+            }
+            out[i * Q + j] = acc;
+        }
+    }
+}
+
+/// Condenses the local unknowns out of `assembled` (`[L_k | D_k | U_k]`,
+/// `S x S` each, the first `P` unknowns of each block local): `local`
+/// receives each block's `[D_PP^-1 | Z_k]`, `coupling` its `[L_QP | D_QP |
+/// U_QP]` (`Q x 3P`, row by row) and `reduced` the `Q x Q` blocks
+/// `[L_QQ - L_QP Z_{k-1} | D_QQ - D_QP Z_k | U_QQ - U_QP Z_{k+1}]` of the
+/// Schur complement, which is block tridiagonal again. `false` on a zero
+/// or non-finite pivot of some `D_PP`.
+fn condense<const P: usize, const Q: usize>(
+    assembled: &[f64],
+    local: &mut [f64],
+    coupling: &mut [f64],
+    reduced: &mut [f64],
+) -> bool {
+    let (s, qq, lsz) = (P + Q, Q * Q, P * P + P * Q);
+    let ss = s * s;
+    if P > 0 {
+        for (blk, loc) in assembled
+            .chunks_exact(3 * ss)
+            .zip(local.chunks_exact_mut(lsz))
+        {
+            if !local_factors::<P, Q>(&blk[ss..2 * ss], loc) {
+                return false;
+            }
+        }
+    }
+    let blocks = assembled.len() / (3 * ss);
+    let z_of = |k: usize| (k < blocks).then(|| &local[k * lsz + P * P..(k + 1) * lsz]);
+    for (k, ((blk, out), cpl)) in assembled
+        .chunks_exact(3 * ss)
+        .zip(reduced.chunks_exact_mut(3 * qq))
+        .zip(coupling.chunks_exact_mut((3 * P * Q).max(1)))
+        .enumerate()
+    {
+        let left = k.checked_sub(1).and_then(z_of);
+        reduce_block::<P, Q>(&blk[..ss], left, &mut out[..qq], cpl);
+        reduce_block::<P, Q>(
+            &blk[ss..2 * ss],
+            z_of(k),
+            &mut out[qq..2 * qq],
+            &mut cpl[P..],
+        );
+        reduce_block::<P, Q>(
+            &blk[2 * ss..],
+            z_of(k + 1),
+            &mut out[2 * qq..],
+            &mut cpl[2 * P..],
+        );
+    }
+    true
+}
+
+/// `y = D_PP^-1 b_P` of the block whose unknowns are `uk`.
+#[inline(always)]
+fn local_rhs<const P: usize, const Q: usize>(inv: &[f64], uk: &[usize], x: &[f64]) -> [f64; P] {
+    let mut b = [0.0; P];
+    for (bj, &u) in b.iter_mut().zip(uk) {
+        *bj = x[u];
+    }
+    let mut y = [0.0; P];
+    for i in 0..P {
+        for j in 0..P {
+            y[i] += inv[i * P + j] * b[j];
+        }
+    }
+    y
+}
+
+/// `x = A^-1 x` through the condensation, in two sweeps that gather from
+/// and scatter to `x` through `order`. Forward, block by block: the local
+/// unknowns' `y_P = D_PP^-1 b_P` (one block ahead), the reduced right-hand
+/// side `b_Q - L_QP y_{P,k-1} - D_QP y_{P,k} - U_QP y_{P,k+1}`, and the
+/// reduced forward substitution `y_k = D''_k^-1 r_k - G_k y_{k-1}`; back:
+/// `x_Q = y_k - X_k x_{Q,k+1}` and `x_P = y_P - Z_k x_Q`. `work` is scratch
+/// (`S` per block). Returns whether every entry written is finite.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one sweep's inputs, all borrowed"
+)]
+fn solve_condensed<const P: usize, const Q: usize>(
+    local: &[f64],
+    coupling: &[f64],
     forward: &[f64],
     back: &[f64],
     order: &[usize],
     x: &mut [f64],
-    z: &mut [f64],
+    work: &mut [f64],
 ) -> bool {
-    let mut carry = [0.0; S];
-    // y_k = D'_k^-1 b_k - G_k y_{k-1} with G_k = D'_k^-1 L_k: only the
-    // second product waits for the previous block.
-    for ((inv, zk), uk) in forward
-        .chunks_exact(2 * S * S)
-        .zip(z.chunks_exact_mut(S))
-        .zip(order.chunks_exact(S))
+    let s = P + Q;
+    let lsz = P * P + P * Q;
+    let blocks = order.len() / s;
+    let (yp, zq) = work.split_at_mut(P * blocks);
+    let inv_of = |k: usize| &local[k * lsz..k * lsz + P * P];
+    let mut y_prev = [0.0; P];
+    let mut y_cur = if blocks > 0 {
+        local_rhs::<P, Q>(inv_of(0), &order[..s], x)
+    } else {
+        [0.0; P]
+    };
+    let mut carry = [0.0; Q];
+    for (k, (((uk, cpl), fwd), zk)) in order
+        .chunks_exact(s)
+        .zip(coupling.chunks_exact((3 * P * Q).max(1)))
+        .zip(forward.chunks_exact(2 * Q * Q))
+        .zip(zq.chunks_exact_mut(Q))
+        .enumerate()
     {
-        let (d_inv, g_k) = inv.split_at(S * S);
-        let mut b = [0.0; S];
-        for (bj, &u) in b.iter_mut().zip(uk) {
-            *bj = x[u];
-        }
-        let mut t = [0.0; S];
-        for i in 0..S {
-            let mut acc = 0.0;
-            for j in 0..S {
-                acc += d_inv[i * S + j] * b[j];
+        let y_next = if k + 1 < blocks {
+            local_rhs::<P, Q>(inv_of(k + 1), &order[(k + 1) * s..(k + 2) * s], x)
+        } else {
+            [0.0; P]
+        };
+        let mut r = [0.0; Q];
+        for i in 0..Q {
+            let row = &cpl[i * 3 * P..(i + 1) * 3 * P];
+            let mut acc = x[uk[P + i]];
+            for l in 0..P {
+                acc -= row[l] * y_prev[l] + row[P + l] * y_cur[l] + row[2 * P + l] * y_next[l];
             }
-            t[i] = acc;
+            r[i] = acc;
         }
-        for i in 0..S {
+        let (d_inv, g_k) = fwd.split_at(Q * Q);
+        for i in 0..Q {
             let mut acc = 0.0;
-            for j in 0..S {
-                acc += g_k[i * S + j] * carry[j];
+            for j in 0..Q {
+                acc += d_inv[i * Q + j] * r[j];
             }
-            zk[i] = t[i] - acc;
+            let mut sub = 0.0;
+            for j in 0..Q {
+                sub += g_k[i * Q + j] * carry[j];
+            }
+            zk[i] = acc - sub;
         }
         carry.copy_from_slice(zk);
+        yp[k * P..(k + 1) * P].copy_from_slice(&y_cur);
+        y_prev = y_cur;
+        y_cur = y_next;
     }
-    // x_k = y_k - X_k x_{k+1}, written to x in place.
-    carry = [0.0; S];
     let mut finite = true;
-    for ((x_k, zk), uk) in back
-        .chunks_exact(S * S)
-        .zip(z.chunks_exact(S))
-        .zip(order.chunks_exact(S))
+    let mut carry = [0.0; Q];
+    for (k, ((x_k, zk), uk)) in back
+        .chunks_exact(Q * Q)
+        .zip(zq.chunks_exact(Q))
+        .zip(order.chunks_exact(s))
+        .enumerate()
         .rev()
     {
-        let mut next = [0.0; S];
-        for i in 0..S {
+        let mut xq = [0.0; Q];
+        for i in 0..Q {
             let mut acc = zk[i];
-            for j in 0..S {
-                acc -= x_k[i * S + j] * carry[j];
+            for j in 0..Q {
+                acc -= x_k[i * Q + j] * carry[j];
             }
-            next[i] = acc;
+            xq[i] = acc;
         }
-        for (&v, &u) in next.iter().zip(uk) {
+        for (&v, &u) in xq.iter().zip(&uk[P..]) {
             x[u] = v;
             finite &= v.is_finite();
         }
-        carry = next;
+        let z = &local[k * lsz + P * P..(k + 1) * lsz];
+        for i in 0..P {
+            let mut acc = yp[k * P + i];
+            for j in 0..Q {
+                acc -= z[i * Q + j] * xq[j];
+            }
+            x[uk[i]] = acc;
+            finite &= acc.is_finite();
+        }
+        carry = xq;
+    }
+    finite
+}
+
+/// `x = A^-T x` through the condensation (`A = [I 0; A_QP A_PP^-1 I]
+/// [A_PP A_PQ; 0 S]`, `S` the reduced matrix): `u_P = D_PP^-T b_P`, the
+/// reduced `S^T x_Q = b_Q - D_PQ^T u_P`, then `x_P = u_P - D_PP^-T (A_QP^T
+/// x_Q)`, whose second term gathers the local columns' entries from the
+/// block rows `k - 1`, `k` and `k + 1`. `work` as in [`solve_condensed`].
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one sweep's inputs, all borrowed"
+)]
+fn solve_condensed_transposed<const P: usize, const Q: usize>(
+    assembled: &[f64],
+    local: &[f64],
+    reduced: &[f64],
+    factors: (&[f64], &[f64]),
+    order: &[usize],
+    x: &mut [f64],
+    work: &mut [f64],
+) -> bool {
+    let s = P + Q;
+    let (ss, lsz) = (s * s, P * P + P * Q);
+    let blocks = order.len() / s;
+    let (up, zq) = work.split_at_mut(P * blocks);
+    for (k, uk) in order.chunks_exact(s).enumerate() {
+        let inv = &local[k * lsz..k * lsz + P * P];
+        for i in 0..P {
+            let mut acc = 0.0;
+            for j in 0..P {
+                acc += inv[j * P + i] * x[uk[j]];
+            }
+            up[k * P + i] = acc;
+        }
+        let d = &assembled[3 * ss * k + ss..3 * ss * k + 2 * ss];
+        for i in 0..Q {
+            let mut acc = x[uk[P + i]];
+            for l in 0..P {
+                acc -= d[l * s + P + i] * up[k * P + l];
+            }
+            zq[k * Q + i] = acc;
+        }
+    }
+    solve_transposed::<Q>(reduced, factors.0, factors.1, zq);
+    let mut finite = true;
+    for (k, uk) in order.chunks_exact(s).enumerate() {
+        for (i, &u) in uk[P..].iter().enumerate() {
+            let v = zq[k * Q + i];
+            x[u] = v;
+            finite &= v.is_finite();
+        }
+        // t = A_QP^T x_Q on block k's local columns: D_k, L_{k+1}, U_{k-1}.
+        let mut t = [0.0; P];
+        for (row, part) in [(k.wrapping_sub(1), 2), (k, 1), (k + 1, 0)] {
+            if row < blocks {
+                let m = &assembled[3 * ss * row + part * ss..3 * ss * row + (part + 1) * ss];
+                for i in 0..Q {
+                    let xi = zq[row * Q + i];
+                    for (l, tl) in t.iter_mut().enumerate() {
+                        *tl += m[(P + i) * s + l] * xi;
+                    }
+                }
+            }
+        }
+        let inv = &local[k * lsz..k * lsz + P * P];
+        for i in 0..P {
+            let mut acc = up[k * P + i];
+            for j in 0..P {
+                acc -= inv[j * P + i] * t[j];
+            }
+            x[uk[i]] = acc;
+            finite &= acc.is_finite();
+        }
     }
     finite
 }
@@ -357,23 +693,6 @@ fn solve_transposed<const S: usize>(
             }
         }
     }
-}
-
-/// Calls `$f::<S>($args)` for the block size `$s` (`1..=MAX_BLOCK`): every
-/// size compiled on its own, so that the small loops unroll.
-macro_rules! sized {
-    ($s:expr, $f:ident($($arg:expr),*)) => {
-        match $s {
-            1 => $f::<1>($($arg),*),
-            2 => $f::<2>($($arg),*),
-            3 => $f::<3>($($arg),*),
-            4 => $f::<4>($($arg),*),
-            5 => $f::<5>($($arg),*),
-            6 => $f::<6>($($arg),*),
-            7 => $f::<7>($($arg),*),
-            _ => $f::<MAX_BLOCK>($($arg),*),
-        }
-    };
 }
 
 /// The block Thomas factorisation of [`Factors::factorise`] for the block
@@ -446,27 +765,36 @@ struct Factors {
     /// The storage slot in `assembled` of each CSC value (32 bits: half the
     /// memory traffic of the scatter).
     slots: Vec<u32>,
-    /// The matrix per block, `[L_k | D_k | U_k]` (each `S x S`, row-major),
-    /// then the lone diagonals. Entries outside the pattern stay zero: only
-    /// the slots are ever written.
+    /// The matrix per block, `[L_k | D_k | U_k]` (each `S x S`, row-major,
+    /// the local unknowns first), then the lone diagonals. Entries outside
+    /// the pattern stay zero: only the slots are ever written.
     assembled: Vec<f64>,
-    /// `[D'_k^-1 | G_k = D'_k^-1 L_k]` per block, row-major: the forward
-    /// solve is then products of small dense blocks read in one stream.
+    /// `[D_PP^-1 | Z_k = D_PP^-1 D_PQ]` per block (`P x P`, `P x Q`): the
+    /// local unknowns' condensation.
+    local: Vec<f64>,
+    /// `[L_QP | D_QP | U_QP]` per block (`Q x 3P`, row by row): what the
+    /// local unknowns' solution feeds into the condensed right-hand side.
+    coupling: Vec<f64>,
+    /// The condensed matrix per block, `[L'_k | D'_k | U'_k]` (`Q x Q`).
+    reduced: Vec<f64>,
+    /// `[D''_k^-1 | G_k = D''_k^-1 L'_k]` per block of the condensed
+    /// matrix, row-major: the forward solve is then products of small dense
+    /// blocks read in one stream.
     forward: Vec<f64>,
-    /// `X_k = D'_k^-1 U_k` per block: the back substitution's stream.
+    /// `X_k = D''_k^-1 U'_k` per block: the back substitution's stream.
     back: Vec<f64>,
     /// Pivots of the current block's LU.
     piv: [usize; MAX_BLOCK],
     /// The last factorisation succeeded.
     ok: bool,
-    /// Scratch of the solves (the right-hand side in block order).
+    /// Scratch of the solves (`S` per block).
     work: RefCell<Vec<f64>>,
 }
 
 impl Factors {
     fn factorise(&mut self) -> bool {
         let l = &self.layout;
-        let s = l.size;
+        let (s, p) = (l.size, l.local);
         let csc = self.a.inner()[0].val();
         let assembled = self.assembled.as_mut_slice();
         let mut finite = true;
@@ -482,31 +810,38 @@ impl Factors {
         if lone.contains(&0.0) {
             return false;
         }
+        let (local, coupling, reduced) = (&mut self.local, &mut self.coupling, &mut self.reduced);
+        if !shaped!(s, p, condense(assembled, local, coupling, reduced)) {
+            return false;
+        }
         let (forward, back, piv) = (&mut self.forward, &mut self.back, &mut self.piv);
-        sized!(s, factorise_blocks(assembled, forward, back, piv))
+        sized!(s - p, factorise_blocks(&self.reduced, forward, back, piv))
     }
 
     /// `x = A^-1 x` (`transpose`: `x = A^-T x`); `false` if the result is
     /// not finite.
     fn solve(&self, x: &mut [f64], transpose: bool) -> bool {
         let l = &self.layout;
-        let mut z = self.work.borrow_mut();
-        let split = 3 * l.size * l.size * l.blocks();
+        let (s, p) = (l.size, l.local);
+        let mut work = self.work.borrow_mut();
+        let split = 3 * s * s * l.blocks();
         let (assembled, lone) = self.assembled.split_at(split);
-        let (forward, back) = (&self.forward, &self.back);
+        let (local, order) = (&self.local, &l.order);
         let mut finite = if transpose {
-            for (zp, &u) in z.iter_mut().zip(&l.order) {
-                *zp = x[u];
-            }
-            sized!(l.size, solve_transposed(assembled, forward, back, &mut z));
-            let mut finite = true;
-            for (&zp, &u) in z.iter().zip(&l.order) {
-                x[u] = zp;
-                finite &= zp.is_finite();
-            }
-            finite
+            let factors = (&self.forward[..], &self.back[..]);
+            let reduced = &self.reduced;
+            shaped!(
+                s,
+                p,
+                solve_condensed_transposed(assembled, local, reduced, factors, order, x, &mut work)
+            )
         } else {
-            sized!(l.size, solve_blocks(forward, back, &l.order, x, &mut z))
+            let (coupling, forward, back) = (&self.coupling, &self.forward, &self.back);
+            shaped!(
+                s,
+                p,
+                solve_condensed(local, coupling, forward, back, order, x, &mut work)
+            )
         };
         for (&u, &d) in l.lone.iter().zip(lone) {
             x[u] /= d;
@@ -579,11 +914,15 @@ impl LinearSolver<FaerSparseMat<f64>> for BlockLu {
             self.factors = None;
             return;
         };
-        let (blocks, ss) = (layout.blocks(), layout.size * layout.size);
+        let (blocks, s, p) = (layout.blocks(), layout.size, layout.local);
+        let (ss, qq) = (s * s, (s - p) * (s - p));
         self.factors = Some(Factors {
             assembled: vec![0.0; 3 * ss * blocks + layout.lone.len()],
-            forward: vec![0.0; 2 * ss * blocks],
-            back: vec![0.0; ss * blocks],
+            local: vec![0.0; (p * p + p * (s - p)) * blocks],
+            coupling: vec![0.0; (3 * p * (s - p)).max(1) * blocks],
+            reduced: vec![0.0; 3 * qq * blocks],
+            forward: vec![0.0; 2 * qq * blocks],
+            back: vec![0.0; qq * blocks],
             piv: [0; MAX_BLOCK],
             work: RefCell::new(vec![0.0; layout.order.len()]),
             layout,
@@ -770,6 +1109,72 @@ mod tests {
         }
         println!("worst relative difference {worst:e}");
         assert!(worst < 1e-9, "{worst:e}");
+    }
+
+    #[test]
+    fn the_block_solve_matches_a_dense_solve_on_beam() {
+        let mut rng = Lcg(40);
+        let mut worst: f64 = 0.0;
+        for n in [2usize, 5, 40] {
+            let dae = crate::beam::BeamDae::new(n);
+            let y = random_state(dae.dim(), n, 3.0, &mut rng);
+            for c in [1e-4, 1e-2, 0.3] {
+                worst = worst.max(worst_error(&dae, &y, c, &mut rng));
+            }
+        }
+        println!("worst relative difference {worst:e}");
+        assert!(worst < 1e-9, "{worst:e}");
+    }
+
+    /// The layout of `dae`'s Newton matrix.
+    fn layout_of<D: SemiExplicitDae>(dae: &D) -> BlockLayout {
+        let y = vec![0.1; dae.dim()];
+        let m = NewtonMatrix::of(dae, 0.0, &y, 0.01).unwrap();
+        BlockLayout::new(&dae.blocks().unwrap(), m.pattern.as_ref()).unwrap()
+    }
+
+    /// The rows `phi_i' = w_i` and `w_i' = alpha_i` (the elastic chain's
+    /// `theta_i' = w_i`, `x_i' = vx_i`, `y_i' = vy_i`; BEAM's `theta_i' =
+    /// omega_i`) hold
+    /// entries of their own rod only, and are condensed out, first in their
+    /// block; no other row is. (A single rod is one block, all of whose
+    /// rows are local: nothing is condensed.)
+    #[test]
+    fn the_rows_local_to_a_rod_are_condensed() {
+        let one = Chain::report(1, 0.1).unwrap();
+        assert_eq!(layout_of(&ChainDae::new(&one)).local, 0);
+        for n in [2usize, 3, 9] {
+            let rigid = Chain::new(ChainParams {
+                links: n,
+                damping: 0.3,
+                bending_stiffness: 0.1,
+                tip_mass: 0.3,
+                ..ChainParams::default()
+            })
+            .unwrap();
+            let dae = ChainDae::new(&rigid);
+            let l = layout_of(&dae);
+            assert_eq!((l.size, l.local), (5, 2), "rigid n = {n}");
+            for k in 0..n {
+                assert_eq!(&l.order[5 * k..5 * k + 2], &[k, n + k], "rigid n = {n}");
+            }
+            let elastic = Chain::new(ChainParams {
+                links: n,
+                damping: 0.01,
+                axial_stiffness: Some(1e4),
+                axial_damping: 0.1,
+                ..ChainParams::default()
+            })
+            .unwrap();
+            let l = layout_of(&ElasticDae::new(&elastic));
+            assert_eq!((l.size, l.local), (6, 3), "elastic n = {n}");
+        }
+        let l = layout_of(&crate::beam::BeamDae::new(7));
+        assert_eq!((l.size, l.local), (4, 1), "beam");
+        // Every row of the tridiagonal test matrix couples its neighbours.
+        let m = three_blocks();
+        let l = BlockLayout::new(&[0, 0, 1, 1, 2, 2], m.pattern.as_ref()).unwrap();
+        assert_eq!((l.size, l.local), (2, 0));
     }
 
     /// A 6x6 tridiagonal matrix (4 on the diagonal, 1 beside it) as three
