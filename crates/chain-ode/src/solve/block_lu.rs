@@ -447,6 +447,24 @@ fn condense<const P: usize, const Q: usize>(
     true
 }
 
+/// `start - a . c` for the sweeps' loop-carried products, summed in two
+/// halves that run side by side, `(start - a_0 c_0 - ..) - (a_h c_h + ..)`
+/// with `h = Q / 2`: the chain from `c` to the result is then one product
+/// and `Q / 2 + 1` additions long, against `Q + 1` one after the other.
+#[inline(always)]
+fn minus_dot<const Q: usize>(start: f64, a: &[f64], c: &[f64; Q]) -> f64 {
+    let h = Q / 2;
+    let mut left = start;
+    for j in 0..h {
+        left -= a[j] * c[j];
+    }
+    let mut right = a[h] * c[h];
+    for j in h + 1..Q {
+        right += a[j] * c[j];
+    }
+    left - right
+}
+
 /// `y = D_PP^-1 b_P` of the block whose unknowns are `uk`.
 #[inline(always)]
 fn local_rhs<const P: usize, const Q: usize>(inv: &[f64], uk: &[usize], x: &[f64]) -> [f64; P] {
@@ -522,11 +540,7 @@ fn solve_condensed<const P: usize, const Q: usize>(
             for j in 0..Q {
                 acc += d_inv[i * Q + j] * r[j];
             }
-            let mut sub = 0.0;
-            for j in 0..Q {
-                sub += g_k[i * Q + j] * carry[j];
-            }
-            zk[i] = acc - sub;
+            zk[i] = minus_dot::<Q>(acc, &g_k[i * Q..(i + 1) * Q], &carry);
         }
         carry.copy_from_slice(zk);
         yp[k * P..(k + 1) * P].copy_from_slice(&y_cur);
@@ -544,11 +558,7 @@ fn solve_condensed<const P: usize, const Q: usize>(
     {
         let mut xq = [0.0; Q];
         for i in 0..Q {
-            let mut acc = zk[i];
-            for j in 0..Q {
-                acc -= x_k[i * Q + j] * carry[j];
-            }
-            xq[i] = acc;
+            xq[i] = minus_dot::<Q>(zk[i], &x_k[i * Q..(i + 1) * Q], &carry);
         }
         for (&v, &u) in xq.iter().zip(&uk[P..]) {
             x[u] = v;
