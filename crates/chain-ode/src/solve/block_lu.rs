@@ -1078,6 +1078,18 @@ mod tests {
             .collect()
     }
 
+    /// An elastic chain of `n` rods with damped joints and links.
+    fn elastic_chain(n: usize) -> Chain {
+        Chain::new(ChainParams {
+            links: n,
+            damping: 0.01,
+            axial_stiffness: Some(1e4),
+            axial_damping: 0.1,
+            ..ChainParams::default()
+        })
+        .unwrap()
+    }
+
     #[test]
     fn the_block_solve_matches_a_dense_solve_on_random_chains() {
         let mut rng = Lcg(20);
@@ -1103,15 +1115,7 @@ mod tests {
                     worst = worst.max(worst_error(&dae, &y, c, &mut rng));
                 }
             }
-            let elastic = Chain::new(ChainParams {
-                links: n,
-                damping: 0.01,
-                axial_stiffness: Some(1e4),
-                axial_damping: 0.1,
-                ..ChainParams::default()
-            })
-            .unwrap();
-            let dae = ElasticDae::new(&elastic);
+            let dae = ElasticDae::new(&elastic_chain(n));
             let y = random_state(dae.dim(), n, 1.0, &mut rng);
             for c in [1e-4, 1e-2] {
                 worst = worst.max(worst_error(&dae, &y, c, &mut rng));
@@ -1145,10 +1149,9 @@ mod tests {
 
     /// The rows `phi_i' = w_i` and `w_i' = alpha_i` (the elastic chain's
     /// `theta_i' = w_i`, `x_i' = vx_i`, `y_i' = vy_i`; BEAM's `theta_i' =
-    /// omega_i`) hold
-    /// entries of their own rod only, and are condensed out, first in their
-    /// block; no other row is. (A single rod is one block, all of whose
-    /// rows are local: nothing is condensed.)
+    /// omega_i`) hold entries of their own rod only, and are condensed out,
+    /// first in their block; no other row is. (A single rod is one block,
+    /// all of whose rows are local: nothing is condensed.)
     #[test]
     fn the_rows_local_to_a_rod_are_condensed() {
         let one = Chain::report(1, 0.1).unwrap();
@@ -1168,15 +1171,7 @@ mod tests {
             for k in 0..n {
                 assert_eq!(&l.order[5 * k..5 * k + 2], &[k, n + k], "rigid n = {n}");
             }
-            let elastic = Chain::new(ChainParams {
-                links: n,
-                damping: 0.01,
-                axial_stiffness: Some(1e4),
-                axial_damping: 0.1,
-                ..ChainParams::default()
-            })
-            .unwrap();
-            let l = layout_of(&ElasticDae::new(&elastic));
+            let l = layout_of(&ElasticDae::new(&elastic_chain(n)));
             assert_eq!((l.size, l.local), (6, 3), "elastic n = {n}");
         }
         let l = layout_of(&crate::beam::BeamDae::new(7));
