@@ -19,13 +19,7 @@ pub(super) fn run(
     span: &Span<'_>,
     path: &PivotPath,
 ) -> (Run, ChainObserver) {
-    let mut obs = ChainObserver::with_path(
-        chain,
-        path.clone(),
-        options.t_end,
-        options.output_dt,
-        options.cancel.clone(),
-    );
+    let mut obs = ChainObserver::for_run(chain, path.clone(), options);
     // `ElasticSystem::new` lets go at t = 0 already (`pivot.release = 0`).
     let mut sys = ElasticSystem::new(chain);
     let t_release = match chain.pivot().release {

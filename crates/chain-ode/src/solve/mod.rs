@@ -679,13 +679,7 @@ pub fn solve(
     } else if chain.pivot().release.is_some() {
         run_with_release(chain, start, method, options, &span, &mut path)
     } else {
-        let mut obs = ChainObserver::with_path(
-            chain,
-            path.clone(),
-            options.t_end,
-            options.output_dt,
-            options.cancel.clone(),
-        );
+        let mut obs = ChainObserver::for_run(chain, path.clone(), options);
         let run = registry::run(method, &mut ChainSystem::new(chain), &span, &mut obs);
         (run, obs)
     };
@@ -794,15 +788,7 @@ fn run_with_release(
     let n = chain.links();
     let t_release = chain.pivot().release.unwrap_or(0.0);
     let mut sys = ChainSystem::new(chain);
-    let new_observer = |path: &PivotPath| {
-        ChainObserver::with_path(
-            chain,
-            path.clone(),
-            options.t_end,
-            options.output_dt,
-            options.cancel.clone(),
-        )
-    };
+    let new_observer = |path: &PivotPath| ChainObserver::for_run(chain, path.clone(), options);
     if t_release <= span.t0 || t_release >= span.t_end {
         if t_release <= span.t0 {
             path.release(chain, span.t0, &start.angles, &start.rates);
@@ -893,11 +879,9 @@ mod tests {
         }
     }
 
-    /// A run cut in two (a pivot let go mid-run) is the two pieces run
-    /// one after the other: the same end state, and the work of both
-    /// counted, for an explicit and an implicit method.
-    #[test]
-    fn a_run_cut_in_two_is_its_two_pieces_with_both_pieces_work() {
+    /// Eight rods of the report's chain hanging on span d = 3: the chain,
+    /// the start and its packed state.
+    fn eight_rods_on_span_3() -> (Chain, State, Vec<f64>) {
         let chain = Chain::report(8, 5e-4).unwrap();
         let start = Start::Catenary {
             p0: [0.0, 0.0],
@@ -906,21 +890,22 @@ mod tests {
         .state(&chain)
         .unwrap();
         let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
+        (chain, start, y0)
+    }
+
+    /// A run cut in two (a pivot let go mid-run) is the two pieces run
+    /// one after the other: the same end state, and the work of both
+    /// counted, for an explicit and an implicit method.
+    #[test]
+    fn a_run_cut_in_two_is_its_two_pieces_with_both_pieces_work() {
+        let (chain, start, y0) = eight_rods_on_span_3();
         let options = SolveOptions {
             t_end: 2.0,
             ..Default::default()
         };
         let settings = Settings::of(&options);
         let path = PivotPath::new(&chain, start.anchor);
-        let observer = || {
-            ChainObserver::with_path(
-                &chain,
-                path.clone(),
-                options.t_end,
-                options.output_dt,
-                options.cancel.clone(),
-            )
-        };
+        let observer = || ChainObserver::for_run(&chain, path.clone(), &options);
         let span = Span {
             t0: 0.0,
             y0: &y0,
@@ -966,14 +951,7 @@ mod tests {
 
     #[test]
     fn every_method_stops_at_the_step_its_observer_asks() {
-        let chain = Chain::report(8, 5e-4).unwrap();
-        let start = Start::Catenary {
-            p0: [0.0, 0.0],
-            p1: [3.0, 0.0],
-        }
-        .state(&chain)
-        .unwrap();
-        let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
+        let (chain, _, y0) = eight_rods_on_span_3();
         let settings = Settings::of(&SolveOptions {
             t_end: 4.0,
             ..Default::default()

@@ -231,6 +231,18 @@ impl ChainObserver {
         )
     }
 
+    /// [`ChainObserver::with_path`] with the end time, the sampling and
+    /// the cancel flag of a run's `options`.
+    pub(crate) fn for_run(chain: &Chain, path: PivotPath, options: &super::SolveOptions) -> Self {
+        Self::with_path(
+            chain,
+            path,
+            options.t_end,
+            options.output_dt,
+            options.cancel.clone(),
+        )
+    }
+
     /// [`ChainObserver::new`] with the pivot's `path`.
     pub fn with_path(
         chain: &Chain,
