@@ -46,6 +46,16 @@ fn hanging(chain: &Chain) -> State {
     .unwrap()
 }
 
+/// The folded start (both ends at the origin), at rest.
+fn folded_at_origin(chain: &Chain) -> State {
+    Start::Folded {
+        p0: [0.0, 0.0],
+        down: None,
+    }
+    .state(chain)
+    .unwrap()
+}
+
 /// A straight chain at `angle` from the horizontal, at rest.
 fn slanted(chain: &Chain, angle: f64) -> State {
     Start::Angles {
@@ -262,12 +272,7 @@ fn both_ends_let_go_an_elastic_chain_falls_as_one_body() {
         ..params(n, 1e4)
     };
     let chain = Chain::new(p).unwrap();
-    let s = Start::Folded {
-        p0: [0.0, 0.0],
-        down: None,
-    }
-    .state(&chain)
-    .unwrap();
+    let s = folded_at_origin(&chain);
     let opts = SolveOptions {
         output_dt: Some(0.25),
         ..tolerances(1.0, 1e-10, 1e-12)
@@ -384,12 +389,7 @@ fn the_energy_balance_holds_with_every_new_term() {
             ..params(n, 1e3)
         };
         let chain = Chain::new(p).unwrap();
-        let s = Start::Folded {
-            p0: [0.0, 0.0],
-            down: None,
-        }
-        .state(&chain)
-        .unwrap();
+        let s = folded_at_origin(&chain);
         for method in [Method::Dop853, Method::Bdf] {
             let opts = SolveOptions {
                 output_dt: Some(0.05),
