@@ -373,6 +373,22 @@ impl Chain {
         self.params.damping / (self.params.mass * self.rod_length().powi(2))
     }
 
+    /// The largest damping rate of one rod, `r / min_i (m_i l_i^2)`
+    /// (1/time): the friction's stiffness on a profiled chain, where a
+    /// light or short rod is damped far faster than the mean rod
+    /// ([`Chain::damping_rate`]); equal to it for equal rods (the same
+    /// number, bit for bit: the minimum is exactly 1).
+    pub fn stiffest_damping_rate(&self) -> f64 {
+        let smallest = self.rods().map_or(1.0, |r| {
+            r.mass
+                .iter()
+                .zip(&r.length)
+                .map(|(mu, lambda)| mu * lambda * lambda)
+                .fold(f64::INFINITY, f64::min)
+        });
+        self.damping_rate() / smallest
+    }
+
     /// `g / l` (1/time^2).
     pub fn gravity_rate(&self) -> f64 {
         self.params.gravity / self.rod_length()
@@ -563,5 +579,22 @@ mod tests {
         assert!(Chain::report(MAX_LINKS, 0.0).is_ok());
         let e = Chain::report(MAX_LINKS + 1, 0.0).unwrap_err();
         assert_eq!(e.field, "chain.links");
+    }
+
+    /// The stiffest rod's damping rate is the mean rod's, exactly, for
+    /// equal rods, and `r / min (m_i l_i^2)` for a profile: relative masses
+    /// `(1, 1, 4, 2)` (mean 2) make the lightest rod half the mean rod
+    /// (`m = 1`), so the rate is `r / (0.5 l^2)`, twice the mean's.
+    #[test]
+    fn the_stiffest_damping_rate_is_the_lightest_rods() {
+        let mut p = with("chain.damping", 0.3);
+        p.links = 4;
+        let equal = Chain::new(p.clone()).unwrap();
+        assert_eq!(equal.stiffest_damping_rate(), equal.damping_rate());
+        p.profile.masses = Some(vec![1.0, 1.0, 4.0, 2.0]);
+        let c = Chain::new(p).unwrap();
+        let l = c.rod_length();
+        let expected = 0.3 / (0.5 * l * l);
+        assert!((c.stiffest_damping_rate() / expected - 1.0).abs() < 1e-14);
     }
 }

@@ -59,15 +59,16 @@ pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use ode::{Cancel, Stats, Status};
-pub use pivot::{Pivot, PivotPath};
+pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 pub use solve::{
     bdf_crossover_gamma, solve, solve_beam, solve_report, Accuracy, BeamRun, Method, Sample,
     Segment, SolveOptions, Summary, Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
-    BDF_DENSE_MAX_LINKS, BEAM_MAX_STEPS, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
+    BDF_DENSE_MAX_LINKS, BEAM_MAX_STEPS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS,
+    RTOL_RANGE,
 };
 #[doc(hidden)]
 pub use solve::{unit_costs, with_general_sparse_lu, UnitCosts};
-pub use state::{Start, StartError, State};
+pub use state::{Start, StartError, State, MAX_START_ANGLE};
 pub use system::ChainSystem;

@@ -82,7 +82,83 @@ fn min_jerk(u: f64) -> [f64; 3] {
     }
 }
 
+/// Steps per time scale of a prescribed motion that a step-size
+/// controller must take at least: at most `tau / 16` during a smooth jerk of
+/// duration `tau`, at most `T / 16` on a harmonic motion of period
+/// `T = 2 pi / Omega` (see [`Pivot::time_scales`]).
+pub const STEPS_PER_TIME_SCALE: f64 = 16.0;
+
+/// The largest steps that resolve the pivot's prescribed motion (time
+/// units): at most `max_step` before `until`, a step that lands on `until`
+/// exactly, and at most `max_step_after` from there on. An adaptive
+/// explicit method's error estimate cannot see a drive that happens
+/// between its stages (a jerk shorter than the first step is zero at both
+/// the step's ends and at every stage past it); these caps make it see it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeScales {
+    /// The largest step before `until`.
+    pub max_step: f64,
+    /// The end of the first phase (the smooth jerk's `tau`), landed on
+    /// exactly; 0: one phase.
+    pub until: f64,
+    /// The largest step from `until` on.
+    pub max_step_after: f64,
+}
+
+impl TimeScales {
+    /// No cap: a fixed, released or uniformly accelerated pivot.
+    pub const NONE: Self = Self {
+        max_step: f64::INFINITY,
+        until: 0.0,
+        max_step_after: f64::INFINITY,
+    };
+
+    /// The largest step allowed at `t`.
+    pub fn max_step_at(&self, t: f64) -> f64 {
+        if t < self.until {
+            self.max_step
+        } else {
+            self.max_step_after
+        }
+    }
+
+    /// The smallest cap of the run (a fixed step must obey it throughout).
+    pub fn smallest(&self) -> f64 {
+        if self.until > 0.0 {
+            self.max_step.min(self.max_step_after)
+        } else {
+            self.max_step_after
+        }
+    }
+}
+
 impl Pivot {
+    /// The time scales of the prescribed motion, as step caps: the smooth
+    /// jerk's `tau / 16` up to `tau` (landed on), and a harmonic motion's
+    /// `2 pi / (16 Omega)` throughout; [`TimeScales::NONE`] for a fixed pivot,
+    /// a release alone or a constant acceleration (which has no time scale).
+    pub fn time_scales(&self) -> TimeScales {
+        let nz = |p: Vec2| p[0] != 0.0 || p[1] != 0.0;
+        let harmonic = if nz(self.amplitude) && self.frequency > 0.0 {
+            std::f64::consts::TAU / self.frequency / STEPS_PER_TIME_SCALE
+        } else {
+            f64::INFINITY
+        };
+        if nz(self.jerk) {
+            TimeScales {
+                max_step: (self.jerk_time / STEPS_PER_TIME_SCALE).min(harmonic),
+                until: self.jerk_time,
+                max_step_after: harmonic,
+            }
+        } else {
+            TimeScales {
+                max_step: harmonic,
+                until: 0.0,
+                max_step_after: harmonic,
+            }
+        }
+    }
+
     /// True for a pivot that never moves: no prescribed motion, no release.
     /// A chain with a fixed pivot runs exactly the arithmetic it always ran.
     pub fn is_fixed(&self) -> bool {
@@ -380,5 +456,56 @@ impl PivotPath {
     /// True once `t` is past the release (the release noted).
     pub fn is_free_at(&self, t: f64) -> bool {
         self.released.is_some() && self.pivot.released_at(t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A smooth jerk caps the step at `tau / 16` up to `tau` and not past
+    /// it; a harmonic drive at a sixteenth of its period throughout, and
+    /// the jerk's cap never exceeds it; a constant acceleration, a release
+    /// or a fixed pivot caps nothing.
+    #[test]
+    fn the_caps_follow_the_time_scales_the_user_set() {
+        let jerk = Pivot {
+            jerk: [1.0, 0.0],
+            jerk_time: 0.32,
+            ..Pivot::default()
+        };
+        let s = jerk.time_scales();
+        assert_eq!((s.max_step_at(0.0), s.max_step_at(0.31)), (0.02, 0.02));
+        assert_eq!(s.max_step_at(0.32), f64::INFINITY);
+        assert_eq!((s.until, s.smallest()), (0.32, 0.02));
+
+        let omega = 2.0;
+        let period = std::f64::consts::TAU / omega;
+        let both = Pivot {
+            amplitude: [0.0, 0.1],
+            frequency: omega,
+            jerk_time: 100.0,
+            ..jerk
+        };
+        let s = both.time_scales();
+        assert_eq!(s.max_step_at(0.0), period / 16.0);
+        assert_eq!(s.max_step_at(1e3), period / 16.0);
+
+        for quiet in [
+            Pivot::default(),
+            Pivot {
+                acceleration: [0.0, -3.0],
+                release: Some(0.5),
+                ..Pivot::default()
+            },
+            Pivot {
+                amplitude: [0.0, 0.1],
+                frequency: 0.0,
+                ..Pivot::default()
+            },
+        ] {
+            assert_eq!(quiet.time_scales(), TimeScales::NONE);
+            assert_eq!(quiet.time_scales().smallest(), f64::INFINITY);
+        }
     }
 }

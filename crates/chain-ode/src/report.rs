@@ -154,6 +154,14 @@ impl ReportModel {
             "0 with model.report = true (the report's model has no tip mass)",
             chain.tip_mass(),
         )?;
+        // The clock erratum's time unit is sqrt(l / g) of ours: infinite at
+        // g = 0, where the report's model (G = 1) has no counterpart.
+        check(
+            !self.clock || chain.gravity() > 0.0,
+            "chain.gravity",
+            "a number > 0 with model.report = true (the report's clock unit is sqrt(l / g))",
+            chain.gravity(),
+        )?;
         if let Some(key) = chain.params().profile.first_given() {
             return Err(InvalidParameter {
                 field: key,

@@ -20,6 +20,11 @@ pub struct State {
     pub rates: Vec<f64>,
 }
 
+/// The largest `|phi_i|` a start may give (rad): two turns, `4 pi`. Every
+/// configuration has angles within one turn; a larger angle only costs
+/// precision (at `1e300` the rod cannot turn at all).
+pub const MAX_START_ANGLE: f64 = 4.0 * std::f64::consts::PI;
+
 /// How the chain is laid out at `t = 0` (always at rest unless `Angles` gives rates).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Start {
@@ -168,6 +173,17 @@ impl Start {
                     "start.angles",
                     "finite numbers",
                     "a non-finite value",
+                )?;
+                // An angle so large that its rounding unit is a visible
+                // fraction of a turn freezes its rod (`phi + dphi == phi`
+                // at 1e300): bounded to two turns either way, which holds
+                // every configuration.
+                let worst = angles.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+                check(
+                    worst <= MAX_START_ANGLE,
+                    "start.angles",
+                    "angles with |phi| <= 4 pi rad (two turns)",
+                    worst,
                 )?;
                 let rates = rates.clone().unwrap_or_else(|| vec![0.0; n]);
                 check(

@@ -217,6 +217,7 @@ pub struct ReportLevel {
     pub links: usize,
     pub mass: f64,
     pub damping: f64,
+    /// The level's stiffness parameter, `Chain::stiffest_damping_rate`.
     pub damping_rate: f64,
     pub status: String,
     /// `E(0)`: the start's energy (converges with n at fixed `M`).
@@ -328,6 +329,9 @@ pub fn run_levels_until(
     cancel: Option<&chain_ode::Cancel>,
 ) -> Result<Vec<Level>, Error> {
     let jobs = crate::sweep::check_jobs("--jobs", jobs)?;
+    // The report's model keeps its time unit sqrt(l / g) per rod, which
+    // changes with n: its levels are not one physical problem refined.
+    scene.prepare()?.require_corrected("converge")?;
     let mut links = links.to_vec();
     links.sort_unstable();
     links.dedup();
@@ -402,7 +406,7 @@ pub fn report(scene: &Scene, levels: &[Level], tol: f64) -> Result<Report, Error
                 links: l.links(),
                 mass: l.chain.mass(),
                 damping: l.chain.damping(),
-                damping_rate: l.chain.damping_rate(),
+                damping_rate: l.chain.stiffest_damping_rate(),
                 status: l.summary.status.clone(),
                 energy_start: l.summary.energy_start,
                 tip_speed_max: l.summary.tip_speed_max,

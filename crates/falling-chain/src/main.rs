@@ -14,7 +14,7 @@ use clap::{Args, Parser, Subcommand};
 use falling_chain::atomic::{begin, check_writable};
 use falling_chain::error::{echo, echo_path, escape};
 use falling_chain::study::shard::Provenance;
-use falling_chain::summary::stiffness_hint_for;
+use falling_chain::summary::stiffness_hint_for_model;
 use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
 
 mod study_commands;
@@ -386,7 +386,7 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     } else {
         println!("{summary}");
     }
-    if let Some(hint) = stiffness_hint_for([&summary]) {
+    if let Some(hint) = stiffness_hint_for_model([&summary], run.report.is_some()) {
         eprintln!("{hint}");
     }
     if let Some(out) = out {
@@ -433,7 +433,8 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
         bar.set_position(done as u64);
     })?;
     bar.finish_and_clear();
-    if let Some(hint) = stiffness_hint_for(rows.iter().map(|r| &r.summary)) {
+    let report = scene.prepare().is_ok_and(|p| p.report.is_some());
+    if let Some(hint) = stiffness_hint_for_model(rows.iter().map(|r| &r.summary), report) {
         eprintln!("{hint}");
     }
     let failed = rows.iter().filter(|r| !r.summary.is_ok()).count();

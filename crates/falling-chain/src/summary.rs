@@ -68,7 +68,9 @@ pub struct RunSummary {
     pub max_energy_rise: f64,
     /// `M g L`, the scale for energy errors.
     pub energy_scale: f64,
-    /// `r / (m l^2)`, the stiffness parameter.
+    /// `r / min_i (m_i l_i^2)` (1/time), the stiffness parameter: the
+    /// damping rate of the most damped rod (`r / (m l^2)` for equal rods;
+    /// `Chain::stiffest_damping_rate`).
     pub damping_rate: f64,
     /// Tip position at `t_reached`.
     pub tip_end: [f64; 2],
@@ -133,23 +135,42 @@ pub fn looks_stiff(summary: &RunSummary) -> bool {
 }
 
 /// The one-line hint for runs that [`looks_stiff`]: `stiff` of `total` runs
-/// (one run: `total == 1`), by `method` with at most `detections`.
-pub fn stiffness_hint(method: &str, detections: u64, stiff: usize, total: usize) -> String {
+/// (one run: `total == 1`), by `method` with at most `detections`. Under
+/// the report's model (`report`), which runs only rk4, dopri5 and dop853,
+/// it names those and the way to the implicit methods.
+pub fn stiffness_hint(
+    method: &str,
+    detections: u64,
+    stiff: usize,
+    total: usize,
+    report: bool,
+) -> String {
     let which = if total == 1 {
         format!("{method} detected stiffness {detections} times")
     } else {
         format!("{stiff} of {total} runs detected stiffness (up to {detections} times, {method})")
     };
-    format!(
-        "hint: {which} (each: 15 steps in a row at its stability limit); \
+    let advice = if report {
+        "the report's model runs only rk4, dopri5 and dop853; with model.report = false, \
          --method bdf or auto may need far fewer steps (the run goes on as asked)"
-    )
+    } else {
+        "--method bdf or auto may need far fewer steps (the run goes on as asked)"
+    };
+    format!("hint: {which} (each: 15 steps in a row at its stability limit); {advice}")
 }
 
-/// The hint for a set of summaries, if any of them [`looks_stiff`]: one
-/// line for the whole command.
+/// The hint for a set of summaries of the corrected model, if any of them
+/// [`looks_stiff`]: one line for the whole command.
 pub fn stiffness_hint_for<'a>(
     summaries: impl IntoIterator<Item = &'a RunSummary>,
+) -> Option<String> {
+    stiffness_hint_for_model(summaries, false)
+}
+
+/// [`stiffness_hint_for`], for runs of the report's model when `report`.
+pub fn stiffness_hint_for_model<'a>(
+    summaries: impl IntoIterator<Item = &'a RunSummary>,
+    report: bool,
 ) -> Option<String> {
     let (mut total, mut stiff, mut most, mut method) = (0, 0, 0, "");
     for s in summaries {
@@ -162,7 +183,7 @@ pub fn stiffness_hint_for<'a>(
             }
         }
     }
-    (stiff > 0).then(|| stiffness_hint(method, most, stiff, total))
+    (stiff > 0).then(|| stiffness_hint(method, most, stiff, total, report))
 }
 
 impl RunSummary {
@@ -194,7 +215,7 @@ impl RunSummary {
             energy_balance_error: s.energy_balance_error,
             max_energy_rise: s.max_energy_rise,
             energy_scale: traj.chain.energy_scale(),
-            damping_rate: traj.chain.damping_rate(),
+            damping_rate: traj.chain.stiffest_damping_rate(),
             tip_end: s.tip_end,
             tip_velocity_end: s.tip_velocity_end,
             tip_speed_max: s.tip_speed_max,

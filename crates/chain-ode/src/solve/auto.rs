@@ -39,8 +39,11 @@ pub(crate) const AUTO_DOP853_RTOL: f64 = 1e-8;
 impl Method {
     /// The methods `auto` runs for this chain and tolerance: the explicit one
     /// it starts with (none when the chain is past the crossover), and BDF.
+    /// The chain's damping rate is its stiffest rod's
+    /// ([`Chain::stiffest_damping_rate`]): a profile with one light or short
+    /// rod is as stiff as that rod.
     pub fn auto_plan(chain: &Chain, rtol: f64) -> Option<Method> {
-        if chain.damping_rate() >= bdf_crossover_gamma(chain) {
+        if chain.stiffest_damping_rate() >= bdf_crossover_gamma(chain) {
             None
         } else if rtol <= AUTO_DOP853_RTOL {
             Some(Method::Dop853)

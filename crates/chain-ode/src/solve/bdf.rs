@@ -498,6 +498,7 @@ mod tests {
             h_min: 0.0,
             max_steps: 100_000,
             h0: None,
+            scales: crate::pivot::TimeScales::NONE,
         };
         let mut rec = Record::default();
         let out = integrate_dae(dae, 0.0, y, t_end, &opts, &mut rec);

@@ -58,6 +58,7 @@ pub fn solve_beam(method: Method, accuracy: f64) -> Result<BeamRun, InvalidParam
         h_min: 0.0,
         max_steps: BEAM_MAX_STEPS,
         h0: None,
+        scales: crate::pivot::TimeScales::NONE,
     };
     match method.accuracy() {
         Accuracy::Step => {

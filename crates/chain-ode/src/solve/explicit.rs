@@ -5,8 +5,12 @@
 //! owns everything else:
 //!
 //! * the step budget (accepted + rejected attempts, `max_steps`) and the
-//!   step floor ([`Settings::floor`]);
+//!   step floor ([`Settings::floor_towards`]: never above the distance
+//!   left, so that a span shorter than the rounding floor still runs);
 //! * landing on `t_end` exactly;
+//! * the step caps of a prescribed pivot motion ([`Settings::scales`]:
+//!   at most `tau / 16` through a smooth jerk, landing on its end, and
+//!   `T / 16` on a harmonic drive);
 //! * retrying a non-finite trial [`NONFINITE_SHRINK`] times smaller (ending
 //!   `diverged` at the floor);
 //! * the PI step-size controller, with each method's [`Control`];
@@ -216,7 +220,16 @@ fn steps<P: Pair, S: OdeSystem>(sys: &mut S, asked: &Span<'_>, obs: &mut dyn Obs
         if obs.stop() {
             return Outcome::ended(Status::Interrupted, t, Some(t), stats, y);
         }
-        let floor = o.floor(t);
+        // A prescribed pivot motion's time scale: no step longer than its
+        // cap, and a step that lands on the end of its first phase.
+        h = h.min(o.scales.max_step_at(t));
+        let until = o.scales.until;
+        let land = if t < until && until < t_end {
+            until
+        } else {
+            t_end
+        };
+        let floor = o.floor_towards(t, land);
         if h < floor {
             let status = if last_nonfinite {
                 Status::Diverged
@@ -225,11 +238,12 @@ fn steps<P: Pair, S: OdeSystem>(sys: &mut S, asked: &Span<'_>, obs: &mut dyn Obs
             };
             return Outcome::ended(status, t, Some(t + h), stats, y);
         }
-        // Land on t_end exactly; stretch a step that would leave a sliver.
+        // Land on t_end (or the time scale's end) exactly; stretch a step
+        // that would leave a sliver.
         let mut t1 = t + h;
-        if t1 > t_end - 1e-10 * h {
-            t1 = t_end;
-            h = t_end - t;
+        if t1 > land - 1e-10 * h {
+            t1 = land;
+            h = land - t;
         }
 
         let mut s = Step {

@@ -3,6 +3,7 @@
 
 use super::{Segment, SolveOptions, Stats};
 use crate::ode::{Observer, Outcome, Problem};
+use crate::pivot::TimeScales;
 
 /// The parameter that sets a method's accuracy.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -97,6 +98,9 @@ pub(crate) struct Settings {
     pub max_steps: u64,
     /// Initial step; `None` picks one (Hairer's algorithm for DOPRI5).
     pub h0: Option<f64>,
+    /// The step caps of a prescribed pivot motion (the adaptive explicit
+    /// methods obey them; [`TimeScales::NONE`] by default).
+    pub scales: TimeScales,
 }
 
 impl Settings {
@@ -109,12 +113,24 @@ impl Settings {
             h_min: options.h_min,
             max_steps: options.max_steps,
             h0: None,
+            scales: TimeScales::NONE,
         }
     }
 
     /// The step floor at time `t`.
     pub fn floor(&self, t: f64) -> f64 {
         self.h_min.max(1e-14 * t.abs().max(1.0))
+    }
+
+    /// The step floor at `t` of a run that must still reach `t_land` (the
+    /// span's end or a time scale's end): never above the distance left nor
+    /// above the cap at `t`, so that a span or a time scale shorter than
+    /// the rounding floor (`t_end = 1e-15`, a release at `1e-300`) is
+    /// integrated rather than refused with `step_size_too_small`.
+    pub fn floor_towards(&self, t: f64, t_land: f64) -> f64 {
+        self.floor(t)
+            .min(t_land - t)
+            .min(self.scales.max_step_at(t))
     }
 
     /// These settings for the rest of a run that already spent `done`'s
@@ -146,6 +162,7 @@ mod tests {
             h_min: 0.0,
             max_steps: 100,
             h0: None,
+            scales: crate::pivot::TimeScales::NONE,
         };
         let done = |steps, rejected_steps| Stats {
             steps,

@@ -50,6 +50,7 @@ pub use beam_run::{solve_beam, BeamRun, BEAM_MAX_STEPS};
 pub use integrator::Accuracy;
 use integrator::{Run, Settings, Span};
 use observer::ChainObserver;
+pub use observer::DRIVE_BALANCE_FRACTION;
 pub use report_run::{solve_report, REPORT_METHODS};
 #[doc(hidden)]
 pub use unit_costs::{unit_costs, UnitCosts};
@@ -225,6 +226,9 @@ impl SolveOptions {
     ///   each, within [`MAX_OUTPUT_BYTES`] (the smallest `run.output_dt`
     ///   accepted is [`SolveOptions::min_output_dt`]);
     /// * `bdf-dense`: at most [`BDF_DENSE_MAX_LINKS`] rods (`bdf` runs any).
+    /// * RK4 with a prescribed pivot motion: `run.dt` at most the motion's
+    ///   time scale over [`crate::STEPS_PER_TIME_SCALE`]
+    ///   ([`crate::Pivot::time_scales`]).
     ///
     /// `chain` itself is checked by [`Chain::validate`].
     pub fn validate_for(&self, chain: &Chain, method: Method) -> Result<(), InvalidParameter> {
@@ -247,6 +251,30 @@ impl SolveOptions {
                 ),
                 self.dt,
             )?;
+            // A fixed step must resolve the pivot's prescribed motion, as
+            // the adaptive methods' caps do (`Pivot::time_scales`).
+            let cap = chain.pivot().time_scales().smallest();
+            if cap.is_finite() {
+                let (key, scale) = if chain.pivot().jerk != [0.0, 0.0]
+                    && cap == chain.pivot().jerk_time / crate::pivot::STEPS_PER_TIME_SCALE
+                {
+                    ("pivot.jerk_time", "the smooth jerk's duration")
+                } else {
+                    (
+                        "pivot.frequency",
+                        "the harmonic motion's period 2 pi / frequency",
+                    )
+                };
+                check(
+                    self.dt <= cap,
+                    "run.dt",
+                    format!(
+                        "at most {cap:e} for rk4 with this pivot: {} of {scale} ({key})",
+                        format_args!("1/{}", crate::pivot::STEPS_PER_TIME_SCALE)
+                    ),
+                    self.dt,
+                )?;
+            }
         }
         if let Some(o) = self.output_dt {
             let o_min = Self::min_output_dt_for(self.t_end, chain);
@@ -644,7 +672,9 @@ pub(crate) fn state_joint_forces(chain: &Chain, t: f64, free: bool, y: &[f64]) -
 /// `t_failed` the first time a non-finite value was recorded: a NaN or an
 /// infinity in the summary never comes with `Status::Ok`. A finite run whose
 /// energy balance error `max |E + W - E(0)|` exceeds the chain's energy
-/// scale ([`Chain::energy_scale`]) ends `Status::Inaccurate`, with
+/// scale ([`Chain::energy_scale`]), or with a prescribed pivot motion
+/// [`DRIVE_BALANCE_FRACTION`] of that scale plus the work done, ends
+/// `Status::Inaccurate`, with
 /// `t_failed` the first step end where it did. A run whose
 /// `options.cancel` is set ends `Status::Interrupted` at its last accepted
 /// step (`t_failed = t_reached`).
@@ -665,7 +695,10 @@ pub fn solve(
         ChainSystem::pack(&start.angles, &start.rates, 0.0)
     };
     let mut path = PivotPath::new(chain, start.anchor);
-    let settings = Settings::of(options);
+    let settings = Settings {
+        scales: chain.pivot().time_scales(),
+        ..Settings::of(options)
+    };
     let span = Span {
         t0: 0.0,
         y0: &y0,
@@ -744,11 +777,15 @@ fn trajectory(
     // stayed finite: it must not pass as `ok`.
     // A finite run whose energy balance error exceeds the chain's energy
     // scale is not a solution of the model (a step far too large, a
-    // tolerance far too loose): it must not pass as `ok` either.
+    // tolerance far too loose): it must not pass as `ok` either; with a
+    // driven pivot, nor one whose error is a percent of the work done
+    // (`ChainObserver::balance_limit`).
     let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
         let t = obs.t_nonfinite.unwrap_or(outcome.t_reached);
         (Status::Diverged, Some(t))
-    } else if outcome.status.is_ok() && summary.energy_balance_error > energy_scale {
+    } else if outcome.status.is_ok()
+        && summary.energy_balance_error > energy_scale.min(obs.balance_limit())
+    {
         let t = obs.t_inaccurate.unwrap_or(outcome.t_reached);
         (Status::Inaccurate, Some(t))
     } else {

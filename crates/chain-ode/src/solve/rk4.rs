@@ -174,6 +174,7 @@ mod tests {
             h_min: 0.0,
             max_steps: 10,
             h0: None,
+            scales: crate::pivot::TimeScales::NONE,
         };
         let span = Span {
             t0: 0.0,
