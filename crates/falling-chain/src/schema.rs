@@ -365,7 +365,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Numbers,
         default: DefaultValue::Required,
         kinds: Kinds::Only(&[StartKind::Angles]),
-        doc: "`phi_1..phi_n` in rad from the horizontal",
+        doc: "`phi_1..phi_n` in rad from the horizontal, each within +-4 pi",
         example: "[0.1, 0.2, 0.3, 0.4]",
         out_of_range: Some("[nan, 0, 0, 0]"),
     },
