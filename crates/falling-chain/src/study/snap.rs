@@ -12,11 +12,12 @@
 //!   the sampling (it has no limit);
 //! * the **impulse of the snap**: the momentum the support takes out of the
 //!   chain over the window `[t_p - w, t_p + w]` around the peak's time `t_p`,
-//!   `J = ∫ F_1 dt = P(t_p + w) - P(t_p - w) + M g (2 w) ŷ` (Newton's second
-//!   law for the whole chain, `P = Σ m c_i'` the rods' momentum), read from
-//!   the two samples that bound the window: exact whatever the pulse's
-//!   width, for either model. In units of `M sqrt(g L)`; the weight's share
-//!   `M g 2w` in the same units is given beside it.
+//!   `J = ∫ F_1 dt = P(t_p + w) - P(t_p - w) + (M + M_t) g (2 w) ŷ` (Newton's
+//!   second law for the whole chain, `P = Σ m_i c_i' + M_t v_tip` its
+//!   momentum, each model's own: [`momentum`]), read from the two samples
+//!   that bound the window: exact whatever the pulse's width, for either
+//!   model, any rod profile and a tip mass. In units of `M sqrt(g L)`; the
+//!   weight's share `(M + M_t) g 2w` in the same units is given beside it.
 //!
 //! [`tension_profiles`] gives the tension at every joint at chosen times.
 
@@ -84,30 +85,21 @@ pub struct Snap {
     pub wall_seconds: f64,
 }
 
-/// The rods' momentum `P = Σ m c_i' (+ M_t v_tip)` at sample `k`.
+/// The chain's momentum relative to the pivot, `P = Σ m_i c_i' + M_t v_tip`,
+/// at sample `k`: the model's own (`chain_ode::elastic::momentum` for
+/// elastic links; for rigid ones `(Σ m_i + M_t) c_rel'`, the centre of
+/// mass's velocity from `chain_ode::pivot::centre_of_mass`), so that a tip
+/// mass and unequal rods count as the equations of motion count them.
 pub fn momentum(traj: &Trajectory, k: usize) -> Vec2 {
     let chain = &traj.chain;
-    let (n, m) = (chain.links(), chain.mass());
     let y = traj.state(k);
     if chain.is_elastic() {
-        // [theta, w, W, x, y, vx, vy]: the centres' velocities.
-        let (vx, vy) = (&y[4 * n + 1..5 * n + 1], &y[5 * n + 1..6 * n + 1]);
-        return [m * vx.iter().sum::<f64>(), m * vy.iter().sum::<f64>()];
+        return chain_ode::elastic::momentum(chain, y);
     }
-    let l = chain.rod_length();
-    let (phi, w) = (&y[..n], &y[n..2 * n]);
-    // Centre velocity of rod i: the joint's velocity plus half the rod's.
-    let (mut jx, mut jy, mut px, mut py) = (0.0, 0.0, 0.0, 0.0);
-    for i in 0..n {
-        let (s, c) = phi[i].sin_cos();
-        let (dx, dy) = (-l * w[i] * s, l * w[i] * c);
-        px += jx + 0.5 * dx;
-        py += jy + 0.5 * dy;
-        jx += dx;
-        jy += dy;
-    }
-    let mt = chain.tip_mass();
-    [m * px + mt * jx, m * py + mt * jy]
+    let n = chain.links();
+    let [_, v] = chain_ode::pivot::centre_of_mass(chain, &y[..n], &y[n..2 * n]);
+    let m = chain.total_mass() + chain.tip_mass();
+    [m * v[0], m * v[1]]
 }
 
 /// The sample of `traj` nearest `t`.
@@ -143,6 +135,9 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
     let chain = &traj.chain;
     let p = chain.params();
     let (weight, mass) = (chain.weight(), chain.total_mass());
+    // The momentum balance's weight: the whole chain's, tip mass included
+    // (`weight`, the peak force's unit, is the rods' alone).
+    let carried = (mass + chain.tip_mass()) * chain.gravity();
     let momentum_unit = mass * (chain.gravity() * chain.length()).sqrt();
     let (peak, t_peak) = match traj.summary.pivot_force_max {
         Some(pf) => pf,
@@ -159,10 +154,10 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
         );
         let (ta, tb) = (traj.times[a], traj.times[b]);
         let (pa, pb) = (momentum(&traj, a), momentum(&traj, b));
-        let j = [pb[0] - pa[0], pb[1] - pa[1] + weight * (tb - ta)];
+        let j = [pb[0] - pa[0], pb[1] - pa[1] + carried * (tb - ta)];
         impulse = j[0].hypot(j[1]) / momentum_unit;
         window = (ta, tb);
-        impulse_weight = weight * (tb - ta) / momentum_unit;
+        impulse_weight = carried * (tb - ta) / momentum_unit;
     }
     let snap = Snap {
         scene: scene.name().to_string(),
@@ -240,9 +235,16 @@ mod tests {
     use super::*;
 
     fn scene(ea: Option<f64>) -> Scene {
+        scene_with(ea, "")
+    }
+
+    /// The small span with `extra` lines in `[chain]` (a tip mass, a
+    /// profile).
+    fn scene_with(ea: Option<f64>, extra: &str) -> Scene {
         let elastic = ea.map_or(String::new(), |ea| {
             format!("axial_stiffness = {ea}\naxial_damping = 0.5\n")
         });
+        let elastic = format!("{elastic}{extra}");
         Scene::from_toml_str(&format!(
             r#"
 name = "small-span"
@@ -271,13 +273,19 @@ t_end = 3.6
     /// step, is at least every sampled force.
     #[test]
     fn the_impulse_is_the_integral_of_the_pivot_force() {
-        for ea in [None, Some(3e3)] {
+        // Equal rods, a tip mass, and a taper with a tip mass: a momentum
+        // that drops the tip mass or reads equal rods fails the last two.
+        let extras = ["", "tip_mass = 0.8\n", "taper = 4.0\ntip_mass = 0.3\n"];
+        for (ea, extra) in [None, Some(3e3)]
+            .into_iter()
+            .flat_map(|ea| extras.iter().map(move |x| (ea, *x)))
+        {
             let opts = Options {
                 output_dt: 1e-4,
                 ..Options::default()
             };
-            let (snap, traj) = measure(&scene(ea), &opts).unwrap();
-            assert_eq!(snap.status, "ok");
+            let (snap, traj) = measure(&scene_with(ea, extra), &opts).unwrap();
+            assert_eq!(snap.status, "ok", "{ea:?} {extra}");
             let f = chain_ode::analysis::pivot_forces(&traj);
             let (a, b) = (nearest(&traj, snap.window.0), nearest(&traj, snap.window.1));
             let mut j = [0.0, 0.0];
@@ -291,7 +299,7 @@ t_end = 3.6
             let trapezoid = j[0].hypot(j[1]) / unit;
             assert!(
                 (trapezoid / snap.impulse - 1.0).abs() < 2e-3,
-                "{ea:?}: {trapezoid} vs {}",
+                "{ea:?} {extra}: {trapezoid} vs {}",
                 snap.impulse
             );
             let sampled = f.iter().map(|p| p.1[0].hypot(p.1[1])).fold(0.0, f64::max);
