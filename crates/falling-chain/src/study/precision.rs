@@ -698,7 +698,7 @@ pub fn csv_text(
     for pt in rows {
         let s = &pt.stats;
         let cells = [
-            scene.to_string(),
+            crate::csv::field(scene).into_owned(),
             num(t_eval),
             pt.method.clone(),
             pt.param_name.to_string(),
