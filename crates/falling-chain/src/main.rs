@@ -12,7 +12,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
 use falling_chain::atomic::{begin, check_distinct, check_writable};
-use falling_chain::error::{echo, echo_path, escape};
+use falling_chain::error::{echo, echo_path, escape, number};
 use falling_chain::study::shard::Provenance;
 use falling_chain::summary::stiffness_hint_for;
 use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
@@ -369,7 +369,10 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         Some(s) => {
             return Err(Error::field(
                 "--progress",
-                format!("must be a number of seconds in 0.01..=3600 (got {s})"),
+                format!(
+                    "must be a number of seconds in 0.01..=3600 (got {})",
+                    number(s)
+                ),
             ))
         }
         None => std::io::IsTerminal::is_terminal(&std::io::stderr()).then_some(5.0),
@@ -604,7 +607,10 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
     if !(args.seconds.is_finite() && args.seconds > 0.0 && args.seconds <= 600.0) {
         return Err(Error::field(
             "--seconds",
-            format!("must be a number in (0, 600] (got {})", args.seconds),
+            format!(
+                "must be a number in (0, 600] (got {})",
+                number(args.seconds)
+            ),
         ));
     }
     let scene = args.scene.load()?;

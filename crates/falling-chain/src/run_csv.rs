@@ -200,7 +200,10 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
     if !(rod.is_finite() && rod > 0.0) {
         return Err(bad(
             2,
-            format!("tip_x, tip_y and the angles give no positive rod length (got {rod})"),
+            format!(
+                "tip_x, tip_y and the angles give no positive rod length (got {})",
+                crate::error::number(rod)
+            ),
         ));
     }
     let anchor = [means[0] - rod * means[2], means[1] - rod * means[3]];
@@ -326,8 +329,9 @@ fn for_each_row(
             return Err(bad(
                 line_no,
                 format!(
-                    "t must increase from row to row (got {} after {previous})",
-                    row.t()
+                    "t must increase from row to row (got {} after {})",
+                    crate::error::number(row.t()),
+                    crate::error::number(previous)
                 ),
             ));
         }
