@@ -282,7 +282,9 @@ fn for_each_row(
     let columns = parse_header(&names).map_err(|what| bad(record.line(), what))?;
     check_links("--from", columns.links)?;
     let count = columns.count();
-    let mut reader = reader.max_cells(count);
+    // One cell more than the header's, so that a row's numbers are judged
+    // before its count (as far as the header's columns go).
+    let mut reader = reader.max_cells(count + 1);
     let mut row = Row {
         cells: Vec::with_capacity(count),
     };
@@ -301,7 +303,7 @@ fn for_each_row(
         }
         let line_no = record.line();
         row.cells.clear();
-        for cell in record.iter() {
+        for cell in record.iter().take(count) {
             match cell.trim().parse::<f64>() {
                 Ok(v) if v.is_finite() => row.cells.push(v),
                 _ => {

@@ -673,6 +673,47 @@ mod tests {
         assert!(!run.thin_by_two());
     }
 
+    /// Where the thinning's estimate falls short (angles of many turns
+    /// take more than their bytes), the page is halved until its data fit
+    /// the cap, and refused when two frames alone exceed it.
+    #[test]
+    fn the_page_is_thinned_to_its_cap_or_refused() {
+        let (links, samples) = (1000, 400);
+        let mut run = toy(None);
+        run.links = links;
+        run.samples = samples;
+        run.stride = 1;
+        run.t = (0..samples).map(|k| k as f64).collect();
+        run.speed.clone_from(&run.t);
+        run.energy.clone_from(&run.t);
+        run.dissipated.clone_from(&run.t);
+        // -12345.678901, 14 bytes an angle: 14 MB at stride 1.
+        run.phi = vec![-12_345.678_901; samples * links];
+        let mut runs = [run.clone()];
+        let page = fitted_page("--out", "t", &mut runs).unwrap();
+        let data = super::data_of(&runs);
+        assert!(data.len() <= DATA_BUDGET_BYTES, "{}", data.len());
+        assert!(page.contains(&data));
+        assert!(runs[0].stride > 1 && runs[0].kept() > 2);
+        let kept: Vec<f64> = (0..samples)
+            .filter(|&k| keeps(k, samples, runs[0].stride))
+            .map(|k| k as f64)
+            .collect();
+        assert_eq!(runs[0].t, kept);
+        // Two frames of 10^5 such angles are 2.8 MB: refused.
+        run.links = 100_000;
+        run.samples = 2;
+        run.t.truncate(2);
+        run.speed.truncate(2);
+        run.energy.truncate(2);
+        run.dissipated.truncate(2);
+        run.phi = vec![-12_345.678_901; 2 * 100_000];
+        let e = fitted_page("--out", "t", &mut [run])
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--out: the page's data would be"), "{e}");
+    }
+
     /// The fewest frames of the most rods the page draws fit a run's share
     /// of 8 without forces; with forces the bound is smaller, and named.
     #[test]
