@@ -104,7 +104,22 @@ class Run:
         pivot; shear along its normal). Force units."""
     @property
     def dissipated(self) -> _Float:
-        """Work dissipated by joint friction since t = 0, shape (samples,)."""
+        """``W`` of the energy balance ``E + W = E(0)`` since t = 0, shape
+        (samples,) (the summary's ``dissipated``): with a fixed pivot, the
+        work dissipated by joint friction (and elastic links' dashpots);
+        with a moving pivot, that work less the support's,
+        ``friction_work - support_work`` (it may be negative)."""
+    @property
+    def support_work(self) -> _Float:
+        """The work the support has done on the chain since t = 0, shape
+        (samples,): ``F_0 . P0'`` (the pivot's force on rod 1 times its
+        velocity) by the trapezoid rule over the samples. Zero for a fixed
+        pivot and once it is let go."""
+    @property
+    def friction_work(self) -> _Float:
+        """The work dissipated by joint friction alone since t = 0 (and
+        elastic links' dashpots), shape (samples,): ``dissipated +
+        support_work``; exactly ``dissipated`` with a fixed pivot."""
     @property
     def links(self) -> int:
         """The number of rods n."""
@@ -135,7 +150,9 @@ class Run:
     def _repr_html_(self) -> str:
         """The run as ``falling-chain view``'s page (play, scrub, the tip
         speed and energy balance, the summary) in an ``<iframe srcdoc>``:
-        what Jupyter shows for a ``Run``."""
+        what Jupyter shows for a ``Run``, its data within the page's 1.8 MB.
+        A chain of more rods than ``view`` draws (10^4; 5000 unequal rods)
+        shows as a short text saying why."""
 
 def simulate(
     scene: Scene,
@@ -242,14 +259,16 @@ def needs(
 def merge(paths: Sequence[Union[str, "os.PathLike[str]"]]) -> Dict[str, np.ndarray]:
     """Joins the ``--out`` tables of a sharded sweep, precision or stability
     into the whole table, as numpy columns; ValueError (``merge: ...``) for
-    a missing or repeated run, or shards of another scene or options."""
+    a missing or repeated run, a row not run within its shard's budget, or
+    shards of another scene or options. ``paths`` is a list: one path alone
+    raises TypeError naming ``paths``."""
 
 def methods() -> List[str]:
     """The names of the integration methods ``run.method`` accepts."""
 
 def view(runs: Union[Run, Sequence[Run]], path: Union[str, os.PathLike[str]]) -> os.PathLike[str]:
     """Writes ``runs`` (one ``Run`` or 1 to 8) as one self-contained HTML page
-    at ``path`` (``FILE.html``), as ``falling-chain view`` does: the chains to
+    at ``path`` (``FILE.html``, ending in ``.html`` exactly), as ``falling-chain view`` does: the chains to
     scale and overlaid, play, pause and scrub, the tip speed and the energy
     balance, each run's summary. Long runs are thinned (the page says so).
     Returns ``path`` as a ``pathlib.Path``. Bad input raises ValueError naming

@@ -1,10 +1,14 @@
 //! A scene fuzzer: proptest draws scenes of ordinary and extreme values
 //! (lengths, masses, gravity, damping, counts near integer limits, t_end up
 //! to 1e6, output_dt down to 1e-12, tolerances, every method and start
-//! kind) and runs them through every subcommand (simulate, sweep,
+//! kind, scene names with commas, quotes and line breaks) and runs them
+//! through every subcommand (simulate, sweep,
 //! converge, plot, animate, catenary, view, and the study's precision,
 //! stability, needs and merge, each with `--budget 1`; a test checks that
-//! [`COMMANDS`] is every subcommand of `--help`). Every run has a step budget
+//! [`COMMANDS`] is every subcommand of `--help`), sometimes with two outputs
+//! on one file (`--out` and `--forces` or `--plot`, as `x` and `./x`),
+//! which must be refused, a page not ending in `.html`, and shards to merge
+//! whose cells hold the drawn name. Every run has a step budget
 //! (`--set run.max_steps=...`, smaller for more rods) and a wall-clock kill
 //! timeout. Each must end with exit 0, 1 or 2, never a signal, 101 (panic),
 //! 134 (abort) or a hang; an exit 2 says one line, `error: ...`; any other
@@ -132,7 +136,24 @@ struct Case {
     /// the report's model).
     taper: f64,
     profiled: bool,
+    /// The scene's `name`, one of [`NAMES`] (commas, quotes, line breaks).
+    name: usize,
+    /// Two outputs of the command on one file (simulate's `--out` and
+    /// `--forces`, a study's `--out` and `--plot`), or view's page not
+    /// ending in `.html`: refused, exit 2.
+    same_out: bool,
 }
+
+/// Scene names the fuzzer draws: plain, and with what CSV quotes.
+const NAMES: [&str; 7] = [
+    "fuzz",
+    "a,b",
+    "say \"hi\"",
+    "two\nlines",
+    "\",\"\n\"\",",
+    "cr\r\nlf, \"both\"",
+    "",
+];
 
 const COMMANDS: [&str; 11] = [
     "simulate",
@@ -196,6 +217,10 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.5, 20.0, &[1.0, 0.0, -1.0, 1e300, f64::NAN]),
             any::<bool>(),
         ),
+        (
+            prop_oneof![3 => Just(0usize), 4 => 1..NAMES.len()],
+            proptest::bool::weighted(0.2),
+        ),
     )
         .prop_map(
             |(
@@ -204,6 +229,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (rtol, atol, output_dt, h_min, extra, with_out),
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
                 (acc, amp, jerk, freq, jerk_time, release, moving, taper, profiled),
+                (name, same_out),
             )| Case {
                 command,
                 length,
@@ -234,6 +260,8 @@ fn case() -> impl Strategy<Value = Case> {
                 moving,
                 taper,
                 profiled,
+                name,
+                same_out,
             },
         )
 }
@@ -259,7 +287,8 @@ impl Case {
     fn scene_text(&self) -> String {
         let (x, y) = self.p1();
         let mut t = String::new();
-        writeln!(t, "name = \"fuzz\"\n[chain]").unwrap();
+        let name = toml::Value::String(NAMES[self.name].to_string());
+        writeln!(t, "name = {name}\n[chain]").unwrap();
         writeln!(t, "length = {}", toml_f(self.length)).unwrap();
         // Beyond i64, TOML has no integer: a float, which must be refused.
         if i64::try_from(self.links).is_ok() {
@@ -351,7 +380,15 @@ impl Case {
         match command {
             "simulate" => {
                 a.extend([scene, "--set".into(), budget, "--json".into()]);
-                if self.with_out {
+                if self.same_out {
+                    // One file as `x` and `./x`, or twice the same path.
+                    let again = if self.extra % 2 == 0 {
+                        out("./out.csv")
+                    } else {
+                        out("out.csv")
+                    };
+                    a.extend(["--out".into(), out("out.csv"), "--forces".into(), again]);
+                } else if self.with_out {
                     a.extend(["--out".into(), out("out.csv")]);
                 }
             }
@@ -442,6 +479,12 @@ impl Case {
                         "--links".into(),
                         format!("2,{}", 2 * self.extra.clamp(2, 4)),
                     ]),
+                    (_, true) if self.same_out => a.extend([
+                        "--out".into(),
+                        out("s.svg"),
+                        "--plot".into(),
+                        out("./s.svg"),
+                    ]),
                     (_, true) => {
                         a.extend(["--out".into(), out("s.csv"), "--plot".into(), out("s.svg")])
                     }
@@ -454,7 +497,9 @@ impl Case {
                 }
             }
             "view" => {
-                a.extend([scene, "--set".into(), budget, "-o".into(), out("v.html")]);
+                // A page that must end in .html exactly, or one that does.
+                let page = if self.same_out { "v.HTML" } else { "v.html" };
+                a.extend([scene, "--set".into(), budget, "-o".into(), out(page)]);
                 if self.with_out {
                     a.extend(["--method".into(), self.method_name(), "--forces".into()]);
                 }
@@ -468,6 +513,22 @@ impl Case {
                     format!("run,x\n{},{}\n", self.extra, toml_f(self.length)),
                 )
                 .unwrap();
+                // A shard of the right shape whose cell holds the drawn
+                // name, quoted as the CSV writer quotes it (or, with
+                // `same_out`, with its quotes unbalanced).
+                let named = dir.join("n.csv");
+                let cell = falling_chain::csv::field(NAMES[self.name]).into_owned();
+                let cell = if self.same_out {
+                    cell.replacen('"', "", 1)
+                } else {
+                    cell
+                };
+                fs::write(&named, format!("run,name,runs,scene_hash\n0,{cell},1,h\n")).unwrap();
+                if self.extra % 3 == 0 {
+                    a.push(named.to_string_lossy().into_owned());
+                    a.extend(["--out".into(), out("m.csv")]);
+                    return a;
+                }
                 a.extend([scene, table.to_string_lossy().into_owned()]);
                 if self.with_out {
                     a.push(out("missing.csv"));
@@ -490,6 +551,29 @@ impl Case {
             }
         }
         a
+    }
+}
+
+impl Case {
+    /// The exit code the case must end with, where its draws decide it:
+    /// two outputs on one file and a page not ending in `.html` are
+    /// refused (2); a shard whose cell holds the drawn name quoted as the
+    /// writer quotes it merges (0), and with a quote removed is refused.
+    fn expected(&self) -> Option<i32> {
+        let command = COMMANDS[self.command];
+        match command {
+            "simulate" | "view" if self.same_out => Some(2),
+            "precision" | "stability" if self.same_out && self.with_out => Some(2),
+            "merge" if self.extra % 3 == 0 => {
+                let cell = falling_chain::csv::field(NAMES[self.name]);
+                Some(if self.same_out && cell.contains('"') {
+                    2
+                } else {
+                    0
+                })
+            }
+            _ => None,
+        }
     }
 }
 
@@ -559,7 +643,13 @@ fn fuzzed_scenes_end_with_a_status_or_one_line() {
         let args = case.args(&dir);
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
         let out = run_within(&refs, timeout);
-        match judge(out.as_ref(), timeout) {
+        let code = out.as_ref().and_then(|o| o.status.code());
+        let verdict = judge(out.as_ref(), timeout).or_else(|| {
+            case.expected()
+                .filter(|&want| code != Some(want))
+                .map(|want| format!("exit {code:?}, not {want}"))
+        });
+        match verdict {
             Some(why) => failures.push(format!(
                 "case {i}: {why}\n  args: {args:?}\n  scene:\n{}",
                 case.scene_text()
@@ -651,6 +741,8 @@ fn the_fuzzer_draws_every_scene_key() {
             moving: true,
             taper: 1.0,
             profiled: true,
+            name: 1,
+            same_out: false,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

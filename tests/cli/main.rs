@@ -18,6 +18,7 @@ mod common;
 mod converge;
 mod fuzz;
 mod hostile;
+mod hostile_files;
 mod hostile_model;
 mod newton_counters;
 mod pivot;

@@ -125,8 +125,28 @@ pub(crate) fn check(
         Err(InvalidParameter {
             field,
             accepted: accepted.into(),
-            got: got.to_string(),
+            got: got_text(got.to_string()),
         })
+    }
+}
+
+/// A number as an error shows it: the shortest text that reads back to
+/// it, as a person writes it (`0.5`, `4.157`, `1e300`, not the 301 digits
+/// of `f64`'s `Display`; `1e-9`, not `0.000000001`; `NaN`, `inf`).
+pub(crate) fn number_text(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 || (1e-4..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A value as an error shows it: a number by [`number_text`], any other
+/// text as it is.
+fn got_text(text: String) -> String {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() && (text.len() > 17 || text.contains('.')) => number_text(x),
+        _ => text,
     }
 }
 
@@ -415,6 +435,18 @@ impl Chain {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_value_given_is_shown_in_its_shortest_form() {
+        assert_eq!(got_text(1e300.to_string()), "1e300");
+        assert_eq!(got_text((-2.5e-9f64).to_string()), "-2.5e-9");
+        assert_eq!(got_text(0.5f64.to_string()), "0.5");
+        assert_eq!(got_text("1000000".into()), "1000000");
+        assert_eq!(got_text("NaN".into()), "NaN");
+        assert_eq!(got_text("a rod profile".into()), "a rod profile");
+        let e = check(false, "run.dt", "positive", 1e300).unwrap_err();
+        assert_eq!(e.to_string(), "run.dt: must be positive (got 1e300)");
+    }
 
     /// `ChainParams` with `field` replaced.
     fn with(field: &str, x: f64) -> ChainParams {

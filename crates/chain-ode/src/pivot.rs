@@ -28,7 +28,7 @@
 //! `c_rel = l sum_i (q_i + mu) u_i / (n + mu)` ([`PivotPath`]). The state stays
 //! `[phi, w, W]`.
 
-use crate::chain::{check, Chain, InvalidParameter};
+use crate::chain::{check, number_text, Chain, InvalidParameter};
 use crate::kinematics::{lever_arm, Vec2};
 use crate::scalar::sin_cos;
 
@@ -216,7 +216,7 @@ impl Pivot {
     /// its scene key (`pivot.*`). Called by [`Chain::new`].
     pub(crate) fn validate(&self) -> Result<(), InvalidParameter> {
         let finite = |p: Vec2| p.iter().all(|x| x.is_finite());
-        let point = |p: Vec2| format!("[{}, {}]", p[0], p[1]);
+        let point = |p: Vec2| format!("[{}, {}]", number_text(p[0]), number_text(p[1]));
         check(
             finite(self.acceleration),
             "pivot.acceleration",

@@ -12,7 +12,7 @@
 //! `m_i = mu_i m` and length `l_i = lambda_i l` in units of the mean rod,
 //! `m = M / n`, `l = L / n` (so `sum mu_i = sum lambda_i = n`).
 
-use crate::chain::{check, InvalidParameter};
+use crate::chain::{check, number_text, InvalidParameter};
 
 /// The taper's accepted range, in words (`chain.taper`).
 pub const TAPER_RANGE: &str = "a finite number in 0.001..=1000";
@@ -130,7 +130,7 @@ impl Profile {
                 max <= MAX_LIST_RATIO * min,
                 field,
                 "numbers within a factor 1e6 of each other",
-                format!("max / min = {}", max / min),
+                format!("max / min = {}", number_text(max / min)),
             )?;
         }
         check(

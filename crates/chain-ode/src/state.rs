@@ -2,7 +2,7 @@
 
 use catenary::CatenaryError;
 
-use crate::chain::{check, Chain, InvalidParameter};
+use crate::chain::{check, number_text, Chain, InvalidParameter};
 use crate::kinematics::Vec2;
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;
@@ -73,7 +73,7 @@ fn finite_point(p: Vec2, field: &'static str) -> Result<(), InvalidParameter> {
         p.iter().all(|x| x.is_finite()),
         field,
         "a pair of finite numbers",
-        format!("[{}, {}]", p[0], p[1]),
+        format!("[{}, {}]", number_text(p[0]), number_text(p[1])),
     )
 }
 
@@ -108,7 +108,11 @@ impl Start {
                     (span - chain.length()).abs() <= 1e-9 * chain.length(),
                     "start.p1",
                     "at distance chain.length from start.p0 for a stretched start",
-                    format!("|P1 - P0| = {span}, L = {}", chain.length()),
+                    format!(
+                        "|P1 - P0| = {}, L = {}",
+                        number_text(span),
+                        number_text(chain.length())
+                    ),
                 )?;
                 (vec![dy.atan2(dx); n], vec![0.0; n])
             }

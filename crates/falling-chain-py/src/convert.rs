@@ -14,9 +14,22 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
 /// as a `ValueError`; work stopped from outside (Ctrl-C) is a
 /// KeyboardInterrupt.
 pub fn value_error(e: Error) -> PyErr {
+    match python_names(e) {
+        e @ Error::Interrupted => PyKeyboardInterrupt::new_err(e.to_string()),
+        e => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// An error in the words of Python's keyword arguments: the CLI's flag
+/// `--check-dt` (which the library's checks name, being the CLI's too) is
+/// `check_dt=` here, `--shard` is `shard=`, `--links` is `links=`.
+pub fn python_names(e: Error) -> Error {
     match e {
-        Error::Interrupted => PyKeyboardInterrupt::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
+        Error::Field { field, message } if field.starts_with("--") => Error::Field {
+            field: field[2..].replace('-', "_"),
+            message,
+        },
+        e => e,
     }
 }
 

@@ -59,6 +59,9 @@ struct Series {
     tip_velocity: Vec<f64>,
     energy: Vec<f64>,
     dissipated: Vec<f64>,
+    /// The work the support has done on the chain since t = 0 (zero for a
+    /// fixed pivot): `F_0 · P0'` by the trapezoid rule over the samples.
+    support_work: Vec<f64>,
     /// Joint forces `[tension, shear]`, `n + 1` per sample.
     forces: Vec<f64>,
     /// The joints of every sample, `n + 1` points each, kept for an elastic
@@ -80,6 +83,7 @@ impl Series {
             tip_velocity: Vec::with_capacity(samples * 2),
             energy: Vec::with_capacity(samples),
             dissipated: Vec::with_capacity(samples),
+            support_work: support_work(traj),
             forces: Vec::with_capacity(samples * 2 * (n + 1)),
             // An elastic chain's joints, and a moving or released pivot's,
             // do not follow from the angles and the anchor.
@@ -103,6 +107,30 @@ impl Series {
     }
 }
 
+/// The work the support has done on the chain by each sample,
+/// `int F_0 · P0' dt` by the trapezoid rule over the samples (`F_0` the
+/// force of the pivot on rod 1, `chain_ode::analysis::pivot_forces`; `P0'`
+/// the pivot's velocity): zero for a fixed pivot, and no power once the
+/// pivot is let go (`F_0 = 0`).
+fn support_work(traj: &Trajectory) -> Vec<f64> {
+    if traj.pivot.is_fixed() {
+        return vec![0.0; traj.len()];
+    }
+    let forces = chain_ode::analysis::pivot_forces(traj);
+    let mut out = Vec::with_capacity(traj.len());
+    let (mut work, mut last) = (0.0, None);
+    for (k, (t, f)) in forces.iter().enumerate() {
+        let v = traj.pivot_at(k)[1];
+        let power = f[0] * v[0] + f[1] * v[1];
+        if let Some((t0, p0)) = last {
+            work += 0.5 * (power + p0) * (t - t0);
+        }
+        last = Some((*t, power));
+        out.push(work);
+    }
+    out
+}
+
 /// A finished run: its summary and its samples as numpy arrays.
 ///
 /// `summary` is the dict `falling-chain simulate --json` prints for the same
@@ -110,7 +138,9 @@ impl Series {
 /// recorded sample (every `run.output_dt`, and the last time reached):
 /// `t` (samples,), `phi` and `w` (samples, n) (angles from the horizontal
 /// and their rates), `tip` and `tip_velocity` (samples, 2), `energy` and
-/// `dissipated` (samples,) (the work done by joint friction so far). A run
+/// `dissipated` (samples,) (`W` of the energy balance `E + W = E(0)`: the
+/// joint friction's work with a fixed pivot, the friction's work less the
+/// support's with a moving one; `friction_work` and `support_work` apart). A run
 /// that failed (`summary["status"]` is `diverged`, `step_size_too_small`,
 /// `max_steps`, ...) holds what it computed up to `summary["t_reached"]`.
 #[pyclass(module = "falling_chain", frozen)]
@@ -131,6 +161,8 @@ pub struct Run {
     tip_velocity: Py<PyArray2<f64>>,
     energy: Py<PyArray1<f64>>,
     dissipated: Py<PyArray1<f64>>,
+    support_work: Py<PyArray1<f64>>,
+    friction_work: Py<PyArray1<f64>>,
     forces: Py<PyArray3<f64>>,
     /// An elastic chain's joints, `n + 1` points per sample (`None`: rigid).
     joints: Option<Vec<f64>>,
@@ -190,10 +222,35 @@ impl Run {
         bound(py, &self.forces)
     }
 
-    /// Work dissipated by joint friction since t = 0, shape (samples,).
+    /// `W` of the energy balance `E + W = E(0)` since t = 0, shape
+    /// (samples,) (the summary's `dissipated`, integrated with the run):
+    /// with a fixed pivot, the work dissipated by joint friction (and, for
+    /// elastic links, their dashpots); with a moving pivot, that work less
+    /// the support's, `friction_work - support_work` (so it may be
+    /// negative: the hand that moves the pivot feeds energy in).
     #[getter]
     fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         bound(py, &self.dissipated)
+    }
+
+    /// The work the support has done on the chain since t = 0, shape
+    /// (samples,): `int F_0 · P0' dt`, `F_0` the pivot's force on rod 1 and
+    /// `P0'` its velocity, by the trapezoid rule over the samples (as
+    /// accurate as `run.output_dt` resolves the pivot's motion). Zero for a
+    /// fixed pivot and once the pivot is let go.
+    #[getter]
+    fn support_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        bound(py, &self.support_work)
+    }
+
+    /// The work dissipated by joint friction alone since t = 0 (and, for
+    /// elastic links, their dashpots; for elastic links let go, the pivot
+    /// spring's energy that leaves at the release), shape (samples,):
+    /// `dissipated + support_work`. With a fixed pivot it is `dissipated`,
+    /// exactly.
+    #[getter]
+    fn friction_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        bound(py, &self.friction_work)
     }
 
     /// The number of rods n.
@@ -283,13 +340,28 @@ impl Run {
     }
 
     /// The run as `falling-chain view`'s page, in an `<iframe srcdoc>`:
-    /// what Jupyter shows for a `Run`.
+    /// what Jupyter shows for a `Run`, its data within the page's cap
+    /// (`DATA_BUDGET_BYTES`, 1.8 MB). A chain the viewer does not draw
+    /// (more rods than `view` takes: 10^4, 5000 of unequal rods) shows as a
+    /// short text instead, saying why.
     fn _repr_html_(&self, py: Python<'_>) -> PyResult<String> {
-        let run = self.view_run(py, ::falling_chain::viewer::DATA_BUDGET_BYTES)?;
+        use ::falling_chain::viewer;
+        let degraded = |why: String| {
+            format!(
+                "<pre>{}</pre><p>Not shown as a page: {}.</p>",
+                viewer::html_escape(&self.__repr__()),
+                viewer::html_escape(&why)
+            )
+        };
+        if let Err(e) = viewer::check_chain("links", self.chain()) {
+            return Ok(degraded(e.to_string()));
+        }
+        let run = self.view_run(py, viewer::DATA_BUDGET_BYTES)?;
         let title = run.label.clone();
-        Ok(::falling_chain::viewer::iframe(
-            &::falling_chain::viewer::page(&title, &[run]),
-        ))
+        match viewer::fitted_page("run", &title, &mut [run]) {
+            Ok(page) => Ok(viewer::iframe(&page)),
+            Err(e) => Ok(degraded(e.to_string())),
+        }
     }
 
     fn __repr__(&self) -> String {
@@ -440,7 +512,17 @@ pub fn simulate(
         tip: array2(py, series.tip, s, 2)?,
         tip_velocity: array2(py, series.tip_velocity, s, 2)?,
         energy: array1(py, series.energy)?,
+        friction_work: array1(
+            py,
+            series
+                .dissipated
+                .iter()
+                .zip(&series.support_work)
+                .map(|(w, s)| w + s)
+                .collect(),
+        )?,
         dissipated: array1(py, series.dissipated)?,
+        support_work: array1(py, series.support_work)?,
         forces: array3(py, series.forces, (s, n + 1, 2))?,
         joints: series.joints,
         head,

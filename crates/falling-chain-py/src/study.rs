@@ -14,7 +14,7 @@ use pyo3::types::{PyDict, PyList, PyString};
 use crate::convert::{echo, json_to_dict, read_only, value_error};
 use crate::interrupt::run_interruptible;
 use crate::scene::PyScene;
-use crate::sweep::{csv_cells, jobs_of, shard_of, vary_of};
+use crate::sweep::{csv_records, jobs_of, shard_of, vary_of};
 
 /// Columns that hold text whatever their cells look like.
 const TEXT: [&str; 10] = [
@@ -35,9 +35,9 @@ const TEXT: [&str; 10] = [
 /// is a number or empty (NaN), str otherwise and for the columns of
 /// [`TEXT`].
 fn table<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDict>> {
-    let mut lines = text.lines();
-    let header = csv_cells(lines.next().unwrap_or_default());
-    let rows: Vec<Vec<String>> = lines.filter(|l| !l.is_empty()).map(csv_cells).collect();
+    let mut records = csv_records(text)?.into_iter();
+    let header = records.next().unwrap_or_default();
+    let rows: Vec<Vec<String>> = records.collect();
     let out = PyDict::new(py);
     for (i, name) in header.iter().enumerate() {
         let cells: Vec<String> = rows
@@ -255,11 +255,69 @@ pub fn needs<'py>(
 /// Joins the tables of a sharded sweep, precision or stability (files
 /// written with `--shard I/N --out`, or tables saved from Python) into the
 /// table of the whole run, as numpy columns: `falling-chain merge`, with
-/// its checks (ValueError for a missing or repeated run, or shards of
-/// another scene or options).
+/// its checks (ValueError for a missing or repeated run, a row not run
+/// within its shard's budget, or shards of another scene or options).
+/// `paths` is a list of paths (str or os.PathLike); a single path, or
+/// anything else, raises TypeError naming `paths`.
 #[pyfunction]
-pub fn merge<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<Bound<'py, PyDict>> {
-    let texts = shard::read(&paths).map_err(value_error)?;
+pub fn merge<'py>(py: Python<'py>, paths: &Bound<'_, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    let paths = paths_of(paths)?;
+    let texts = shard::read(&paths).map_err(|e| value_error(paths_named(e)))?;
     let merged = shard::merge(&texts).map_err(value_error)?;
     table(py, &merged)
+}
+
+/// An error of [`shard::read`] about one file (its role `shard`) or the
+/// set of files (`merge`), said of `paths=`.
+fn paths_named(e: Error) -> Error {
+    match e {
+        Error::Read { path, source, .. } => Error::Read {
+            what: "paths",
+            path,
+            source,
+        },
+        Error::Field { message, .. } => Error::Field {
+            field: "paths".into(),
+            message,
+        },
+        e => e,
+    }
+}
+
+/// `paths=` of `merge`: a sequence of str or os.PathLike, at most
+/// `shard::MAX_SHARDS` of them (read lazily: an endless iterator fails at
+/// the cap).
+fn paths_of(paths: &Bound<'_, PyAny>) -> PyResult<Vec<std::path::PathBuf>> {
+    let single = paths.is_instance_of::<PyString>()
+        || paths.is_instance_of::<pyo3::types::PyBytes>()
+        || paths.hasattr("__fspath__")?;
+    if single {
+        return Err(PyTypeError::new_err(format!(
+            "paths: expected a list of shard files, got the one path {} (write merge([path]))",
+            echo(paths)
+        )));
+    }
+    let wrong = || {
+        PyTypeError::new_err(format!(
+            "paths: expected a list of shard files (str or os.PathLike) (got {})",
+            echo(paths)
+        ))
+    };
+    let mut out = vec![];
+    for item in paths.try_iter().map_err(|_| wrong())? {
+        let item = item?;
+        if out.len() == shard::MAX_SHARDS {
+            return Err(value_error(Error::field(
+                "paths",
+                format!("at most {} shard files", shard::MAX_SHARDS),
+            )));
+        }
+        out.push(item.extract::<std::path::PathBuf>().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "paths: every element must be a str or os.PathLike (got {})",
+                echo(&item)
+            ))
+        })?);
+    }
+    Ok(out)
 }

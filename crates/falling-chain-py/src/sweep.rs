@@ -67,25 +67,11 @@ pub(crate) fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shar
     Shard::parse(&spec).map(Some).map_err(value_error)
 }
 
-/// Splits one CSV line of ours into its cells (RFC 4180 quoting).
-pub(crate) fn csv_cells(line: &str) -> Vec<String> {
-    let mut cells = vec![];
-    let mut cell = String::new();
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                chars.next();
-                cell.push('"');
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => cells.push(std::mem::take(&mut cell)),
-            (c, _) => cell.push(c),
-        }
-    }
-    cells.push(cell);
-    cells
+/// The cells of CSV text of ours, read by the project's one reader
+/// (`falling_chain::csv`, RFC 4180: a name with a comma, a quote or a line
+/// break is one quoted cell).
+pub(crate) fn csv_records(text: &str) -> PyResult<Vec<Vec<String>>> {
+    ::falling_chain::csv::records(text).map_err(|e| PyValueError::new_err(format!("csv: {e}")))
 }
 
 /// What a summary column holds, read off the summary's JSON value.
@@ -164,11 +150,15 @@ fn columns<'py>(
     rows: &[SweepRow],
     provenance: &Provenance,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let header = csv_cells(&(core::csv_header(vary) + &Provenance::header_suffix()));
-    let table: Vec<Vec<String>> = rows
-        .iter()
-        .map(|r| csv_cells(&(core::csv_row(r) + &provenance.cells())))
-        .collect();
+    let mut text = core::csv_header(vary) + &Provenance::header_suffix() + "\n";
+    for r in rows {
+        text.push_str(&core::csv_row(r));
+        text.push_str(&provenance.cells());
+        text.push('\n');
+    }
+    let mut table = csv_records(&text)?.into_iter();
+    let header = table.next().unwrap_or_default();
+    let table: Vec<Vec<String>> = table.collect();
     let json = rows
         .first()
         .map(|r| serde_json::to_value(&r.summary))

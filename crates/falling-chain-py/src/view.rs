@@ -27,18 +27,7 @@ pub fn view(py: Python<'_>, runs: &Bound<'_, PyAny>, path: PathBuf) -> PyResult<
         })?,
     };
     viewer::check_run_count("runs", runs.len()).map_err(value_error)?;
-    if !path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
-    {
-        return Err(value_error(Error::field(
-            "path",
-            format!(
-                "must end in .html (got '{}')",
-                ::falling_chain::error::echo_path(&path)
-            ),
-        )));
-    }
+    viewer::check_page_path("path", &path).map_err(value_error)?;
     for run in &runs {
         viewer::check_chain("runs", run.chain()).map_err(value_error)?;
     }
@@ -58,7 +47,7 @@ pub fn view(py: Python<'_>, runs: &Bound<'_, PyAny>, path: PathBuf) -> PyResult<
         .map(|r| r.label.as_str())
         .collect::<Vec<_>>()
         .join(" vs ");
-    let page = viewer::page(&title, &pages);
+    let page = viewer::fitted_page("runs", &title, &mut pages).map_err(value_error)?;
     write_atomic("path", &path, |w| w.write_all(page.as_bytes())).map_err(value_error)?;
     Ok(path)
 }

@@ -135,8 +135,8 @@ def test_a_sweep_grid_too_large_fails_before_it_is_built():
 def test_a_sweep_range_of_1e14_values():
     # Needs the i24-cli branch: `--vary` ranges are bounded before they are
     # built (today: "capacity overflow", a panic). A str in `--vary` syntax
-    # fails with the CLI's own message, which names `--vary`.
-    m = raises_value_error("fc.sweep(span, {'start.p1.0': '1:5:100000000000000'})", "--vary")
+    # fails with the CLI's own message, naming the keyword `vary`.
+    m = raises_value_error("fc.sweep(span, {'start.p1.0': '1:5:100000000000000'})", "vary")
     assert "1..=1000000" in m
 
 

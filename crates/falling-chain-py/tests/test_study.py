@@ -97,10 +97,10 @@ def test_merge_joins_cli_shards_and_refuses_what_the_cli_refuses(tmp_path):
         (lambda s: fc.precision(s, budget=-1.0), "budget"),
         (lambda s: fc.precision(s, methods="rk5"), "methods"),
         (lambda s: fc.precision(s, check_dt=0.0), "check_dt"),
-        (lambda s: fc.precision(s, shard="2/2"), "--shard"),
+        (lambda s: fc.precision(s, shard="2/2"), "shard"),
         (lambda s: fc.stability(s, vary={"chain.damping": [0.0], "chain.mass": [1.0]}), "vary"),
-        (lambda s: fc.needs(s, 2.0), "--tol"),
-        (lambda s: fc.needs(s, 0.1, links=[7]), "--links"),
+        (lambda s: fc.needs(s, 2.0), "tol"),
+        (lambda s: fc.needs(s, 0.1, links=[7]), "links"),
     ],
 )
 def test_bad_input_is_a_value_error_naming_the_argument(call, field):

@@ -30,6 +30,65 @@ pub fn check_writable(what: &'static str, path: &Path) -> Result<(), Error> {
     figures::atomic::check_output(path).map_err(|e| Error::write(what, path, e))
 }
 
+/// The file a write to `path` reaches, for telling two outputs apart: the
+/// path with its directory resolved and a symbolic link followed (an
+/// existing file's canonical path; an absent file's canonical directory
+/// and name). `None` when it cannot be resolved (its directory is missing,
+/// which [`check_writable`] refuses).
+fn target(path: &Path) -> Option<std::path::PathBuf> {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return Some(p);
+    }
+    let dir = std::fs::canonicalize(parent_dir(path)).ok()?;
+    Some(dir.join(path.file_name()?))
+}
+
+/// Whether two existing paths are one file (a hard link, or a name that a
+/// case-folding file system maps to the same file).
+#[cfg(unix)]
+fn same_inode(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_inode(_: &Path, _: &Path) -> bool {
+    false
+}
+
+/// Refuses, before any work, two outputs of one command that would write
+/// one file: the same path, `./x` and `x`, a path through a symbolic link
+/// (to the file or to its directory) and its target, two hard links. Each
+/// output is `(flag, path)` (`None`: not asked for); the error names both
+/// flags and the later one's path.
+pub fn check_distinct(outputs: &[(&'static str, Option<&Path>)]) -> Result<(), Error> {
+    let given: Vec<(&str, &Path, Option<std::path::PathBuf>)> = outputs
+        .iter()
+        .filter_map(|&(flag, path)| path.map(|p| (flag, p, target(p))))
+        .collect();
+    for (k, (flag, path, resolved)) in given.iter().enumerate() {
+        for (earlier, first, first_resolved) in &given[..k] {
+            let same =
+                (resolved.is_some() && resolved == first_resolved) || same_inode(path, first);
+            if same {
+                return Err(Error::field(
+                    *flag,
+                    format!(
+                        "'{}' is the same file as {earlier} '{}': give each output a file of \
+                         its own",
+                        crate::error::echo_path(path),
+                        crate::error::echo_path(first)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// An output file checked and begun before the work ([`begin`]): its
 /// hidden temporary file exists (and is removed on SIGINT/SIGTERM, or when
 /// this is dropped); [`PendingOutput::write`] fills it and renames it into
@@ -122,6 +181,37 @@ mod tests {
         assert!(check_writable("--out", &d.join("no/such/dir.csv")).is_err());
         assert!(check_writable("--out", &d).is_err());
         assert!(check_writable("--out", &out).is_ok());
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn two_outputs_on_one_file_are_refused() {
+        let d = scratch("distinct");
+        let a = d.join("a.csv");
+        let dotted = d.join(".").join("a.csv");
+        let other = d.join("b.csv");
+        let e = check_distinct(&[("--out", Some(&a)), ("--forces", Some(&dotted))])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("--forces: '") && e.contains("same file as --out"),
+            "{e}"
+        );
+        assert!(check_distinct(&[("--out", Some(&a)), ("--forces", Some(&other))]).is_ok());
+        assert!(check_distinct(&[("--out", Some(&a)), ("--forces", None)]).is_ok());
+        // Through a link to the directory, and to an existing file.
+        std::os::unix::fs::symlink(&d, d.join("here")).unwrap();
+        let linked = d.join("here").join("a.csv");
+        assert!(check_distinct(&[("--out", Some(&a)), ("--plot", Some(&linked))]).is_err());
+        fs::write(&a, "x").unwrap();
+        std::os::unix::fs::symlink(&a, d.join("l.csv")).unwrap();
+        assert!(
+            check_distinct(&[("--out", Some(&d.join("l.csv"))), ("--plot", Some(&a))]).is_err()
+        );
+        fs::hard_link(&a, d.join("h.csv")).unwrap();
+        assert!(
+            check_distinct(&[("--out", Some(&d.join("h.csv"))), ("--plot", Some(&a))]).is_err()
+        );
         fs::remove_dir_all(&d).unwrap();
     }
 }

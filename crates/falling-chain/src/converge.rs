@@ -279,7 +279,10 @@ pub fn check_tol(tol: f64) -> Result<(), Error> {
     } else {
         Err(Error::field(
             "--tol",
-            format!("must be a number in (0, 1) (got {tol})"),
+            format!(
+                "must be a number in (0, 1) (got {})",
+                crate::error::number(tol)
+            ),
         ))
     }
 }

@@ -155,20 +155,53 @@ pub fn echo(text: &str) -> String {
     format!("{}… ({count} characters)", escape(&head))
 }
 
-/// A TOML value as a message echoes it ([`echo`]); a long array is shown by
-/// its first elements and its length, without writing it out whole.
+/// A number as a message shows it, in the shortest form that reads back
+/// to it, as a person writes it: `0.5`, `4.157`, `1e300` (not the 301
+/// digits of `f64`'s `Display`), `1e-9`, `NaN`, `inf`.
+pub fn number(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 || (1e-4..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A TOML value as a message echoes it ([`echo`]): numbers by [`number`],
+/// a date-time as written (`1979-05-27T07:32:00Z`, never the parser's
+/// private key); a long array is shown by its first elements and its
+/// length, without writing it out whole.
 pub fn echo_value(value: &toml::Value) -> String {
+    echo(&value_text(value))
+}
+
+/// `value` as TOML writes it, numbers by [`number`], long arrays and
+/// tables cut.
+fn value_text(value: &toml::Value) -> String {
+    use toml::Value as V;
     match value {
-        toml::Value::Array(items) if items.len() > 8 => {
-            let head: Vec<String> = items[..4].iter().map(echo_value).collect();
-            echo(&format!(
-                "[{}, … ({} elements)]",
-                head.join(", "),
-                items.len()
-            ))
+        V::Float(x) if x.is_nan() => "nan".into(),
+        V::Float(x) if x.is_infinite() => if *x > 0.0 { "inf" } else { "-inf" }.into(),
+        V::Float(x) => number(*x),
+        V::Integer(i) => i.to_string(),
+        V::Boolean(b) => b.to_string(),
+        V::Datetime(d) => d.to_string(),
+        V::String(_) => value.to_string(),
+        V::Array(items) if items.len() > 8 => {
+            let head: Vec<String> = items[..4].iter().map(value_text).collect();
+            format!("[{}, … ({} elements)]", head.join(", "), items.len())
         }
-        toml::Value::Table(t) if t.len() > 8 => format!("a table of {} keys", t.len()),
-        v => echo(&v.to_string()),
+        V::Array(items) => {
+            let all: Vec<String> = items.iter().map(value_text).collect();
+            format!("[{}]", all.join(", "))
+        }
+        V::Table(t) if t.len() > 8 => format!("a table of {} keys", t.len()),
+        V::Table(t) => {
+            let all: Vec<String> = t
+                .iter()
+                .map(|(k, v)| format!("{k} = {}", value_text(v)))
+                .collect();
+            format!("{{ {} }}", all.join(", "))
+        }
     }
 }
 
@@ -271,6 +304,16 @@ mod tests {
         let e = echo_value(&long);
         assert!(e.chars().count() < 2 * ECHO_MAX, "{e}");
         assert!(e.contains("5000000 elements"), "{e}");
+        assert_eq!(echo_value(&toml::Value::Float(1e300)), "1e300");
+        assert_eq!(
+            echo_value(&"v = [1e-300, 0.5, 2]".parse::<toml::Table>().unwrap()["v"]),
+            "[1e-300, 0.5, 2]"
+        );
+        let date = "v = 1979-05-27T07:32:00Z".parse::<toml::Table>().unwrap();
+        assert_eq!(echo_value(&date["v"]), "1979-05-27T07:32:00Z");
+        assert_eq!(number(4.157), "4.157");
+        assert_eq!(number(-2.5e-7), "-2.5e-7");
+        assert_eq!(number(f64::NAN), "NaN");
         let text = "x".repeat(10_000);
         let e = echo(&text);
         assert!(e.ends_with("… (10000 characters)"), "{e}");

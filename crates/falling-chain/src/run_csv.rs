@@ -13,13 +13,13 @@
 //! maximum tip speed is the largest over the rows.
 
 use std::fs::File;
-use std::io::{BufRead, BufReader, Read as _};
+use std::io::{BufReader, Read as _};
 use std::path::Path;
 
 use serde_json::json;
 
 use crate::error::echo_path;
-use crate::viewer::{check_links, keeps, stride_for, JointForces, ViewRun};
+use crate::viewer::{check_links, keeps, stride_for, JointForces, ViewRun, MAX_VIEW_LINKS};
 use crate::Error;
 
 /// The largest CSV read (bytes): `simulate` keeps its samples within 1 GiB
@@ -105,6 +105,7 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
     }
     let means = sums.map(|s| s / rows as f64);
     let forces = usize::from(columns.tension) + usize::from(columns.shear);
+    crate::viewer::check_fits("--from", links, forces, false, budget)?;
     let stride = stride_for(rows, links, forces, budget);
 
     // Pass 2: the centred sums of the least squares, and the kept rows.
@@ -199,7 +200,10 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
     if !(rod.is_finite() && rod > 0.0) {
         return Err(bad(
             2,
-            format!("tip_x, tip_y and the angles give no positive rod length (got {rod})"),
+            format!(
+                "tip_x, tip_y and the angles give no positive rod length (got {})",
+                crate::error::number(rod)
+            ),
         ));
     }
     let anchor = [means[0] - rod * means[2], means[1] - rod * means[3]];
@@ -233,11 +237,13 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
 
 /// Opens `path` (a regular file of at most [`MAX_RUN_CSV_BYTES`]), checks
 /// its header, and calls `each(line, row, links)` on every row in order
-/// (finite numbers, the right count, `t` strictly increasing).
+/// (finite numbers, the right count, `t` strictly increasing). The file is
+/// read as RFC 4180 CSV by the project's one reader ([`crate::csv::Reader`]).
 fn for_each_row(
     path: &Path,
     each: &mut dyn FnMut(usize, &Row, usize) -> Result<(), Error>,
 ) -> Result<Columns, Error> {
+    use crate::csv::{ReadError, Reader, Record};
     let read = |e| Error::read("--from", path, e);
     let bad = |line: usize, what: String| {
         Error::field(
@@ -257,34 +263,47 @@ fn for_each_row(
         ))));
     }
     let file = File::open(path).map_err(read)?;
-    let mut lines = BufReader::new(file.take(MAX_RUN_CSV_BYTES + 1)).lines();
-    let header = match lines.next() {
-        Some(line) => line.map_err(read)?,
-        None => {
-            return Err(bad(
-                1,
-                "the file is empty: expected simulate --out's CSV".into(),
-            ))
-        }
+    // The widest header of a chain the viewer draws, and one more column.
+    let widest = LEADING.len() + MAX_VIEW_LINKS + 2 * (MAX_VIEW_LINKS + 1) + 1;
+    let mut reader =
+        Reader::new(BufReader::new(file.take(MAX_RUN_CSV_BYTES + 1))).max_cells(widest);
+    let csv_error = |e: ReadError| match e {
+        ReadError::Io(e) => read(e),
+        ReadError::Syntax { line, what } => bad(line, what),
     };
-    let columns = parse_header(&header).map_err(|what| bad(1, what))?;
+    let mut record = Record::default();
+    if !reader.read(&mut record).map_err(csv_error)? {
+        return Err(bad(
+            1,
+            "the file is empty: expected simulate --out's CSV".into(),
+        ));
+    }
+    let names: Vec<&str> = record.iter().collect();
+    let columns = parse_header(&names).map_err(|what| bad(record.line(), what))?;
     check_links("--from", columns.links)?;
     let count = columns.count();
+    // One cell more than the header's, so that a row's numbers are judged
+    // before its count (as far as the header's columns go).
+    let mut reader = reader.max_cells(count + 1);
     let mut row = Row {
         cells: Vec::with_capacity(count),
     };
     let mut previous = f64::NEG_INFINITY;
-    for (k, line) in lines.enumerate() {
-        let line_no = k + 2;
-        let line = line.map_err(read)?;
-        if line.is_empty() {
-            continue;
-        }
-        row.cells.clear();
-        for cell in line.split(',') {
-            if row.cells.len() == count {
-                break;
+    loop {
+        match reader.read(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
+            Err(ReadError::Syntax { line, what }) if what.starts_with("more than") => {
+                return Err(bad(
+                    line,
+                    format!("expected {count} cells as in the header (got more)"),
+                ))
             }
+            Err(e) => return Err(csv_error(e)),
+        }
+        let line_no = record.line();
+        row.cells.clear();
+        for cell in record.iter().take(count) {
             match cell.trim().parse::<f64>() {
                 Ok(v) if v.is_finite() => row.cells.push(v),
                 _ => {
@@ -299,19 +318,22 @@ fn for_each_row(
                 }
             }
         }
-        let cells = line.split(',').count();
-        if cells != count {
+        if record.len() != count {
             return Err(bad(
                 line_no,
-                format!("expected {count} cells as in the header (got {cells})"),
+                format!(
+                    "expected {count} cells as in the header (got {})",
+                    record.len()
+                ),
             ));
         }
         if row.t() <= previous {
             return Err(bad(
                 line_no,
                 format!(
-                    "t must increase from row to row (got {} after {previous})",
-                    row.t()
+                    "t must increase from row to row (got {} after {})",
+                    crate::error::number(row.t()),
+                    crate::error::number(previous)
                 ),
             ));
         }
@@ -322,8 +344,7 @@ fn for_each_row(
 }
 
 /// The columns a header names, or what is wrong with it.
-fn parse_header(header: &str) -> Result<Columns, String> {
-    let names: Vec<&str> = header.trim_end_matches('\r').split(',').collect();
+fn parse_header(names: &[&str]) -> Result<Columns, String> {
     let expected = "t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1..phi_n \
                     [,tension_0..tension_n][,shear_0..shear_n] (simulate --out's CSV)";
     if names.len() < LEADING.len() + 1 || names[..LEADING.len()] != LEADING {

@@ -560,13 +560,31 @@ impl Key {
             Type::Integer => format!("an integer in {}", integer_range(self.path)),
             ty => ty.accepted(),
         };
+        // A date-time, a string, a table or a bool where a number goes:
+        // said so, in the words of a number key.
+        let numeric = matches!(
+            self.ty,
+            Type::Number | Type::Integer | Type::Point | Type::Numbers
+        );
+        let kind = match value {
+            V::Datetime(_) if numeric => "the date-time ",
+            V::String(_) if numeric => "the string ",
+            V::Table(_) if numeric => "the table ",
+            V::Boolean(_) if numeric => "the bool ",
+            _ => "",
+        };
+        let not_number = if self.ty == Type::Integer && !kind.is_empty() {
+            ", not a number"
+        } else {
+            ""
+        };
         if ok {
             Ok(())
         } else {
             Err(Error::field(
                 self.path,
                 format!(
-                    "must be {accepted} (got {})",
+                    "must be {accepted} (got {kind}{}{not_number})",
                     crate::error::echo_value(value)
                 ),
             ))

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use falling_chain::atomic::{begin, check_writable};
+use falling_chain::atomic::{begin, check_distinct, check_writable};
 use falling_chain::error::echo_path;
 use falling_chain::study::budget::{check_budget, Budget};
 use falling_chain::study::format::exp;
@@ -122,7 +122,10 @@ fn progress_bar(quiet: bool, total: usize) -> indicatif::ProgressBar {
     }
 }
 
-fn check_plot(plot: Option<&Path>) -> Result<(), Error> {
+/// Checks `--plot` (its extension, that it can be written) and that it is
+/// not the file `--out` writes.
+fn check_plot(plot: Option<&Path>, out: Option<&Path>) -> Result<(), Error> {
+    check_distinct(&[("--out", out), ("--plot", plot)])?;
     if let Some(p) = plot {
         let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
         if !matches!(ext.to_ascii_lowercase().as_str(), "png" | "svg") {
@@ -165,7 +168,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         jobs: a.jobs.threads()?,
     };
     scene.prepare()?;
-    check_plot(a.plot.as_deref())?;
+    check_plot(a.plot.as_deref(), a.out.as_deref())?;
     let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let total = precision::ladder(&options.methods).len();
     let bar = progress_bar(
@@ -254,7 +257,7 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     };
     // Every row's scene is checked before any output is begun.
     let rows = stability::rows_of(&scene, options.vary.as_ref())?;
-    check_plot(a.plot.as_deref())?;
+    check_plot(a.plot.as_deref(), a.out.as_deref())?;
     let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let total = stability::jobs(rows.len(), &options.methods).len();
     let bar = progress_bar(
@@ -345,7 +348,8 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
     let texts = shard::read(&args.shards)?;
     let out = begin("--out", &args.out)?;
     let merged = shard::merge(&texts)?;
-    let rows = merged.lines().count().saturating_sub(1);
+    // Records, not lines: a quoted cell may hold a line break.
+    let rows = falling_chain::csv::records(&merged).map_or(0, |r| r.len().saturating_sub(1));
     let shown = echo_path(out.path());
     out.write(|w| w.write_all(merged.as_bytes()))?;
     eprintln!("wrote {rows} rows from {} shards to {shown}", texts.len());

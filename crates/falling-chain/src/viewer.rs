@@ -138,11 +138,53 @@ pub struct ViewRun {
     pub source: Option<String>,
 }
 
+/// The bytes of one kept frame of `links` rods with forces of
+/// `force_arrays` kinds, as the thinning counts them.
+pub fn frame_bytes(links: usize, force_arrays: usize) -> usize {
+    links * ANGLE_BYTES + force_arrays * (links + 1) * FORCE_BYTES + SCALAR_BYTES
+}
+
+/// Checks, before any run, that the fewest frames a run keeps (its first
+/// and its last) of `links` rods, with forces of `force_arrays` kinds and
+/// (`profiled`) the rods' lengths and densities, fit `share` bytes (its
+/// share of [`DATA_BUDGET_BYTES`]); the error names `field` and the most
+/// rods that fit.
+pub fn check_fits(
+    field: &str,
+    links: usize,
+    force_arrays: usize,
+    profiled: bool,
+    share: usize,
+) -> Result<(), Error> {
+    let need = fixed_bytes(links, profiled).saturating_add(2 * frame_bytes(links, force_arrays));
+    if need <= share {
+        return Ok(());
+    }
+    // need(n) = n per_rod + fixed: the most rods within the share.
+    let fixed = 2 * (force_arrays * FORCE_BYTES + SCALAR_BYTES);
+    let per_rod =
+        2 * (ANGLE_BYTES + force_arrays * FORCE_BYTES) + if profiled { PROFILE_BYTES } else { 0 };
+    let most = share.saturating_sub(fixed) / per_rod;
+    Err(Error::field(
+        field,
+        format!(
+            "a run of {links} rods{} needs at least {need} bytes of data (its first and last \
+             frame), more than its share of the page's {DATA_BUDGET_BYTES} bytes ({share}): at \
+             most {most} rods at this many runs (or fewer runs)",
+            if force_arrays > 0 {
+                " with joint forces"
+            } else {
+                ""
+            }
+        ),
+    ))
+}
+
 /// The stride that keeps `samples` frames of `links` rods (with forces of
 /// `force_arrays` kinds) within `budget` bytes: every `stride`-th sample
 /// and the last are kept. At least 1.
 pub fn stride_for(samples: usize, links: usize, force_arrays: usize, budget: usize) -> usize {
-    let frame = links * ANGLE_BYTES + force_arrays * (links + 1) * FORCE_BYTES + SCALAR_BYTES;
+    let frame = frame_bytes(links, force_arrays);
     let kept = (budget / frame.max(1)).max(2);
     if samples <= kept {
         1
@@ -166,6 +208,22 @@ pub fn check_run_count(field: &str, runs: usize) -> Result<(), Error> {
         Err(Error::field(
             field,
             format!("a page shows 1 to {MAX_RUNS} runs (got {runs})"),
+        ))
+    }
+}
+
+/// Checks the page's file name: it ends in `.html` exactly (the contract's
+/// `FILE.html`: not `.htm`, not `.HTML`); the error names `field`.
+pub fn check_page_path(field: &str, path: &std::path::Path) -> Result<(), Error> {
+    if path.extension().is_some_and(|e| e == "html") {
+        Ok(())
+    } else {
+        Err(Error::field(
+            field,
+            format!(
+                "must end in .html (got '{}')",
+                crate::error::echo_path(path)
+            ),
         ))
     }
 }
@@ -272,6 +330,50 @@ impl ViewRun {
         run
     }
 
+    /// The number of samples kept.
+    pub fn kept(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Keeps every other kept sample and the last (the stride doubles:
+    /// still every `stride`-th sample and the last); `false`, and nothing
+    /// changed, when two or fewer are kept.
+    pub fn thin_by_two(&mut self) -> bool {
+        let kept = self.kept();
+        if kept <= 2 {
+            return false;
+        }
+        let keep = |i: usize| i % 2 == 0 || i + 1 == kept;
+        let thin = |values: &mut Vec<f64>, per: usize| {
+            let mut i = 0;
+            values.retain(|_| {
+                let k = keep(i / per);
+                i += 1;
+                k
+            });
+        };
+        let links = self.links;
+        for v in [
+            &mut self.t,
+            &mut self.speed,
+            &mut self.energy,
+            &mut self.dissipated,
+        ] {
+            thin(v, 1);
+        }
+        thin(&mut self.phi, links.max(1));
+        if let Some(p) = self.pivot.as_mut() {
+            thin(p, 2);
+        }
+        if let Some(f) = self.forces.as_mut() {
+            for v in [&mut f.tension, &mut f.shear].into_iter().flatten() {
+                thin(v, links + 1);
+            }
+        }
+        self.stride = self.stride.saturating_mul(2);
+        true
+    }
+
     /// The run as the page's JSON object (numbers written by hand: angles
     /// to 6 decimals, forces to 5 digits, the rest round-tripping).
     fn write_json(&self, out: &mut String) {
@@ -370,9 +472,8 @@ fn write_array(out: &mut String, name: &str, values: &[f64], each: impl Fn(&mut 
     out.push(']');
 }
 
-/// The HTML page of `runs`, titled `title`: the data, the style and the
-/// script inline.
-pub fn page(title: &str, runs: &[ViewRun]) -> String {
+/// The page's data (`#fc-data`, JSON) of `runs`, as the page holds it.
+fn data_of(runs: &[ViewRun]) -> String {
     let mut data = String::from("{\"version\":1,\"runs\":[");
     for (k, run) in runs.iter().enumerate() {
         if k > 0 {
@@ -383,12 +484,54 @@ pub fn page(title: &str, runs: &[ViewRun]) -> String {
     data.push_str("]}");
     // `<` appears only inside JSON strings, where \u003c is the same text:
     // no label can end the script element.
-    let data = data.replace('<', "\\u003c");
+    data.replace('<', "\\u003c")
+}
+
+/// The page around `data`.
+fn page_of(title: &str, data: &str) -> String {
     TEMPLATE
         .replace("{{CSS}}", CSS)
         .replace("{{SCRIPT}}", SCRIPT)
         .replace("{{TITLE}}", &html_escape(title))
-        .replace("{{DATA}}", &data)
+        .replace("{{DATA}}", data)
+}
+
+/// The HTML page of `runs`, titled `title`: the data, the style and the
+/// script inline.
+pub fn page(title: &str, runs: &[ViewRun]) -> String {
+    page_of(title, &data_of(runs))
+}
+
+/// The page of `runs` with at most [`DATA_BUDGET_BYTES`] of data, as the
+/// page's cap promises: while the data (as written) exceed it, every run
+/// keeps every other of its kept samples (and the last; at most 64
+/// halvings); if the runs' first and last frames alone exceed it, the page
+/// is refused, naming `field`.
+pub fn fitted_page(field: &str, title: &str, runs: &mut [ViewRun]) -> Result<String, Error> {
+    for _ in 0..64 {
+        let data = data_of(runs);
+        if data.len() <= DATA_BUDGET_BYTES {
+            return Ok(page_of(title, &data));
+        }
+        let mut thinned = false;
+        for run in runs.iter_mut() {
+            thinned |= run.thin_by_two();
+        }
+        if !thinned {
+            return Err(Error::field(
+                field,
+                format!(
+                    "the page's data would be {} bytes with only each run's first and last \
+                     frame, more than its {DATA_BUDGET_BYTES}: fewer runs or fewer rods",
+                    data.len()
+                ),
+            ));
+        }
+    }
+    Err(Error::field(
+        field,
+        format!("the page's data do not fit its {DATA_BUDGET_BYTES} bytes"),
+    ))
 }
 
 /// `text` with `&`, `<`, `>` and `"` escaped for HTML.
@@ -494,6 +637,105 @@ mod tests {
             fixed_bytes(MAX_VIEW_PROFILED_LINKS, true) + 2 * frame <= DATA_BUDGET_BYTES / MAX_RUNS
         );
         assert_eq!(fixed_bytes(n, false), 0);
+    }
+
+    #[test]
+    fn halving_keeps_the_stride_the_first_and_the_last_sample() {
+        // 11 samples at stride 2 keep 0, 2, .., 10; halved: 0, 4, 8, 10.
+        let mut run = toy(Some(JointForces {
+            tension: Some((0..6 * 3).map(f64::from).collect()),
+            shear: None,
+        }));
+        run.samples = 11;
+        run.stride = 2;
+        run.t = vec![0.0, 2.0, 4.0, 6.0, 8.0, 10.0];
+        run.speed.clone_from(&run.t);
+        run.energy.clone_from(&run.t);
+        run.dissipated.clone_from(&run.t);
+        run.phi = (0..12).map(f64::from).collect();
+        run.pivot = Some((0..12).map(f64::from).collect());
+        assert!(run.thin_by_two());
+        assert_eq!(run.stride, 4);
+        let kept: Vec<f64> = (0..11)
+            .filter(|&k| keeps(k, 11, 4))
+            .map(|k| k as f64)
+            .collect();
+        assert_eq!(run.t, kept);
+        assert_eq!(run.phi, [0.0, 1.0, 4.0, 5.0, 8.0, 9.0, 10.0, 11.0]);
+        assert_eq!(run.pivot.as_deref(), Some(&run.phi[..]));
+        let tension = run.forces.as_ref().and_then(|f| f.tension.clone()).unwrap();
+        assert_eq!(
+            tension,
+            [0.0, 1.0, 2.0, 6.0, 7.0, 8.0, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0]
+        );
+        while run.thin_by_two() {}
+        assert_eq!(run.t, [0.0, 10.0]);
+        assert!(!run.thin_by_two());
+    }
+
+    /// Where the thinning's estimate falls short (angles of many turns
+    /// take more than their bytes), the page is halved until its data fit
+    /// the cap, and refused when two frames alone exceed it.
+    #[test]
+    fn the_page_is_thinned_to_its_cap_or_refused() {
+        let (links, samples) = (1000, 400);
+        let mut run = toy(None);
+        run.links = links;
+        run.samples = samples;
+        run.stride = 1;
+        run.t = (0..samples).map(|k| k as f64).collect();
+        run.speed.clone_from(&run.t);
+        run.energy.clone_from(&run.t);
+        run.dissipated.clone_from(&run.t);
+        // -12345.678901, 14 bytes an angle: 14 MB at stride 1.
+        run.phi = vec![-12_345.678_901; samples * links];
+        let mut runs = [run.clone()];
+        let page = fitted_page("--out", "t", &mut runs).unwrap();
+        let data = super::data_of(&runs);
+        assert!(data.len() <= DATA_BUDGET_BYTES, "{}", data.len());
+        assert!(page.contains(&data));
+        assert!(runs[0].stride > 1 && runs[0].kept() > 2);
+        let kept: Vec<f64> = (0..samples)
+            .filter(|&k| keeps(k, samples, runs[0].stride))
+            .map(|k| k as f64)
+            .collect();
+        assert_eq!(runs[0].t, kept);
+        // Two frames of 10^5 such angles are 2.8 MB: refused.
+        run.links = 100_000;
+        run.samples = 2;
+        run.t.truncate(2);
+        run.speed.truncate(2);
+        run.energy.truncate(2);
+        run.dissipated.truncate(2);
+        run.phi = vec![-12_345.678_901; 2 * 100_000];
+        let e = fitted_page("--out", "t", &mut [run])
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--out: the page's data would be"), "{e}");
+    }
+
+    /// The fewest frames of the most rods the page draws fit a run's share
+    /// of 8 without forces; with forces the bound is smaller, and named.
+    #[test]
+    fn the_fewest_frames_fit_or_are_refused() {
+        let share = DATA_BUDGET_BYTES / MAX_RUNS;
+        assert!(check_fits("chain.links", MAX_VIEW_LINKS, 0, false, share).is_ok());
+        assert!(check_fits("chain.links", MAX_VIEW_PROFILED_LINKS, 0, true, share).is_ok());
+        let e = check_fits("--forces", 5000, 2, false, share)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("--forces: a run of 5000 rods with joint forces"),
+            "{e}"
+        );
+        let most: usize = e
+            .split("at most ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap();
+        assert!(check_fits("--forces", most, 2, false, share).is_ok());
+        assert!(check_fits("--forces", most + 1, 2, false, share).is_err());
     }
 
     #[test]

@@ -36,7 +36,7 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use crate::chain::{check, Chain, InvalidParameter};
+use crate::chain::{check, number_text, Chain, InvalidParameter};
 use crate::elastic;
 use crate::kinematics::{energy, joints, tip, tip_velocity, Vec2};
 use crate::ode::{Cancel, Stats, Status};
@@ -237,7 +237,7 @@ impl SolveOptions {
             check(
                 self.dt <= self.t_end,
                 "run.dt",
-                format!("at most run.t_end = {} for rk4", self.t_end),
+                format!("at most run.t_end = {} for rk4", number_text(self.t_end)),
                 self.dt,
             )?;
             let dt_min = self.t_end / self.max_steps as f64;
@@ -247,7 +247,8 @@ impl SolveOptions {
                 format!(
                     "at least run.t_end / run.max_steps = {dt_min:e} for rk4 (t_end = {}, \
                      max_steps = {})",
-                    self.t_end, self.max_steps
+                    number_text(self.t_end),
+                    self.max_steps
                 ),
                 self.dt,
             )?;
@@ -284,7 +285,7 @@ impl SolveOptions {
                 format!(
                     "at least {o_min:e} for t_end = {} and chain.links = {}: the samples \
                      ({} numbers each) must fit in {} MiB",
-                    self.t_end,
+                    number_text(self.t_end),
                     chain.links(),
                     Self::sample_numbers(chain),
                     MAX_OUTPUT_BYTES >> 20

@@ -20,7 +20,10 @@ pub fn check_budget(what: &str, seconds: f64) -> Result<f64, Error> {
     } else {
         Err(Error::field(
             what,
-            format!("must be a number of seconds in (0, {MAX_BUDGET}] (got {seconds})"),
+            format!(
+                "must be a number of seconds in (0, {MAX_BUDGET}] (got {})",
+                crate::error::number(seconds)
+            ),
         ))
     }
 }

@@ -3,8 +3,11 @@
 //!
 //! Every number of a deterministic table is [`num`] (the shortest text that
 //! reads back to the same `f64`) or [`exp`] (the same in exponent form, for
-//! steps, tolerances and errors: `1e-3`). A text cell never holds a comma
-//! ([`text`]), so the tables need no quoting.
+//! steps, tolerances and errors: `1e-3`). A label never holds a comma
+//! ([`text`]: semicolons instead, so the figures' tables need no quotes);
+//! a user's text that must read back as given (a scene name) is
+//! [`crate::csv::field`], quoted when it holds a comma, a quote or a line
+//! break.
 
 /// `x` in the shortest text that reads back to `x`: `0.0005`, `4.157`, `NaN`.
 pub fn num(x: f64) -> String {
@@ -21,9 +24,11 @@ pub fn opt(x: Option<f64>, f: fn(f64) -> String) -> String {
     x.map_or_else(String::new, f)
 }
 
-/// A text cell: commas (the separator) become semicolons.
+/// A text cell: commas (the separator) become semicolons, and a cell that
+/// still holds a quote or a line break is quoted (RFC 4180), so that every
+/// table reads back ([`crate::csv::Reader`]).
 pub fn text(s: &str) -> String {
-    s.replace(',', ";")
+    crate::csv::field(&s.replace(',', ";")).into_owned()
 }
 
 /// `x` with `decimals` decimals (long per-sample tables, wall times).
@@ -66,5 +71,7 @@ mod tests {
         assert_eq!(exp(0.02), "2e-2");
         assert_eq!(short_err(3.7e-12), "3e-12");
         assert_eq!(fixed(0.1234567, 6), "0.123457");
+        assert_eq!(text("folded, r = 0"), "folded; r = 0");
+        assert_eq!(text("a \"b\"\nc"), "\"a \"\"b\"\"\nc\"");
     }
 }

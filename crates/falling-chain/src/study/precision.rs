@@ -698,7 +698,7 @@ pub fn csv_text(
     for pt in rows {
         let s = &pt.stats;
         let cells = [
-            scene.to_string(),
+            crate::csv::field(scene).into_owned(),
             num(t_eval),
             pt.method.clone(),
             pt.param_name.to_string(),
@@ -769,7 +769,11 @@ pub fn check_check_dt(what: &str, dt: f64, t_end: f64) -> Result<f64, Error> {
     } else {
         Err(Error::field(
             what,
-            format!("must be a step in (0, run.t_end = {t_end}] (got {dt})"),
+            format!(
+                "must be a step in (0, run.t_end = {}] (got {})",
+                crate::error::number(t_end),
+                crate::error::number(dt)
+            ),
         ))
     }
 }

@@ -125,15 +125,25 @@ pub fn read(paths: &[std::path::PathBuf]) -> Result<Vec<(String, String)>, Error
         .collect()
 }
 
+/// The start of the `note` of a row that was not run, or was stopped,
+/// within its shard's `--budget` (precision's and stability's tables):
+/// [`merge`] refuses such a shard, since its rows are not results.
+pub const BUDGET_NOTE: &str = "budget:";
+
 /// Joins the tables of shards `(name, text)` into the table of the whole
 /// study: the header, the rows without a run number (a study's shared rows,
 /// such as precision's reference, computed by every shard: the first shard's
-/// are kept), then every run in run order. Refused, with one line naming
-/// the file, when the headers differ, a table lacks the `run`, `runs` or
-/// `scene_hash` column, two shards come from different studies (scene,
-/// options or size), a run is missing or given twice, or shards disagree on
-/// the shared rows (wall times aside).
+/// are kept), then every run in run order, each record as it stood in its
+/// file. The tables are read as RFC 4180 CSV ([`crate::csv::Reader`]: a
+/// scene name with a comma, a quote or a line break is one quoted cell).
+/// Refused, with one line naming the file, when a table is not CSV, the
+/// headers differ, a table lacks the `run`, `runs` or `scene_hash` column,
+/// two shards come from different studies (scene, options or size), a run
+/// is missing or given twice, a row was not run or was stopped for the
+/// shard's `--budget` (its `note` starts with [`BUDGET_NOTE`]: run that
+/// shard again), or shards disagree on the shared rows (wall times aside).
 pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
+    use crate::csv::{Reader, Record};
     let err = |what: &str, why: String| Error::field("merge", format!("{}: {why}", echo(what)));
     if shards.is_empty() {
         return Err(Error::field("merge", "no shard files given"));
@@ -145,8 +155,16 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
         ));
     }
     let (first_name, first_text) = &shards[0];
-    let header = first_text.lines().next().unwrap_or_default().to_string();
-    let cols: Vec<&str> = header.split(',').collect();
+    // The first shard's header: the columns, and its text for the output.
+    let (cols, header_span) = {
+        let mut reader = Reader::new(first_text.as_bytes());
+        let mut header = Record::default();
+        match reader.read(&mut header) {
+            Ok(true) => (header.to_vec(), header.span()),
+            Ok(false) => return Err(err(first_name, "the file is empty (no header)".into())),
+            Err(e) => return Err(err(first_name, e.to_string())),
+        }
+    };
     let col = |c: &str| {
         cols.iter().position(|h| *h == c).ok_or_else(|| {
             err(
@@ -157,33 +175,53 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
     };
     let (c_run, c_runs, c_hash) = (col("run")?, col(COLUMNS[0])?, col(COLUMNS[1])?);
     let c_wall = cols.iter().position(|h| *h == "wall_seconds");
+    let c_note = cols.iter().position(|h| *h == "note");
     let mut study: Option<(String, String)> = None; // (runs, hash)
-    let mut shared: Option<Vec<String>> = None;
-    let mut rows: BTreeMap<usize, (String, &str)> = BTreeMap::new();
+    let mut shared: Option<Vec<Vec<String>>> = None;
+    let mut first_shared = vec![];
+    // Run -> (shard, where its record is in the shard's text).
+    let mut rows: BTreeMap<usize, (usize, std::ops::Range<usize>)> = BTreeMap::new();
     let mut total = 0usize;
-    for (name, text) in shards {
-        let mut lines = text.lines();
-        if lines.next() != Some(header.as_str()) {
-            return Err(err(
+    for (s, (name, text)) in shards.iter().enumerate() {
+        let mut reader = Reader::new(text.as_bytes()).max_cells(cols.len());
+        let mut record = Record::default();
+        let bad = |e: crate::csv::ReadError| match e {
+            crate::csv::ReadError::Syntax { line, what } if what.starts_with("more than") => err(
                 name,
-                format!("its header differs from '{}'s", echo(first_name)),
-            ));
+                format!(
+                    "line {line} has more cells than the header's {}",
+                    cols.len()
+                ),
+            ),
+            e => err(name, e.to_string()),
+        };
+        match reader.read(&mut record).map_err(bad)? {
+            true if record.iter().eq(cols.iter().map(String::as_str)) => {}
+            _ => {
+                return Err(err(
+                    name,
+                    format!("its header differs from '{}'s", echo(first_name)),
+                ))
+            }
         }
         let mut mine_shared = vec![];
-        for (k, line) in lines.enumerate().filter(|(_, l)| !l.is_empty()) {
-            let cells: Vec<&str> = line.split(',').collect();
-            if cells.len() != cols.len() {
+        // Rows marked as not run for the shard's --budget: run numbers, and
+        // the lines of shared rows.
+        let (mut unrun, mut unrun_shared) = (vec![], vec![]);
+        while reader.read(&mut record).map_err(bad)? {
+            let line = record.line();
+            if record.len() != cols.len() {
                 return Err(err(
                     name,
                     format!(
-                        "line {} has {} cells, the header {}",
-                        k + 2,
-                        cells.len(),
+                        "line {line} has {} cells, the header {}",
+                        record.len(),
                         cols.len()
                     ),
                 ));
             }
-            let id = (cells[c_runs].to_string(), cells[c_hash].to_string());
+            let cell = |c: usize| record.get(c).unwrap_or_default();
+            let id = (cell(c_runs).to_string(), cell(c_hash).to_string());
             match &study {
                 None => {
                     let n: usize =
@@ -194,8 +232,7 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
                                 err(
                                     name,
                                     format!(
-                                        "'runs' is not an integer in 0..={MAX_RUNS} (line {})",
-                                        k + 2
+                                        "'runs' is not an integer in 0..={MAX_RUNS} (line {line})"
                                     ),
                                 )
                             })?;
@@ -218,31 +255,60 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
                 }
                 Some(_) => {}
             }
-            let run = cells[c_run];
+            let budget = c_note.is_some_and(|c| cell(c).starts_with(BUDGET_NOTE));
+            let run = cell(c_run);
             if run.is_empty() {
-                let mut c = cells.clone();
+                let mut c = record.to_vec();
                 if let Some(w) = c_wall {
-                    c[w] = "";
+                    c[w].clear();
                 }
-                mine_shared.push(c.join(","));
+                mine_shared.push(c);
+                if s == 0 {
+                    first_shared.push(record.span());
+                }
+                if budget {
+                    unrun_shared.push(line);
+                }
                 continue;
             }
             let run: usize = run.parse().ok().filter(|&r| r < total).ok_or_else(|| {
                 err(
                     name,
                     format!(
-                        "run '{}' (line {}) is not an integer below the study's {total} runs",
-                        echo(run),
-                        k + 2
+                        "run '{}' (line {line}) is not an integer below the study's {total} runs",
+                        echo(run)
                     ),
                 )
             })?;
-            if let Some((other, _)) = rows.insert(run, (name.clone(), line)) {
+            if budget {
+                unrun.push(run);
+            }
+            if let Some((other, _)) = rows.insert(run, (s, record.span())) {
                 return Err(err(
                     name,
-                    format!("run {run} is given twice (also in '{}')", echo(&other)),
+                    format!(
+                        "run {run} is given twice (also in '{}')",
+                        echo(&shards[other].0)
+                    ),
                 ));
             }
+        }
+        if !unrun.is_empty() || !unrun_shared.is_empty() {
+            unrun.sort_unstable();
+            let what = if unrun.is_empty() {
+                let lines: Vec<String> = unrun_shared.iter().map(usize::to_string).collect();
+                format!("the shared rows on lines {} are", lines.join(", "))
+            } else {
+                runs_named(&unrun)
+            };
+            return Err(err(
+                name,
+                format!(
+                    "{what} not results: not run, or stopped, within that shard's --budget \
+                     (note '{BUDGET_NOTE} ...'); run the shard again with a larger --budget or \
+                     none"
+                ),
+            ));
         }
         match &shared {
             None => shared = Some(mine_shared),
@@ -269,19 +335,15 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
             ),
         ));
     }
-    let mut out = header;
+    let mut out = first_text[header_span].to_string();
     out.push('\n');
     // The first shard's shared rows, with their wall times.
-    for line in first_text
-        .lines()
-        .skip(1)
-        .filter(|l| !l.is_empty() && l.split(',').nth(c_run).is_some_and(str::is_empty))
-    {
-        out.push_str(line);
+    for span in first_shared {
+        out.push_str(&first_text[span]);
         out.push('\n');
     }
-    for (_, (_, line)) in rows {
-        out.push_str(line);
+    for (_, (s, span)) in rows {
+        out.push_str(&shards[s].1[span]);
         out.push('\n');
     }
     Ok(out)

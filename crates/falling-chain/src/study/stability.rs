@@ -248,7 +248,7 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
         let ch = &p.chain;
         let mgl = ch.energy_scale();
         let mut line = [
-            text(&row.key),
+            crate::csv::field(&row.key).into_owned(),
             text(&row.label),
             ch.links().to_string(),
             num(ch.damping()),
@@ -308,7 +308,7 @@ pub fn timing_text(rows: &[Row], cells: &[Cell]) -> String {
         if let Ok(t) = &c.run {
             timing.push_str(&format!(
                 "{},{},{},{},{}\n",
-                rows[c.row].key,
+                crate::csv::field(&rows[c.row].key),
                 c.method,
                 c.method.accuracy_name(),
                 exp(c.param),

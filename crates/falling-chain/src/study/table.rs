@@ -1,9 +1,11 @@
 //! A CSV table read whole (the study's tables, `figures/data/`): the
 //! header and the rows as text, with columns by name.
 //!
-//! The dialect is plain: a header line, then one line per row, cells
-//! separated by commas, no quoting (a text cell never holds a comma, see
-//! [`super::format::text`]). An empty cell is a missing number (read as NaN).
+//! The dialect is the project's one, RFC 4180 ([`crate::csv::Reader`]): a
+//! header record, then one record per row; a text cell holding a comma, a
+//! quote or a line break is quoted ([`super::format::text`] writes the
+//! figures' labels with semicolons for commas, so their tables need no
+//! quotes). An empty cell is a missing number (read as NaN).
 
 use std::fs;
 use std::path::Path;
@@ -30,24 +32,24 @@ impl Table {
 
     /// Parses the text of a CSV file called `name`.
     pub fn parse(name: &str, text: &str) -> Result<Table, String> {
-        let mut lines = text.lines();
-        let header: Vec<String> = lines
-            .next()
-            .ok_or_else(|| format!("{name}: empty"))?
-            .split(',')
-            .map(str::to_string)
-            .collect();
-        let rows: Vec<Vec<String>> = lines
-            .filter(|l| !l.is_empty())
-            .map(|l| l.split(',').map(str::to_string).collect())
-            .collect();
-        if let Some(k) = rows.iter().position(|r| r.len() != header.len()) {
-            return Err(format!(
-                "{name}: row {} has {} cells, the header {}",
-                k + 2,
-                rows[k].len(),
-                header.len()
-            ));
+        let mut reader = crate::csv::Reader::new(text.as_bytes());
+        let mut record = crate::csv::Record::default();
+        let bad = |e: crate::csv::ReadError| format!("{name}: {e}");
+        if !reader.read(&mut record).map_err(bad)? {
+            return Err(format!("{name}: empty"));
+        }
+        let header = record.to_vec();
+        let mut rows = vec![];
+        while reader.read(&mut record).map_err(bad)? {
+            if record.len() != header.len() {
+                return Err(format!(
+                    "{name}: line {} has {} cells, the header {}",
+                    record.line(),
+                    record.len(),
+                    header.len()
+                ));
+            }
+            rows.push(record.to_vec());
         }
         Ok(Table {
             name: name.to_string(),
@@ -129,6 +131,11 @@ mod tests {
         assert!(b[1].is_nan());
         assert!(t.col("c").unwrap_err().contains("no column 'c'"));
         assert!(Table::parse("u.csv", "a,b\n1\n").is_err());
+        let q = Table::parse("q.csv", "a,b\n\"x, \"\"y\"\"\nz\",2\n").unwrap();
+        assert_eq!(q.strs("a").unwrap(), vec!["x, \"y\"\nz"]);
+        assert!(Table::parse("v.csv", "a,b\nx\"y,2\n")
+            .unwrap_err()
+            .starts_with("v.csv: line 2: "));
         assert_eq!(distinct(&["p", "q", "p"]), vec!["p", "q"]);
     }
 }

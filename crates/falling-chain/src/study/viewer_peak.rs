@@ -5,7 +5,9 @@
 //! [`tables`] gives the trajectory as `simulate --out` writes it and the
 //! summary fields the page shows (`key,value`, values as JSON; a point is
 //! two rows, `<key>_x` and `<key>_y`, so that no cell holds a comma; no wall
-//! time, so the data reproduce to the byte). [`view_run`] reads them back
+//! time, so the data reproduce to the byte). A JSON string, `"ok"`, is a
+//! quoted cell to the CSV reader, which gives its text: read back as that
+//! string. [`view_run`] reads them back
 //! into the page's [`ViewRun`] (the trajectory as `view --from` reads it)
 //! with the time of the peak tip speed.
 
@@ -62,7 +64,9 @@ pub fn view_run(csv: &Path, summary: &Table, label: &str) -> Result<(ViewRun, f6
         crate::run_csv::read_run_csv(csv, DATA_BUDGET_BYTES).map_err(|e| e.to_string())?;
     let mut fields = serde_json::Map::new();
     for (key, value) in summary.strs("key")?.iter().zip(summary.strs("value")?) {
-        let value: Value = serde_json::from_str(value).map_err(|e| format!("{key}: {e}"))?;
+        // A JSON string ("ok") is a quoted CSV cell, read as its text.
+        let value: Value =
+            serde_json::from_str(value).unwrap_or_else(|_| Value::String(value.to_string()));
         fields.insert((*key).to_string(), value);
     }
     for key in SHOWN {
