@@ -18,6 +18,7 @@ mod common;
 mod converge;
 mod fuzz;
 mod hostile;
+mod hostile_studies;
 mod newton_counters;
 mod pivot;
 mod plot;
