@@ -693,3 +693,92 @@ pub fn run_study(
         failures,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::CellState::{Completed, Failed, NotRun};
+    use super::*;
+
+    fn cells(states: &[(f64, CellState)]) -> Vec<(f64, CellState)> {
+        states.to_vec()
+    }
+
+    /// The verdict is what the cells say, whichever way the accuracy runs:
+    /// RK4 fails at large steps, an implicit method at tight tolerances (the
+    /// line once said "completes every row at rtol <= 1e-2; fails at rtol
+    /// >= 1e-12" of the second, both false).
+    #[test]
+    fn the_verdict_follows_the_cells() {
+        let rk4 = cells(&[
+            (2e-2, Failed),
+            (1e-2, Failed),
+            (5e-3, Completed),
+            (1e-3, Completed),
+        ]);
+        assert_eq!(
+            verdict("dt", &rk4),
+            "completes every row at dt <= 5e-3; fails at dt >= 1e-2"
+        );
+        let tight = cells(&[
+            (1e-2, Completed),
+            (1e-4, Completed),
+            (1e-8, Completed),
+            (1e-10, Failed),
+            (1e-12, Failed),
+        ]);
+        assert_eq!(
+            verdict("rtol", &tight),
+            "completes every row at rtol >= 1e-8; fails at rtol <= 1e-10"
+        );
+        // Failing at both ends, and a lone failure inside (a run of one
+        // accuracy is named alone).
+        let both = cells(&[
+            (1e-2, Failed),
+            (1e-3, Completed),
+            (1e-4, Failed),
+            (1e-6, Completed),
+            (1e-8, Completed),
+            (1e-12, Failed),
+        ]);
+        assert_eq!(
+            verdict("rtol", &both),
+            "completes every row at rtol 1e-8 to 1e-6 and rtol 1e-3; \
+             fails at rtol 1e-12 and rtol 1e-4 and rtol 1e-2"
+        );
+    }
+
+    /// With two rows, an accuracy passes only where both completed; a cell
+    /// not run makes its accuracy neither, and is counted.
+    #[test]
+    fn the_verdict_of_several_rows_and_cells_not_run() {
+        let two = cells(&[
+            (1e-2, Completed),
+            (1e-2, Failed),
+            (1e-3, Completed),
+            (1e-3, Completed),
+            (1e-4, Completed),
+            (1e-4, NotRun("budget: not run within --budget".into())),
+        ]);
+        assert_eq!(
+            verdict("rtol", &two),
+            "completes every row at rtol 1e-3; fails at rtol 1e-2; 1 of 6 cells not run"
+        );
+    }
+
+    /// Nothing ran: the reason, never "none tried" or "fails nowhere";
+    /// every run failed: "fails everywhere tried"; every run completed:
+    /// "every rtol tried".
+    #[test]
+    fn the_verdict_when_nothing_ran_or_everything_failed() {
+        let why = "budget: not run within --budget";
+        let none = cells(&[(1e-2, NotRun(why.into())), (1e-3, NotRun(why.into()))]);
+        assert_eq!(verdict("rtol", &none), format!("not run ({why})"));
+        let failed = cells(&[(1e-2, Failed), (1e-3, Failed)]);
+        assert_eq!(verdict("rtol", &failed), "fails everywhere tried");
+        let ok = cells(&[(1e-2, Completed), (1e-3, Completed)]);
+        assert_eq!(
+            verdict("rtol", &ok),
+            "completes every row at every rtol tried; fails nowhere it ran"
+        );
+    }
+}
