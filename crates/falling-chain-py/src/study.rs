@@ -215,7 +215,7 @@ pub fn needs<'py>(
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
-    core_needs::check_tol("tol", tol).map_err(value_error)?;
+    core_needs::check_tol("--tol", tol).map_err(value_error)?;
     let links = match links {
         None => ::falling_chain::converge::DEFAULT_LINKS.to_vec(),
         Some(l) => {
