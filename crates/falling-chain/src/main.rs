@@ -336,14 +336,14 @@ struct SimulateArgs {
 /// The most snapshots `plot` draws.
 const MAX_SNAPSHOTS: usize = 10_000;
 
-/// Parses a whole number in `lo..=hi`, the message giving the range (clap
-/// names the flag): "must be an integer in 1..=256".
+/// Parses a whole number for a flag whose range is `lo..=hi`: text that
+/// is no whole number (`-1`, `1e300`, `nan`) is refused with the range
+/// (clap names the flag); a number out of the range is refused by the
+/// command's own check, as `--jobs: must be an integer in 1..=256`.
 fn int_in(text: &str, lo: usize, hi: usize) -> Result<usize, String> {
     text.trim()
         .parse::<usize>()
-        .ok()
-        .filter(|n| (lo..=hi).contains(n))
-        .ok_or_else(|| format!("must be an integer in {lo}..={hi}"))
+        .map_err(|_| format!("must be an integer in {lo}..={hi}"))
 }
 
 fn parse_jobs(text: &str) -> Result<usize, String> {
@@ -355,7 +355,8 @@ fn parse_snapshots(text: &str) -> Result<usize, String> {
 }
 
 fn parse_fps(text: &str) -> Result<u32, String> {
-    int_in(text, 1, 50).map(|n| n as u32)
+    int_in(text, 1, 50)
+        .and_then(|n| u32::try_from(n).map_err(|_| "must be an integer in 1..=50".to_string()))
 }
 
 fn parse_rods(text: &str) -> Result<usize, String> {
@@ -413,8 +414,9 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         ("run.atol", args.atol.map(toml::Value::Float)),
         ("run.t_end", args.t_end.map(toml::Value::Float)),
     ];
+    // The numeric flags' errors name the flag; --method keeps its key's.
     let names = [
-        ("run.method", "--method"),
+        ("run.method", "run.method"),
         ("run.dt", "--dt"),
         ("run.rtol", "--rtol"),
         ("run.atol", "--atol"),
