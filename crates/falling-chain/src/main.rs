@@ -71,13 +71,18 @@ enum Command {
     /// at the end and of the maximum tip speed against a reference (DOPRI5,
     /// rtol 1e-13) checked by RK4 and BDF, the work and the wall time; prints
     /// how well the checks agree and the fastest method at each error level.
-    /// Exit 1 if the reference failed or is not confirmed, or every method
-    /// failed (what ran is still written).
+    /// Every bound of every run is checked before any run; --budget holds
+    /// in every phase, the reference and its checks included. Exit 1 if
+    /// the reference failed, was stopped by --budget or is not confirmed,
+    /// or if every point that ran failed or none ran within --budget (what
+    /// ran is still written).
     Precision(study_commands::PrecisionArgs),
     /// Where each method fails on a scene (or on each value of --vary).
     ///
     /// Per method and step or tolerance, the status, the time it stopped and the energy-balance error (rows:
-    /// the scene, or one per value of --vary). Exit 1 if every run failed.
+    /// the scene, or one per value of --vary), and per method where it
+    /// completes every row and where it fails, read off the cells. Exit 1
+    /// if every run that ran failed, or none ran within --budget.
     Stability(study_commands::StabilityArgs),
     /// What a scene needs at --tol: rods, method and tolerance, physical
     /// terms.
@@ -86,7 +91,8 @@ enum Command {
     /// path, tip end and maximum tip speed), the fastest method and
     /// tolerance reaching --tol at that n (precision's lines), and which
     /// optional physical terms (joint friction) change those quantities by
-    /// more than --tol. Exit 1 if no n or no method meets --tol.
+    /// more than --tol. Exit 1 if no n or no method meets --tol, or if
+    /// --budget stopped the phase that would find it (the line says which).
     Needs(study_commands::NeedsArgs),
     /// Join the tables of a sharded sweep, precision or stability.
     ///
