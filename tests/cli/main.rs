@@ -20,6 +20,7 @@ mod fuzz;
 mod hostile;
 mod hostile_files;
 mod hostile_model;
+mod hostile_studies;
 mod newton_counters;
 mod pivot;
 mod plot;

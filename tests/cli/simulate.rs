@@ -294,8 +294,8 @@ fn bad_input_exits_2_with_one_line_naming_the_field_and_writes_nothing() {
         (vec![&span, "--set", "colour=1"], "colour"),
         (vec![&span, "--method", "nonesuch"], "run.method"),
         (vec![&span, "--set", "run.method=nonesuch"], "run.method"),
-        (vec![&span, "--dt", "0"], "run.dt"),
-        (vec![&span, "--t-end", "-1"], "run.t_end"),
+        (vec![&span, "--dt", "0"], "--dt"),
+        (vec![&span, "--t-end", "-1"], "--t-end"),
         (
             vec![&span, "--set", "chain.axial_stiffness=-1e4"],
             "chain.axial_stiffness",

@@ -377,8 +377,10 @@ fn study_flags_are_checked_by_name() {
     }
 }
 
-/// A budget too small for any point: the reference is computed, every point
-/// is listed as not run for the budget, exit 1, the table still written.
+/// A budget too small for any run: the budget holds from the reference
+/// on, so the reference is stopped at once (its row says where), every
+/// point is listed as not run for the budget with that reason, exit 1, the
+/// table still written.
 #[test]
 fn a_spent_budget_skips_and_lists_the_points() {
     let dir = scratch("budget");
@@ -399,19 +401,25 @@ fn a_spent_budget_skips_and_lists_the_points() {
     .concat());
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
-        stdout(&o).contains("not run for --budget: bdf rtol 1e-3"),
+        stdout(&o).contains("not run for --budget: reference-dopri5 rtol 1e-13, bdf rtol 1e-3"),
         "{}",
         stdout(&o)
     );
-    assert_eq!(
-        stderr(&o).lines().last().unwrap(),
-        "no point ran within --budget"
+    assert!(
+        stderr(&o)
+            .lines()
+            .last()
+            .unwrap()
+            .starts_with("--budget stopped the reference run (DOPRI5 rtol 1e-13) at t = 0"),
+        "{}",
+        stderr(&o)
     );
     let (_, rows) = table(&fs::read_to_string(&out).unwrap());
+    assert_eq!(rows[0]["status"], "interrupted");
     // None was started: past the deadline, no point is predicted to fit.
     let budget: Vec<_> = rows
         .iter()
-        .filter(|r| r["note"] == "budget: not run within --budget")
+        .filter(|r| r["note"] == "budget: not run: the reference did not finish within --budget")
         .collect();
     assert_eq!(budget.len(), 10);
 }

@@ -127,6 +127,7 @@ pub fn precision<'py>(
                 "check_dt",
                 check_dt.unwrap_or(core_precision::CHECK_DT),
                 t_end,
+                richardson,
             )
             .map_err(value_error)?,
             richardson,
@@ -214,7 +215,7 @@ pub fn needs<'py>(
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
-    ::falling_chain::converge::check_tol(tol).map_err(value_error)?;
+    core_needs::check_tol("--tol", tol).map_err(value_error)?;
     let links = match links {
         None => ::falling_chain::converge::DEFAULT_LINKS.to_vec(),
         Some(l) => {

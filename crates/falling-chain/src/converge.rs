@@ -272,17 +272,32 @@ fn check_ladder_length(levels: usize) -> Result<(), Error> {
     Ok(())
 }
 
-/// Checks `--tol`: a finite number in (0, 1).
+/// The smallest `--tol` of `converge`: deviations below it are the
+/// rounding of the runs (rtol is at least 1e-14), not the discretisation.
+pub const MIN_TOL: f64 = 1e-12;
+
+/// Checks `--tol`: a number in [[`MIN_TOL`], 1).
 pub fn check_tol(tol: f64) -> Result<(), Error> {
-    if tol.is_finite() && tol > 0.0 && tol < 1.0 {
+    if tol.is_finite() && (MIN_TOL..1.0).contains(&tol) {
         Ok(())
     } else {
         Err(Error::field(
             "--tol",
-            format!(
-                "must be a number in (0, 1) (got {})",
-                crate::error::number(tol)
-            ),
+            format!("must be a number in [{MIN_TOL:e}, 1) (got {})", crate::error::number(tol)),
+        ))
+    }
+}
+
+/// Checks `converge --rtol`: within `run.rtol`'s range
+/// ([`chain_ode::RTOL_RANGE`]), named by the flag.
+pub fn check_rtol(what: &str, rtol: f64) -> Result<f64, Error> {
+    let (lo, hi) = chain_ode::RTOL_RANGE;
+    if (lo..=hi).contains(&rtol) {
+        Ok(rtol)
+    } else {
+        Err(Error::field(
+            what,
+            format!("must be a number in [{lo:e}, {hi}] (got {})", crate::error::number(rtol)),
         ))
     }
 }
@@ -537,7 +552,7 @@ mod tests {
             let e = parse_links(bad).unwrap_err().to_string();
             assert!(e.starts_with("--links: "), "{e}");
         }
-        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1.0] {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1.0, 1e-300, 1e300] {
             let e = check_tol(bad).unwrap_err().to_string();
             assert!(e.starts_with("--tol: ") && !e.contains('\n'), "{e}");
         }

@@ -71,13 +71,18 @@ enum Command {
     /// at the end and of the maximum tip speed against a reference (DOPRI5,
     /// rtol 1e-13) checked by RK4 and BDF, the work and the wall time; prints
     /// how well the checks agree and the fastest method at each error level.
-    /// Exit 1 if the reference failed or is not confirmed, or every method
-    /// failed (what ran is still written).
+    /// Every bound of every run is checked before any run; --budget holds
+    /// in every phase, the reference and its checks included. Exit 1 if
+    /// the reference failed, was stopped by --budget or is not confirmed,
+    /// or if every point that ran failed or none ran within --budget (what
+    /// ran is still written).
     Precision(study_commands::PrecisionArgs),
     /// Where each method fails on a scene (or on each value of --vary).
     ///
     /// Per method and step or tolerance, the status, the time it stopped and the energy-balance error (rows:
-    /// the scene, or one per value of --vary). Exit 1 if every run failed.
+    /// the scene, or one per value of --vary), and per method where it
+    /// completes every row and where it fails, read off the cells. Exit 1
+    /// if every run that ran failed, or none ran within --budget.
     Stability(study_commands::StabilityArgs),
     /// What a scene needs at --tol: rods, method and tolerance, physical
     /// terms.
@@ -86,7 +91,8 @@ enum Command {
     /// path, tip end and maximum tip speed), the fastest method and
     /// tolerance reaching --tol at that n (precision's lines), and which
     /// optional physical terms (joint friction) change those quantities by
-    /// more than --tol. Exit 1 if no n or no method meets --tol.
+    /// more than --tol. Exit 1 if no n or no method meets --tol, or if
+    /// --budget stopped the phase that would find it (the line says which).
     Needs(study_commands::NeedsArgs),
     /// Join the tables of a sharded sweep, precision or stability.
     ///
@@ -123,7 +129,7 @@ impl SceneArgs {
 pub(crate) struct JobsArgs {
     /// Worker threads, 1..=256 (default: all cores, at most 256); never
     /// more threads than runs.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_jobs)]
     jobs: Option<usize>,
 }
 
@@ -143,19 +149,25 @@ impl JobsArgs {
 struct ConvergeArgs {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Relative tolerance on tip_speed_max and on the tip end (over L).
+    /// Relative tolerance on tip_speed_max and on the tip end (over L), in
+    /// [1e-12, 1).
     #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
     tol: f64,
     /// The numbers of rods to run, N1,N2,... (the largest is the reference;
     /// 2 to 32 different numbers, each in 2..=1000000).
-    #[arg(long, value_name = "N1,N2,...", default_value = "25,50,100,200,400")]
+    #[arg(
+        long,
+        value_name = "N1,N2,...",
+        default_value = "25,50,100,200,400",
+        allow_hyphen_values = true
+    )]
     links: String,
     /// Integration method of every run. The default is DOPRI5 because the
     /// scaled damping makes a scene's fixed-step RK4 unstable at large n.
     #[arg(long, value_name = "M", default_value = "dopri5")]
     method: String,
-    /// Relative tolerance of adaptive runs (atol = rtol / 100); default:
-    /// the scene's run.rtol.
+    /// Relative tolerance of adaptive runs (atol = rtol / 100), in
+    /// [1e-14, 0.1]; default: the scene's run.rtol.
     #[arg(long, value_name = "R", allow_negative_numbers = true)]
     rtol: Option<f64>,
     #[command(flatten)]
@@ -204,7 +216,8 @@ struct PlotArgs {
     #[arg(short = 'o', long = "out", value_name = "FILE.png|FILE.svg")]
     out: PathBuf,
     /// Number of snapshots drawn (spread evenly over the run), 1..=10000.
-    #[arg(long, value_name = "N", default_value_t = 50)]
+    #[arg(long, value_name = "N", default_value_t = 50, allow_negative_numbers = true,
+          value_parser = parse_snapshots)]
     snapshots: usize,
 }
 
@@ -216,10 +229,17 @@ struct AnimateArgs {
     #[arg(short = 'o', long = "out", value_name = "FILE.gif")]
     out: PathBuf,
     /// Frames per second (1..=50).
-    #[arg(long, value_name = "F", default_value_t = 20)]
+    #[arg(long, value_name = "F", default_value_t = 20, allow_negative_numbers = true,
+          value_parser = parse_fps)]
     fps: u32,
-    /// Length of the animation in seconds of playback (sets the frame count).
-    #[arg(long, value_name = "S", default_value_t = 5.0)]
+    /// Length of the animation in seconds of playback, in (0, 600] (sets
+    /// the frame count).
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 5.0,
+        allow_negative_numbers = true
+    )]
     seconds: f64,
 }
 
@@ -242,7 +262,7 @@ struct SweepArgs {
     jobs: JobsArgs,
     /// Run only runs I, I+N, I+2N, ... of the sweep (0 <= I < N), for
     /// splitting a sweep across machines; rows keep their run number.
-    #[arg(long, value_name = "I/N")]
+    #[arg(long, value_name = "I/N", allow_hyphen_values = true)]
     shard: Option<String>,
     /// Write the rows as CSV (run, varied keys, then the summary fields of
     /// simulate --json) instead of printing them.
@@ -258,18 +278,19 @@ struct SweepArgs {
 
 #[derive(Args)]
 struct CatenaryArgs {
-    /// First anchor P0 (the pivot).
+    /// First anchor P0 (the pivot), coordinates in [-1e150, 1e150].
     #[arg(long, value_name = "X,Y", value_parser = parse_point, allow_hyphen_values = true, default_value = "0,0")]
     p0: [f64; 2],
-    /// Second anchor P1 (where the free end is held).
+    /// Second anchor P1 (where the free end is held), coordinates in
+    /// [-1e150, 1e150].
     #[arg(long, value_name = "X,Y", value_parser = parse_point, allow_hyphen_values = true)]
     p1: [f64; 2],
-    /// Chain length L (must exceed |P1 - P0|).
+    /// Chain length L, in [1e-150, 1e150] (must exceed |P1 - P0|).
     #[arg(long, value_name = "L", allow_negative_numbers = true)]
     length: f64,
-    /// Also solve the exact equilibrium of N rigid rods (2..=1000000, the
+    /// Also solve the exact equilibrium of N rigid rods (1..=1000000, the
     /// scenes' cap on chain.links).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_rods)]
     links: Option<usize>,
     /// Print one JSON object instead of a table.
     #[arg(long)]
@@ -283,16 +304,17 @@ struct SimulateArgs {
     /// Integration method (overrides run.method).
     #[arg(long, value_name = "M")]
     method: Option<String>,
-    /// Fixed step (overrides run.dt).
+    /// Fixed step (overrides run.dt), in [t_end / max_steps, t_end] (the
+    /// run's run.t_end and run.max_steps).
     #[arg(long, value_name = "S", allow_negative_numbers = true)]
     dt: Option<f64>,
-    /// Relative tolerance (overrides run.rtol).
+    /// Relative tolerance (overrides run.rtol), in [1e-14, 0.1].
     #[arg(long, value_name = "R", allow_negative_numbers = true)]
     rtol: Option<f64>,
-    /// Absolute tolerance (overrides run.atol).
+    /// Absolute tolerance (overrides run.atol), in [1e-20, 1].
     #[arg(long, value_name = "A", allow_negative_numbers = true)]
     atol: Option<f64>,
-    /// End time (overrides run.t_end).
+    /// End time (overrides run.t_end), in (0, inf): any finite number > 0.
     #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
     t_end: Option<f64>,
     /// Write every sample as CSV: t, tip_x, tip_y, tip_vx, tip_vy, energy,
@@ -308,9 +330,9 @@ struct SimulateArgs {
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     json: bool,
-    /// Print the time reached on stderr every SECONDS of wall time (default
-    /// 5), for a long run; on by default when stderr is a terminal. Never
-    /// on stdout.
+    /// Print the time reached on stderr every SECONDS of wall time, in
+    /// 0.01..=3600 (default 5), for a long run; on by default when stderr
+    /// is a terminal. Never on stdout.
     #[arg(
         long,
         value_name = "SECONDS",
@@ -323,6 +345,50 @@ struct SimulateArgs {
 
 /// The most snapshots `plot` draws.
 const MAX_SNAPSHOTS: usize = 10_000;
+
+/// Parses a whole number for a flag whose range is `lo..=hi`: text that
+/// is no whole number (`-1`, `1e300`, `nan`) is refused with the range
+/// (clap names the flag); a number out of the range is refused by the
+/// command's own check, as `--jobs: must be an integer in 1..=256`.
+fn int_in(text: &str, lo: usize, hi: usize) -> Result<usize, String> {
+    text.trim()
+        .parse::<usize>()
+        .map_err(|_| format!("must be an integer in {lo}..={hi}"))
+}
+
+fn parse_jobs(text: &str) -> Result<usize, String> {
+    int_in(text, 1, falling_chain::sweep::MAX_JOBS)
+}
+
+fn parse_snapshots(text: &str) -> Result<usize, String> {
+    int_in(text, 1, MAX_SNAPSHOTS)
+}
+
+fn parse_fps(text: &str) -> Result<u32, String> {
+    int_in(text, 1, 50)
+        .and_then(|n| u32::try_from(n).map_err(|_| "must be an integer in 1..=50".to_string()))
+}
+
+fn parse_rods(text: &str) -> Result<usize, String> {
+    int_in(text, 1, 1_000_000)
+}
+
+/// `e` named by the flag the user gave for its field: `--dt` for `run.dt`
+/// when `--dt` set it (`given`: the flags given, as `(field, flag)`); an
+/// error about another `run.*` bound that `--t-end` moves (the samples,
+/// RK4's smallest step) is said to be about `--t-end` when it was given.
+fn named_by_flag(e: Error, given: &[(&str, &str)]) -> Error {
+    let Error::Field { field, message } = e else {
+        return e;
+    };
+    if let Some((_, flag)) = given.iter().find(|(path, _)| *path == field) {
+        return Error::field(*flag, message);
+    }
+    if field.starts_with("run.") && given.iter().any(|(_, f)| *f == "--t-end") {
+        return Error::field("--t-end", format!("{field}: {message}"));
+    }
+    Error::Field { field, message }
+}
 
 /// Parses `X,Y`.
 fn parse_point(text: &str) -> Result<[f64; 2], String> {
@@ -358,12 +424,38 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         ("run.atol", args.atol.map(toml::Value::Float)),
         ("run.t_end", args.t_end.map(toml::Value::Float)),
     ];
-    for (path, value) in flags {
+    // The numeric flags' errors name the flag; --method keeps its key's.
+    let names = [
+        ("run.method", "run.method"),
+        ("run.dt", "--dt"),
+        ("run.rtol", "--rtol"),
+        ("run.atol", "--atol"),
+        ("run.t_end", "--t-end"),
+    ];
+    let mut given = vec![];
+    for ((path, value), (_, flag)) in flags.into_iter().zip(names) {
         if let Some(value) = value {
-            scene = scene.with_value(path, value)?;
+            given.push((path, flag));
+            scene = scene
+                .with_value(path, value)
+                .map_err(|e| named_by_flag(e, &given))?;
         }
     }
-    let run = scene.prepare()?;
+    let run = scene.prepare().map_err(|e| named_by_flag(e, &given))?;
+    if let Some(dt) = args.dt {
+        // A step for any method, not only where RK4 takes it.
+        let (t_end, max_steps) = (run.options.t_end, run.options.max_steps);
+        let lo = t_end / max_steps as f64;
+        if !(dt.is_finite() && dt >= lo && dt <= t_end) {
+            return Err(Error::field(
+                "--dt",
+                format!(
+                    "must be a step in [{lo:e}, run.t_end = {t_end}] (run.t_end / \
+                     run.max_steps to run.t_end; got {dt})"
+                ),
+            ));
+        }
+    }
     let every = match args.progress {
         Some(s) if s.is_finite() && (0.01..=3600.0).contains(&s) => Some(s),
         Some(s) => {
@@ -729,6 +821,9 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
 fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
     use falling_chain::converge;
     converge::check_tol(args.tol)?;
+    if let Some(r) = args.rtol {
+        converge::check_rtol("--rtol", r)?;
+    }
     let links = converge::parse_links(&args.links)?;
     let jobs = args.jobs.threads()?;
     let scene = args.scene.load()?;

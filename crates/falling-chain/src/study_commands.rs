@@ -29,13 +29,15 @@ pub struct StudyArgs {
     /// Draw the figure to FILE.png or FILE.svg.
     #[arg(long, value_name = "FILE.svg|FILE.png")]
     plot: Option<PathBuf>,
-    /// Stop after this many seconds of wall time: points that would not
-    /// fit are not run, runs still going are stopped, and all are listed.
+    /// Stop after this many seconds of wall time, in (0, 2592000] (30
+    /// days): every phase (precision's reference and its checks too) runs
+    /// within it; points that would not fit are not run, runs still going
+    /// are stopped, and all are listed.
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     budget: Option<f64>,
     /// Run only runs I, I+N, ... of the study (0 <= I < N); join the
     /// tables with `merge`.
-    #[arg(long, value_name = "I/N")]
+    #[arg(long, value_name = "I/N", allow_hyphen_values = true)]
     shard: Option<String>,
     #[command(flatten)]
     jobs: JobsArgs,
@@ -50,7 +52,9 @@ pub struct PrecisionArgs {
     scene: SceneArgs,
     #[command(flatten)]
     study: StudyArgs,
-    /// RK4's step in the check of the reference.
+    /// RK4's step in the check of the reference, in [t_end / 1e7, t_end]
+    /// (3 t_end / 1e7 with --richardson): at most 1e7 RK4 steps, refused
+    /// before any run.
     #[arg(long = "check-dt", value_name = "DT", default_value_t = precision::CHECK_DT, allow_negative_numbers = true)]
     check_dt: f64,
     /// Check the reference with RK4 at --check-dt and its half,
@@ -75,17 +79,25 @@ pub struct StabilityArgs {
 pub struct NeedsArgs {
     #[command(flatten)]
     scene: SceneArgs,
-    /// The tolerance, in (0, 1): relative on the maximum tip speed and the
-    /// method's error, over L on the tip end and path.
+    /// The tolerance, in [1e-9, 1): relative on the maximum tip speed and
+    /// the method's error, over L on the tip end and path.
     #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
     tol: f64,
-    /// The ladder of n, N1,N2,... (the largest is the reference).
-    #[arg(long, value_name = "N1,N2,...", default_value = "25,50,100,200,400")]
+    /// The ladder of n, N1,N2,... (the largest is the reference; 2 to 32
+    /// different numbers, each in 2..=1000000).
+    #[arg(
+        long,
+        value_name = "N1,N2,...",
+        default_value = "25,50,100,200,400",
+        allow_hyphen_values = true
+    )]
     links: String,
     /// The methods tried at the answer's n (default: all but bdf-dense).
     #[arg(long, value_name = "M1,M2,...")]
     methods: Option<String>,
-    /// Seconds for the methods' lines (the ladder and the terms always run).
+    /// Stop after this many seconds of wall time, in (0, 2592000] (30
+    /// days): every phase (the ladder of n, the reference and its checks,
+    /// the methods, the terms) runs within it; what it stopped is listed.
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     budget: Option<f64>,
     #[command(flatten)]
@@ -160,6 +172,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
                 "--check-dt",
                 args.check_dt,
                 scene.options()?.t_end,
+                args.richardson,
             )?,
             richardson: args.richardson,
         },
@@ -183,15 +196,37 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
         s.name, s.t_eval
     );
-    println!(
-        "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {:.1e} and with BDF rtol {} to {:.1e}",
-        exp(precision::REF_RTOL),
-        exp(args.check_dt),
-        if args.richardson { " (extrapolated)" } else { "" },
-        a_rk4,
-        exp(precision::CHECK_BDF_RTOL),
-        a_bdf
-    );
+    let reference = &s.rows[0];
+    if reference.ok() {
+        // A check that did not finish (the budget) agrees to no number.
+        let agree = |a: f64| {
+            if a.is_finite() {
+                format!("{a:.1e}")
+            } else {
+                "- (the check did not finish)".to_string()
+            }
+        };
+        println!(
+            "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {} and with BDF rtol {} to {}",
+            exp(precision::REF_RTOL),
+            exp(args.check_dt),
+            if args.richardson { " (extrapolated)" } else { "" },
+            agree(a_rk4),
+            exp(precision::CHECK_BDF_RTOL),
+            agree(a_bdf)
+        );
+    } else {
+        println!(
+            "  reference: DOPRI5 rtol {} ended {}{}: no error is measured, no point ran",
+            exp(precision::REF_RTOL),
+            reference.status,
+            if reference.note.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", reference.note)
+            }
+        );
+    }
     let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
     let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
     let by_work = precision::fastest(&s.rows, &levels, |pt| pt.rhs_equiv() as f64);
@@ -273,14 +308,8 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
         exp(stability::MAX_STEPS as f64),
         stability::ENERGY_LIMIT
     );
-    for (m, ok, failed) in stability::limits(&s.cells, &options.methods) {
-        let name = m.accuracy_name();
-        println!(
-            "  {:>9}: completes every row at {name} {}; fails {}",
-            m.as_str(),
-            ok.map_or("none tried".into(), |x| format!("<= {}", exp(x))),
-            failed.map_or("nowhere".into(), |x| format!("at {name} >= {}", exp(x))),
-        );
+    for (m, verdict) in stability::verdicts(&s.cells, &options.methods) {
+        println!("  {:>9}: {verdict}", m.as_str());
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
@@ -299,7 +328,7 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
 }
 
 pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
-    falling_chain::converge::check_tol(args.tol)?;
+    needs::check_tol("--tol", args.tol)?;
     let links = falling_chain::converge::parse_links(&args.links)?;
     let methods = match &args.methods {
         Some(m) => study::parse_methods("--methods", Some(m))?,
@@ -328,20 +357,7 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     } else {
         println!("{answer}");
     }
-    let mut failures = vec![];
-    if answer.links.is_none() {
-        failures.push(format!(
-            "no n up to {} meets --tol {} (or a run failed): try a longer --links ladder",
-            answer.ladder.reference_links, args.tol
-        ));
-    } else if answer.fastest.is_none() {
-        failures.push(format!(
-            "no method reaches --tol {} at n = {} on its ladder",
-            args.tol,
-            answer.links.unwrap_or(0)
-        ));
-    }
-    Ok(report_failures(&failures))
+    Ok(report_failures(&answer.failures()))
 }
 
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {

@@ -76,6 +76,11 @@ impl Budget {
             cancel: Cancel::new(),
             outer: outer.cloned(),
         };
+        // A budget spent already stops the first run at its start, not when
+        // the watcher first wakes.
+        if budget.deadline.is_some_and(|d| Instant::now() >= d) {
+            budget.cancel.cancel();
+        }
         let finished = AtomicBool::new(false);
         std::thread::scope(|scope| {
             scope.spawn(|| {

@@ -65,18 +65,29 @@ pub fn median(xs: &[f64]) -> f64 {
 }
 
 /// Parses `--methods rk4,dop853`: method names (each at most once, in
-/// `Method::ALL` order); `None` or empty text: every method.
+/// `Method::ALL` order); `None` (the flag not given): every method. An
+/// empty list (`--methods ""`, Python's `methods=[]`) is refused: it names
+/// no method to run.
 pub fn parse_methods(what: &str, text: Option<&str>) -> Result<Vec<Method>, Error> {
-    let Some(text) = text.filter(|t| !t.trim().is_empty()) else {
+    let Some(text) = text else {
         return Ok(Method::ALL.to_vec());
     };
+    let names: Vec<&str> = Method::ALL.iter().map(|m| m.as_str()).collect();
+    if text.trim().is_empty() {
+        return Err(Error::field(
+            what,
+            format!(
+                "names no method: give one or more of {}, separated by commas",
+                names.join(", ")
+            ),
+        ));
+    }
     let mut chosen = vec![];
     for name in text.split(',').map(str::trim) {
         let m = Method::ALL
             .into_iter()
             .find(|m| m.as_str() == name)
             .ok_or_else(|| {
-                let names: Vec<&str> = Method::ALL.iter().map(|m| m.as_str()).collect();
                 Error::field(
                     what,
                     format!("'{}' is not one of {}", echo(name), names.join(", ")),

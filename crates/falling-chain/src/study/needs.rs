@@ -203,6 +203,21 @@ pub struct Needs {
     pub terms: Vec<TermNeed>,
     /// Points of the precision study not run for the budget.
     pub skipped: Vec<String>,
+    /// How the reference run at `links` ended (`None`: not run, there is
+    /// no `links`).
+    pub reference_status: Option<String>,
+    /// What each method's line ran (empty when no method ran).
+    pub method_runs: Vec<MethodRuns>,
+}
+
+/// What one method's line ran at `links`: its points, how many ran (to
+/// their end, ok or failed) and how many the budget left out or stopped.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodRuns {
+    pub method: String,
+    pub points: usize,
+    pub ran: usize,
+    pub budget: usize,
 }
 
 impl Needs {
@@ -211,12 +226,118 @@ impl Needs {
         self.links.is_some() && self.fastest.is_some()
     }
 
+    /// Whether the budget stopped a level of the ladder.
+    pub fn ladder_stopped(&self) -> bool {
+        self.skipped.iter().any(|s| s.starts_with("rods n = "))
+    }
+
+    /// Why no method is chosen at `links`, if none is: the reference did
+    /// not finish (the budget) or failed, no method ran, or the methods
+    /// that ran missed `tol` (and whether the budget stopped others).
+    /// "no method reaches" only when methods ran and missed.
+    pub fn no_method(&self) -> Option<String> {
+        let n = self.links?;
+        if self.fastest.is_some() {
+            return None;
+        }
+        let tol = self.tol;
+        Some(match self.reference_status.as_deref() {
+            Some("ok") => {
+                let ran: usize = self.method_runs.iter().map(|r| r.ran).sum();
+                let budget: usize = self.method_runs.iter().map(|r| r.budget).sum();
+                if ran == 0 && budget > 0 {
+                    format!("no method ran within --budget at n = {n}")
+                } else if budget > 0 {
+                    format!(
+                        "no method reaches --tol {tol} at n = {n} in the {ran} points that ran \
+                         ({budget} not run or stopped by --budget)"
+                    )
+                } else {
+                    format!("no method reaches --tol {tol} at n = {n} on its ladder")
+                }
+            }
+            Some(status) if status == chain_ode::Status::Interrupted.as_str() => format!(
+                "--budget stopped the reference run at n = {n} before it finished: no method ran"
+            ),
+            Some(status) => {
+                format!("the reference run at n = {n} ended {status}: no method could be measured")
+            }
+            None => format!("the reference at n = {n} did not run: no method ran"),
+        })
+    }
+
+    /// One line per reason for exit status 1: no `n` (the ladder missed
+    /// `tol`, a run failed, or the budget stopped it), or no method.
+    pub fn failures(&self) -> Vec<String> {
+        if self.links.is_none() {
+            let stopped: Vec<&str> = self
+                .skipped
+                .iter()
+                .filter(|s| s.starts_with("rods n = "))
+                .map(String::as_str)
+                .collect();
+            return vec![if stopped.is_empty() {
+                format!(
+                    "no n up to {} meets --tol {} (or a run failed): try a longer --links ladder",
+                    self.ladder.reference_links, self.tol
+                )
+            } else {
+                format!(
+                    "--budget stopped the ladder of n before it finished ({}): no n was found",
+                    stopped.join(", ")
+                )
+            }];
+        }
+        self.no_method().into_iter().collect()
+    }
+
     /// One line of JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string(self).unwrap_or_else(|e| {
             serde_json::json!({ "error": format!("the answer did not serialise: {e}") }).to_string()
         })
     }
+}
+
+/// The smallest `--tol` of `needs`: the ladder runs at rtol 1e-10 at the
+/// tightest and the reference agrees with its checks to about 1e-11, so a
+/// smaller tolerance cannot be told from their rounding.
+pub const MIN_TOL: f64 = 1e-9;
+
+/// Checks `needs --tol`: a number in [[`MIN_TOL`], 1); `what` names it.
+pub fn check_tol(what: &str, tol: f64) -> Result<f64, Error> {
+    if tol.is_finite() && (MIN_TOL..1.0).contains(&tol) {
+        Ok(tol)
+    } else {
+        Err(Error::field(
+            what,
+            format!("must be a number in [{MIN_TOL:e}, 1) (got {tol})"),
+        ))
+    }
+}
+
+/// Checks, before any run, every bound of every run of `needs` on
+/// `scene`: the ladder's (checked by [`converge::run_levels_until`]), and
+/// the reference, its checks and each of `methods` at the largest `n` the
+/// answer can be (the ladder's but one, the finest being the reference),
+/// and each term's run without it there.
+pub fn check_bounds(scene: &Scene, links: &[usize], methods: &[Method]) -> Result<(), Error> {
+    let mut sorted = links.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    let Some(&n) = sorted.len().checked_sub(2).and_then(|k| sorted.get(k)) else {
+        return Ok(());
+    };
+    let mut p = converge::refined_scene(scene, n)?.prepare()?;
+    p.options.output_dt = None;
+    let t_eval = p.options.t_end;
+    precision::check_bounds(&p, t_eval, Checks::default(), methods)?;
+    for term in TERMS.iter().filter(|t| (t.is_on)(scene)) {
+        let off = converge::refined_scene(&(term.off)(scene)?, n)?
+            .with_value("run.method", toml::Value::String(LADDER_METHOD.into()))?;
+        off.prepare()?;
+    }
+    Ok(())
 }
 
 /// The options of [`run`].
@@ -249,9 +370,9 @@ pub fn run(
     budget: &Budget,
     progress: Progress,
 ) -> Result<Needs, Error> {
-    let tol = options.tol;
-    converge::check_tol(tol)?;
+    let tol = check_tol("--tol", options.tol)?;
     scene.prepare()?.require_corrected("needs")?;
+    check_bounds(scene, &options.links, &options.methods)?;
     let rtol = ladder_rtol(tol);
     // The scene must be one that sampling can compare: its output_dt is
     // the tip path's grid.
@@ -291,6 +412,8 @@ pub fn run(
         methods: vec![],
         terms: vec![],
         skipped: skipped_levels,
+        reference_status: None,
+        method_runs: vec![],
     };
     let Some(n) = links else {
         return Ok(needs);
@@ -309,9 +432,17 @@ pub fn run(
     prepared.options.cancel = Some(budget.cancel().clone());
     let (reference, ref_rows) = precision::reference(&prepared, t_eval, Checks::default())?;
     prepared.options.cancel = None;
+    needs.reference_status = ref_rows.first().map(|r| r.status.clone());
     if reference.is_none() && ref_rows.iter().any(|r| interrupted(&r.status)) {
         needs.skipped.push("the reference".to_string());
     }
+    let checks_stopped: Vec<String> = ref_rows
+        .iter()
+        .skip(1)
+        .filter(|r| r.plan == precision::Plan::Budget)
+        .map(|r| format!("the reference's {}", r.method))
+        .collect();
+    needs.skipped.extend(checks_stopped);
     let (a_rk4, a_bdf) = precision::agreement(&ref_rows);
     needs.reference_agreement = [a_rk4, a_bdf];
     if let Some(reference) = reference {
@@ -336,6 +467,13 @@ pub fn run(
             )
         })?;
         for &m in &options.methods {
+            let mine = || rows.iter().filter(move |p| p.method == m.as_str());
+            needs.method_runs.push(MethodRuns {
+                method: m.as_str().to_string(),
+                points: mine().count(),
+                ran: mine().filter(|p| p.plan == precision::Plan::Run).count(),
+                budget: mine().filter(|p| p.plan == precision::Plan::Budget).count(),
+            });
             let first = rows
                 .iter()
                 .find(|p| p.method == m.as_str() && p.ok() && p.err() <= tol);
@@ -407,15 +545,24 @@ impl std::fmt::Display for Needs {
             LADDER_METHOD,
             ladder_rtol(self.tol)
         )?;
+        let reference_ok = l.levels.last().is_some_and(|x| x.status == "ok");
         for x in &l.levels {
+            // A deviation from or of a run that did not finish is no number.
+            let d = |v: f64| {
+                if reference_ok && x.status == "ok" && v.is_finite() {
+                    format!("{v:>9.2e}")
+                } else {
+                    format!("{:>9}", "-")
+                }
+            };
             writeln!(
                 f,
-                "    n {:>6}  {:>9}  d(vmax) {:>9.2e}  d(tip_end) {:>9.2e}  d(path) {:>9.2e}",
+                "    n {:>6}  {:>9}  d(vmax) {}  d(tip_end) {}  d(path) {}",
                 x.links,
                 x.status,
-                x.deviation.tip_speed_max,
-                x.deviation.tip_end,
-                x.deviation.tip_path
+                d(x.deviation.tip_speed_max),
+                d(x.deviation.tip_end),
+                d(x.deviation.tip_path)
             )?;
         }
         match self.links {
@@ -427,6 +574,13 @@ impl std::fmt::Display for Needs {
                 self.tol,
                 l.adequate_links.map_or("none".into(), |n| n.to_string())
             )?,
+            None if self.ladder_stopped() => {
+                return write!(
+                    f,
+                    "  no n: --budget stopped the ladder before it finished (not run: {})",
+                    self.skipped.join(", ")
+                )
+            }
             None => {
                 return write!(
                     f,
@@ -435,20 +589,45 @@ impl std::fmt::Display for Needs {
                 )
             }
         }
-        writeln!(
-            f,
-            "  methods at n = {}: error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|); \
-             reference DOPRI5 rtol 1e-13 agrees with RK4 to {:.0e}, BDF to {:.0e}",
-            self.links.unwrap_or(0),
-            self.reference_agreement[0],
-            self.reference_agreement[1]
-        )?;
+        let n = self.links.unwrap_or(0);
+        let agree = |a: f64| {
+            if a.is_finite() {
+                format!("{a:.0e}")
+            } else {
+                "- (the check did not finish)".to_string()
+            }
+        };
+        match self.reference_status.as_deref() {
+            Some("ok") => writeln!(
+                f,
+                "  methods at n = {n}: error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|); \
+                 reference DOPRI5 rtol 1e-13 agrees with RK4 to {}, BDF to {}",
+                agree(self.reference_agreement[0]),
+                agree(self.reference_agreement[1])
+            )?,
+            _ => writeln!(
+                f,
+                "  methods at n = {n}: {}",
+                self.no_method().unwrap_or_default()
+            )?,
+        }
         for (m, c) in &self.methods {
+            let runs = self.method_runs.iter().find(|r| &r.method == m);
+            let (ran, budget) = runs.map_or((0, 0), |r| (r.ran, r.budget));
             match c {
                 Some(c) => writeln!(
                     f,
                     "    {m:>9}: {} {:e}, error {:.1e}, {} RHS, {:.3} s",
                     c.param_name, c.param, c.error, c.rhs_equiv, c.wall_seconds
+                )?,
+                None if ran == 0 && budget > 0 => {
+                    writeln!(f, "    {m:>9}: not run within --budget")?
+                }
+                None if budget > 0 => writeln!(
+                    f,
+                    "    {m:>9}: does not reach {} in the {ran} points that ran \
+                     ({budget} not run or stopped by --budget)",
+                    self.tol
                 )?,
                 None => writeln!(f, "    {m:>9}: does not reach {} on its ladder", self.tol)?,
             }
@@ -469,12 +648,7 @@ impl std::fmt::Display for Needs {
                 b.param,
                 b.rhs_equiv
             )?,
-            _ => writeln!(
-                f,
-                "  no method reaches {} at n = {}",
-                self.tol,
-                self.links.unwrap_or(0)
-            )?,
+            _ => writeln!(f, "  {}", self.no_method().unwrap_or_default())?,
         }
         write!(f, "  terms:")?;
         for t in &self.terms {
@@ -490,6 +664,14 @@ impl std::fmt::Display for Needs {
                         "NOT needed: its effect is below the tolerance"
                     }
                 )?,
+                (true, ..)
+                    if self
+                        .skipped
+                        .iter()
+                        .any(|s| s == &format!("term {}", t.term)) =>
+                {
+                    write!(f, "unknown: --budget stopped the run without it")?
+                }
                 (true, ..) => write!(f, "unknown: the run without it failed")?,
             }
         }

@@ -15,13 +15,13 @@
 
 use std::time::Instant;
 
-use chain_ode::{solve, Method, SolveOptions, Stats, Trajectory};
+use chain_ode::{solve, Cancel, Method, SolveOptions, Stats, Status, Trajectory};
 use rayon::prelude::*;
 
 use super::budget::Budget;
 use super::format::{exp, num, text};
 use super::shard::Provenance;
-use crate::error::Error;
+use crate::error::{echo, Error};
 use crate::scene::Prepared;
 
 /// The reference: DOPRI5 at these tolerances.
@@ -70,15 +70,22 @@ pub enum Plan {
     Floor,
     /// Not run, or stopped, within the time budget (`--budget`).
     Budget,
+    /// Not run: the reference run failed, so no error could be measured.
+    NoReference,
+    /// Not run: the point's options break a bound of its method (RK4's
+    /// steps past `run.max_steps`); the note gives it.
+    Bound,
 }
 
 impl Plan {
-    pub const ALL: [Plan; 5] = [
+    pub const ALL: [Plan; 7] = [
         Plan::Run,
         Plan::Cost,
         Plan::Thinned,
         Plan::Floor,
         Plan::Budget,
+        Plan::NoReference,
+        Plan::Bound,
     ];
 
     pub fn as_str(self) -> &'static str {
@@ -88,6 +95,8 @@ impl Plan {
             Plan::Thinned => "thinned",
             Plan::Floor => "floor",
             Plan::Budget => "budget",
+            Plan::NoReference => "no_reference",
+            Plan::Bound => "bound",
         }
     }
 
@@ -111,6 +120,10 @@ impl Plan {
                 exp(ERR_FLOOR)
             ),
             Plan::Budget => "budget: not run within --budget".into(),
+            Plan::NoReference => {
+                "not run: the reference run failed (no error can be measured)".into()
+            }
+            Plan::Bound => "not run: out of its method's bounds".into(),
         }
     }
 }
@@ -303,37 +316,69 @@ impl Default for Checks {
 /// The reference run and its checks: the reference (if its run ended
 /// `ok`) and their rows (the reference's first). Runs on the scene's chain
 /// and start up to `t_eval`, stopped by the scene's cancel flag if it has
-/// one (a time budget: the runs then end `interrupted`).
+/// one (a time budget): a run it stops is a row of plan `budget` whose note
+/// says where it stopped, and the checks after it are rows not run (plan
+/// `budget`), so that the table says which phase the budget ended.
 pub fn reference(
     p: &Prepared,
     t_eval: f64,
     checks: Checks,
 ) -> Result<(Option<Reference>, Vec<Point>), Error> {
+    reference_phases(p, t_eval, checks, &|_, _| {})
+}
+
+/// [`reference`], calling `phase(row, param)` as each of its runs starts
+/// (`reference-dopri5`, `check-rk4` at `check_dt` and at its half,
+/// `check-bdf`).
+pub fn reference_phases(
+    p: &Prepared,
+    t_eval: f64,
+    checks: Checks,
+    phase: &dyn Fn(&str, f64),
+) -> Result<(Option<Reference>, Vec<Point>), Error> {
     let ref_opts = SolveOptions {
         cancel: p.options.cancel.clone(),
         ..reference_options(t_eval)
     };
+    let cancelled = || ref_opts.cancel.as_ref().is_some_and(Cancel::is_cancelled);
     let run = |method: Method, o: &SolveOptions| -> Result<Trajectory, Error> {
         Ok(solve(&p.chain, &p.state, method, o)?)
     };
+    phase("reference-dopri5", REF_RTOL);
     let r = run(Method::Dopri5, &ref_opts)?;
     let reference = Reference {
         tip: r.summary.tip_end,
         vmax: r.summary.tip_speed_max,
         length: p.chain.length(),
     };
-    let mut rows = vec![Point::from_run(
-        "reference-dopri5".into(),
-        "rtol",
-        REF_RTOL,
-        &r,
-        &reference,
-    )];
+    let row = |name: &str, param_name: &'static str, param: f64, t: &Trajectory| {
+        let mut pt = Point::from_run(name.into(), param_name, param, t, &reference);
+        if t.status == Status::Interrupted {
+            pt.plan = Plan::Budget;
+            pt.note = format!(
+                "budget: stopped at t = {} of {} after {:.1} s",
+                num(t.t_reached),
+                num(t_eval),
+                t.summary.wall_seconds
+            );
+        }
+        pt
+    };
+    let mut rows = vec![row("reference-dopri5", "rtol", REF_RTOL, &r)];
     if !r.status.is_ok() {
         return Ok((None, rows));
     }
+    // A check the budget left no time for: a row not run.
+    let not_run = |name: &str, param_name: &'static str, param: f64| Point {
+        method: name.into(),
+        param_name,
+        note: "budget: not run: the budget ended before this check".into(),
+        ..Point::not_run(Method::Rk4, param, Plan::Budget, String::new())
+    };
+    let h2 = checks.check_dt / 2.0;
     // RK4 with a small step, and (where that alone is not close enough)
     // Richardson's extrapolation from it and its half: (16 y(h/2) - y(h)) / 15.
+    phase("check-rk4", checks.check_dt);
     let coarse = run(
         Method::Rk4,
         &SolveOptions {
@@ -341,67 +386,168 @@ pub fn reference(
             ..ref_opts.clone()
         },
     )?;
-    rows.push(Point::from_run(
-        "check-rk4".into(),
-        "dt",
-        checks.check_dt,
-        &coarse,
-        &reference,
-    ));
+    rows.push(row("check-rk4", "dt", checks.check_dt, &coarse));
     if checks.richardson {
-        let h2 = checks.check_dt / 2.0;
-        let fine = run(
-            Method::Rk4,
+        let fine = if cancelled() {
+            None
+        } else {
+            phase("check-rk4", h2);
+            Some(run(
+                Method::Rk4,
+                &SolveOptions {
+                    dt: h2,
+                    ..ref_opts.clone()
+                },
+            )?)
+        };
+        match &fine {
+            Some(fine) => rows.push(row("check-rk4", "dt", h2, fine)),
+            None => rows.push(not_run("check-rk4", "dt", h2)),
+        }
+        match fine {
+            Some(fine) if fine.status.is_ok() && coarse.status.is_ok() => {
+                let x = |f: f64, c: f64| (16.0 * f - c) / 15.0;
+                let (sf, sc) = (&fine.summary, &coarse.summary);
+                let tip = [
+                    x(sf.tip_end[0], sc.tip_end[0]),
+                    x(sf.tip_end[1], sc.tip_end[1]),
+                ];
+                let (err_tip, err_vmax) =
+                    reference.errors_of(tip, x(sf.tip_speed_max, sc.tip_speed_max));
+                rows.push(Point {
+                    method: "check-rk4-richardson".into(),
+                    err_tip,
+                    err_vmax,
+                    note: format!(
+                        "(16 y(dt/2) - y(dt)) / 15 from dt {} and {}",
+                        exp(checks.check_dt),
+                        exp(h2)
+                    ),
+                    status: "ok".into(),
+                    plan: Plan::Run,
+                    walls: vec![coarse.summary.wall_seconds + fine.summary.wall_seconds],
+                    ..Point::not_run(Method::Rk4, checks.check_dt, Plan::Run, String::new())
+                });
+            }
+            _ if cancelled() => rows.push(not_run("check-rk4-richardson", "dt", checks.check_dt)),
+            // A check run that failed: no extrapolation (its error stays NaN).
+            _ => rows.push(Point {
+                method: "check-rk4-richardson".into(),
+                status: "not_run".into(),
+                plan: Plan::Run,
+                note: "not extrapolated: a check run did not end ok".into(),
+                ..Point::not_run(Method::Rk4, checks.check_dt, Plan::Run, String::new())
+            }),
+        }
+    }
+    if cancelled() {
+        rows.push(not_run("check-bdf", "rtol", CHECK_BDF_RTOL));
+    } else {
+        phase("check-bdf", CHECK_BDF_RTOL);
+        let bdf = run(
+            Method::Bdf,
             &SolveOptions {
-                dt: h2,
+                rtol: CHECK_BDF_RTOL,
+                atol: CHECK_BDF_ATOL,
                 ..ref_opts.clone()
             },
         )?;
-        rows.push(Point::from_run(
-            "check-rk4".into(),
-            "dt",
-            h2,
-            &fine,
-            &reference,
-        ));
-        let x = |f: f64, c: f64| (16.0 * f - c) / 15.0;
-        let (sf, sc) = (&fine.summary, &coarse.summary);
-        let tip = [
-            x(sf.tip_end[0], sc.tip_end[0]),
-            x(sf.tip_end[1], sc.tip_end[1]),
-        ];
-        let (err_tip, err_vmax) = reference.errors_of(tip, x(sf.tip_speed_max, sc.tip_speed_max));
-        rows.push(Point {
-            method: "check-rk4-richardson".into(),
-            err_tip,
-            err_vmax,
-            note: format!(
-                "(16 y(dt/2) - y(dt)) / 15 from dt {} and {}",
-                exp(checks.check_dt),
-                exp(h2)
-            ),
-            status: "ok".into(),
-            plan: Plan::Run,
-            walls: vec![coarse.summary.wall_seconds + fine.summary.wall_seconds],
-            ..Point::not_run(Method::Rk4, checks.check_dt, Plan::Run, String::new())
-        });
+        rows.push(row("check-bdf", "rtol", CHECK_BDF_RTOL, &bdf));
     }
-    let bdf = run(
+    Ok((Some(reference), rows))
+}
+
+/// The options of every run of the reference and its `checks` up to
+/// `t_eval`, as `(name, method, options)`.
+pub fn reference_runs(t_eval: f64, checks: Checks) -> Vec<(&'static str, Method, SolveOptions)> {
+    let o = reference_options(t_eval);
+    let mut runs = vec![
+        (
+            "the reference (DOPRI5 rtol 1e-13)",
+            Method::Dopri5,
+            o.clone(),
+        ),
+        (
+            "the reference's RK4 check (--check-dt)",
+            Method::Rk4,
+            SolveOptions {
+                dt: checks.check_dt,
+                ..o.clone()
+            },
+        ),
+    ];
+    if checks.richardson {
+        runs.push((
+            "the reference's RK4 check at --check-dt / 2 (--richardson)",
+            Method::Rk4,
+            SolveOptions {
+                dt: checks.check_dt / 2.0,
+                ..o.clone()
+            },
+        ));
+    }
+    runs.push((
+        "the reference's BDF check (rtol 1e-12)",
         Method::Bdf,
-        &SolveOptions {
+        SolveOptions {
             rtol: CHECK_BDF_RTOL,
             atol: CHECK_BDF_ATOL,
-            ..ref_opts.clone()
+            ..o
         },
-    )?;
-    rows.push(Point::from_run(
-        "check-bdf".into(),
-        "rtol",
-        CHECK_BDF_RTOL,
-        &bdf,
-        &reference,
     ));
-    Ok((Some(reference), rows))
+    runs
+}
+
+/// Checks, before any run, every bound of every run a study would make on
+/// `p`: the reference and its `checks` up to `t_eval`, and each of
+/// `methods` at each of its [`params`] (the scene's options, as
+/// [`options_for`] sets them). The first bound broken is the error, naming
+/// the key and its range; a method none of whose points can run this scene
+/// is refused naming `--methods` (leave it out), while a single point out
+/// of its method's bounds (RK4's steps past `run.max_steps`) is a row not
+/// run, plan [`Plan::Bound`], its note the bound.
+pub fn check_bounds(
+    p: &Prepared,
+    t_eval: f64,
+    checks: Checks,
+    methods: &[Method],
+) -> Result<(), Error> {
+    for (what, method, o) in reference_runs(t_eval, checks) {
+        o.validate_for(&p.chain, method).map_err(|e| {
+            Error::field(
+                e.field,
+                format!("must be {} for {what} (got {})", e.accepted, echo(&e.got)),
+            )
+        })?;
+    }
+    for &m in methods {
+        let refused: Vec<_> = params(m)
+            .iter()
+            .filter_map(|&x| bound_of(p, m, x).map(|e| (x, e)))
+            .collect();
+        if refused.len() == params(m).len() {
+            let (x, e) = &refused[0];
+            return Err(Error::field(
+                "--methods",
+                format!(
+                    "{m} cannot run this scene at any {} (leave it out); at {}: {e}",
+                    m.accuracy_name(),
+                    exp(*x),
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The bound that `method` at accuracy `param` breaks on `p`, if any, as
+/// the one line of its error (the point is then not run: plan
+/// [`Plan::Bound`]).
+pub fn bound_of(p: &Prepared, method: Method, param: f64) -> Option<String> {
+    options_for(p, method, param)
+        .validate_for(&p.chain, method)
+        .err()
+        .map(|e| Error::from(e).to_string())
 }
 
 /// How far the checks agree with the reference: the larger error of the
@@ -633,13 +779,21 @@ pub fn run_lines(
                     // own (cheaper than its own, RK4's cost being 1/dt) and
                     // records nothing of it but the rule's answer.
                     let finer_own = (k + 1..xs.len()).any(|j| take(start + j));
-                    if rk4 && !floor && finer_own && budget.fits(predict(rk4, x, &done)) {
+                    if rk4
+                        && !floor
+                        && finer_own
+                        && bound_of(p, method, x).is_none()
+                        && budget.fits(predict(rk4, x, &done))
+                    {
                         run_at(x, &mut done, &mut floor)?.ok();
                     }
                     continue;
                 }
+                let bound = bound_of(p, method, x);
                 let plan = if floor {
                     Plan::Floor
+                } else if bound.is_some() {
+                    Plan::Bound
                 } else if !budget.fits(predict(rk4, x, &done)) {
                     Plan::Budget
                 } else {
@@ -660,7 +814,11 @@ pub fn run_lines(
                         }
                     }
                 } else {
-                    Point::not_run(method, x, plan, String::new())
+                    let mut pt = Point::not_run(method, x, plan, String::new());
+                    if let Some(why) = &bound {
+                        pt.note = format!("not run: {why}");
+                    }
+                    pt
                 };
                 pt.run = Some(run);
                 out.push(pt);
@@ -761,16 +919,34 @@ pub fn fastest<'a>(
 /// A reference is confirmed when one check agrees with it to this.
 pub const CONFIRMED: f64 = 1e-6;
 
-/// Checks the RK4 step of the reference's check: in `(0, t_end]`; `what`
-/// names it (`--check-dt`, Python's `check_dt`).
-pub fn check_check_dt(what: &str, dt: f64, t_end: f64) -> Result<f64, Error> {
-    if dt.is_finite() && dt > 0.0 && dt <= t_end {
+/// The most RK4 steps the reference's checks may take in all: `t_end /
+/// check_dt`, and with Richardson `2 t_end / check_dt` more (10^7 steps are
+/// seconds to a minute at 50 rods, the cost of the whole study).
+pub const MAX_CHECK_STEPS: f64 = 1e7;
+
+/// The smallest `--check-dt` for `t_end`: the checks' RK4 steps within
+/// [`MAX_CHECK_STEPS`].
+pub fn min_check_dt(t_end: f64, richardson: bool) -> f64 {
+    let runs = if richardson { 3.0 } else { 1.0 };
+    runs * t_end / MAX_CHECK_STEPS
+}
+
+/// Checks the RK4 step of the reference's check before any run: in
+/// `[min_check_dt, t_end]` (its cost is known in advance: `t_end / dt`
+/// steps, three times that with `richardson`, at most
+/// [`MAX_CHECK_STEPS`]); `what` names it (`--check-dt`, Python's
+/// `check_dt`).
+pub fn check_check_dt(what: &str, dt: f64, t_end: f64, richardson: bool) -> Result<f64, Error> {
+    let lo = min_check_dt(t_end, richardson);
+    if dt.is_finite() && dt >= lo && dt <= t_end {
         Ok(dt)
     } else {
         Err(Error::field(
             what,
             format!(
-                "must be a step in (0, run.t_end = {}] (got {})",
+                "must be a step in [{lo:e}, run.t_end = {}]: the reference's checks take \
+                 t_end / dt RK4 steps (3 t_end / dt with Richardson), at most \
+                 {MAX_CHECK_STEPS:e} (got {})",
                 crate::error::number(t_end),
                 crate::error::number(dt)
             ),
@@ -818,20 +994,45 @@ impl Study {
         )
     }
 
-    /// The points not run (or stopped) for the budget, `method param value`.
+    /// The points not run (or stopped) for the budget, `method param
+    /// value`; a method none of whose points ran as one entry, `method
+    /// param first to last (all k)`.
     pub fn skipped(&self) -> Vec<String> {
-        self.rows
-            .iter()
-            .filter(|r| r.plan == Plan::Budget)
-            .map(|r| format!("{} {} {}", r.method, r.param_name, exp(r.param)))
-            .collect()
+        let budget = |r: &&Point| r.plan == Plan::Budget;
+        let mut out = vec![];
+        let mut k = 0;
+        while k < self.rows.len() {
+            let r = &self.rows[k];
+            let line = |p: &&Point| p.run.is_some() && p.method == r.method;
+            let mine: Vec<&Point> = self.rows[k..].iter().take_while(line).collect();
+            if r.run.is_some() && mine.len() > 2 && mine.iter().all(budget) {
+                let last = mine[mine.len() - 1];
+                out.push(format!(
+                    "{} {} {} to {} (all {})",
+                    r.method,
+                    r.param_name,
+                    exp(r.param),
+                    exp(last.param),
+                    mine.len()
+                ));
+                k += mine.len();
+                continue;
+            }
+            if budget(&r) {
+                out.push(format!("{} {} {}", r.method, r.param_name, exp(r.param)));
+            }
+            k += 1;
+        }
+        out
     }
 }
 
-/// Runs the work-precision study of `scene` at its `t_end`: the reference
-/// and its checks, then the lines of `options.methods` (the shard's
-/// points) within the budget, on `options.jobs` threads. `outer` stops it
-/// from outside ([`Error::Interrupted`]); `progress` hears of each point.
+/// Runs the work-precision study of `scene` at its `t_end`: every bound of
+/// every run checked first ([`check_bounds`]), then the reference and its
+/// checks and the lines of `options.methods` (the shard's points), every
+/// phase within the budget, on `options.jobs` threads. `outer` stops it
+/// from outside ([`Error::Interrupted`]) in every phase; `progress` hears
+/// of each point.
 pub fn study(
     scene: &crate::scene::Scene,
     options: &Options,
@@ -843,6 +1044,7 @@ pub fn study(
     p.options.output_dt = None;
     let t_eval = p.options.t_end;
     let methods = &options.methods;
+    check_bounds(&p, t_eval, options.checks, methods)?;
     let provenance = Provenance::new(
         scene,
         "precision",
@@ -857,35 +1059,71 @@ pub fn study(
         ],
         ladder(methods).len(),
     );
-    let (reference, mut rows) = reference(&p, t_eval, options.checks)?;
+    let shard = options.shard;
+    let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
+    // The floor rule needs the coarser points of RK4's line: a
+    // shard runs those it does not own to decide it (`run_lines`).
+    let stop = |pt: &Point| rk4_floor(pt);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs.max(1))
+        .build()
+        .map_err(|e| Error::field("--jobs", e))?;
+    // Every phase, the reference and its checks included, runs under the
+    // budget and the caller's cancel.
+    let (reference, mut rows) = Budget::run(options.budget, outer, |b| {
+        let mut p = p.clone();
+        p.options.cancel = Some(b.cancel().clone());
+        let (reference, mut rows) = reference(&p, t_eval, options.checks)?;
+        if b.interrupted() {
+            return Err(Error::Interrupted);
+        }
+        if let Some(r) = &reference {
+            let lines = pool.install(|| run_lines(&p, methods, r, &take, b, &stop, progress))?;
+            if b.interrupted() {
+                return Err(Error::Interrupted);
+            }
+            rows.extend(lines);
+        }
+        Ok((reference, rows))
+    })?;
     let mut failures = vec![];
     let reference = match reference {
-        Some(r) => {
-            let shard = options.shard;
-            let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
-            // The floor rule needs the coarser points of RK4's line: a
-            // shard runs those it does not own to decide it (`run_lines`).
-            let stop = |pt: &Point| rk4_floor(pt);
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(options.jobs.max(1))
-                .build()
-                .map_err(|e| Error::field("--jobs", e))?;
-            let lines = Budget::run(options.budget, outer, |b| {
-                let lines = pool.install(|| run_lines(&p, methods, &r, &take, b, &stop, progress));
-                if b.interrupted() {
-                    return Err(Error::Interrupted);
-                }
-                lines
-            })?;
-            rows.extend(lines);
-            r
-        }
+        Some(r) => r,
         None => {
-            failures.push(format!(
-                "the reference run (DOPRI5 rtol {}) ended {}: no errors can be measured",
-                exp(REF_RTOL),
-                rows[0].status
-            ));
+            // No error can be measured: every point is a row not run, and
+            // says why.
+            let stopped = rows[0].plan == Plan::Budget;
+            let (plan, note) = if stopped {
+                (
+                    Plan::Budget,
+                    "budget: not run: the reference did not finish within --budget".to_string(),
+                )
+            } else {
+                (Plan::NoReference, Plan::NoReference.note())
+            };
+            for (run, (m, x)) in ladder(methods).into_iter().enumerate() {
+                if take(run) {
+                    let mut pt = Point::not_run(m, x, plan, String::new());
+                    pt.note.clone_from(&note);
+                    pt.run = Some(run);
+                    rows.push(pt);
+                }
+            }
+            failures.push(if stopped {
+                format!(
+                    "--budget stopped the reference run (DOPRI5 rtol {}) at t = {} of {}: \
+                     no point ran, no error can be measured",
+                    exp(REF_RTOL),
+                    num(rows[0].t_reached),
+                    num(t_eval)
+                )
+            } else {
+                format!(
+                    "the reference run (DOPRI5 rtol {}) ended {}: no errors can be measured",
+                    exp(REF_RTOL),
+                    rows[0].status
+                )
+            });
             Reference {
                 tip: [f64::NAN; 2],
                 vmax: f64::NAN,
@@ -895,19 +1133,30 @@ pub fn study(
     };
     let (a_rk4, a_bdf) = agreement(&rows);
     if failures.is_empty() && ![a_rk4, a_bdf].iter().any(|&a| a <= CONFIRMED) {
-        failures.push(format!(
-            "the reference is not confirmed: neither check agrees with it to {}",
-            exp(CONFIRMED)
-        ));
+        let checks = || {
+            rows.iter()
+                .filter(|r| r.run.is_none() && r.method != "reference-dopri5")
+        };
+        let budget: Vec<&str> = checks()
+            .filter(|r| r.plan == Plan::Budget)
+            .map(|r| r.method.as_str())
+            .collect();
+        failures.push(if budget.is_empty() {
+            format!(
+                "the reference is not confirmed: neither check agrees with it to {}",
+                exp(CONFIRMED)
+            )
+        } else {
+            format!(
+                "the reference is not confirmed: --budget stopped its checks before they \
+                 finished ({})",
+                budget.join(", ")
+            )
+        });
     }
-    let points = || rows.iter().filter(|r| r.run.is_some());
-    let ran = points().filter(|r| r.plan == Plan::Run).count();
-    let completed = points().filter(|r| r.ok()).count();
-    let skipped = points().filter(|r| r.plan == Plan::Budget).count();
-    if failures.is_empty() && completed == 0 && ran > 0 {
-        failures.push("every method failed on this scene (see the statuses)".into());
-    } else if failures.is_empty() && ran == 0 && skipped > 0 {
-        failures.push("no point ran within --budget".into());
+    // With no reference the points never ran: said above.
+    if rows[0].ok() {
+        failures.extend(points_failure(&rows));
     }
     Ok(Study {
         name: scene.name().to_string(),
@@ -918,4 +1167,129 @@ pub fn study(
         provenance,
         failures,
     })
+}
+
+/// What went wrong with the points of `rows` (those with a run number), if
+/// every one that ran failed or none ran: "every method failed" only when
+/// every point that could run ran (none was left out or stopped by the
+/// budget, none out of its bounds) and none completed.
+pub fn points_failure(rows: &[Point]) -> Option<String> {
+    let points = || rows.iter().filter(|r| r.run.is_some());
+    let ran: Vec<&Point> = points().filter(|r| r.plan == Plan::Run).collect();
+    if points().any(Point::ok) {
+        return None;
+    }
+    let budget = points().filter(|r| r.plan == Plan::Budget).count();
+    let bound = points().filter(|r| r.plan == Plan::Bound).count();
+    if ran.is_empty() {
+        return match (budget, bound) {
+            (0, 0) => None,
+            (_, 0) => Some("no point ran within --budget".to_string()),
+            _ => Some(format!(
+                "no point ran ({budget} not run within --budget, {bound} out of their \
+                 method's bounds: see the notes)"
+            )),
+        };
+    }
+    if budget == 0 && bound == 0 {
+        return Some("every method failed on this scene (see the statuses)".into());
+    }
+    let mut methods: Vec<&str> = ran.iter().map(|r| r.method.as_str()).collect();
+    methods.dedup();
+    Some(format!(
+        "no point completed: {} ran and failed ({}); {budget} not run or stopped by \
+         --budget, {bound} out of their method's bounds",
+        ran.len(),
+        methods.join(", ")
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+    use std::time::Duration;
+
+    /// Three rods for `t_end` (the span-d3 chain, cut short).
+    fn small(t_end: f64) -> Prepared {
+        let text = format!(
+            "[chain]\nlength = 6.0\nlinks = 3\nmass = 0.2\ndamping = 0.0005\n\
+             [start]\nkind = \"catenary\"\np0 = [0.0, 0.0]\np1 = [3.0, 0.0]\n\
+             [run]\nt_end = {t_end}\n"
+        );
+        let mut p = crate::scene::Scene::from_toml_str(&text)
+            .unwrap()
+            .prepare()
+            .unwrap();
+        p.options.output_dt = None;
+        p
+    }
+
+    /// The budget bounds every phase of the reference: a cancel set 50 ms
+    /// after the run of `(row, param)` starts stops that run (its row is
+    /// `budget`, `interrupted`, with the time it reached), and the checks
+    /// after it are rows not run for the budget. A run that ignored the
+    /// cancel (the reference's, a check's) would end `ok`.
+    #[test]
+    fn a_cancel_stops_each_phase_of_the_reference() {
+        let t_end = 1000.0;
+        // RK4 at 1e-3 is 10^6 steps, its half 2 10^6: seconds each.
+        let checks = Checks {
+            check_dt: 1e-3,
+            richardson: true,
+        };
+        let phases = [
+            ("reference-dopri5", REF_RTOL),
+            ("check-rk4", 1e-3),
+            ("check-rk4", 5e-4),
+            ("check-bdf", CHECK_BDF_RTOL),
+        ];
+        for (k, &(row, param)) in phases.iter().enumerate() {
+            let mut p = small(t_end);
+            let cancel = Cancel::new();
+            p.options.cancel = Some(cancel.clone());
+            let started: Mutex<Option<Instant>> = Mutex::new(None);
+            let done = std::sync::atomic::AtomicBool::new(false);
+            let (reference, rows) = std::thread::scope(|s| {
+                s.spawn(|| {
+                    while !done.load(std::sync::atomic::Ordering::Relaxed) {
+                        let at = *started.lock().unwrap();
+                        if at.is_some_and(|t| t.elapsed() > Duration::from_millis(50)) {
+                            cancel.cancel();
+                            return;
+                        }
+                        std::thread::sleep(Duration::from_millis(5));
+                    }
+                });
+                let out = reference_phases(&p, t_end, checks, &|r, x| {
+                    if r == row && x == param {
+                        *started.lock().unwrap() = Some(Instant::now());
+                    }
+                })
+                .unwrap();
+                done.store(true, std::sync::atomic::Ordering::Relaxed);
+                out
+            });
+            let at = rows
+                .iter()
+                .position(|r| r.method == row && r.param == param)
+                .unwrap_or_else(|| panic!("no row {row} {param}: {rows:?}"));
+            let stopped = &rows[at];
+            assert_eq!(stopped.status, "interrupted", "{row} {param}: {stopped:?}");
+            assert_eq!(stopped.plan, Plan::Budget, "{stopped:?}");
+            assert!(stopped.t_reached < t_end, "{stopped:?}");
+            assert!(
+                stopped.note.starts_with("budget: stopped at t = "),
+                "{stopped:?}"
+            );
+            for later in &rows[at + 1..] {
+                assert_eq!(
+                    (later.status.as_str(), later.plan),
+                    ("not_run", Plan::Budget),
+                    "{later:?}"
+                );
+            }
+            assert_eq!(reference.is_some(), k > 0, "{row}");
+        }
+    }
 }

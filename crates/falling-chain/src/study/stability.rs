@@ -137,6 +137,15 @@ pub fn jobs(rows: usize, methods: &[Method]) -> Vec<(usize, Method, f64)> {
     jobs
 }
 
+/// The options of a cell: the scene's at the method's accuracy `param`, no
+/// samples, at most [`MAX_STEPS`] steps.
+pub fn cell_options(p: &Prepared, method: Method, param: f64) -> chain_ode::SolveOptions {
+    let mut o = p.options.clone().at_accuracy(method, param);
+    o.output_dt = None;
+    o.max_steps = MAX_STEPS;
+    o
+}
+
 /// Runs one cell to the scene's end with at most [`MAX_STEPS`] steps.
 pub fn run_cell(
     p: &Prepared,
@@ -144,9 +153,7 @@ pub fn run_cell(
     param: f64,
     budget: Option<&Budget>,
 ) -> Result<Trajectory, String> {
-    let mut o = p.options.clone().at_accuracy(method, param);
-    o.output_dt = None;
-    o.max_steps = MAX_STEPS;
+    let mut o = cell_options(p, method, param);
     o.cancel = budget.map(|b| b.cancel().clone());
     let t = solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())?;
     if budget.is_some() && t.status == Status::Interrupted {
@@ -319,34 +326,168 @@ pub fn timing_text(rows: &[Row], cells: &[Cell]) -> String {
     timing
 }
 
-/// The largest step or tolerance at which each method completed every row
-/// of `cells` within the energy limit, and the smallest at which it failed
-/// one: `(method, largest_completed, smallest_failed)` in `methods` order.
-/// For RK4 (a step) a failure at a large step and success below it is the
-/// stability limit.
-pub fn limits(cells: &[Cell], methods: &[Method]) -> Vec<(Method, Option<f64>, Option<f64>)> {
+/// How one cell of the map ended, for its method's verdict ([`verdict`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum CellState {
+    Completed,
+    /// Ran and failed: any outcome but completed.
+    Failed,
+    /// Not run (the budget, a bound of the run): why.
+    NotRun(String),
+}
+
+impl CellState {
+    /// The state of `cell`.
+    pub fn of(cell: &Cell) -> CellState {
+        match &cell.run {
+            Ok(t) if Outcome::of(t).failed() => CellState::Failed,
+            Ok(_) => CellState::Completed,
+            Err(why) => CellState::NotRun(why.clone()),
+        }
+    }
+}
+
+/// One method's line of the CLI's summary, derived from its cells
+/// `(accuracy, state)` (every row's, in any order) so that it is true of
+/// the table: an accuracy where every row completed is a pass, one where a
+/// row failed a fail (one where only some rows ran, all completing, is
+/// neither). The passes and fails are given as runs of neighbouring
+/// accuracies tried, `<= x` for a run down to the smallest tried, `>= x`
+/// for one up to the largest (so "completes every row at dt <= 2e-4; fails
+/// at dt >= 5e-4" for RK4's stability limit, "completes every row at rtol
+/// >= 1e-8; fails at rtol <= 1e-10" for a method that fails only when
+/// tight). A method that ran nowhere says why; one whose every run failed
+/// "fails everywhere tried". `name` is the accuracy's (`dt`, `rtol`).
+pub fn verdict(name: &str, cells: &[(f64, CellState)]) -> String {
+    let mut params: Vec<f64> = cells.iter().map(|c| c.0).collect();
+    params.sort_by(f64::total_cmp);
+    params.dedup();
+    let not_run = cells
+        .iter()
+        .filter(|c| matches!(c.1, CellState::NotRun(_)))
+        .count();
+    let ran = cells.len() - not_run;
+    if ran == 0 {
+        let why = cells
+            .iter()
+            .find_map(|c| match &c.1 {
+                CellState::NotRun(why) => Some(why.as_str()),
+                _ => None,
+            })
+            .unwrap_or("no cell");
+        return format!("not run ({why})");
+    }
+    // Each accuracy where a verdict holds: Some(true) pass, Some(false) fail.
+    let labelled: Vec<(f64, bool)> = params
+        .iter()
+        .filter_map(|&x| {
+            let at = || cells.iter().filter(move |c| c.0 == x).map(|c| &c.1);
+            if at().any(|s| *s == CellState::Failed) {
+                Some((x, false))
+            } else if at().all(|s| *s == CellState::Completed) {
+                Some((x, true))
+            } else {
+                None
+            }
+        })
+        .collect();
+    // Runs of neighbours with one label, as text.
+    let groups = |pass: bool| -> Vec<String> {
+        let mut out = vec![];
+        let mut k = 0;
+        while k < labelled.len() {
+            if labelled[k].1 != pass {
+                k += 1;
+                continue;
+            }
+            let start = k;
+            while k + 1 < labelled.len() && labelled[k + 1].1 == pass {
+                k += 1;
+            }
+            let (lo, hi) = (labelled[start].0, labelled[k].0);
+            let (bottom, top) = (start == 0, k + 1 == labelled.len());
+            out.push(match (bottom, top) {
+                (true, true) => format!("every {name} tried"),
+                _ if lo == hi => format!("{name} {}", exp(lo)),
+                (true, false) => format!("{name} <= {}", exp(hi)),
+                (false, true) => format!("{name} >= {}", exp(lo)),
+                (false, false) => format!("{name} {} to {}", exp(lo), exp(hi)),
+            });
+            k += 1;
+        }
+        out
+    };
+    let (passes, fails) = (groups(true), groups(false));
+    let completed = cells.iter().any(|c| c.1 == CellState::Completed);
+    let mut line = match (passes.is_empty(), fails.is_empty()) {
+        (false, true) => format!(
+            "completes every row at {}; fails nowhere it ran",
+            passes.join(" and ")
+        ),
+        (true, false) if !completed => "fails everywhere tried".to_string(),
+        (true, false) => format!(
+            "completes every row at no {name} tried; fails at {}",
+            fails.join(" and ")
+        ),
+        (false, false) => format!(
+            "completes every row at {}; fails at {}",
+            passes.join(" and "),
+            fails.join(" and ")
+        ),
+        // Every run completed, but at no accuracy did every row run.
+        (true, true) => "completes every run it made; no accuracy ran on every row".to_string(),
+    };
+    if not_run > 0 {
+        line.push_str(&format!("; {not_run} of {} cells not run", cells.len()));
+    }
+    line
+}
+
+/// Each of `methods`' line of the summary ([`verdict`] of its cells).
+pub fn verdicts(cells: &[Cell], methods: &[Method]) -> Vec<(Method, String)> {
     methods
         .iter()
         .map(|&m| {
-            let mine = || cells.iter().filter(move |c| c.method == m);
-            let failed = |c: &Cell| c.run.as_ref().is_ok_and(|t| Outcome::of(t).failed());
-            let completed = |c: &Cell| c.run.as_ref().is_ok_and(|t| !Outcome::of(t).failed());
-            let params: Vec<f64> = {
-                let mut v: Vec<f64> = mine().map(|c| c.param).collect();
-                v.sort_by(f64::total_cmp);
-                v.dedup();
-                v
-            };
-            // An accuracy passes if every row completed there.
-            let passes = |x: f64| mine().filter(|c| c.param == x).all(completed);
-            let largest_ok = params.iter().rev().copied().find(|&x| passes(x));
-            let smallest_failed = mine()
-                .filter(|c| failed(c))
-                .map(|c| c.param)
-                .min_by(f64::total_cmp);
-            (m, largest_ok, smallest_failed)
+            let mine: Vec<(f64, CellState)> = cells
+                .iter()
+                .filter(|c| c.method == m)
+                .map(|c| (c.param, CellState::of(c)))
+                .collect();
+            (m, verdict(m.accuracy_name(), &mine))
         })
         .collect()
+}
+
+/// Checks, before any run, the bounds of every cell of `methods` on `rows`:
+/// a method that no cell of the study can run (`bdf-dense` past its
+/// largest chain) is refused, naming `--methods`; a cell whose own bound
+/// is broken (RK4's steps past the step budget) stays in the study as not
+/// run, with the bound as its reason ([`run_cell`]).
+pub fn check_bounds(rows: &[Row], methods: &[Method]) -> Result<(), Error> {
+    for &m in methods {
+        let mut first = None;
+        let mut any = false;
+        for row in rows {
+            for &x in params(m) {
+                match cell_options(&row.prepared, m, x).validate_for(&row.prepared.chain, m) {
+                    Ok(()) => any = true,
+                    Err(e) => {
+                        first.get_or_insert(e);
+                    }
+                }
+            }
+        }
+        if let (false, Some(e)) = (any, first) {
+            return Err(Error::field(
+                "--methods",
+                format!(
+                    "{m} cannot run any cell of this study (leave it out): {}",
+                    Error::from(e)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Runs the study of `rows` with `methods` (every cell, or the shard's) in
@@ -462,6 +603,44 @@ pub fn rows_of(
         .collect()
 }
 
+/// Why the study exits 1, if it does: no cell ran (the budget), or every
+/// cell that ran failed; "every method failed" only when every cell ran.
+pub fn cells_failure(cells: &[Cell]) -> Option<String> {
+    let ran: Vec<&Cell> = cells.iter().filter(|c| c.run.is_ok()).collect();
+    let not_run = cells.len() - ran.len();
+    let budget = cells
+        .iter()
+        .filter(|c| c.run.as_ref().is_err_and(|why| why.starts_with("budget")))
+        .count();
+    if ran.is_empty() {
+        return (!cells.is_empty()).then(|| {
+            if budget == cells.len() {
+                "no cell ran within --budget".to_string()
+            } else {
+                format!(
+                    "no cell ran ({budget} not run within --budget, {} not run for a bound: \
+                     see the notes)",
+                    not_run - budget
+                )
+            }
+        });
+    }
+    if ran
+        .iter()
+        .any(|c| c.run.as_ref().is_ok_and(|t| !Outcome::of(t).failed()))
+    {
+        return None;
+    }
+    Some(if not_run == 0 {
+        "every method failed on this scene at every step and tolerance".to_string()
+    } else {
+        format!(
+            "every cell that ran failed ({} ran; {not_run} not run: see the notes)",
+            ran.len()
+        )
+    })
+}
+
 /// Runs the stability study of `scene` (its rows: [`rows_of`]) with
 /// `options`: every cell of the shard, within the budget, on
 /// `options.jobs` threads. `outer` stops it from outside
@@ -474,6 +653,7 @@ pub fn run_study(
 ) -> Result<Study, Error> {
     let rows = rows_of(scene, options.vary.as_ref())?;
     let methods = &options.methods;
+    check_bounds(&rows, methods)?;
     let total = jobs(rows.len(), methods).len();
     let keys: Vec<String> = rows.iter().map(|r| r.key.clone()).collect();
     let provenance = Provenance::new(
@@ -504,15 +684,7 @@ pub fn run_study(
         }
         cells
     })?;
-    let ran: Vec<&Cell> = cells.iter().filter(|c| c.run.is_ok()).collect();
-    let mut failures = vec![];
-    if !ran.is_empty()
-        && ran
-            .iter()
-            .all(|c| c.run.as_ref().is_ok_and(|t| Outcome::of(t).failed()))
-    {
-        failures.push("every method failed on this scene at every step and tolerance".to_string());
-    }
+    let failures = cells_failure(&cells).into_iter().collect();
     Ok(Study {
         name: scene.name().to_string(),
         rows,
@@ -520,4 +692,93 @@ pub fn run_study(
         provenance,
         failures,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CellState::{Completed, Failed, NotRun};
+    use super::*;
+
+    fn cells(states: &[(f64, CellState)]) -> Vec<(f64, CellState)> {
+        states.to_vec()
+    }
+
+    /// The verdict is what the cells say, whichever way the accuracy runs:
+    /// RK4 fails at large steps, an implicit method at tight tolerances (the
+    /// line once said "completes every row at rtol <= 1e-2; fails at rtol
+    /// >= 1e-12" of the second, both false).
+    #[test]
+    fn the_verdict_follows_the_cells() {
+        let rk4 = cells(&[
+            (2e-2, Failed),
+            (1e-2, Failed),
+            (5e-3, Completed),
+            (1e-3, Completed),
+        ]);
+        assert_eq!(
+            verdict("dt", &rk4),
+            "completes every row at dt <= 5e-3; fails at dt >= 1e-2"
+        );
+        let tight = cells(&[
+            (1e-2, Completed),
+            (1e-4, Completed),
+            (1e-8, Completed),
+            (1e-10, Failed),
+            (1e-12, Failed),
+        ]);
+        assert_eq!(
+            verdict("rtol", &tight),
+            "completes every row at rtol >= 1e-8; fails at rtol <= 1e-10"
+        );
+        // Failing at both ends, and a lone failure inside (a run of one
+        // accuracy is named alone).
+        let both = cells(&[
+            (1e-2, Failed),
+            (1e-3, Completed),
+            (1e-4, Failed),
+            (1e-6, Completed),
+            (1e-8, Completed),
+            (1e-12, Failed),
+        ]);
+        assert_eq!(
+            verdict("rtol", &both),
+            "completes every row at rtol 1e-8 to 1e-6 and rtol 1e-3; \
+             fails at rtol 1e-12 and rtol 1e-4 and rtol 1e-2"
+        );
+    }
+
+    /// With two rows, an accuracy passes only where both completed; a cell
+    /// not run makes its accuracy neither, and is counted.
+    #[test]
+    fn the_verdict_of_several_rows_and_cells_not_run() {
+        let two = cells(&[
+            (1e-2, Completed),
+            (1e-2, Failed),
+            (1e-3, Completed),
+            (1e-3, Completed),
+            (1e-4, Completed),
+            (1e-4, NotRun("budget: not run within --budget".into())),
+        ]);
+        assert_eq!(
+            verdict("rtol", &two),
+            "completes every row at rtol 1e-3; fails at rtol 1e-2; 1 of 6 cells not run"
+        );
+    }
+
+    /// Nothing ran: the reason, never "none tried" or "fails nowhere";
+    /// every run failed: "fails everywhere tried"; every run completed:
+    /// "every rtol tried".
+    #[test]
+    fn the_verdict_when_nothing_ran_or_everything_failed() {
+        let why = "budget: not run within --budget";
+        let none = cells(&[(1e-2, NotRun(why.into())), (1e-3, NotRun(why.into()))]);
+        assert_eq!(verdict("rtol", &none), format!("not run ({why})"));
+        let failed = cells(&[(1e-2, Failed), (1e-3, Failed)]);
+        assert_eq!(verdict("rtol", &failed), "fails everywhere tried");
+        let ok = cells(&[(1e-2, Completed), (1e-3, Completed)]);
+        assert_eq!(
+            verdict("rtol", &ok),
+            "completes every row at every rtol tried; fails nowhere it ran"
+        );
+    }
 }
