@@ -1,7 +1,9 @@
 //! A scene fuzzer: proptest draws scenes of ordinary and extreme values
 //! (lengths, masses, gravity, damping, counts near integer limits, t_end up
 //! to 1e6, output_dt down to 1e-12, tolerances, every method and start
-//! kind, scene names with commas, quotes and line breaks) and runs them
+//! kind, scene names with commas, quotes and line breaks, start angles of
+//! two turns and past them, jerk and release times down to 1e-300, tapers
+//! and rod-length ratios at and past their bounds) and runs them
 //! through every subcommand (simulate, sweep,
 //! converge, plot, animate, catenary, view, and the study's precision,
 //! stability, needs and merge, each with `--budget 1`; a test checks that
@@ -142,6 +144,13 @@ struct Case {
     /// `--forces`, a study's `--out` and `--plot`), or view's page not
     /// ending in `.html`: refused, exit 2.
     same_out: bool,
+    /// One start angle of an angles start set to this (0: none): two turns
+    /// (`4 pi`, accepted), past them (13, 1e300: refused by name).
+    angle_big: f64,
+    /// The first rod's relative length in a profile's `chain.rod_lengths`
+    /// (1: the drawn list): `1e6`, the largest ratio accepted, and `1e7`,
+    /// refused; the other rods are 1.
+    rod_ratio: f64,
 }
 
 /// Scene names the fuzzer draws: plain, and with what CSV quotes.
@@ -211,15 +220,27 @@ fn case() -> impl Strategy<Value = Case> {
             number(-0.2, 0.2, &[0.0, f64::INFINITY]),
             number(-1.0, 1.0, &[0.0, f64::NAN]),
             number(0.0, 50.0, &[0.0, -1.0, 1e300]),
-            number(0.01, 2.0, &[0.0, -1.0, f64::INFINITY]),
-            number(0.0, 2.0, &[-1.0, f64::NAN, 1e300]),
+            number(0.01, 2.0, &[0.0, -1.0, f64::INFINITY, 1e-6, 1e-12, 1e-300]),
+            number(0.0, 2.0, &[-1.0, f64::NAN, 1e300, 1e-15, 1e-300]),
             any::<bool>(),
-            number(0.5, 20.0, &[1.0, 0.0, -1.0, 1e300, f64::NAN]),
+            number(
+                0.5,
+                20.0,
+                &[1.0, 0.0, -1.0, 1e300, f64::NAN, 1e-3, 1e3, 1001.0],
+            ),
             any::<bool>(),
         ),
         (
             prop_oneof![3 => Just(0usize), 4 => 1..NAMES.len()],
             proptest::bool::weighted(0.2),
+            prop_oneof![
+                6 => Just(0.0),
+                1 => proptest::sample::select(&[4.0 * std::f64::consts::PI, 13.0, 1e300][..]),
+            ],
+            prop_oneof![
+                6 => Just(1.0),
+                1 => proptest::sample::select(&[1e6, 1e7][..]),
+            ],
         ),
     )
         .prop_map(
@@ -229,7 +250,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (rtol, atol, output_dt, h_min, extra, with_out),
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
                 (acc, amp, jerk, freq, jerk_time, release, moving, taper, profiled),
-                (name, same_out),
+                (name, same_out, angle_big, rod_ratio),
             )| Case {
                 command,
                 length,
@@ -262,6 +283,8 @@ fn case() -> impl Strategy<Value = Case> {
                 profiled,
                 name,
                 same_out,
+                angle_big,
+                rod_ratio,
             },
         )
 }
@@ -316,7 +339,13 @@ impl Case {
             if self.taper == 1.0 {
                 writeln!(t, "rod_masses = [{}]", list(3)).unwrap();
             }
-            writeln!(t, "rod_lengths = [{}]", list(1)).unwrap();
+            if self.rod_ratio == 1.0 {
+                writeln!(t, "rod_lengths = [{}]", list(1)).unwrap();
+            } else {
+                let mut v = vec!["1".to_string(); n];
+                v[0] = toml_f(self.rod_ratio);
+                writeln!(t, "rod_lengths = [{}]", v.join(", ")).unwrap();
+            }
         }
         if self.moving {
             let [acc, amp, jerk, freq, jerk_time, release] = self.pivot.map(toml_f);
@@ -346,7 +375,11 @@ impl Case {
             _ => {
                 // As many angles as rods where that is small, else a few.
                 let n = usize::try_from(self.links).unwrap_or(3).min(50);
-                let angles: Vec<String> = (0..n).map(|i| toml_f(-1.5 + 0.05 * i as f64)).collect();
+                let mut angles: Vec<String> =
+                    (0..n).map(|i| toml_f(-1.5 + 0.05 * i as f64)).collect();
+                if self.angle_big != 0.0 && n > 0 {
+                    angles[n / 2] = toml_f(self.angle_big);
+                }
                 writeln!(t, "angles = [{}]", angles.join(", ")).unwrap();
             }
         }
@@ -743,6 +776,8 @@ fn the_fuzzer_draws_every_scene_key() {
             profiled: true,
             name: 1,
             same_out: false,
+            angle_big: 0.0,
+            rod_ratio: 1.0,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

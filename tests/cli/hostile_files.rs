@@ -380,7 +380,7 @@ fn numbers_in_messages_are_printed_short() {
     let s = scene("span-d3");
     for (args, subject, shown) in [
         (&["--set", "chain.links=1e300"][..], "chain.links", "1e300"),
-        (&["--method", "rk4", "--dt", "1e300"][..], "run.dt", "1e300"),
+        (&["--method", "rk4", "--dt", "1e300"][..], "--dt", "1e300"),
         (
             &["--set", "run.t_end=1e300"][..],
             "run.output_dt",

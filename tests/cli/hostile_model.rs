@@ -138,14 +138,14 @@ fn a_jerk_shorter_than_the_first_step_is_resolved() {
 }
 
 /// W1: RK4's fixed step must resolve the jerk too: a step longer than
-/// `tau / 16` is refused, naming `run.dt` and `pivot.jerk_time`.
+/// `tau / 16` is refused, naming the flag (`--dt`) and `pivot.jerk_time`.
 #[test]
 fn rk4_refuses_a_step_longer_than_the_jerk_allows() {
     let dir = scratch("hostile-model-rk4-jerk");
     let path = hanging_jerked_up(&dir, 1e-2);
     let e = refused(
         &["simulate", &path, "--method", "rk4", "--dt", "1e-3"],
-        "run.dt",
+        "--dt",
     );
     assert!(
         e.contains("pivot.jerk_time") && e.contains("6.25e-4"),

@@ -283,7 +283,10 @@ pub fn check_tol(tol: f64) -> Result<(), Error> {
     } else {
         Err(Error::field(
             "--tol",
-            format!("must be a number in [{MIN_TOL:e}, 1) (got {})", crate::error::number(tol)),
+            format!(
+                "must be a number in [{MIN_TOL:e}, 1) (got {})",
+                crate::error::number(tol)
+            ),
         ))
     }
 }
@@ -297,7 +300,10 @@ pub fn check_rtol(what: &str, rtol: f64) -> Result<f64, Error> {
     } else {
         Err(Error::field(
             what,
-            format!("must be a number in [{lo:e}, {hi}] (got {})", crate::error::number(rtol)),
+            format!(
+                "must be a number in [{lo:e}, {hi}] (got {})",
+                crate::error::number(rtol)
+            ),
         ))
     }
 }
