@@ -343,7 +343,7 @@ impl ViewRun {
         if kept <= 2 {
             return false;
         }
-        let keep = |i: usize| i % 2 == 0 || i + 1 == kept;
+        let keep = |i: usize| i.is_multiple_of(2) || i + 1 == kept;
         let thin = |values: &mut Vec<f64>, per: usize| {
             let mut i = 0;
             values.retain(|_| {
