@@ -41,7 +41,7 @@ fn refused(args: &[&str], key: &str) -> String {
 /// the summary's `damping_rate`.
 #[test]
 fn auto_and_the_damping_rate_see_the_stiffest_rod_of_a_profile() {
-    let ones = vec!["1"; 49].join(",");
+    let ones = ["1"; 49].join(",");
     let lengths = format!("chain.rod_lengths=[1e6,{ones}]");
     let path = scene("folded");
     let args = [
@@ -98,7 +98,7 @@ fn a_taper_makes_auto_run_bdf_at_the_tip_rods_damping_rate() {
 /// the support does the work `M g D` (the kinetic energy is zero again at
 /// the jerk's end), `W = -M g D`, and `E(t) - E(0) = M g D`.
 fn hanging_jerked_up(dir: &std::path::Path, tau: f64) -> String {
-    let down = vec!["-1.5707963267948966"; 10].join(", ");
+    let down = ["-1.5707963267948966"; 10].join(", ");
     let text = format!(
         "name = \"hanging-jerked-up\"\n\
          [chain]\nlength = 2.0\nlinks = 10\nmass = 0.1\ngravity = 1.0\ndamping = 0.001\n\

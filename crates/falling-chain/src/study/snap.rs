@@ -234,10 +234,6 @@ pub fn snap_row(variant: &str, s: &Snap) -> String {
 mod tests {
     use super::*;
 
-    fn scene(ea: Option<f64>) -> Scene {
-        scene_with(ea, "")
-    }
-
     /// The small span with `extra` lines in `[chain]` (a tip mass, a
     /// profile).
     fn scene_with(ea: Option<f64>, extra: &str) -> Scene {
