@@ -192,20 +192,24 @@ fn a_check_dt_past_the_step_bound_is_refused_before_any_run() {
     let out = dir.join("p.csv");
     for dt in ["4.157e-8", "1e-300", "4e-7"] {
         let start = Instant::now();
-        let o = run(&[
-            "precision",
-            &scene("span-d3"),
-            "--richardson",
-            "--check-dt",
-            dt,
-            "--methods",
-            "rk4",
-            "--quiet",
-            "--budget",
-            "2",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        let o = run_within(
+            &[
+                "precision",
+                &scene("span-d3"),
+                "--richardson",
+                "--check-dt",
+                dt,
+                "--methods",
+                "rk4",
+                "--quiet",
+                "--budget",
+                "2",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            Duration::from_secs(30),
+        )
+        .unwrap_or_else(|| panic!("--check-dt {dt}: still running after 30 s"));
         assert!(start.elapsed() < Duration::from_secs(2), "dt {dt}: ran");
         assert_eq!(o.status.code(), Some(2), "{dt}: {}", stderr(&o));
         let e = stderr(&o);
