@@ -384,7 +384,10 @@ fn named_by_flag(e: Error, given: &[(&str, &str)]) -> Error {
     if let Some((_, flag)) = given.iter().find(|(path, _)| *path == field) {
         return Error::field(*flag, message);
     }
-    if field.starts_with("run.") && given.iter().any(|(_, f)| *f == "--t-end") {
+    // A bound of the run section (its section name, not a key) that
+    // follows from --t-end names the flag.
+    let in_run = field.split('.').next() == Some("run");
+    if in_run && given.iter().any(|(_, f)| *f == "--t-end") {
         return Error::field("--t-end", format!("{field}: {message}"));
     }
     Error::Field { field, message }
