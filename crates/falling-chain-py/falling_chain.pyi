@@ -217,11 +217,14 @@ def precision(
     checks first (``run`` NaN), then every method (or ``methods``) across
     tolerances, RK4 across steps: ``status``, the work (``steps``,
     ``rhs_evals``, ``rhs_equiv``, ...), ``err_tip`` (over L) and ``err_vmax``
-    (relative), ``wall_seconds``. ``check_dt`` (default 1e-4) and
-    ``richardson`` set the RK4 check; ``budget`` (seconds) skips or stops
-    the points past it; ``shard`` runs only its points (join with
-    ``merge``); ``jobs`` is 1 to 256. Releases the GIL; Ctrl-C raises
-    KeyboardInterrupt; bad input raises ValueError naming the argument."""
+    (relative), ``wall_seconds``. ``check_dt`` (default 1e-4, at most 1e7
+    RK4 steps: in [t_end / 1e7, t_end], 3 t_end / 1e7 with Richardson) and
+    ``richardson`` set the RK4 check; ``budget`` (seconds) holds in every
+    phase, the reference and its checks too: it skips or stops what is past
+    it, each row's ``note`` saying so; ``methods`` names at least one
+    method; ``shard`` runs only its points (join with ``merge``); ``jobs``
+    is 1 to 256. Releases the GIL; Ctrl-C raises KeyboardInterrupt in every
+    phase; bad input raises ValueError naming the argument."""
 
 def stability(
     scene: Scene,
@@ -254,7 +257,10 @@ def needs(
     None), ``fastest`` and ``least_work`` (method, ``param_name``, ``param``,
     ``error``, ``rhs_equiv``, ``wall_seconds``), ``methods``, ``terms`` (per
     optional term: ``on``, ``needed``, ``tip_path``, ``tip_speed_max``) and
-    ``ladder`` (converge's report). Releases the GIL."""
+    ``ladder`` (converge's report), ``skipped`` (what ``budget``, which
+    holds in every phase, stopped), ``reference_status`` and
+    ``method_runs`` (per method: ``points``, ``ran``, ``budget``). Releases
+    the GIL; Ctrl-C raises KeyboardInterrupt."""
 
 def merge(paths: Sequence[Union[str, "os.PathLike[str]"]]) -> Dict[str, np.ndarray]:
     """Joins the ``--out`` tables of a sharded sweep, precision or stability

@@ -99,9 +99,10 @@ fn budget_of(budget: Option<f64>) -> PyResult<Option<f64>> {
 /// columns): every method (or `methods`) across tolerances (RK4 across
 /// steps), the errors against the DOPRI5 reference at rtol 1e-13 and its
 /// RK4 and BDF checks (the first rows, whose `run` is NaN), the work and
-/// `wall_seconds`. `check_dt` and `richardson` set the RK4 check;
-/// `budget` (seconds) skips or stops points past it (`plan` budget in the
-/// `note`); `shard` ("I/N" or (I, N)) runs only its points (join with
+/// `wall_seconds`. `check_dt` (at most 1e7 RK4 steps) and `richardson` set
+/// the RK4 check; `budget` (seconds) holds in every phase, the reference
+/// and its checks too, and skips or stops what is past it (`budget: ...`
+/// in the `note`); `shard` ("I/N" or (I, N)) runs only its points (join with
 /// `merge`); `jobs` threads (1 to 256). Releases the GIL; Ctrl-C raises
 /// KeyboardInterrupt. Bad input raises ValueError naming the argument.
 #[pyfunction]
@@ -201,7 +202,8 @@ pub fn stability<'py>(
 /// `tol`; `fastest` and `least_work`, the method and tolerance reaching
 /// `tol` at that n; `terms`, whether each optional term the scene turns on
 /// (joint friction) is `needed`; `ladder`, converge's report. `methods`,
-/// `budget` (seconds for the methods) and `jobs` as in `precision`.
+/// `budget` (seconds, every phase: the ladder, the reference, the methods,
+/// the terms) and `jobs` as in `precision`.
 /// Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (scene, tol, *, links=None, methods=None, budget=None, jobs=None))]
