@@ -354,9 +354,9 @@ impl CellState {
 /// neither). The passes and fails are given as runs of neighbouring
 /// accuracies tried, `<= x` for a run down to the smallest tried, `>= x`
 /// for one up to the largest (so `completes every row at dt <= 2e-4; fails
-/// at dt >= 5e-4` for RK4's stability limit, `completes every row at rtol
-/// >= 1e-8; fails at rtol <= 1e-10` for a method that fails only when
-/// tight). A method that ran nowhere says why; one whose every run failed
+/// at dt >= 5e-4` for RK4's stability limit, and `completes every row at
+/// rtol >= 1e-8; fails at rtol <= 1e-10` for a method that fails only
+/// when tight). A method that ran nowhere says why; one whose every run failed
 /// "fails everywhere tried". `name` is the accuracy's (`dt`, `rtol`).
 pub fn verdict(name: &str, cells: &[(f64, CellState)]) -> String {
     let mut params: Vec<f64> = cells.iter().map(|c| c.0).collect();
