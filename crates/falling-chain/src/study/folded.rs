@@ -417,7 +417,7 @@ pub const ACCEL_LINKS: [usize; 2] = [100, 400];
 const ACCEL_XIS: [f64; 5] = [0.25, 0.5, 0.75, 0.9, 0.95];
 /// Half-width in `xi` of the window `-at.csv` averages over (the discrete
 /// tip's acceleration oscillates as each rod rounds the fold).
-const ACCEL_WINDOW: f64 = 0.02;
+pub(crate) const ACCEL_WINDOW: f64 = 0.02;
 
 /// The law's tip acceleration over `g`: `1 + xi (2 - xi) / (2 (1 - xi)^2)`,
 /// the derivative along the fall of `v^2 = g x (2L - x)/(L - x)`

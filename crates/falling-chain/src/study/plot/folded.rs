@@ -328,8 +328,16 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
             ));
         }
         right.series.push(
-            Series::points(format!("n = {n}, mean over {WINDOW} time units"), means)
-                .with_color(palette(i)),
+            // The table's means: over the samples with |xi' - xi| <= the
+            // study's window (not the support force's running mean).
+            Series::points(
+                format!(
+                    "n = {n}, mean over |ξ' - ξ| <= {}",
+                    crate::study::folded::ACCEL_WINDOW
+                ),
+                means,
+            )
+            .with_color(palette(i)),
         );
     }
     // The law at the finest run's samples.
