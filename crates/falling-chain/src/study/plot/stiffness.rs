@@ -13,14 +13,14 @@ use crate::study::format::exp;
 use crate::study::stiffness::{TARGET, T_END};
 use crate::study::table::distinct;
 
-/// `x` to two significant digits, without trailing noise: `3.2`, `16`,
-/// `110`.
-fn two_digits(x: f64) -> String {
+/// A crossover's label: one decimal below 10 (`3.2`), the nearest whole
+/// number from there (`16`, `106`), so that the figure prints the number
+/// the text quotes from the same table.
+fn crossover_label(x: f64) -> String {
     if x.abs() < 10.0 {
         format!("{x:.1}")
     } else {
-        let unit = 10f64.powf(x.abs().log10().floor() - 1.0);
-        format!("{:.0}", (x / unit).round() * unit)
+        format!("{x:.0}")
     }
 }
 
@@ -107,8 +107,8 @@ pub fn stiffness(read: Reader, stem: &Path) -> Result<Output, String> {
             right.annotations.push(format!(
                 "n = {}: {} (rule {})",
                 cn[j],
-                two_digits(measured[j]),
-                two_digits(rule[j])
+                crossover_label(measured[j]),
+                crossover_label(rule[j])
             ));
         }
     }
@@ -122,13 +122,13 @@ pub fn stiffness(read: Reader, stem: &Path) -> Result<Output, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::two_digits;
+    use super::crossover_label;
 
     #[test]
-    fn crossover_labels_carry_two_digits() {
-        assert_eq!(two_digits(15.543), "16");
-        assert_eq!(two_digits(163.1), "160");
-        assert_eq!(two_digits(1055.0), "1100");
-        assert_eq!(two_digits(3.24), "3.2");
+    fn crossover_labels_are_the_tables_numbers_rounded() {
+        assert_eq!(crossover_label(15.543), "16");
+        assert_eq!(crossover_label(105.9), "106");
+        assert_eq!(crossover_label(1055.0), "1055");
+        assert_eq!(crossover_label(3.24), "3.2");
     }
 }
