@@ -255,7 +255,7 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
         let ch = &p.chain;
         let mgl = ch.energy_scale();
         let mut line = [
-            text(&row.key),
+            crate::csv::field(&row.key).into_owned(),
             text(&row.label),
             ch.links().to_string(),
             num(ch.damping()),
@@ -315,7 +315,7 @@ pub fn timing_text(rows: &[Row], cells: &[Cell]) -> String {
         if let Ok(t) = &c.run {
             timing.push_str(&format!(
                 "{},{},{},{},{}\n",
-                rows[c.row].key,
+                crate::csv::field(&rows[c.row].key),
                 c.method,
                 c.method.accuracy_name(),
                 exp(c.param),
@@ -353,9 +353,9 @@ impl CellState {
 /// row failed a fail (one where only some rows ran, all completing, is
 /// neither). The passes and fails are given as runs of neighbouring
 /// accuracies tried, `<= x` for a run down to the smallest tried, `>= x`
-/// for one up to the largest (so `completes every row at dt <= 2e-4; fails
-/// at dt >= 5e-4` for RK4's stability limit, and `completes every row at
-/// rtol >= 1e-8; fails at rtol <= 1e-10` for a method that fails only
+/// for one up to the largest (so "completes every row at dt <= 2e-4; fails
+/// at dt >= 5e-4" for RK4's stability limit, and "completes every row at
+/// rtol >= 1e-8; fails at rtol <= 1e-10" for a method that fails only
 /// when tight). A method that ran nowhere says why; one whose every run failed
 /// "fails everywhere tried". `name` is the accuracy's (`dt`, `rtol`).
 pub fn verdict(name: &str, cells: &[(f64, CellState)]) -> String {
