@@ -4,6 +4,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::time::Duration;
 
 use serde_json::Value;
 
@@ -152,4 +153,25 @@ pub fn run_within(args: &[&str], limit: std::time::Duration) -> Option<Output> {
         stdout,
         stderr,
     })
+}
+
+/// The liveness bound of a refusal: it must come before any run, so in far
+/// less than this (a run these tests would start takes minutes or more).
+pub const QUICK: Duration = Duration::from_secs(20);
+
+pub fn run_quick(args: &[&str]) -> Output {
+    run_within(args, QUICK).unwrap_or_else(|| panic!("still running after {QUICK:?}: {args:?}"))
+}
+
+/// Exit 2 with exactly one line on stderr, `error: SUBJECT: ...`.
+#[track_caller]
+pub fn refused(out: &Output, subject: &str) -> String {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
+    assert!(err.ends_with('\n'), "{err:?}");
+    let prefix = format!("error: {subject}");
+    assert!(err.starts_with(&prefix), "want '{prefix}...', got {err:?}");
+    assert!(out.stdout.is_empty(), "{}", stdout(out));
+    err.trim_end().to_string()
 }

@@ -10,27 +10,6 @@ use std::time::{Duration, Instant};
 
 use crate::common::*;
 
-/// The liveness bound of a refusal: it must come before any run, so in far
-/// less than this (a run these tests would start takes minutes or more).
-const QUICK: Duration = Duration::from_secs(20);
-
-fn run_quick(args: &[&str]) -> Output {
-    run_within(args, QUICK).unwrap_or_else(|| panic!("still running after {QUICK:?}: {args:?}"))
-}
-
-/// Exit 2 with exactly one line on stderr, `error: SUBJECT: ...`.
-#[track_caller]
-fn refused(out: &Output, subject: &str) -> String {
-    let err = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
-    assert!(err.ends_with('\n'), "{err:?}");
-    let prefix = format!("error: {subject}");
-    assert!(err.starts_with(&prefix), "want '{prefix}...', got {err:?}");
-    assert!(out.stdout.is_empty(), "{}", stdout(out));
-    err.trim_end().to_string()
-}
-
 /// A case that used to hang finishes within 10x of the nearby case that
 /// did not (plus a second for process start-up): a liveness bound, not a
 /// benchmark.

@@ -9,31 +9,8 @@
 
 use std::fs;
 use std::path::Path;
-use std::process::Output;
-use std::time::Duration;
 
 use crate::common::*;
-
-/// A refusal comes before any run: in far less than this (the runs these
-/// tests would start take minutes).
-const QUICK: Duration = Duration::from_secs(20);
-
-fn run_quick(args: &[&str]) -> Output {
-    run_within(args, QUICK).unwrap_or_else(|| panic!("still running after {QUICK:?}: {args:?}"))
-}
-
-/// Exit 2 with exactly one line on stderr, `error: SUBJECT: ...`, and
-/// nothing on stdout.
-#[track_caller]
-fn refused(out: &Output, subject: &str) -> String {
-    let err = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
-    let prefix = format!("error: {subject}");
-    assert!(err.starts_with(&prefix), "want '{prefix}...', got {err:?}");
-    assert!(out.stdout.is_empty(), "{}", stdout(out));
-    err.trim_end().to_string()
-}
 
 fn path(p: &Path) -> String {
     p.to_string_lossy().into_owned()

@@ -22,14 +22,9 @@ fn first_method(v: &serde_json::Value) -> String {
         .to_string()
 }
 
-/// One line on stderr, exit 2, naming `key`.
+/// Refused before any run: exit 2, one line naming `key` (`common::refused`).
 fn refused(args: &[&str], key: &str) -> String {
-    let o = run(args);
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: {e}");
-    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
-    assert!(e.starts_with(&format!("error: {key}")), "{e}");
-    e
+    crate::common::refused(&run_quick(args), key)
 }
 
 /// H2: the folded scene (n = 50, L = 6, m = 0.2, r = 0.001) with its first

@@ -3,16 +3,11 @@ is refused, and Ctrl-C stops `precision(..., jobs=2)` in every phase (its
 reference, the reference's RK4 check, the methods' points) as it stops the
 other study functions."""
 
-import signal
-import subprocess
-import sys
-import time
-
 import pytest
 
 import falling_chain as fc
-from conftest import cap_memory, scene_path
-from test_interrupt import CHILD
+from conftest import scene_path
+from test_interrupt import interrupt
 
 # From SIGINT to KeyboardInterrupt: the study polls for signals every 20 ms
 # and its runs look at their cancel flag every step; a liveness bound with
@@ -21,39 +16,9 @@ BOUND = 1.0
 
 
 def interrupt_after(setup, work, wait):
-    """Runs `work` in a child, sends SIGINT `wait` seconds after it started,
-    and checks that KeyboardInterrupt came within BOUND seconds and that the
-    child then ran one more simulation and exited with 0."""
-    code = CHILD.format(span=scene_path("span-d3"), setup=setup, work=work)
-    child = subprocess.Popen(
-        [sys.executable, "-c", code],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        preexec_fn=cap_memory(),
-    )
-    try:
-        assert child.stdout.readline() == "started\n", child.communicate(timeout=30)
-        time.sleep(wait)
-        sent = time.monotonic()
-        child.send_signal(signal.SIGINT)
-        try:
-            out, err = child.communicate(timeout=BOUND + 20)
-        except subprocess.TimeoutExpired:
-            pytest.fail(f"no KeyboardInterrupt {BOUND + 20} s after SIGINT")
-    finally:
-        if child.poll() is None:
-            child.kill()
-            child.communicate()
-    lines = out.splitlines()
-    assert child.returncode == 0, (child.returncode, out, err[-2000:])
-    assert len(lines) == 2 and lines[1] == "after ok", (out, err[-2000:])
-    word, start, caught = lines[0].split()
-    assert word == "interrupted"
-    start, caught = float(start), float(caught)
-    assert sent - start > 0.5 * wait, "SIGINT came before the work had started"
-    assert caught - sent < BOUND, f"KeyboardInterrupt {caught - sent:.2f} s after SIGINT"
-    assert "panicked" not in err, err[-2000:]
+    """`test_interrupt.interrupt` with SIGINT `wait` seconds after the work
+    started and this module's BOUND."""
+    interrupt(setup, work, wait=wait, bound=BOUND)
 
 
 def test_ctrl_c_stops_precision_in_its_reference():

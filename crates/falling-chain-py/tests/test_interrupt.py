@@ -40,10 +40,10 @@ BOUND = 2.0
 WAIT = 0.3
 
 
-def interrupt(setup, work):
-    """Runs `work` in a child, sends SIGINT after WAIT seconds, and checks
-    that KeyboardInterrupt came within BOUND seconds and that the child then
-    ran one more simulation and exited with 0."""
+def interrupt(setup, work, wait=WAIT, bound=BOUND):
+    """Runs `work` in a child, sends SIGINT after `wait` seconds, and checks
+    that KeyboardInterrupt came within `bound` seconds and that the child
+    then ran one more simulation and exited with 0."""
     code = CHILD.format(span=scene_path("span-d3"), setup=setup, work=work)
     child = subprocess.Popen(
         [sys.executable, "-c", code],
@@ -54,13 +54,13 @@ def interrupt(setup, work):
     )
     try:
         assert child.stdout.readline() == "started\n", child.communicate(timeout=30)
-        time.sleep(WAIT)
+        time.sleep(wait)
         sent = time.monotonic()
         child.send_signal(signal.SIGINT)
         try:
-            out, err = child.communicate(timeout=BOUND + 10)
+            out, err = child.communicate(timeout=bound + 20)
         except subprocess.TimeoutExpired:
-            pytest.fail(f"no KeyboardInterrupt {BOUND + 10} s after SIGINT")
+            pytest.fail(f"no KeyboardInterrupt {bound + 20} s after SIGINT")
     finally:
         if child.poll() is None:
             child.kill()
@@ -72,8 +72,8 @@ def interrupt(setup, work):
     assert word == "interrupted"
     # time.monotonic is one clock for every process on Linux.
     start, caught = float(start), float(caught)
-    assert sent - start > 0.5 * WAIT, "SIGINT came before the work had started"
-    assert caught - sent < BOUND, f"KeyboardInterrupt {caught - sent:.2f} s after SIGINT"
+    assert sent - start > 0.5 * wait, "SIGINT came before the work had started"
+    assert caught - sent < bound, f"KeyboardInterrupt {caught - sent:.2f} s after SIGINT"
     assert "panicked" not in err, err[-2000:]
 
 
