@@ -11,7 +11,7 @@
 use std::process::ExitCode;
 
 use chain_ode::beam::REFERENCE;
-use chain_ode::{solve_beam, Method};
+use chain_ode::{solve, BeamModel, Method};
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -31,7 +31,9 @@ fn main() -> ExitCode {
         eprintln!("{name}: expected a number, got {accuracy:?}");
         return ExitCode::from(2);
     };
-    let run = match solve_beam(method, x) {
+    let model = BeamModel::new();
+    let start = model.start();
+    let run = match BeamModel::options(method, x).and_then(|o| solve(model, &start, method, &o)) {
         Ok(run) => run,
         Err(e) => {
             eprintln!("{e}");
@@ -62,12 +64,12 @@ fn main() -> ExitCode {
         s.error_test_failures,
         s.newton_failures,
         s.newton_iterations,
-        num(run.wall_seconds),
+        num(run.summary.wall_seconds),
     );
     for (i, r) in REFERENCE {
         line += &format!(
             ",\"y{i}\":{},\"y{i}_reference\":{}",
-            num(run.component(i)),
+            num(BeamModel::component(&run.final_state, i)),
             num(r)
         );
     }

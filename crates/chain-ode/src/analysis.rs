@@ -5,8 +5,8 @@
 //! chain.
 
 use crate::chain::{Chain, InvalidParameter};
-use crate::elastic;
 use crate::kinematics::Vec2;
+use crate::model::Model;
 use crate::solve::Trajectory;
 use crate::system::ChainSystem;
 
@@ -49,39 +49,15 @@ pub fn pivot_force(sys: &mut ChainSystem, angles: &[f64], rates: &[f64]) -> Vec2
 /// `(t, pivot force on rod 1)` at every sample of `traj`: the recursion's
 /// for rigid links (with a moving pivot, at its acceleration at `t`; zero
 /// once released), the pivot spring's for elastic ones.
-pub fn pivot_forces(traj: &Trajectory) -> Vec<(f64, Vec2)> {
-    if traj.chain.is_elastic() {
-        return (0..traj.len())
-            .map(|k| {
-                (
-                    traj.times[k],
-                    elastic::pivot_force_at(&traj.chain, traj.times[k], traj.state(k)),
-                )
-            })
-            .collect();
-    }
-    let mut sys = ChainSystem::new(&traj.chain);
-    if traj.pivot.is_fixed() {
-        return traj
-            .samples()
-            .map(|s| (s.t, pivot_force(&mut sys, s.angles, s.rates)))
-            .collect();
-    }
-    // A moving pivot: the force with its acceleration at each sample's time
-    // (zero once it is let go).
-    let mut dy = vec![0.0; sys.dim()];
-    traj.samples()
-        .map(|s| {
-            sys.set_released(traj.pivot.is_free_at(s.t));
-            let y = ChainSystem::pack(s.angles, s.rates, 0.0);
-            (s.t, sys.rhs_at(s.t, &y, &mut dy).pivot_force)
-        })
+pub fn pivot_forces<M: Model>(traj: &Trajectory<M>) -> Vec<(f64, Vec2)> {
+    (0..traj.len())
+        .map(|k| (traj.times[k], traj.support_force(k)))
         .collect()
 }
 
 /// The tip's position and velocity at every sample: `(t, tip, v_tip)`, for
 /// either model (`Trajectory::tip`, `Trajectory::tip_velocity`).
-pub fn tip_track(traj: &Trajectory) -> Vec<(f64, Vec2, Vec2)> {
+pub fn tip_track<M: Model>(traj: &Trajectory<M>) -> Vec<(f64, Vec2, Vec2)> {
     traj.samples()
         .enumerate()
         .map(|(k, s)| (s.t, traj.tip(k), traj.tip_velocity(k)))

@@ -469,10 +469,6 @@ impl Problem for ElasticSystem {
             y0: y0.to_vec(),
         })
     }
-
-    fn chain(&self) -> Option<&Chain> {
-        Some(&self.chain)
-    }
 }
 
 /// Scratch of [`ElasticDae`]: its trait's methods take `&self`.

@@ -208,14 +208,14 @@ pub fn bending_energy(chain: &Chain, phi: &[f64]) -> f64 {
 }
 
 /// Total mechanical energy `T + V` of the rigid chain, `+ U_b` when it has
-/// bending stiffness.
+/// bending stiffness: the model's one energy ([`crate::model::RigidModel`],
+/// fused with the tip's velocity in the runs), which is
+/// [`kinetic_energy`] + [`potential_energy`] + [`bending_energy`] to rounding.
 pub fn energy(chain: &Chain, phi: &[f64], w: &[f64]) -> f64 {
-    let e = kinetic_energy(chain, phi, w) + potential_energy(chain, phi);
-    if chain.bending_spring() != 0.0 {
-        e + bending_energy(chain, phi)
-    } else {
-        e
-    }
+    let mut y = Vec::with_capacity(2 * phi.len());
+    y.extend_from_slice(phi);
+    y.extend_from_slice(w);
+    crate::model::rigid_energy(chain, &y)
 }
 
 /// Dissipation rate `2R = r sum_{i>=2} (w_i - w_{i-1})^2 = -dE/dt` (power, >= 0).

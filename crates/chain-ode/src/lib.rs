@@ -43,6 +43,7 @@ pub mod dynamics;
 mod dynamics_profile;
 pub mod elastic;
 pub mod kinematics;
+pub mod model;
 pub mod modes;
 mod ode;
 pub mod pivot;
@@ -58,15 +59,19 @@ pub mod tip_mass_law;
 pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
 pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
+pub use model::beam::BEAM_MAX_STEPS;
+pub use model::{
+    BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed, ReportChain, RigidModel,
+};
 pub use ode::{Cancel, Stats, Status};
+pub use ode::{Interpolant, StepView};
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 pub use solve::{
-    bdf_crossover_gamma, solve, solve_beam, solve_report, Accuracy, BeamRun, Method, Sample,
-    Segment, SolveOptions, Summary, Trajectory, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
-    BDF_DENSE_MAX_LINKS, BEAM_MAX_STEPS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS,
-    RTOL_RANGE,
+    bdf_crossover_gamma, solve, Accuracy, AutoPlan, Integrator, Method, Sample, Segment, Solve,
+    SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
+    BDF_DENSE_MAX_LINKS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 #[doc(hidden)]
 pub use solve::{unit_costs, with_general_sparse_lu, UnitCosts};

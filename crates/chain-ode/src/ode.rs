@@ -8,7 +8,7 @@
 //! step. This module depends on no method: `solve` depends on it, never the
 //! other way.
 
-use crate::chain::Chain;
+use crate::solve::AutoPlan;
 
 /// `y' = f(t, y)` on `R^dim`.
 pub trait OdeSystem {
@@ -110,10 +110,9 @@ pub trait Problem: OdeSystem {
         None
     }
 
-    /// The chain this problem models, if any: `auto` places its crossover
-    /// from it (without one, `auto` starts explicit and hands over at the
-    /// first stiffness detection).
-    fn chain(&self) -> Option<&Chain> {
+    /// `auto`'s plan for this problem, when its model gave one (the run
+    /// layer does); `None`: the generic plan ([`AutoPlan::generic`]).
+    fn auto_plan(&self) -> Option<AutoPlan> {
         None
     }
 }

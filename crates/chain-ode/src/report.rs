@@ -136,12 +136,9 @@ impl ReportModel {
     /// [`REPORT_MAX_LINKS`] rods. The error names the scene key.
     pub fn validate(self, chain: &Chain) -> Result<(), InvalidParameter> {
         const WHY: &str = "absent with model.report = true (the report's model has rigid links)";
-        check(
-            !chain.is_elastic(),
-            "chain.axial_stiffness",
-            WHY,
-            chain.axial_stiffness().unwrap_or(0.0),
-        )?;
+        if let Some(ea) = chain.axial_stiffness() {
+            check(false, "chain.axial_stiffness", WHY, ea)?;
+        }
         check(
             chain.bending_stiffness() == 0.0,
             "chain.bending_stiffness",

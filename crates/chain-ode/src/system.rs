@@ -183,8 +183,4 @@ impl Problem for ChainSystem {
             y0: full,
         })
     }
-
-    fn chain(&self) -> Option<&Chain> {
-        Some(&self.chain)
-    }
 }

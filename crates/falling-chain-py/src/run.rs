@@ -2,6 +2,7 @@
 
 use ::falling_chain::{Error, RunSummary, Scene};
 use chain_ode::kinematics::joints;
+use chain_ode::Model as _;
 use chain_ode::{Chain, Method, Status, Trajectory, Vec2};
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::PyIndexError;
@@ -38,7 +39,7 @@ struct Head {
 impl Head {
     fn of(traj: &Trajectory) -> Self {
         Self {
-            chain: traj.chain.clone(),
+            chain: traj.chain().clone(),
             anchor: traj.anchor,
             method: traj.method,
             status: traj.status,
@@ -72,7 +73,7 @@ struct Series {
 
 impl Series {
     fn of(traj: &Trajectory) -> Self {
-        let (samples, n) = (traj.len(), traj.chain.links());
+        let (samples, n) = (traj.len(), traj.chain().links());
         let mut s = Self {
             samples,
             links: n,
@@ -85,9 +86,10 @@ impl Series {
             dissipated: Vec::with_capacity(samples),
             support_work: support_work(traj),
             forces: Vec::with_capacity(samples * 2 * (n + 1)),
-            // An elastic chain's joints, and a moving or released pivot's,
-            // do not follow from the angles and the anchor.
-            joints: (traj.chain.is_elastic() || !traj.pivot.is_fixed())
+            // The joints of a model with positions among its unknowns (the
+            // elastic chain), and a moving or released pivot's, do not
+            // follow from the angles and the anchor.
+            joints: (traj.model.layout().positions.is_some() || !traj.chain().pivot().is_fixed())
                 .then(|| Vec::with_capacity(samples * 2 * (n + 1))),
         };
         for (k, sample) in traj.samples().enumerate() {
@@ -113,7 +115,7 @@ impl Series {
 /// the pivot's velocity): zero for a fixed pivot, and no power once the
 /// pivot is let go (`F_0 = 0`).
 fn support_work(traj: &Trajectory) -> Vec<f64> {
-    if traj.pivot.is_fixed() {
+    if traj.chain().pivot().is_fixed() {
         return vec![0.0; traj.len()];
     }
     let forces = chain_ode::analysis::pivot_forces(traj);

@@ -309,7 +309,7 @@ pub fn trajectory_header(links: usize) -> String {
 /// energy are computed exactly from each sample's state, for either model
 /// (the trajectory's accessors); `phi_i` are the rods' angles.
 pub fn write_trajectory<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
-    writeln!(w, "{}", trajectory_header(traj.chain.links()))?;
+    writeln!(w, "{}", trajectory_header(traj.chain().links()))?;
     let mut line = String::new();
     for (k, s) in traj.samples().enumerate() {
         let p = traj.tip(k);
@@ -344,7 +344,7 @@ pub fn forces_header(links: usize) -> String {
 /// joint forces ([`Trajectory::joint_forces`]: the rigid chain's from its
 /// banded DAE, the elastic chain's from its springs).
 pub fn write_forces<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
-    writeln!(w, "{}", forces_header(traj.chain.links()))?;
+    writeln!(w, "{}", forces_header(traj.chain().links()))?;
     let mut line = String::new();
     for k in 0..traj.len() {
         line.clear();

@@ -665,7 +665,7 @@ fn draw_scene(
     let title = format!(
         "{} (n = {}, {})",
         scene.name(),
-        traj.chain.links(),
+        traj.chain().links(),
         traj.method
     );
     let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));

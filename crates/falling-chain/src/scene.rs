@@ -29,8 +29,8 @@ use std::str::FromStr;
 
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, solve_report, Chain, ChainParams, Method, Pivot, Profile, SolveOptions, Start, State,
-    Trajectory,
+    solve, Chain, ChainParams, Method, ModelKind, Pivot, Profile, ReportChain, SolveOptions, Start,
+    State, Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -148,7 +148,7 @@ pub struct Prepared {
     pub method: Method,
     pub options: SolveOptions,
     /// `Some` with `model.report = true`: the report's model
-    /// ([`ReportModel::AS_CODED`]), run by [`chain_ode::solve_report`] in
+    /// ([`ReportModel::AS_CODED`]), run by [`chain_ode::solve`] on [`chain_ode::ReportChain`] in
     /// its own clock; `None`, the corrected model.
     pub report: Option<ReportModel>,
 }
@@ -158,9 +158,12 @@ impl Prepared {
     pub fn solve(&self) -> Result<Trajectory, Error> {
         Ok(match self.report {
             None => solve(&self.chain, &self.state, self.method, &self.options)?,
-            Some(model) => {
-                solve_report(&self.chain, &self.state, model, self.method, &self.options)?
-            }
+            Some(model) => solve(
+                ModelKind::Report(ReportChain::new(&self.chain, model)),
+                &self.state,
+                self.method,
+                &self.options,
+            )?,
         })
     }
 
@@ -174,7 +177,12 @@ impl Prepared {
         };
         Ok(match self.report {
             None => solve(&self.chain, &self.state, self.method, &options)?,
-            Some(model) => solve_report(&self.chain, &self.state, model, self.method, &options)?,
+            Some(model) => solve(
+                ModelKind::Report(ReportChain::new(&self.chain, model)),
+                &self.state,
+                self.method,
+                &options,
+            )?,
         })
     }
 

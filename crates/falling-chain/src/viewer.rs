@@ -274,9 +274,9 @@ impl ViewRun {
         budget: usize,
         forces: bool,
     ) -> Self {
-        let links = traj.chain.links();
+        let links = traj.chain().links();
         let samples = traj.len();
-        let profile = RodProfile::of(&traj.chain);
+        let profile = RodProfile::of(traj.chain());
         let budget = budget.saturating_sub(fixed_bytes(links, profile.is_some()));
         let stride = stride_for(samples, links, if forces { 2 } else { 0 }, budget);
         let kept = samples.div_ceil(stride) + 1;
@@ -286,7 +286,7 @@ impl ViewRun {
             status: summary.status.clone(),
             t_failed: summary.t_failed,
             links,
-            rod: traj.chain.length() / links as f64,
+            rod: traj.chain().length() / links as f64,
             anchor: traj.anchor,
             samples,
             stride,
@@ -296,7 +296,7 @@ impl ViewRun {
             dissipated: Vec::with_capacity(kept),
             phi: Vec::with_capacity(kept * links),
             forces: None,
-            pivot: (!traj.pivot.is_fixed()).then(|| Vec::with_capacity(2 * kept)),
+            pivot: (!traj.chain().pivot().is_fixed()).then(|| Vec::with_capacity(2 * kept)),
             profile,
             source: None,
         };

@@ -36,80 +36,45 @@ pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
 /// rather than DOPRI5 (measured on the work-precision diagrams).
 pub(crate) const AUTO_DOP853_RTOL: f64 = 1e-8;
 
-impl Method {
-    /// The methods `auto` runs for this chain and tolerance: the explicit one
-    /// it starts with (none when the chain is past the crossover), and BDF.
-    /// The chain's damping rate is its stiffest rod's
-    /// ([`Chain::stiffest_damping_rate`]): a profile with one light or short
-    /// rod is as stiff as that rod.
-    pub fn auto_plan(chain: &Chain, rtol: f64) -> Option<Method> {
-        if chain.stiffest_damping_rate() >= bdf_crossover_gamma(chain) {
-            None
-        } else if rtol <= AUTO_DOP853_RTOL {
-            Some(Method::Dop853)
-        } else {
-            Some(Method::Dopri5)
+/// `auto`'s plan for one problem, from its model ([`crate::model::Model::auto_plan`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoPlan {
+    /// The explicit method to start with; `None`: BDF from the start.
+    pub explicit: Option<Method>,
+    /// Hand over to BDF at the first stiffness detection with `|lambda|`
+    /// above this (`0`: at the first detection; infinite: never).
+    pub hand_over_above: f64,
+}
+
+impl AutoPlan {
+    /// The plan for a problem whose model says nothing of its stiffness:
+    /// DOP853 at `rtol <= 1e-8`, DOPRI5 otherwise, handing over to BDF at
+    /// the first stiffness detection.
+    pub fn generic(rtol: f64) -> Self {
+        Self {
+            explicit: Some(if rtol <= AUTO_DOP853_RTOL {
+                Method::Dop853
+            } else {
+                Method::Dopri5
+            }),
+            hand_over_above: 0.0,
         }
     }
 }
 
-/// The explicit method `auto` starts with on `problem` (none: BDF from the
-/// start), and the stiffness estimate `|lambda|` (1/time) past which it
-/// hands over. A rigid chain places both from its crossover, an elastic
-/// one from its joint damping (`auto_elastic`); a problem that names no
-/// chain starts explicit and hands over at the first detection.
-fn plan(problem: &dyn Problem, rtol: f64) -> (Option<Method>, f64) {
-    match problem.chain() {
-        Some(chain) if chain.is_elastic() => super::auto_elastic::plan(chain, rtol),
-        Some(chain) => (
-            Method::auto_plan(chain, rtol),
-            48.0 * bdf_crossover_gamma(chain),
-        ),
-        None if rtol <= AUTO_DOP853_RTOL => (Some(Method::Dop853), 0.0),
-        None => (Some(Method::Dopri5), 0.0),
-    }
-}
-
-/// Watches the explicit method for `auto`: passes everything on, and once
-/// the stiffness detector fires with `|lambda|` past `switch_lambda` (before
-/// `t_end`), asks the method to stop there: the handover.
+/// The explicit method's observer: passes everything on, and stops the run
+/// at the first stiffness detection past the plan's threshold.
 struct Watch<'a> {
     inner: &'a mut dyn Observer,
-    switch_lambda: f64,
+    hand_over_above: f64,
     t_end: f64,
     stiff_at: Option<f64>,
-    /// The problem names a rigid chain ([`hands_over`]).
-    chain: bool,
 }
 
-/// Whether `auto` hands over to BDF at `t`, where the explicit method's
-/// stiffness detector reports `|lambda|` (1/time): never for a rigid chain
-/// (`chain`), and for any other problem once `lambda` is past
-/// `switch_lambda` before `t_end` (an elastic chain's `switch_lambda` is
-/// `auto_elastic`'s: 0 when its joints are damped, else infinite). The one
-/// place the mid-run policy lives.
-///
-/// Why no handover on a chain: below the crossover (where `auto` starts
-/// explicit) damping's `|lambda| ~ 48 gamma` stays under the handover's
-/// `48 gamma_c`, so what the detector meets is the whip and the fast waves,
-/// which BDF must follow too. There the explicit method, held at its
-/// stability limit, is far more accurate than asked, while BDF at the same
-/// tolerance is not, and is no faster. Measured on 400 rods (span d = 3,
-/// r = 5e-4, rtol 1e-3, atol 1e-5; `falling-chain simulate` of the span-d3
-/// scene with `chain.links=400`), energy-balance error and wall time:
-///
-/// | t_end | DOPRI5 | BDF | auto handing over (at t = 3.09) |
-/// |---|---|---|---|
-/// | 4.157 | 2.4e-5, 752 steps | 0.29, 973 steps | 6.6e-2, 623 steps |
-/// | 12 | 12.4, 0.70 s | 1.93, 1.77 s | 2.74, 1.25 s |
-/// | 30 | 13.5, 1.34 s | 1.93, 6.17 s | 3.37, 5.52 s |
-///
-/// (and at rtol 1e-2, t_end 4.157: 2.4e-3 for DOPRI5, 2.2 for BDF, 2.41
-/// for auto handing over at t = 2.46). An elastic chain hands over at the
-/// first detection when its axial modes are damped (`auto_elastic`), and a
-/// problem that names no chain does so always.
-fn hands_over(chain: bool, t: f64, t_end: f64, lambda: f64, switch_lambda: f64) -> bool {
-    !chain && lambda > switch_lambda && t < t_end
+/// Whether `auto` hands over at a detection of `|lambda|` at `t`: above the
+/// plan's threshold, and not at the end (nothing would be left to run).
+fn hands_over(t: f64, t_end: f64, lambda: f64, hand_over_above: f64) -> bool {
+    lambda > hand_over_above && t < t_end
 }
 
 impl Observer for Watch<'_> {
@@ -121,9 +86,7 @@ impl Observer for Watch<'_> {
     }
     fn stiff(&mut self, t: f64, lambda: f64) {
         self.inner.stiff(t, lambda);
-        if self.stiff_at.is_none()
-            && hands_over(self.chain, t, self.t_end, lambda, self.switch_lambda)
-        {
+        if self.stiff_at.is_none() && hands_over(t, self.t_end, lambda, self.hand_over_above) {
             self.stiff_at = Some(t);
         }
     }
@@ -132,7 +95,7 @@ impl Observer for Watch<'_> {
     }
 }
 
-/// `auto`: runs [`Method::auto_plan`]'s methods through the registry.
+/// `auto`: runs its problem's [`AutoPlan`] through the registry.
 pub(crate) const AUTO: Integrator = Integrator {
     name: "auto",
     adaptive: true,
@@ -141,16 +104,17 @@ pub(crate) const AUTO: Integrator = Integrator {
 
 /// The explicit method until the watcher hands over, then BDF from there.
 fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
-    let (explicit, switch_lambda) = plan(problem, span.settings.rtol);
-    let Some(explicit) = explicit else {
+    let plan = problem
+        .auto_plan()
+        .unwrap_or_else(|| AutoPlan::generic(span.settings.rtol));
+    let Some(explicit) = plan.explicit else {
         return registry::run(Method::Bdf, problem, span, obs);
     };
     let mut watch = Watch {
         inner: obs,
-        switch_lambda,
+        hand_over_above: plan.hand_over_above,
         t_end: span.t_end,
         stiff_at: None,
-        chain: problem.chain().is_some_and(|c| !c.is_elastic()),
     };
     let first = registry::run(explicit, problem, span, &mut watch);
     let handover = watch

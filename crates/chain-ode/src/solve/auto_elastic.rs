@@ -17,7 +17,7 @@
 //! it, stay explicit throughout.
 
 use super::auto::AUTO_DOP853_RTOL;
-use super::Method;
+use super::{AutoPlan, Method};
 use crate::chain::Chain;
 
 /// The joint damping ratio `zeta = C / (2 sqrt(K m))` from which `auto`
@@ -38,12 +38,15 @@ pub fn joint_damping_ratio(chain: &Chain) -> Option<f64> {
 /// names no chain) and the `|lambda|` past which it hands over to BDF: the
 /// first stiffness detection (0) for joints damped at least
 /// [`AUTO_ELASTIC_ZETA`], never (infinity) below it.
-pub(crate) fn plan(chain: &Chain, rtol: f64) -> (Option<Method>, f64) {
+pub(crate) fn plan(chain: &Chain, rtol: f64) -> AutoPlan {
     let explicit = if rtol <= AUTO_DOP853_RTOL {
         Method::Dop853
     } else {
         Method::Dopri5
     };
     let damped = joint_damping_ratio(chain).is_some_and(|z| z >= AUTO_ELASTIC_ZETA);
-    (Some(explicit), if damped { 0.0 } else { f64::INFINITY })
+    AutoPlan {
+        explicit: Some(explicit),
+        hand_over_above: if damped { 0.0 } else { f64::INFINITY },
+    }
 }

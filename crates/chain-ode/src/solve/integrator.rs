@@ -31,17 +31,17 @@ impl Accuracy {
 /// line in [`super::registry`]. Its work counters come from the system it
 /// is handed wrapped in a [`Counted`](crate::ode::Counted), never from
 /// counting by hand.
-pub(crate) struct Integrator {
+pub struct Integrator {
     /// The name on the command line, in scenes and in output. A contract:
     /// never renamed.
-    pub name: &'static str,
+    pub(crate) name: &'static str,
     /// True if the step adapts to `rtol`/`atol`.
-    pub adaptive: bool,
+    pub(crate) adaptive: bool,
     /// Integrates a problem over a span, showing the observer every
     /// accepted step. Never panics and never returns a NaN: a failure is a
     /// status with the last finite state. Leaves `segments` empty unless
     /// the method runs others (then it lists theirs).
-    pub run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
+    pub(crate) run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
 }
 
 impl Integrator {

@@ -10,24 +10,23 @@ mod auto;
 pub mod auto_elastic;
 mod bdf;
 mod bdf_dense;
-mod beam_run;
 mod block_lu;
 mod diffsol_driver;
 mod dop853;
 mod dop853_tableau;
 mod dopri5;
-mod elastic_run;
 mod explicit;
 mod integrator;
 #[cfg(test)]
 mod known_solutions;
 mod newton_matrix;
-mod observer;
+mod recorder;
 mod registry;
-mod report_run;
+mod report_stepper;
 mod rk4;
 mod sparse_lu;
 mod step_size;
+mod tally;
 #[cfg(test)]
 mod test_problems;
 mod unit_costs;
@@ -37,21 +36,21 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use crate::chain::{check, number_text, Chain, InvalidParameter};
-use crate::elastic;
-use crate::kinematics::{energy, joints, tip, tip_velocity, Vec2};
-use crate::ode::{Cancel, Stats, Status};
-use crate::pivot::PivotPath;
+use crate::kinematics::Vec2;
+use crate::model::{IntoModel, Layout, Model, ModelKind};
+use crate::ode::{BandedDae, Cancel, Observer, OdeSystem, Problem, Stats, Status, StepView};
+use crate::pivot::Pivot;
 use crate::state::State;
-use crate::system::ChainSystem;
-pub use auto::bdf_crossover_gamma;
+pub(crate) use auto::AUTO_DOP853_RTOL;
+pub use auto::{bdf_crossover_gamma, AutoPlan};
 #[doc(hidden)]
 pub use bdf::with_general_sparse_lu;
-pub use beam_run::{solve_beam, BeamRun, BEAM_MAX_STEPS};
-pub use integrator::Accuracy;
+pub use integrator::{Accuracy, Integrator};
 use integrator::{Run, Settings, Span};
-use observer::ChainObserver;
-pub use observer::DRIVE_BALANCE_FRACTION;
-pub use report_run::{solve_report, REPORT_METHODS};
+use recorder::Recorder;
+pub use report_stepper::{REPORT_METHODS, REPORT_RK4};
+use tally::Tally;
+pub use tally::DRIVE_BALANCE_FRACTION;
 #[doc(hidden)]
 pub use unit_costs::{unit_costs, UnitCosts};
 
@@ -101,6 +100,11 @@ impl Method {
     /// The name of that parameter: `"dt"` or `"rtol"`.
     pub fn accuracy_name(self) -> &'static str {
         self.accuracy().name()
+    }
+
+    /// What runs the method: its integrator in the registry.
+    pub fn integrator(self) -> &'static Integrator {
+        registry::integrator(self)
     }
 }
 
@@ -232,6 +236,19 @@ impl SolveOptions {
     ///
     /// `chain` itself is checked by [`Chain::validate`].
     pub fn validate_for(&self, chain: &Chain, method: Method) -> Result<(), InvalidParameter> {
+        ModelKind::of(chain).validate(method, self)
+    }
+
+    /// The bounds every model shares, for a model laid out as `layout`
+    /// whose support moves as `pivot` (if it has one): [`SolveOptions::validate`];
+    /// RK4's step within the span, the budget and the pivot's time scales;
+    /// the samples' memory. A model's [`Model::validate`] adds its own.
+    pub fn validate_common(
+        &self,
+        pivot: Option<&Pivot>,
+        method: Method,
+        layout: &Layout,
+    ) -> Result<(), InvalidParameter> {
         self.validate()?;
         if method == Method::Rk4 {
             check(
@@ -254,31 +271,33 @@ impl SolveOptions {
             )?;
             // A fixed step must resolve the pivot's prescribed motion, as
             // the adaptive methods' caps do (`Pivot::time_scales`).
-            let cap = chain.pivot().time_scales().smallest();
-            if cap.is_finite() {
-                let (key, scale) = if chain.pivot().jerk != [0.0, 0.0]
-                    && cap == chain.pivot().jerk_time / crate::pivot::STEPS_PER_TIME_SCALE
-                {
-                    ("pivot.jerk_time", "the smooth jerk's duration")
-                } else {
-                    (
-                        "pivot.frequency",
-                        "the harmonic motion's period 2 pi / frequency",
-                    )
-                };
-                check(
-                    self.dt <= cap,
-                    "run.dt",
-                    format!(
-                        "at most {cap:e} for rk4 with this pivot: {} of {scale} ({key})",
-                        format_args!("1/{}", crate::pivot::STEPS_PER_TIME_SCALE)
-                    ),
-                    self.dt,
-                )?;
+            if let Some(pivot) = pivot {
+                let cap = pivot.time_scales().smallest();
+                if cap.is_finite() {
+                    let (key, scale) = if pivot.jerk != [0.0, 0.0]
+                        && cap == pivot.jerk_time / crate::pivot::STEPS_PER_TIME_SCALE
+                    {
+                        ("pivot.jerk_time", "the smooth jerk's duration")
+                    } else {
+                        (
+                            "pivot.frequency",
+                            "the harmonic motion's period 2 pi / frequency",
+                        )
+                    };
+                    check(
+                        self.dt <= cap,
+                        "run.dt",
+                        format!(
+                            "at most {cap:e} for rk4 with this pivot: {} of {scale} ({key})",
+                            format_args!("1/{}", crate::pivot::STEPS_PER_TIME_SCALE)
+                        ),
+                        self.dt,
+                    )?;
+                }
             }
         }
         if let Some(o) = self.output_dt {
-            let o_min = Self::min_output_dt_for(self.t_end, chain);
+            let o_min = Self::min_output_dt_of(self.t_end, layout.sample_numbers);
             check(
                 o >= o_min,
                 "run.output_dt",
@@ -286,35 +305,11 @@ impl SolveOptions {
                     "at least {o_min:e} for t_end = {} and chain.links = {}: the samples \
                      ({} numbers each) must fit in {} MiB",
                     number_text(self.t_end),
-                    chain.links(),
-                    Self::sample_numbers(chain),
+                    layout.links,
+                    layout.sample_numbers,
                     MAX_OUTPUT_BYTES >> 20
                 ),
                 o,
-            )?;
-        }
-        if method == Method::BdfDense && chain.is_elastic() {
-            check(
-                chain.links() <= BDF_DENSE_MAX_ELASTIC_LINKS,
-                "chain.links",
-                format!(
-                    "at most {BDF_DENSE_MAX_ELASTIC_LINKS} for bdf-dense with chain.axial_stiffness \
-                     (its dense Jacobian of 6 n + 1 unknowns grows like n^2 in memory and n^3 in \
-                     time); run.method = \"bdf\" is the same method in O(n)"
-                ),
-                chain.links(),
-            )?;
-        }
-        if method == Method::BdfDense {
-            check(
-                chain.links() <= BDF_DENSE_MAX_LINKS,
-                "chain.links",
-                format!(
-                    "at most {BDF_DENSE_MAX_LINKS} for bdf-dense (its dense Jacobian and LU \
-                     grow like n^2 in memory and n^3 in time); run.method = \"bdf\" is the \
-                     same method in O(n)"
-                ),
-                chain.links(),
             )?;
         }
         Ok(())
@@ -336,12 +331,7 @@ impl SolveOptions {
     /// output may derive from it (`2 (n + 1)`) and, for an elastic chain,
     /// its joints (`2 (n + 1)`, which Python keeps).
     pub fn sample_numbers(chain: &Chain) -> u64 {
-        let n = chain.links() as u64;
-        if chain.is_elastic() {
-            (6 * n + 2) + 4 * (n + 1)
-        } else {
-            (2 * n + 2) + 2 * (n + 1)
-        }
+        ModelKind::of(chain).layout().sample_numbers
     }
 
     /// [`SolveOptions::min_output_dt`] for `chain`'s model
@@ -441,14 +431,15 @@ pub struct Segment {
     pub t_end: f64,
 }
 
-/// A finished run: samples, summary, work counters and how it ended.
+/// A finished run: the model as it was at the end, the samples, the
+/// summary, the work counters and how it ended. Every accessor of a sample
+/// asks the model.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Trajectory {
-    pub chain: Chain,
+pub struct Trajectory<M = ModelKind> {
+    /// The model run (with its pivot's path as the run left it).
+    pub model: M,
     /// The pivot `P0` at `t = 0`.
     pub anchor: Vec2,
-    /// Where the pivot is at any time (the anchor, for a fixed pivot).
-    pub pivot: PivotPath,
     pub method: Method,
     pub status: Status,
     /// The requested end time.
@@ -462,8 +453,7 @@ pub struct Trajectory {
     pub summary: Summary,
     /// Sample times (`output_dt` apart, plus the final time).
     pub times: Vec<f64>,
-    /// Samples, `2 n + 1` numbers each (angles, rates, dissipated work), or
-    /// `6 n + 1` for elastic links ([`crate::elastic`]).
+    /// Samples, [`Layout::dim`] numbers each, laid out as the model says.
     states: Vec<f64>,
     /// The state at `t_reached`.
     pub final_state: Vec<f64>,
@@ -475,196 +465,115 @@ pub struct Sample<'a> {
     pub t: f64,
     pub angles: &'a [f64],
     pub rates: &'a [f64],
+    /// The work accumulator `W` (0 for a model without one).
     pub dissipated: f64,
 }
 
-impl Trajectory {
+impl<M: Model> Trajectory<M> {
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.times.len()
     }
 
-    /// True if no samples were recorded.
+    /// True when no sample was recorded.
     pub fn is_empty(&self) -> bool {
         self.times.is_empty()
     }
 
+    /// Rods (or segments) of the model.
+    pub fn links(&self) -> usize {
+        self.model.layout().links
+    }
+
     /// Sample `k`.
     pub fn sample(&self, k: usize) -> Sample<'_> {
-        let n = self.chain.links();
+        let layout = self.model.layout();
         let y = self.state(k);
         Sample {
             t: self.times[k],
-            angles: &y[..n],
-            rates: &y[n..2 * n],
-            dissipated: y[2 * n],
+            angles: &y[layout.angles],
+            rates: &y[layout.rates],
+            dissipated: layout.work.map_or(0.0, |i| y[i]),
         }
     }
 
-    /// All samples in time order.
+    /// Every sample, in time order.
     pub fn samples(&self) -> impl Iterator<Item = Sample<'_>> + '_ {
         (0..self.len()).map(|k| self.sample(k))
     }
 
-    /// The whole state of sample `k`: `[phi, w, W]` for rigid links,
-    /// `[theta, w, W, x, y, vx, vy]` for elastic ones ([`crate::elastic`]).
+    /// The state vector of sample `k`.
     pub fn state(&self, k: usize) -> &[f64] {
-        let d = state_len(&self.chain);
+        let d = self.model.layout().dim;
         &self.states[k * d..(k + 1) * d]
     }
 
     /// The pivot's position and velocity at sample `k`.
     pub fn pivot_at(&self, k: usize) -> [Vec2; 2] {
-        let n = self.chain.links();
-        let y = self.state(k);
-        self.pivot
-            .at(&self.chain, self.times[k], &y[..n], &y[n..2 * n])
+        self.model.support(self.times[k], self.state(k))
     }
 
-    /// The joints `r_0 = P0, .., r_n` of sample `k`, for either model (for
-    /// rigid links, `kinematics::joints` of its angles from the pivot there).
+    /// The joints `P_0..P_n` at sample `k`.
     pub fn joints(&self, k: usize) -> Vec<Vec2> {
-        if self.chain.is_elastic() {
-            let p0 = self.pivot_at(k)[0];
-            return elastic::joints_at(&self.chain, self.times[k], p0, self.state(k));
-        }
-        state_joints(&self.chain, self.pivot_at(k)[0], self.state(k))
+        self.model.joints(self.times[k], self.state(k))
     }
 
-    /// The tip of sample `k` (for rigid links, `kinematics::tip`).
+    /// The tip at sample `k`.
     pub fn tip(&self, k: usize) -> Vec2 {
-        state_tip(&self.chain, self.pivot_at(k)[0], self.state(k))
+        self.model.tip(self.times[k], self.state(k))
     }
 
-    /// The tip velocity of sample `k` (for rigid links,
-    /// `kinematics::tip_velocity`, plus the pivot's velocity).
+    /// The tip's velocity at sample `k` (inertial frame).
     pub fn tip_velocity(&self, k: usize) -> Vec2 {
-        let v = state_tip_velocity(&self.chain, self.state(k));
-        if self.pivot.is_fixed() {
-            return v;
-        }
-        let v0 = self.pivot_at(k)[1];
-        [v[0] + v0[0], v[1] + v0[1]]
+        self.model.tip_velocity(self.times[k], self.state(k))
     }
 
-    /// The energy of sample `k`: `T + V (+ U_b)` for rigid links
-    /// (`kinematics::energy`, in the inertial frame for a moving pivot),
-    /// `T + V + U_el + U_b` for elastic ones.
+    /// The energy at sample `k`, the run's own ([`Model::energy`]).
     pub fn energy(&self, k: usize) -> f64 {
-        if self.chain.is_elastic() {
-            return elastic_energy_at(&self.chain, self.times[k], self.state(k));
-        }
-        let e = state_energy(&self.chain, self.state(k));
-        if self.pivot.is_fixed() {
-            return e;
-        }
-        let n = self.chain.links();
-        let y = self.state(k);
-        e + self
-            .pivot
-            .frame(&self.chain, self.times[k], &y[..n], &y[n..2 * n])
-            .energy
+        self.model.energy(self.times[k], self.state(k))
     }
 
-    /// The joint forces of sample `k`, joints `0..=n` (the pivot first, the
-    /// free tip's zero last), each `[tension, shear]` in the frame of the
-    /// rod after the joint: tension `-F_k . u_k`, positive when the joint
-    /// pulls the rod back toward the pivot; shear `F_k . v_k` with `v_k`
-    /// the rod's direction turned by +90 degrees (force units). Rigid
-    /// links: the banded DAE's joint forces, consistent with the sample's
-    /// state (and the pivot's motion at its time); elastic links: the
-    /// springs' and dashpots' forces.
+    /// The joint forces `[tension, shear]` at joints `0..=n` at sample `k`.
     pub fn joint_forces(&self, k: usize) -> Vec<Vec2> {
-        let t = self.times[k];
-        state_joint_forces(&self.chain, t, self.pivot.is_free_at(t), self.state(k))
+        self.model.joint_forces(self.times[k], self.state(k))
+    }
+
+    /// The support's force on the first rod at sample `k`.
+    pub fn support_force(&self, k: usize) -> Vec2 {
+        self.model.support_force(self.times[k], self.state(k))
+    }
+
+    /// The momentum relative to the support at sample `k`.
+    pub fn momentum(&self, k: usize) -> Vec2 {
+        self.model.momentum(self.times[k], self.state(k))
     }
 }
 
-/// Refuses a start whose angles or rates are not one per rod.
-pub(crate) fn check_start(chain: &Chain, start: &State) -> Result<(), InvalidParameter> {
-    let n = chain.links();
-    check(
-        start.angles.len() == n && start.rates.len() == n,
-        "start",
-        "a state with chain.links angles and rates",
-        start.angles.len(),
-    )
-}
-
-/// Numbers in a state of `chain`'s model: `2 n + 1` for rigid links
-/// (`[phi, w, W]`), `6 n + 1` for elastic ones (see [`crate::elastic`]).
-pub(crate) fn state_len(chain: &Chain) -> usize {
-    if chain.is_elastic() {
-        6 * chain.links() + 1
-    } else {
-        2 * chain.links() + 1
+impl Trajectory<ModelKind> {
+    /// The chain run.
+    pub fn chain(&self) -> &Chain {
+        self.model.chain()
     }
 }
 
-/// The energy of a state of either model (the rigid one's as
-/// `kinematics::energy` computes it).
-pub(crate) fn state_energy(chain: &Chain, y: &[f64]) -> f64 {
-    if chain.is_elastic() {
-        elastic::energy(chain, y)
-    } else {
-        let n = chain.links();
-        energy(chain, &y[..n], &y[n..2 * n])
+/// An observer a caller attaches to a run ([`Solve::watch`]), beside the
+/// run's own recorder and summary: it sees the model and every accepted
+/// step (its end state, its derivative and its continuous extension), so a
+/// study can track a quantity at every step instead of reading it off the
+/// samples.
+pub trait Watch<M> {
+    /// The run's start at `t0` in `y0`.
+    fn start(&mut self, _model: &M, _t0: f64, _y0: &[f64]) {}
+    /// An accepted step.
+    fn step(&mut self, model: &M, step: &StepView<'_>);
+    /// True to stop the run (it ends `interrupted`).
+    fn stop(&self) -> bool {
+        false
     }
 }
 
-/// The energy of an elastic state at `t` in the inertial frame: the
-/// chain's own ([`elastic::energy_at`], relative to the pivot) plus, for a
-/// driven pivot, the frame's terms ([`elastic::frame_energy`]).
-pub(crate) fn elastic_energy_at(chain: &Chain, t: f64, y: &[f64]) -> f64 {
-    let e = elastic::energy_at(chain, t, y);
-    if !chain.pivot().is_driven() {
-        return e;
-    }
-    let [d, v0, _] = chain.pivot().drive(t);
-    e + elastic::frame_energy(chain, d, v0, y)
-}
-
-/// The tip velocity of a state of either model.
-pub(crate) fn state_tip_velocity(chain: &Chain, y: &[f64]) -> Vec2 {
-    if chain.is_elastic() {
-        elastic::tip_velocity(chain, y)
-    } else {
-        let n = chain.links();
-        tip_velocity(chain, &y[..n], &y[n..2 * n])
-    }
-}
-
-/// The tip of a state of either model, the pivot at `p0`.
-pub(crate) fn state_tip(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec2 {
-    if chain.is_elastic() {
-        elastic::tip(chain, p0, y)
-    } else {
-        tip(chain, p0, &y[..chain.links()])
-    }
-}
-
-/// The joints `r_0 .. r_n` of a state of either model, the pivot at `p0`.
-pub(crate) fn state_joints(chain: &Chain, p0: Vec2, y: &[f64]) -> Vec<Vec2> {
-    if chain.is_elastic() {
-        elastic::joints(chain, p0, y)
-    } else {
-        joints(chain, p0, &y[..chain.links()])
-    }
-}
-
-/// The joint forces `[tension, shear]` of a state of either model, joints
-/// `0..=n` (see [`elastic::tension_shear`] for the frame and signs).
-pub(crate) fn state_joint_forces(chain: &Chain, t: f64, free: bool, y: &[f64]) -> Vec<Vec2> {
-    let n = chain.links();
-    let forces = if chain.is_elastic() {
-        elastic::joint_forces_at(chain, t, y)
-    } else {
-        elastic::rigid_joint_forces_at(chain, t, free, y)
-    };
-    elastic::tension_shear(&y[..n], &forces)
-}
-
-/// Runs `method` on `chain` from `start` over `[0, options.t_end]`.
+/// Runs `method` on `model` (a [`Model`], or a [`Chain`] whose model
+/// [`ModelKind::of`] chooses) from `start` over `[0, options.t_end]`.
 ///
 /// Never panics on a failing run and never returns a NaN in its state: a run
 /// that hits a non-finite value stops with `Status::Diverged` at the last
@@ -672,211 +581,218 @@ pub(crate) fn state_joint_forces(chain: &Chain, t: f64, free: bool, y: &[f64]) -
 /// (an energy that overflows, say) also ends `Status::Diverged`, with
 /// `t_failed` the first time a non-finite value was recorded: a NaN or an
 /// infinity in the summary never comes with `Status::Ok`. A finite run whose
-/// energy balance error `max |E + W - E(0)|` exceeds the chain's energy
-/// scale ([`Chain::energy_scale`]), or with a prescribed pivot motion
+/// energy balance error `max |E + W - E(0)|` exceeds the model's energy
+/// scale ([`Model::energy_scale`]), or with a prescribed pivot motion
 /// [`DRIVE_BALANCE_FRACTION`] of that scale plus the work done, ends
-/// `Status::Inaccurate`, with
-/// `t_failed` the first step end where it did. A run whose
-/// `options.cancel` is set ends `Status::Interrupted` at its last accepted
-/// step (`t_failed = t_reached`).
+/// `Status::Inaccurate`, with `t_failed` the first step end where it did. A
+/// run whose `options.cancel` is set ends `Status::Interrupted` at its last
+/// accepted step (`t_failed = t_reached`).
 ///
-/// Every option is checked first ([`SolveOptions::validate_for`]): nothing
-/// is allocated for a run out of bounds.
-pub fn solve(
-    chain: &Chain,
+/// Every option is checked first ([`Model::validate`]): nothing is
+/// allocated for a run out of bounds, and a method the model cannot run is
+/// an error, not a failed run.
+pub fn solve<I: IntoModel>(
+    model: I,
     start: &State,
     method: Method,
     options: &SolveOptions,
-) -> Result<Trajectory, InvalidParameter> {
-    options.validate_for(chain, method)?;
-    check_start(chain, start)?;
-    let y0 = if chain.is_elastic() {
-        elastic::start_state(chain, start)
-    } else {
-        ChainSystem::pack(&start.angles, &start.rates, 0.0)
-    };
-    let mut path = PivotPath::new(chain, start.anchor);
-    let settings = Settings {
-        scales: chain.pivot().time_scales(),
-        ..Settings::of(options)
-    };
-    let span = Span {
-        t0: 0.0,
-        y0: &y0,
-        t_end: options.t_end,
-        settings: &settings,
-    };
-    let clock = Instant::now();
-    // A rigid chain with a fixed pivot takes exactly the path it always took.
-    let (run, obs) = if chain.is_elastic() {
-        elastic_run::run(chain, method, options, &span, &path)
-    } else if chain.pivot().release.is_some() {
-        run_with_release(chain, start, method, options, &span, &mut path)
-    } else {
-        let mut obs = ChainObserver::for_run(chain, path.clone(), options);
-        let run = registry::run(method, &mut ChainSystem::new(chain), &span, &mut obs);
-        (run, obs)
-    };
-    Ok(trajectory(
-        chain,
-        start,
-        method,
-        options,
-        (run, obs, path),
-        chain.energy_scale(),
-        clock,
-    ))
+) -> Result<Trajectory<I::Model>, InvalidParameter> {
+    Solve::new(model, start, method, options).run()
 }
 
-/// The trajectory of a finished run of `method` on `chain` from `start`:
-/// its summary from the observer `obs` (finished here) and the final
-/// state, and its status: a run that ended `ok` becomes `diverged` if its
-/// summary is not finite and `inaccurate` if its energy balance error
-/// exceeds `energy_scale`. `clock` started before the run (its wall time);
-/// `path` is the pivot's.
-fn trajectory(
-    chain: &Chain,
-    start: &State,
+/// A run being set up: [`solve`] with observers attached ([`Solve::watch`]).
+pub struct Solve<'a, M: Model> {
+    model: M,
+    start: &'a State,
     method: Method,
-    options: &SolveOptions,
-    (run, mut obs, path): (Run, ChainObserver, PivotPath),
-    energy_scale: f64,
-    clock: Instant,
-) -> Trajectory {
-    let Run { outcome, segments } = run;
-    let n = chain.links();
-    let wall_seconds = clock.elapsed().as_secs_f64();
-    obs.finish(outcome.t_reached, &outcome.y_end);
-    let y = &outcome.y_end;
-    let (tip_end, tip_velocity_end) = if path.is_fixed() {
-        (
-            state_tip(chain, start.anchor, y),
-            state_tip_velocity(chain, y),
-        )
-    } else {
-        let [p0, v0] = path.at(chain, outcome.t_reached, &y[..n], &y[n..2 * n]);
-        let v = state_tip_velocity(chain, y);
-        (state_tip(chain, p0, y), [v[0] + v0[0], v[1] + v0[1]])
-    };
-    let summary = Summary {
-        energy_start: obs.energy_start,
-        energy_end: obs.energy_end,
-        dissipated: y[2 * n],
-        energy_balance_error: obs.energy_balance_error,
-        max_energy_rise: obs.max_energy_rise,
-        tip_end,
-        tip_velocity_end,
-        tip_speed_max: obs.tip_speed_max,
-        t_tip_speed_max: obs.t_tip_speed_max,
-        pivot_force_max: chain
-            .is_elastic()
-            .then_some((obs.pivot_force_max, obs.t_pivot_force_max)),
-        wall_seconds,
-    };
-    // A non-finite value in the summary (an energy that overflowed, a NaN
-    // from the observer) is a run that went wrong, even when every state
-    // stayed finite: it must not pass as `ok`.
-    // A finite run whose energy balance error exceeds the chain's energy
-    // scale is not a solution of the model (a step far too large, a
-    // tolerance far too loose): it must not pass as `ok` either; with a
-    // driven pivot, nor one whose error is a percent of the work done
-    // (`ChainObserver::balance_limit`).
-    let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
-        let t = obs.t_nonfinite.unwrap_or(outcome.t_reached);
-        (Status::Diverged, Some(t))
-    } else if outcome.status.is_ok()
-        && summary.energy_balance_error > energy_scale.min(obs.balance_limit())
-    {
-        let t = obs.t_inaccurate.unwrap_or(outcome.t_reached);
-        (Status::Inaccurate, Some(t))
-    } else {
-        (outcome.status, outcome.t_failed)
-    };
-    Trajectory {
-        chain: chain.clone(),
-        anchor: start.anchor,
-        pivot: path,
-        method,
-        status,
-        t_end: options.t_end,
-        t_reached: outcome.t_reached,
-        t_failed,
-        stats: outcome.stats,
-        segments,
-        summary,
-        times: std::mem::take(&mut obs.times),
-        states: std::mem::take(&mut obs.states),
-        final_state: outcome.y_end,
-    }
+    options: &'a SolveOptions,
+    watches: Vec<&'a mut dyn Watch<M>>,
 }
 
-/// A rigid chain whose pivot is let go at `t_r` (`pivot.release`): held
-/// (fixed or driven) up to `t_r`, then free, in two runs of `method` from
-/// one observer (as `auto`'s handover). The release is noted in `path` from
-/// the state reached at `t_r` exactly; a first run that fails or is
-/// stopped ends the whole run there.
-fn run_with_release(
-    chain: &Chain,
-    start: &State,
-    method: Method,
-    options: &SolveOptions,
-    span: &Span<'_>,
-    path: &mut PivotPath,
-) -> (Run, ChainObserver) {
-    let n = chain.links();
-    let t_release = chain.pivot().release.unwrap_or(0.0);
-    let mut sys = ChainSystem::new(chain);
-    let new_observer = |path: &PivotPath| ChainObserver::for_run(chain, path.clone(), options);
-    if t_release <= span.t0 || t_release >= span.t_end {
-        if t_release <= span.t0 {
-            path.release(chain, span.t0, &start.angles, &start.rates);
-            sys.set_released(true);
+impl<'a, M: Model> Solve<'a, M> {
+    /// The run of `method` on `model` from `start` with `options`.
+    pub fn new<I: IntoModel<Model = M>>(
+        model: I,
+        start: &'a State,
+        method: Method,
+        options: &'a SolveOptions,
+    ) -> Self {
+        Self {
+            model: model.into_model(),
+            start,
+            method,
+            options,
+            watches: Vec::new(),
         }
-        let mut obs = new_observer(path);
-        let run = registry::run(method, &mut sys, span, &mut obs);
-        return (run, obs);
     }
-    let mut obs = new_observer(path);
-    let run = run_cut(
+
+    /// Attaches `watch`: it sees the start and every accepted step.
+    pub fn watch(mut self, watch: &'a mut dyn Watch<M>) -> Self {
+        self.watches.push(watch);
+        self
+    }
+
+    /// Runs it.
+    pub fn run(self) -> Result<Trajectory<M>, InvalidParameter> {
+        let Solve {
+            mut model,
+            start,
+            method,
+            options,
+            mut watches,
+        } = self;
+        model.validate(method, options)?;
+        let y0 = model.initial_state(start)?;
+        let layout = model.layout();
+        let settings = Settings {
+            scales: model.time_scales(),
+            ..Settings::of(options)
+        };
+        let span = Span {
+            t0: 0.0,
+            y0: &y0,
+            t_end: options.t_end,
+            settings: &settings,
+        };
+        let mut parts = Parts {
+            rec: Recorder::new(
+                layout.dim,
+                options.t_end,
+                options.output_dt,
+                options.cancel.clone(),
+            ),
+            tally: Tally::new(&model),
+            watches: &mut watches,
+        };
+        let clock = Instant::now();
+        let run = match model.event_time() {
+            Some(te) if te > span.t0 && te < span.t_end => {
+                run_cut(&mut model, method, &span, te, &mut parts)
+            }
+            _ => segment(&model, method, &span, &mut parts),
+        };
+        let Parts { rec, tally, .. } = parts;
+        Ok(trajectory(
+            model,
+            start.anchor,
+            method,
+            options,
+            run,
+            (rec, tally),
+            clock,
+        ))
+    }
+}
+
+/// A run's observers: the recorder, the summary's tally, the caller's.
+struct Parts<'w, 'a, M> {
+    rec: Recorder,
+    tally: Tally,
+    watches: &'w mut Vec<&'a mut dyn Watch<M>>,
+}
+
+/// [`Parts`] with the model they ask, as one [`Observer`] for one segment.
+struct Observers<'p, 'w, 'a, M> {
+    model: &'p M,
+    parts: &'p mut Parts<'w, 'a, M>,
+}
+
+impl<M: Model> Observer for Observers<'_, '_, '_, M> {
+    fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]) {
+        let p = &mut *self.parts;
+        p.tally.start(self.model, &mut p.rec, t0, y0, f0);
+        p.rec.start(t0, y0);
+        for w in p.watches.iter_mut() {
+            w.start(self.model, t0, y0);
+        }
+    }
+
+    fn step(&mut self, step: &StepView<'_>) {
+        let p = &mut *self.parts;
+        p.tally.step(self.model, &mut p.rec, step);
+        p.rec.step(step);
+        for w in p.watches.iter_mut() {
+            w.step(self.model, step);
+        }
+    }
+
+    fn stop(&self) -> bool {
+        self.parts.rec.cancelled() || self.parts.watches.iter().any(|w| w.stop())
+    }
+}
+
+/// The model's problem with the model's plan for `auto`: what the
+/// integrators see.
+struct Planned<'m> {
+    inner: Box<dyn Problem + 'm>,
+    plan: AutoPlan,
+}
+
+impl OdeSystem for Planned<'_> {
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.inner.rhs(t, y, dy)
+    }
+    fn jvp(&mut self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+        self.inner.jvp(t, y, v, jv)
+    }
+}
+
+impl Problem for Planned<'_> {
+    fn banded_dae(&self, t0: f64, y0: &[f64]) -> Option<BandedDae> {
+        self.inner.banded_dae(t0, y0)
+    }
+    fn auto_plan(&self) -> Option<AutoPlan> {
+        Some(self.plan)
+    }
+}
+
+/// One segment of a run: `method` on the model's problem over `span`.
+fn segment<M: Model>(
+    model: &M,
+    method: Method,
+    span: &Span<'_>,
+    parts: &mut Parts<'_, '_, M>,
+) -> Run {
+    let mut problem = Planned {
+        inner: model.problem(),
+        plan: model.auto_plan(span.settings.rtol),
+    };
+    let mut obs = Observers { model, parts };
+    registry::run_with(
+        model.integrator(method),
         method,
-        &mut sys,
+        &mut problem,
         span,
         &mut obs,
-        t_release,
-        |sys, y, obs| {
-            path.release(chain, t_release, &y[..n], &y[n..2 * n]);
-            obs.path = path.clone();
-            sys.set_released(true);
-        },
-    );
-    (run, obs)
+    )
 }
 
-/// Runs `method` over `span` in two pieces cut at `t_cut` (inside the
-/// span), from one observer (as `auto`'s handover): the first piece up to
-/// `t_cut`, then `cut` with the system, the state reached at `t_cut` (which
-/// it may change) and the observer, then the second piece from there. The
-/// statistics are summed and the segments joined; a first piece that fails
-/// or is stopped ends the whole run there. A pivot let go at `t_cut` is the
-/// one use, for the rigid and the elastic chain.
-fn run_cut<S: crate::ode::Problem>(
+/// Runs `method` over `span` in two pieces cut at the model's event
+/// `t_cut` (inside the span), from one set of observers (as `auto`'s
+/// handover): the first piece up to `t_cut`, then [`Model::at_event`] with
+/// the state reached there, then the rest, with the steps left of the
+/// budget. The two pieces' work adds up. A first piece that fails or is
+/// stopped ends the whole run there.
+fn run_cut<M: Model>(
+    model: &mut M,
     method: Method,
-    sys: &mut S,
     span: &Span<'_>,
-    obs: &mut ChainObserver,
     t_cut: f64,
-    cut: impl FnOnce(&mut S, &mut [f64], &mut ChainObserver),
+    parts: &mut Parts<'_, '_, M>,
 ) -> Run {
     let held = Span {
         t_end: t_cut,
         ..*span
     };
-    let first = registry::run(method, sys, &held, obs);
+    let first = segment(model, method, &held, parts);
     if !first.outcome.status.is_ok() || first.outcome.t_reached < t_cut {
         return first;
     }
     let mut y = first.outcome.y_end.clone();
-    cut(sys, &mut y, obs);
+    model.at_event(t_cut, &mut y);
     let done = first.outcome.stats;
     let settings = span.settings.after(&done);
     let rest = Span {
@@ -885,17 +801,88 @@ fn run_cut<S: crate::ode::Problem>(
         t_end: span.t_end,
         settings: &settings,
     };
-    let mut second = registry::run(method, sys, &rest, obs);
+    let mut second = segment(model, method, &rest, parts);
     second.outcome.stats += done;
     second.segments.splice(0..0, first.segments);
     second
 }
 
+/// The trajectory of a finished run of `method` on `model`: its summary
+/// from the tally (finished here) and the final state, and its status: a
+/// run that ended `ok` becomes `diverged` if its summary is not finite and
+/// `inaccurate` if its energy balance error exceeds the model's energy
+/// scale (or, driven, the tally's limit). `clock` started before the run.
+fn trajectory<M: Model>(
+    model: M,
+    anchor: Vec2,
+    method: Method,
+    options: &SolveOptions,
+    run: Run,
+    (mut rec, mut tally): (Recorder, Tally),
+    clock: Instant,
+) -> Trajectory<M> {
+    let Run { outcome, segments } = run;
+    let wall_seconds = clock.elapsed().as_secs_f64();
+    tally.finish(&model, &mut rec, outcome.t_reached, &outcome.y_end);
+    rec.finish(outcome.t_reached, &outcome.y_end);
+    let y = &outcome.y_end;
+    let summary = Summary {
+        energy_start: tally.energy_start,
+        energy_end: tally.energy_end,
+        dissipated: tally.work_of(y),
+        energy_balance_error: tally.energy_balance_error,
+        max_energy_rise: tally.max_energy_rise,
+        tip_end: model.tip(outcome.t_reached, y),
+        tip_velocity_end: model.tip_velocity(outcome.t_reached, y),
+        tip_speed_max: tally.tip_speed.value,
+        t_tip_speed_max: tally.tip_speed.t,
+        pivot_force_max: model
+            .tracks_support_force()
+            .then_some((tally.support_force_max, tally.t_support_force_max)),
+        wall_seconds,
+    };
+    // A non-finite value in the summary (an energy that overflowed, a NaN
+    // from the observer) is a run that went wrong, even when every state
+    // stayed finite: it must not pass as `ok`.
+    // A finite run whose energy balance error exceeds the model's energy
+    // scale is not a solution of the model (a step far too large, a
+    // tolerance far too loose): it must not pass as `ok` either; with a
+    // driven pivot, nor one whose error is a percent of the work done
+    // (`Tally::balance_limit`).
+    let (status, t_failed) = if outcome.status.is_ok() && !summary.all_finite() {
+        let t = rec.t_nonfinite.unwrap_or(outcome.t_reached);
+        (Status::Diverged, Some(t))
+    } else if outcome.status.is_ok()
+        && summary.energy_balance_error > model.energy_scale().min(tally.balance_limit())
+    {
+        let t = tally.t_inaccurate.unwrap_or(outcome.t_reached);
+        (Status::Inaccurate, Some(t))
+    } else {
+        (outcome.status, outcome.t_failed)
+    };
+    Trajectory {
+        model,
+        anchor,
+        method,
+        status,
+        t_end: options.t_end,
+        t_reached: outcome.t_reached,
+        t_failed,
+        stats: outcome.stats,
+        segments,
+        summary,
+        times: std::mem::take(&mut rec.times),
+        states: std::mem::take(&mut rec.states),
+        final_state: outcome.y_end,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::{all_finite, Observer, StepView};
+    use crate::ode::all_finite;
     use crate::state::Start;
+    use crate::system::ChainSystem;
 
     /// Asks every method to stop once it has seen `k` accepted steps.
     struct StopAfter {
@@ -932,30 +919,39 @@ mod tests {
     }
 
     /// A run cut in two (a pivot let go mid-run) is the two pieces run
-    /// one after the other: the same end state, and the work of both
-    /// counted, for an explicit and an implicit method.
+    /// one after the other: the first held, the second let go from the
+    /// state the first reached, with the same end state and the work of
+    /// both counted, for an explicit and an implicit method.
     #[test]
     fn a_run_cut_in_two_is_its_two_pieces_with_both_pieces_work() {
         let (chain, start, y0) = eight_rods_on_span_3();
+        let mut params = chain.params().clone();
+        params.pivot.release = Some(1.0);
+        let chain = Chain::new(params).unwrap();
         let options = SolveOptions {
             t_end: 2.0,
             ..Default::default()
         };
         let settings = Settings::of(&options);
-        let path = PivotPath::new(&chain, start.anchor);
-        let observer = || ChainObserver::for_run(&chain, path.clone(), &options);
         let span = Span {
             t0: 0.0,
             y0: &y0,
             t_end: 2.0,
             settings: &settings,
         };
+        let mut watches = Vec::new();
         for method in [Method::Dopri5, Method::Bdf] {
-            let mut sys = ChainSystem::new(&chain);
-            let mut obs = observer();
+            let mut model = ModelKind::of(&chain);
+            model.initial_state(&start).unwrap();
+            let mut parts = Parts {
+                rec: Recorder::new(y0.len(), 2.0, None, None),
+                tally: Tally::new(&model),
+                watches: &mut watches,
+            };
             let held = Span { t_end: 1.0, ..span };
-            let first = registry::run(method, &mut sys, &held, &mut obs).outcome;
-            let y1 = first.y_end.clone();
+            let first = segment(&model, method, &held, &mut parts).outcome;
+            let mut y1 = first.y_end.clone();
+            model.at_event(1.0, &mut y1);
             let after = settings.after(&first.stats);
             let rest = Span {
                 t0: 1.0,
@@ -963,11 +959,16 @@ mod tests {
                 t_end: 2.0,
                 settings: &after,
             };
-            let second = registry::run(method, &mut sys, &rest, &mut obs).outcome;
+            let second = segment(&model, method, &rest, &mut parts).outcome;
 
-            let mut sys = ChainSystem::new(&chain);
-            let mut obs = observer();
-            let cut = run_cut(method, &mut sys, &span, &mut obs, 1.0, |_, _, _| {}).outcome;
+            let mut model = ModelKind::of(&chain);
+            model.initial_state(&start).unwrap();
+            let mut parts = Parts {
+                rec: Recorder::new(y0.len(), 2.0, None, None),
+                tally: Tally::new(&model),
+                watches: &mut watches,
+            };
+            let cut = run_cut(&mut model, method, &span, 1.0, &mut parts).outcome;
             assert_eq!(cut.status, Status::Ok, "{method}");
             assert_eq!(cut.y_end, second.y_end, "{method}");
             let (a, b, c) = (first.stats, second.stats, cut.stats);

@@ -23,8 +23,8 @@ fn folded_run(method: Method, options: SolveOptions) -> Trajectory {
 /// How far the free end has fallen below its start height `P0.y - l` in the
 /// state `angles` (the folded law's `x`).
 fn fall(tr: &Trajectory, angles: &[f64]) -> f64 {
-    let start_y = -tr.chain.rod_length();
-    start_y - tip(&tr.chain, tr.anchor, angles)[1]
+    let start_y = -tr.chain().rod_length();
+    start_y - tip(tr.chain(), tr.anchor, angles)[1]
 }
 
 #[test]
@@ -41,7 +41,7 @@ fn a_step_floor_stops_dopri5_and_auto_in_the_folded_whip() {
     };
     let complete = folded_run(Method::Dopri5, tolerances(4.157, 1e-4, 1e-6));
     assert_eq!(complete.status, Status::Ok);
-    let (l, length) = (complete.chain.rod_length(), complete.chain.length());
+    let (l, length) = (complete.chain().rod_length(), complete.chain().length());
     for method in [Method::Dopri5, Method::Auto] {
         let tr = folded_run(method, opts.clone());
         let t_failed = tr.t_failed.expect("a failed run has t_failed");
@@ -163,7 +163,7 @@ fn a_step_budget_stops_bdf_and_auto_mid_fall_where_the_folded_law_puts_the_tip()
             ..tolerances(4.157, 1e-6, 1e-8)
         };
         let tr = folded_run(method, opts);
-        let (length, n) = (tr.chain.length(), tr.chain.links());
+        let (length, n) = (tr.chain().length(), tr.chain().links());
         let x = fall(&tr, &tr.final_state[..n]);
         let t_law = folded_law::time(x, length, 1.0);
         println!(
@@ -185,7 +185,7 @@ fn a_step_budget_stops_bdf_and_auto_mid_fall_where_the_folded_law_puts_the_tip()
             tr.t_reached
         );
         let (phi, w) = (&tr.final_state[..n], &tr.final_state[n..2 * n]);
-        let e = energy(&tr.chain, phi, w);
+        let e = energy(tr.chain(), phi, w);
         let w_diss = tr.final_state[2 * n];
         assert!(
             (e + w_diss - tr.summary.energy_start).abs() <= tr.summary.energy_balance_error + 1e-12,

@@ -4,7 +4,7 @@
 
 use chain_ode::report::{ReportModel, ReportSystem, REPORT_MAX_LINKS};
 use chain_ode::{
-    dynamics, solve, solve_report, Chain, ChainParams, Method, SolveOptions, Start, Status,
+    dynamics, solve, Chain, ChainParams, Method, ReportChain, SolveOptions, Start, Status,
 };
 
 use crate::{max_abs, span, tolerances};
@@ -169,7 +169,13 @@ fn its_clock_runs_in_units_of_sqrt_l_over_g() {
     let unit = clock_only.time_unit(&c);
     assert!((unit - (l / 2.5f64).sqrt()).abs() < 1e-15, "{unit}");
     let tau = 3.0;
-    let rep = solve_report(&c, &start, clock_only, Method::Dopri5, &tight(tau)).unwrap();
+    let rep = solve(
+        ReportChain::new(&c, clock_only),
+        &start,
+        Method::Dopri5,
+        &tight(tau),
+    )
+    .unwrap();
     let cor = solve(&c, &start, Method::Dopri5, &tight(tau * unit)).unwrap();
     assert_eq!((rep.status, cor.status), (Status::Ok, Status::Ok));
     let n = c.links();
@@ -196,16 +202,21 @@ fn the_reports_stepper_is_first_order() {
     // of its "RK4" against a tight DOPRI5 run of the same equations halves
     // with the step, where RK4 on the same equations falls 16-fold.
     let (c, s) = span(5, 1e-3, 3.0);
-    let reference = solve_report(&c, &s, ReportModel::AS_CODED, Method::Dopri5, &tight(2.0))
-        .unwrap()
-        .final_state;
+    let reference = solve(
+        ReportChain::new(&c, ReportModel::AS_CODED),
+        &s,
+        Method::Dopri5,
+        &tight(2.0),
+    )
+    .unwrap()
+    .final_state;
     let error = |model: ReportModel, dt: f64| {
         let opts = SolveOptions {
             t_end: 2.0,
             dt,
             ..Default::default()
         };
-        let run = solve_report(&c, &s, model, Method::Rk4, &opts).unwrap();
+        let run = solve(ReportChain::new(&c, model), &s, Method::Rk4, &opts).unwrap();
         assert_eq!(run.status, Status::Ok);
         let d: Vec<f64> = (0..10).map(|i| run.final_state[i] - reference[i]).collect();
         max_abs(&d)
@@ -237,7 +248,7 @@ fn the_printed_friction_sign_feeds_energy_in() {
             printed_friction_sign: printed,
             ..ReportModel::AS_CODED
         };
-        let run = solve_report(&c, &s, model, Method::Dopri5, &tight(3.0)).unwrap();
+        let run = solve(ReportChain::new(&c, model), &s, Method::Dopri5, &tight(3.0)).unwrap();
         assert_eq!(run.status, Status::Ok);
         assert!(run.summary.energy_balance_error < 1e-8, "{printed}");
         assert!(
@@ -253,7 +264,7 @@ fn it_refuses_what_the_report_has_not() {
     let (c, s) = span(6, 1e-3, 3.0);
     let opts = SolveOptions::default();
     for m in [Method::Bdf, Method::BdfDense, Method::Auto] {
-        let e = solve_report(&c, &s, ReportModel::AS_CODED, m, &opts).unwrap_err();
+        let e = solve(ReportChain::new(&c, ReportModel::AS_CODED), &s, m, &opts).unwrap_err();
         assert_eq!(e.field, "run.method", "{m}");
     }
     for (field, params) in [
@@ -296,7 +307,13 @@ fn it_refuses_what_the_report_has_not() {
         }
         .state(&c)
         .unwrap();
-        let e = solve_report(&c, &s, ReportModel::AS_CODED, Method::Rk4, &opts).unwrap_err();
+        let e = solve(
+            ReportChain::new(&c, ReportModel::AS_CODED),
+            &s,
+            Method::Rk4,
+            &opts,
+        )
+        .unwrap_err();
         assert_eq!(e.field, field);
     }
 }

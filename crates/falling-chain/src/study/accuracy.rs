@@ -65,7 +65,7 @@ impl Run {
             scene: scene.to_string(),
             label: label.to_string(),
             summary: RunSummary::from_trajectory(scene, &traj),
-            length: traj.chain.length(),
+            length: traj.chain().length(),
             dt: if fixed { num(o.dt) } else { String::new() },
             rtol: if fixed { String::new() } else { num(o.rtol) },
         })

@@ -10,7 +10,7 @@
 use std::fmt::Write as _;
 
 use chain_ode::beam::REFERENCE;
-use chain_ode::{solve_beam, BeamRun, Method};
+use chain_ode::{solve, BeamModel, InvalidParameter, Method, Trajectory};
 use rayon::prelude::*;
 
 use crate::study::format::{exp, exp_digits, num};
@@ -36,7 +36,10 @@ pub fn grid() -> Vec<(Method, f64)> {
 /// One run and its errors.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {
-    pub run: BeamRun,
+    /// The run (its final state is the test set's `y` at `t = 5`).
+    pub run: Trajectory<BeamModel>,
+    /// Its accuracy parameter (`dt` for RK4, else `rtol = atol`).
+    pub accuracy: f64,
     /// `max(|y1 - ref|, |y40 - ref|)` at `t = 5` (rad; NaN unless ok).
     pub err_angles: f64,
     /// `max(|y41 - ref|, |y80 - ref|)` (rad per time unit; NaN unless ok).
@@ -45,11 +48,11 @@ pub struct Row {
 
 impl Row {
     /// The row of a finished run.
-    pub fn of(run: BeamRun) -> Self {
+    pub fn of(run: Trajectory<BeamModel>, accuracy: f64) -> Self {
         let e = |k: usize| {
             let (i, r) = REFERENCE[k];
             if run.status.is_ok() {
-                (run.component(i) - r).abs()
+                (BeamModel::component(&run.final_state, i) - r).abs()
             } else {
                 f64::NAN
             }
@@ -58,16 +61,29 @@ impl Row {
             err_angles: e(0).max(e(1)),
             err_rates: e(2).max(e(3)),
             run,
+            accuracy,
         }
     }
+}
+
+/// The test set's run of `method` at `accuracy` ([`BeamModel::options`]).
+pub fn run(method: Method, accuracy: f64) -> Result<Trajectory<BeamModel>, InvalidParameter> {
+    let model = BeamModel::new();
+    let start = model.start();
+    solve(
+        model,
+        &start,
+        method,
+        &BeamModel::options(method, accuracy)?,
+    )
 }
 
 /// Runs every point of `points`: one at a time when `timed` (their wall
 /// times mean something then), else in parallel.
 pub fn rows(points: &[(Method, f64)], timed: bool) -> Result<Vec<Row>, String> {
     let one = |&(m, x): &(Method, f64)| {
-        solve_beam(m, x)
-            .map(Row::of)
+        run(m, x)
+            .map(|t| Row::of(t, x))
             .map_err(|e| format!("beam {m} {x:e}: {e}"))
     };
     if timed {
@@ -90,7 +106,7 @@ pub fn csv_text(rows: &[Row]) -> String {
             "{},{},{},{},{},{},{},{},{},{},{},{}",
             run.method,
             run.method.accuracy_name(),
-            exp(run.accuracy),
+            exp(r.accuracy),
             run.status,
             num(run.t_reached),
             st.steps,
@@ -113,8 +129,8 @@ pub fn timing_text(rows: &[Row]) -> String {
             s,
             "{},{},{}",
             r.run.method,
-            exp(r.run.accuracy),
-            exp_digits(r.run.wall_seconds, 3)
+            exp(r.accuracy),
+            exp_digits(r.run.summary.wall_seconds, 3)
         );
     }
     s

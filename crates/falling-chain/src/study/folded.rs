@@ -62,10 +62,10 @@ pub struct FoldedRun {
 
 impl FoldedRun {
     pub fn length(&self) -> f64 {
-        self.traj.chain.length()
+        self.traj.chain().length()
     }
     pub fn gravity(&self) -> f64 {
-        self.traj.chain.gravity()
+        self.traj.chain().gravity()
     }
     /// `(t, x, |v|)` during the fall, `x` from the free end's start height.
     pub fn fall_curve(&self) -> Vec<(f64, f64, f64)> {
@@ -124,7 +124,7 @@ pub fn folded_runs(base: &Scene) -> Result<Vec<FoldedRun>, String> {
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
-    runs.sort_by_key(|r| r.traj.chain.links());
+    runs.sort_by_key(|r| r.traj.chain().links());
     Ok(runs)
 }
 
@@ -156,7 +156,7 @@ pub fn vs_law(runs: &[FoldedRun]) -> Result<VsLaw, String> {
          t_law_over_sqrt_L_over_g\n",
     );
     for run in runs {
-        let n = run.traj.chain.links();
+        let n = run.traj.chain().links();
         let curve = run.fall_curve();
         for &(t, x, v) in &curve {
             let law = if x < length {
@@ -300,7 +300,7 @@ pub fn support_force(
          momentum_y_over_M_sqrt_gL,law_momentum_y_over_M_sqrt_gL\n",
     );
     for run in runs {
-        let chain = &run.traj.chain;
+        let chain = run.traj.chain();
         let (weight, length, g) = (chain.weight(), chain.length(), chain.gravity());
         let vs = (g * length).sqrt();
         let forces = &pivot_forces(&run.traj)[..run.fall];
@@ -374,7 +374,7 @@ pub fn support_force(
             worst_p,
         ));
     }
-    let chain = &span_traj.chain;
+    let chain = span_traj.chain();
     let weight = chain.weight();
     let forces = pivot_forces(span_traj);
     for (t, f) in &forces {
@@ -444,9 +444,9 @@ pub fn tip_acceleration(runs: &[FoldedRun]) -> (String, String) {
     );
     for run in runs
         .iter()
-        .filter(|r| ACCEL_LINKS.contains(&r.traj.chain.links()))
+        .filter(|r| ACCEL_LINKS.contains(&r.traj.chain().links()))
     {
-        let chain = &run.traj.chain;
+        let chain = run.traj.chain();
         let n = chain.links();
         let (length, g) = (run.length(), run.gravity());
         let mut ws = Workspace::new(n);

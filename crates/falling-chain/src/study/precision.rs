@@ -245,7 +245,7 @@ impl Point {
             status: t.status.as_str().into(),
             t_reached: t.t_reached,
             stats: t.stats,
-            dim: 2 * t.chain.links() + 1,
+            dim: 2 * t.chain().links() + 1,
             err_tip,
             err_vmax,
             switched: t.segments.len() > 1,

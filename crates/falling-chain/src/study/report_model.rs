@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 
 use chain_ode::report::{finite_difference_tip_speeds, ReportModel};
-use chain_ode::{solve_report, Method, Trajectory};
+use chain_ode::{solve, Method, ModelKind, ReportChain, Trajectory};
 
 use super::format::{fixed, num};
 use crate::render;
@@ -163,8 +163,13 @@ pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
         o.t_end = t_report;
         o.dt = report_dt(t_report);
         o.output_dt = Some(o.dt);
-        let traj = solve_report(&p.chain, &p.state, ReportModel::AS_CODED, Method::Rk4, &o)
-            .map_err(err)?;
+        let traj = solve(
+            ModelKind::Report(ReportChain::new(&p.chain, ReportModel::AS_CODED)),
+            &p.state,
+            Method::Rk4,
+            &o,
+        )
+        .map_err(err)?;
         let angles: Vec<&[f64]> = traj.samples().map(|s| s.angles).collect();
         let fd = finite_difference_tip_speeds(&p.chain, &traj.times, &angles)
             .iter()
@@ -211,7 +216,13 @@ pub fn errata(scenes: &[(&str, &Scene, f64)]) -> Result<String, String> {
             o.t_end = t_report * coded / unit;
             o.dt = report_dt(t_report) * coded / unit;
             o.output_dt = None;
-            let traj = solve_report(&p.chain, &p.state, *model, Method::Rk4, &o).map_err(err)?;
+            let traj = solve(
+                ModelKind::Report(ReportChain::new(&p.chain, *model)),
+                &p.state,
+                Method::Rk4,
+                &o,
+            )
+            .map_err(err)?;
             let _ = writeln!(
                 csv,
                 "{name},{case},{},{},{},{},{},{}",

@@ -11,7 +11,7 @@
 use std::fmt::Write as _;
 
 use chain_ode::report::{finite_difference_tip_velocities, ReportModel};
-use chain_ode::{solve_report, Method, Trajectory};
+use chain_ode::{solve, Method, ModelKind, ReportChain, Trajectory};
 
 use super::format::{fixed, num};
 use super::report_model::report_dt;
@@ -42,7 +42,7 @@ fn largest(v: &[[f64; 3]]) -> (f64, f64) {
 /// The report's tip velocities of a run sampled at every step.
 fn velocities(traj: &Trajectory) -> Vec<[f64; 3]> {
     let angles: Vec<&[f64]> = traj.samples().map(|s| s.angles).collect();
-    finite_difference_tip_velocities(&traj.chain, &traj.times, &angles)
+    finite_difference_tip_velocities(traj.chain(), &traj.times, &angles)
 }
 
 /// The runs of `scene` in each case of [`CASES`], in the report's model with
@@ -57,8 +57,13 @@ fn runs(scene: &Scene, t_report: f64) -> Result<Vec<Trajectory>, String> {
     CASES
         .iter()
         .map(|(_, model)| {
-            solve_report(&p.chain, &p.state, *model, Method::Rk4, &o)
-                .map_err(|e| format!("{}: {e}", scene.name()))
+            solve(
+                ModelKind::Report(ReportChain::new(&p.chain, *model)),
+                &p.state,
+                Method::Rk4,
+                &o,
+            )
+            .map_err(|e| format!("{}: {e}", scene.name()))
         })
         .collect()
 }

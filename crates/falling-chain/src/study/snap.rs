@@ -86,20 +86,11 @@ pub struct Snap {
 }
 
 /// The chain's momentum relative to the pivot, `P = Σ m_i c_i' + M_t v_tip`,
-/// at sample `k`: the model's own (`chain_ode::elastic::momentum` for
-/// elastic links; for rigid ones `(Σ m_i + M_t) c_rel'`, the centre of
-/// mass's velocity from `chain_ode::pivot::centre_of_mass`), so that a tip
-/// mass and unequal rods count as the equations of motion count them.
+/// at sample `k`: the model's own ([`chain_ode::Model::momentum`]), so
+/// that a tip mass and unequal rods count as the equations of motion count
+/// them.
 pub fn momentum(traj: &Trajectory, k: usize) -> Vec2 {
-    let chain = &traj.chain;
-    let y = traj.state(k);
-    if chain.is_elastic() {
-        return chain_ode::elastic::momentum(chain, y);
-    }
-    let n = chain.links();
-    let [_, v] = chain_ode::pivot::centre_of_mass(chain, &y[..n], &y[n..2 * n]);
-    let m = chain.total_mass() + chain.tip_mass();
-    [m * v[0], m * v[1]]
+    traj.momentum(k)
 }
 
 /// The sample of `traj` nearest `t`.
@@ -132,7 +123,7 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
     }
     let prepared = s.prepare()?;
     let traj = prepared.solve()?;
-    let chain = &traj.chain;
+    let chain = traj.chain();
     let p = chain.params();
     let (weight, mass) = (chain.weight(), chain.total_mass());
     // The momentum balance's weight: the whole chain's, tip mass included
@@ -185,7 +176,7 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
 /// The tension at every joint (`k = 0` the pivot .. `n` the free tip, over
 /// `M g`) at the samples nearest each of `times`: `(t, tensions)`.
 pub fn tension_profiles(traj: &Trajectory, times: &[f64]) -> Vec<(f64, Vec<f64>)> {
-    let weight = traj.chain.weight();
+    let weight = traj.chain().weight();
     times
         .iter()
         .filter(|_| !traj.is_empty())
@@ -291,7 +282,7 @@ t_end = 3.6
                     *jd += 0.5 * dt * (f[k].1[d] + f[k + 1].1[d]);
                 }
             }
-            let unit = traj.chain.total_mass() * (traj.chain.length()).sqrt();
+            let unit = traj.chain().total_mass() * (traj.chain().length()).sqrt();
             let trapezoid = j[0].hypot(j[1]) / unit;
             assert!(
                 (trapezoid / snap.impulse - 1.0).abs() < 2e-3,
@@ -299,7 +290,7 @@ t_end = 3.6
                 snap.impulse
             );
             let sampled = f.iter().map(|p| p.1[0].hypot(p.1[1])).fold(0.0, f64::max);
-            assert!(sampled / traj.chain.weight() <= snap.peak_force * 1.001);
+            assert!(sampled / traj.chain().weight() <= snap.peak_force * 1.001);
             assert!(snap.peak_force > 2.0 && snap.t_peak_force > 2.0, "{snap:?}");
         }
     }

@@ -45,7 +45,7 @@ pub fn tables(
             );
         }
     }
-    let weight = traj.chain.weight();
+    let weight = traj.chain().weight();
     let mut force = String::from("t,pivot_force_mg\n");
     for (t, f) in chain_ode::analysis::pivot_forces(traj) {
         if (tv - 0.4..=tp + 0.3).contains(&t) {

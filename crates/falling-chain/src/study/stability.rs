@@ -92,7 +92,7 @@ impl Outcome {
 /// ([`chain_ode::Chain::energy_scale`]: `M g L`, or `M L^2` per time unit
 /// squared at `g = 0`).
 pub fn relative_energy_error(t: &Trajectory) -> f64 {
-    t.summary.energy_balance_error / t.chain.energy_scale()
+    t.summary.energy_balance_error / t.chain().energy_scale()
 }
 
 /// The accuracies of a method's cells.

@@ -25,7 +25,7 @@ pub fn energy_budget(runs: &[Trajectory]) -> (String, Vec<String>) {
          balance_over_MgL\n",
     );
     for traj in runs {
-        let chain = &traj.chain;
+        let chain = traj.chain();
         let scale = chain.energy_scale();
         let mut e0 = None;
         let mut worst: f64 = 0.0;

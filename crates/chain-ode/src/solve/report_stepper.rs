@@ -1,5 +1,5 @@
-//! Runs of the report's model ([`crate::report`]): [`solve_report`], and
-//! the report's own stepper (erratum 4), which its code calls RK4.
+//! The report's own stepper (erratum 4), which its code calls RK4, and
+//! the methods the report's model runs ([`crate::model::ReportChain`]).
 //!
 //! The stepper advances `y = [phi, w, W]` by `h` as the report's code does
 //! (its notebook's step loop):
@@ -17,87 +17,16 @@
 //! test. It is a [`FixedStep`] of the one fixed-step loop
 //! ([`rk4::integrate`], which owns the step times, the budget, the checks
 //! and the observer), registered for this model as [`REPORT_RK4`]; the
-//! trajectory is assembled as [`super::solve`]'s, with the model's energy
-//! scale.
+//! model chooses it ([`crate::model::Model::integrator`]).
 
-use std::time::Instant;
-
-use super::integrator::{Integrator, Settings, Span};
-use super::observer::ChainObserver;
+use super::integrator::Integrator;
 use super::rk4::{self, FixedStep, Work};
-use super::{registry, Method, SolveOptions, Trajectory};
-use crate::chain::{check, Chain, InvalidParameter};
+use super::Method;
 use crate::ode::OdeSystem;
-use crate::pivot::PivotPath;
-use crate::report::{ReportModel, ReportSystem};
-use crate::state::State;
-use crate::system::ChainSystem;
 
-/// The methods the report's model runs: `rk4` (the report's stepper when
-/// [`ReportModel::stepper`] is set, else RK4), `dopri5` and `dop853`.
-/// `bdf` and `bdf-dense` need forms it does not state, and `auto` is a
-/// policy over them.
+/// The methods the report's model runs: the explicit ones (its code had
+/// no implicit method, and `auto` would hand over to one).
 pub const REPORT_METHODS: [Method; 3] = [Method::Rk4, Method::Dopri5, Method::Dop853];
-
-/// Runs the report's `model` of `chain` from `start` with `method` over
-/// `[0, options.t_end]`, in the model's own time unit (with the clock
-/// erratum, `sqrt(l/g)` of ours: [`ReportModel::time_unit`]). As
-/// [`super::solve`] otherwise: the same checks first, the same statuses,
-/// the summary's energies are the model's own ([`ReportModel::energy`]) and
-/// its tip speeds the exact ones in its time unit (the report's finite
-/// differences: [`crate::report::finite_difference_tip_speeds`]).
-/// `Trajectory::energy` of a sample is the corrected chain's.
-pub fn solve_report(
-    chain: &Chain,
-    start: &State,
-    model: ReportModel,
-    method: Method,
-    options: &SolveOptions,
-) -> Result<Trajectory, InvalidParameter> {
-    check(
-        REPORT_METHODS.contains(&method),
-        "run.method",
-        "one of rk4, dopri5, dop853 with model.report = true",
-        method,
-    )?;
-    model.validate(chain)?;
-    options.validate_for(chain, method)?;
-    super::check_start(chain, start)?;
-    let y0 = ChainSystem::pack(&start.angles, &start.rates, 0.0);
-    let mut obs = ChainObserver::for_report(
-        chain,
-        model,
-        options.t_end,
-        options.output_dt,
-        options.cancel.clone(),
-    );
-    let clock = Instant::now();
-    let settings = Settings::of(options);
-    let span = Span {
-        t0: 0.0,
-        y0: &y0,
-        t_end: options.t_end,
-        settings: &settings,
-    };
-    let mut sys = ReportSystem::new(chain, model);
-    let it = if method == Method::Rk4 && model.stepper {
-        &REPORT_RK4
-    } else {
-        registry::integrator(method)
-    };
-    let run = registry::run_with(it, method, &mut sys, &span, &mut obs);
-    // The report's pivot never moves (`model.report` refuses `pivot.*`).
-    let path = PivotPath::new(chain, start.anchor);
-    Ok(super::trajectory(
-        chain,
-        start,
-        method,
-        options,
-        (run, obs, path),
-        model.energy_scale(chain),
-        clock,
-    ))
-}
 
 /// The report's stepper, on a system whose state is `[q (n), v (n),
 /// rest]` with `q' = v`, run by the one fixed-step loop
@@ -142,7 +71,7 @@ impl FixedStep for ReportStepper {
 
 /// `rk4` in the report's model with [`ReportModel::stepper`] set: the
 /// report's stepper, which its code calls RK4; `dt` sets its accuracy.
-pub(crate) const REPORT_RK4: Integrator = Integrator {
+pub const REPORT_RK4: Integrator = Integrator {
     name: "rk4",
     adaptive: false,
     run: |p, s, obs| rk4::integrate::<ReportStepper, _>(p, s, obs).into(),
@@ -152,6 +81,7 @@ pub(crate) const REPORT_RK4: Integrator = Integrator {
 mod tests {
     use super::*;
     use crate::ode::Status;
+    use crate::solve::integrator::{Settings, Span};
     use crate::solve::test_problems::Quiet;
 
     /// `q'' = -q` as `[q, v, W]` with `W' = 0`: the layout the stepper reads.

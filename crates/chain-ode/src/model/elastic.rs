@@ -1,0 +1,205 @@
+//! The chain with elastic links as a [`Model`]: the state
+//! `[phi, w, W, x, y, vx, vy]` (`6 n + 1`, rod centres relative to the
+//! pivot's prescribed position); the physics is [`crate::elastic`]'s.
+//!
+//! Its event is the release of the pivot at `0 < t_r < t_end`: the run is
+//! cut there and goes on without the joint-0 spring, whose energy
+//! `K_0 |d_0|^2 / 2` leaves the chain then: it is added to the work `W`, so
+//! that the balance `E + W = E(0)` holds across the cut.
+
+use super::{Layout, Model, Observed};
+use crate::chain::{check, Chain, InvalidParameter};
+use crate::elastic::{self, ElasticSystem};
+use crate::kinematics::Vec2;
+use crate::ode::Problem;
+use crate::pivot::{PivotPath, TimeScales};
+use crate::solve::auto_elastic;
+use crate::solve::{AutoPlan, Method, SolveOptions, BDF_DENSE_MAX_ELASTIC_LINKS};
+use crate::state::State;
+
+/// The elastic chain, its pivot's path, and whether joint 0 has let go.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElasticModel {
+    chain: Chain,
+    path: PivotPath,
+    released: bool,
+}
+
+impl ElasticModel {
+    /// The model of a validated chain with elastic links (a pivot let go
+    /// at `t = 0` is free from the start).
+    pub fn new(chain: &Chain) -> Self {
+        Self {
+            chain: chain.clone(),
+            path: PivotPath::new(chain, [0.0, 0.0]),
+            released: chain.pivot().release == Some(0.0),
+        }
+    }
+}
+
+impl ElasticModel {
+    /// The chain.
+    pub fn chain_ref(&self) -> &Chain {
+        &self.chain
+    }
+}
+
+impl Model for ElasticModel {
+    fn name(&self) -> &'static str {
+        "elastic"
+    }
+
+    fn chain(&self) -> Option<&Chain> {
+        Some(&self.chain)
+    }
+
+    fn layout(&self) -> Layout {
+        elastic_layout(&self.chain)
+    }
+
+    fn validate(&self, method: Method, options: &SolveOptions) -> Result<(), InvalidParameter> {
+        options.validate_common(
+            Some(self.chain.pivot()),
+            method,
+            &elastic_layout(&self.chain),
+        )?;
+        if method == Method::BdfDense {
+            check(
+                self.chain.links() <= BDF_DENSE_MAX_ELASTIC_LINKS,
+                "chain.links",
+                format!(
+                    "at most {BDF_DENSE_MAX_ELASTIC_LINKS} for bdf-dense with chain.axial_stiffness \
+                     (its dense Jacobian of 6 n + 1 unknowns grows like n^2 in memory and n^3 in \
+                     time); run.method = \"bdf\" is the same method in O(n)"
+                ),
+                self.chain.links(),
+            )?;
+        }
+        super::rigid::check_dense_size(&self.chain, method)
+    }
+
+    fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
+        super::check_start(&self.chain, start)?;
+        self.path = PivotPath::new(&self.chain, start.anchor);
+        Ok(elastic::start_state(&self.chain, start))
+    }
+
+    fn problem(&self) -> Box<dyn Problem + '_> {
+        let mut sys = ElasticSystem::new(&self.chain);
+        if self.released {
+            sys.set_released(true);
+        }
+        Box::new(sys)
+    }
+
+    fn energy_scale(&self) -> f64 {
+        self.chain.energy_scale()
+    }
+
+    fn is_driven(&self) -> bool {
+        self.chain.pivot().is_driven()
+    }
+
+    fn time_scales(&self) -> TimeScales {
+        self.chain.pivot().time_scales()
+    }
+
+    fn auto_plan(&self, rtol: f64) -> AutoPlan {
+        auto_elastic::plan(&self.chain, rtol)
+    }
+
+    fn event_time(&self) -> Option<f64> {
+        self.chain.pivot().release
+    }
+
+    fn at_event(&mut self, _t: f64, y: &mut [f64]) {
+        let n = self.chain.links();
+        y[2 * n] += elastic::pivot_spring_energy(&self.chain, y);
+        self.released = true;
+    }
+
+    fn observe(&self, t: f64, y: &[f64], f: &[f64], _trig: &mut Vec<(f64, f64)>) -> Observed {
+        let chain = &self.chain;
+        if self.path.is_fixed() {
+            return Observed {
+                energy: elastic::energy(chain, y),
+                tip_velocity: elastic::tip_velocity(chain, y),
+                tip_acceleration: elastic::tip_acceleration(chain, y, f),
+            };
+        }
+        let mut m = Observed {
+            energy: self.energy(t, y),
+            tip_velocity: elastic::tip_velocity(chain, y),
+            tip_acceleration: elastic::tip_acceleration(chain, y, f),
+        };
+        if chain.pivot().is_driven() {
+            let [_, v, a] = chain.pivot().drive(t);
+            m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
+            m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
+        }
+        m
+    }
+
+    /// [`elastic::energy_at`] (no joint-0 spring once let go), plus the
+    /// frame's terms of a driven pivot ([`elastic::frame_energy`]).
+    fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        let e = elastic::energy_at(&self.chain, t, y);
+        if !self.chain.pivot().is_driven() {
+            return e;
+        }
+        let [d, v0, _] = self.chain.pivot().drive(t);
+        e + elastic::frame_energy(&self.chain, d, v0, y)
+    }
+
+    fn tip(&self, t: f64, y: &[f64]) -> Vec2 {
+        elastic::tip(&self.chain, self.support(t, y)[0], y)
+    }
+
+    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
+        let v = elastic::tip_velocity(&self.chain, y);
+        if self.path.is_fixed() {
+            return v;
+        }
+        let v0 = self.chain.pivot().drive(t)[1];
+        [v[0] + v0[0], v[1] + v0[1]]
+    }
+
+    fn support(&self, t: f64, y: &[f64]) -> [Vec2; 2] {
+        let n = self.chain.links();
+        self.path.at(&self.chain, t, &y[..n], &y[n..2 * n])
+    }
+
+    fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
+        elastic::joints_at(&self.chain, t, self.support(t, y)[0], y)
+    }
+
+    fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
+        let forces = elastic::joint_forces_at(&self.chain, t, y);
+        elastic::tension_shear(&y[..self.chain.links()], &forces)
+    }
+
+    /// The pivot spring's force on rod 1 (zero once let go).
+    fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
+        elastic::pivot_force_at(&self.chain, t, y)
+    }
+
+    fn tracks_support_force(&self) -> bool {
+        true
+    }
+
+    fn momentum(&self, _t: f64, y: &[f64]) -> Vec2 {
+        elastic::momentum(&self.chain, y)
+    }
+}
+
+/// `[phi, w, W, x, y, vx, vy]`; a sample is the state, its time, and the
+/// joints' positions and forces.
+fn elastic_layout(chain: &Chain) -> Layout {
+    let n = chain.links();
+    let numbers = (6 * n as u64 + 2) + 4 * (n as u64 + 1);
+    Layout {
+        positions: Some(2 * n + 1..4 * n + 1),
+        velocities: Some(4 * n + 1..6 * n + 1),
+        ..Layout::angles_rates_work(n, 6 * n + 1, numbers)
+    }
+}

@@ -1,0 +1,169 @@
+//! The crate's models as one type, and the one decision of which model a
+//! chain is.
+
+use super::{ElasticModel, Layout, Model, Observed, ReportChain, RigidModel};
+use crate::chain::{Chain, InvalidParameter};
+use crate::kinematics::Vec2;
+use crate::ode::Problem;
+use crate::pivot::TimeScales;
+use crate::solve::{AutoPlan, Integrator, Method, SolveOptions};
+use crate::state::State;
+
+/// The crate's models of a chain. [`ModelKind::of`] chooses a chain's
+/// (rigid or elastic links), [`ReportChain`] is the report's; every
+/// [`Model`] method dispatches to the variant's. Models that are not a
+/// chain's (BEAM, a model of another crate) run as themselves.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ModelKind {
+    /// Rigid rods.
+    Rigid(RigidModel),
+    /// Elastic links.
+    Elastic(ElasticModel),
+    /// The report's equations.
+    Report(ReportChain),
+}
+
+impl ModelKind {
+    /// The model of `chain`: elastic links when it has an axial stiffness,
+    /// rigid rods otherwise. This is the one place that asks.
+    pub fn of(chain: &Chain) -> Self {
+        if chain.is_elastic() {
+            Self::Elastic(ElasticModel::new(chain))
+        } else {
+            Self::Rigid(RigidModel::new(chain))
+        }
+    }
+
+    /// The chain.
+    pub fn chain(&self) -> &Chain {
+        match self {
+            Self::Rigid(m) => m.chain_ref(),
+            Self::Elastic(m) => m.chain_ref(),
+            Self::Report(m) => m.chain_ref(),
+        }
+    }
+}
+
+/// What [`solve`](crate::solve) accepts as a model: any [`Model`], or a
+/// [`Chain`] (whose model [`ModelKind::of`] chooses).
+pub trait IntoModel {
+    /// The model.
+    type Model: Model;
+    /// Makes it.
+    fn into_model(self) -> Self::Model;
+}
+
+impl<M: Model> IntoModel for M {
+    type Model = M;
+    fn into_model(self) -> M {
+        self
+    }
+}
+
+impl IntoModel for &Chain {
+    type Model = ModelKind;
+    fn into_model(self) -> ModelKind {
+        ModelKind::of(self)
+    }
+}
+
+impl From<RigidModel> for ModelKind {
+    fn from(m: RigidModel) -> Self {
+        Self::Rigid(m)
+    }
+}
+
+impl From<ElasticModel> for ModelKind {
+    fn from(m: ElasticModel) -> Self {
+        Self::Elastic(m)
+    }
+}
+
+impl From<ReportChain> for ModelKind {
+    fn from(m: ReportChain) -> Self {
+        Self::Report(m)
+    }
+}
+
+/// `$m.$f(...)` on whichever model `self` holds.
+macro_rules! each {
+    ($self:ident, $m:ident => $e:expr) => {
+        match $self {
+            ModelKind::Rigid($m) => $e,
+            ModelKind::Elastic($m) => $e,
+            ModelKind::Report($m) => $e,
+        }
+    };
+}
+
+impl Model for ModelKind {
+    fn name(&self) -> &'static str {
+        each!(self, m => m.name())
+    }
+    fn chain(&self) -> Option<&Chain> {
+        Some(ModelKind::chain(self))
+    }
+    fn layout(&self) -> Layout {
+        each!(self, m => m.layout())
+    }
+    fn validate(&self, method: Method, options: &SolveOptions) -> Result<(), InvalidParameter> {
+        each!(self, m => m.validate(method, options))
+    }
+    fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
+        each!(self, m => m.initial_state(start))
+    }
+    fn problem(&self) -> Box<dyn Problem + '_> {
+        each!(self, m => m.problem())
+    }
+    fn integrator(&self, method: Method) -> &'static Integrator {
+        each!(self, m => m.integrator(method))
+    }
+    fn energy_scale(&self) -> f64 {
+        each!(self, m => m.energy_scale())
+    }
+    fn is_driven(&self) -> bool {
+        each!(self, m => m.is_driven())
+    }
+    fn time_scales(&self) -> TimeScales {
+        each!(self, m => m.time_scales())
+    }
+    fn auto_plan(&self, rtol: f64) -> AutoPlan {
+        each!(self, m => m.auto_plan(rtol))
+    }
+    fn event_time(&self) -> Option<f64> {
+        each!(self, m => m.event_time())
+    }
+    fn at_event(&mut self, t: f64, y: &mut [f64]) {
+        each!(self, m => m.at_event(t, y))
+    }
+    fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
+        each!(self, m => m.observe(t, y, f, trig))
+    }
+    fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        each!(self, m => m.energy(t, y))
+    }
+    fn tip(&self, t: f64, y: &[f64]) -> Vec2 {
+        each!(self, m => m.tip(t, y))
+    }
+    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
+        each!(self, m => m.tip_velocity(t, y))
+    }
+    fn support(&self, t: f64, y: &[f64]) -> [Vec2; 2] {
+        each!(self, m => m.support(t, y))
+    }
+    fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
+        each!(self, m => m.joints(t, y))
+    }
+    fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
+        each!(self, m => m.joint_forces(t, y))
+    }
+    fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
+        each!(self, m => m.support_force(t, y))
+    }
+    fn tracks_support_force(&self) -> bool {
+        each!(self, m => m.tracks_support_force())
+    }
+    fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
+        each!(self, m => m.momentum(t, y))
+    }
+}

@@ -1,0 +1,342 @@
+//! The chain of rigid rods as a [`Model`]: the state `[phi, w, W]`
+//! (`2 n + 1`), the pivot's path along the run, and the chain's one energy.
+
+use super::{Layout, Model, Observed};
+use crate::chain::{Chain, InvalidParameter};
+use crate::elastic;
+use crate::kinematics::{bending_energy, joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
+use crate::ode::Problem;
+use crate::pivot::{centre_of_mass, PivotPath, TimeScales};
+use crate::profile::Rods;
+use crate::scalar::Scalar;
+use crate::solve::{bdf_crossover_gamma, AutoPlan, Method, SolveOptions, BDF_DENSE_MAX_LINKS};
+use crate::state::State;
+use crate::system::ChainSystem;
+
+/// The rigid chain and where its pivot is along a run (the prescribed
+/// motion and, once let go, the free fall of the centre of mass).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidModel {
+    chain: Chain,
+    path: PivotPath,
+    released: bool,
+}
+
+impl RigidModel {
+    /// The model of a validated chain of rigid rods, its pivot at the
+    /// origin until [`Model::initial_state`] places it.
+    pub fn new(chain: &Chain) -> Self {
+        Self {
+            chain: chain.clone(),
+            path: PivotPath::new(chain, [0.0, 0.0]),
+            released: false,
+        }
+    }
+
+    /// The chain.
+    pub fn chain_ref(&self) -> &Chain {
+        &self.chain
+    }
+
+    /// The pivot's path.
+    pub fn path(&self) -> &PivotPath {
+        &self.path
+    }
+
+    fn split<'a>(&self, y: &'a [f64]) -> (&'a [f64], &'a [f64]) {
+        let n = self.chain.links();
+        (&y[..n], &y[n..2 * n])
+    }
+}
+
+/// `[phi, w, W]`; a sample is the state, its time and the joints' positions.
+fn rigid_layout(chain: &Chain) -> Layout {
+    let n = chain.links();
+    let numbers = (2 * n as u64 + 2) + 2 * (n as u64 + 1);
+    Layout::angles_rates_work(n, 2 * n + 1, numbers)
+}
+
+/// The rigid chain's bounds of a run with `method`: the pivot's time
+/// scales for a fixed step, the output's size, and `bdf-dense`'s size.
+fn validate_rigid(
+    chain: &Chain,
+    method: Method,
+    options: &SolveOptions,
+) -> Result<(), InvalidParameter> {
+    options.validate_common(Some(chain.pivot()), method, &rigid_layout(chain))?;
+    check_dense_size(chain, method)
+}
+
+/// `bdf-dense`'s size bound, for any chain.
+pub(super) fn check_dense_size(chain: &Chain, method: Method) -> Result<(), InvalidParameter> {
+    crate::chain::check(
+        method != Method::BdfDense || chain.links() <= BDF_DENSE_MAX_LINKS,
+        "chain.links",
+        format!(
+            "at most {BDF_DENSE_MAX_LINKS} for bdf-dense (its dense Jacobian and LU \
+             grow like n^2 in memory and n^3 in time); run.method = \"bdf\" is the \
+             same method in O(n)"
+        ),
+        chain.links(),
+    )
+}
+
+impl Model for RigidModel {
+    fn name(&self) -> &'static str {
+        "rigid"
+    }
+
+    fn chain(&self) -> Option<&Chain> {
+        Some(&self.chain)
+    }
+
+    fn layout(&self) -> Layout {
+        rigid_layout(&self.chain)
+    }
+
+    fn validate(&self, method: Method, options: &SolveOptions) -> Result<(), InvalidParameter> {
+        validate_rigid(&self.chain, method, options)
+    }
+
+    fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
+        super::check_start(&self.chain, start)?;
+        self.path = PivotPath::new(&self.chain, start.anchor);
+        // A pivot let go at the start is free from the first step.
+        if self.chain.pivot().release.is_some_and(|tr| tr <= 0.0) {
+            self.path
+                .release(&self.chain, 0.0, &start.angles, &start.rates);
+            self.released = true;
+        }
+        Ok(ChainSystem::pack(&start.angles, &start.rates, 0.0))
+    }
+
+    fn problem(&self) -> Box<dyn Problem + '_> {
+        let mut sys = ChainSystem::new(&self.chain);
+        if self.released {
+            sys.set_released(true);
+        }
+        Box::new(sys)
+    }
+
+    fn energy_scale(&self) -> f64 {
+        self.chain.energy_scale()
+    }
+
+    fn is_driven(&self) -> bool {
+        self.chain.pivot().is_driven()
+    }
+
+    fn time_scales(&self) -> TimeScales {
+        self.chain.pivot().time_scales()
+    }
+
+    /// BDF from the start past the crossover damping rate, else DOPRI5
+    /// (DOP853 at tight tolerances) to the end: the stiffness the detector
+    /// sees in a rigid chain is the whip and the waves, not a reason to
+    /// hand over mid-run.
+    fn auto_plan(&self, rtol: f64) -> AutoPlan {
+        AutoPlan {
+            explicit: rigid_auto_start(&self.chain, rtol),
+            hand_over_above: f64::INFINITY,
+        }
+    }
+
+    fn event_time(&self) -> Option<f64> {
+        self.chain.pivot().release
+    }
+
+    /// The release: the path notes where the centre of mass is and how fast
+    /// it moves; from then on joint 0 is a free end.
+    fn at_event(&mut self, t: f64, y: &mut [f64]) {
+        let n = self.chain.links();
+        self.path.release(&self.chain, t, &y[..n], &y[n..2 * n]);
+        self.released = true;
+    }
+
+    fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
+        let mut m = rigid_pass(&self.chain, y, Some(f), trig);
+        if self.path.is_fixed() {
+            return m;
+        }
+        let n = self.chain.links();
+        let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
+        let frame = self.path.frame(&self.chain, t, phi, w);
+        let a0 = self.path.acceleration(&self.chain, t, phi, w, acc);
+        m.energy += frame.energy;
+        let [v, a] = [frame.velocity, a0];
+        m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
+        m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
+        m
+    }
+
+    fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        let e = rigid_energy(&self.chain, y);
+        if self.path.is_fixed() {
+            return e;
+        }
+        let (phi, w) = self.split(y);
+        e + self.path.frame(&self.chain, t, phi, w).energy
+    }
+
+    fn tip(&self, t: f64, y: &[f64]) -> Vec2 {
+        let (phi, _) = self.split(y);
+        tip(&self.chain, self.support(t, y)[0], phi)
+    }
+
+    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
+        let (phi, w) = self.split(y);
+        let v = tip_velocity(&self.chain, phi, w);
+        if self.path.is_fixed() {
+            return v;
+        }
+        let v0 = self.path.at(&self.chain, t, phi, w)[1];
+        [v[0] + v0[0], v[1] + v0[1]]
+    }
+
+    fn support(&self, t: f64, y: &[f64]) -> [Vec2; 2] {
+        let (phi, w) = self.split(y);
+        self.path.at(&self.chain, t, phi, w)
+    }
+
+    fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
+        let (phi, _) = self.split(y);
+        joints(&self.chain, self.support(t, y)[0], phi)
+    }
+
+    fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
+        let free = self.path.is_free_at(t);
+        let forces = elastic::rigid_joint_forces_at(&self.chain, t, free, y);
+        elastic::tension_shear(&y[..self.chain.links()], &forces)
+    }
+
+    /// The recursion's force on rod 1 (with a moving pivot at its
+    /// acceleration at `t`; zero once let go).
+    fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
+        let mut sys = ChainSystem::new(&self.chain);
+        let (phi, w) = self.split(y);
+        let y = ChainSystem::pack(phi, w, 0.0);
+        let mut dy = vec![0.0; y.len()];
+        if self.path.is_fixed() {
+            return sys.rhs_with_reactions(&y, &mut dy).pivot_force;
+        }
+        sys.set_released(self.path.is_free_at(t));
+        sys.rhs_at(t, &y, &mut dy).pivot_force
+    }
+
+    /// `(sum m_i + M_t) c_rel'`, the centre of mass's velocity relative to
+    /// the pivot (tip mass and unequal rods included).
+    fn momentum(&self, _t: f64, y: &[f64]) -> Vec2 {
+        let (phi, w) = self.split(y);
+        let [_, v] = centre_of_mass(&self.chain, phi, w);
+        let m = self.chain.total_mass() + self.chain.tip_mass();
+        [m * v[0], m * v[1]]
+    }
+}
+
+/// The rigid chain's energy `T + V (+ M_t terms) (+ U_b)` of `y = [phi, w, ..]`
+/// relative to the pivot: the one energy of the model (the runs' balance,
+/// every sample's `energy`, [`kinematics::energy`](crate::kinematics::energy)).
+pub(crate) fn rigid_energy(chain: &Chain, y: &[f64]) -> f64 {
+    let mut trig = Vec::new();
+    rigid_pass(chain, y, None, &mut trig).energy
+}
+
+/// The fused pass: energy, tip velocity and (with `f`) tip acceleration of
+/// a rigid chain's state, relative to the pivot, in one loop over the rods.
+fn rigid_pass(chain: &Chain, y: &[f64], f: Option<&[f64]>, trig: &mut Vec<(f64, f64)>) -> Observed {
+    if let Some(rods) = chain.rods() {
+        return rods_pass(chain, rods, y, f);
+    }
+    let n = chain.links();
+    let (phi, w) = (&y[..n], &y[n..2 * n]);
+    let acc = |i: usize| f.map_or(0.0, |f| f[n + i]);
+    if trig.len() < n {
+        trig.resize(n, (0.0, 0.0));
+    }
+    let trig = &mut trig[..n];
+    f64::sin_cos_all(phi, trig);
+    // The kinematics' per-rod kernel, the potential's lever arms, and the
+    // tip acceleration, in one pass.
+    let mut sums = RodSums::default();
+    let (mut ax, mut ay) = (0.0, 0.0);
+    let mut v = 0.0;
+    for i in 0..n {
+        let (s, c) = trig[i];
+        let (wi, ai) = (w[i], acc(i));
+        sums.add(s, c, wi);
+        v += lever_arm(n, i) * s;
+        ax += -ai * s - wi * wi * c;
+        ay += ai * c - wi * wi * s;
+    }
+    let l = chain.rod_length();
+    // `T + V`; the products are kept in the order the committed data were
+    // made with (`m l l`, then 1/2).
+    let ml2 = chain.mass() * l * l;
+    let mut e = 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v;
+    if chain.tip_mass() != 0.0 {
+        // The tip mass: `(M_t / 2) |v_tip|^2 + M_t g y_tip`, `y_tip = l sum sin phi`
+        // (a second pass, only for a chain that has one).
+        let [vx, vy] = sums.tip_velocity(l);
+        let y_tip: f64 = phi.iter().map(|p| l * p.sin()).sum();
+        e += 0.5 * chain.tip_mass() * (vx * vx + vy * vy)
+            + chain.tip_mass() * chain.gravity() * y_tip;
+    }
+    Observed {
+        energy: if chain.bending_spring() != 0.0 {
+            e + bending_energy(chain, phi)
+        } else {
+            e
+        },
+        tip_velocity: sums.tip_velocity(l),
+        tip_acceleration: [l * ax, l * ay],
+    }
+}
+
+/// [`rigid_pass`] for unequal rods (masses `mu_i m`, lengths `lambda_i l`).
+fn rods_pass(chain: &Chain, rods: &Rods, y: &[f64], f: Option<&[f64]>) -> Observed {
+    let n = chain.links();
+    let (phi, w) = (&y[..n], &y[n..2 * n]);
+    let acc = |i: usize| f.map_or(0.0, |f| f[n + i]);
+    let mut sums = RodSums::default();
+    let (mut ax, mut ay) = (0.0, 0.0);
+    let (mut joint, mut v) = (0.0, 0.0);
+    for i in 0..n {
+        let (s, c) = crate::scalar::sin_cos(phi[i]);
+        let (wi, ai) = (w[i], acc(i));
+        let (mu, lam) = (rods.mass[i], rods.length[i]);
+        sums.add_rod(s, c, wi, mu, lam);
+        v += mu * (joint + 0.5 * lam * s);
+        joint += lam * s;
+        ax += lam * (-ai * s - wi * wi * c);
+        ay += lam * (ai * c - wi * wi * s);
+    }
+    let l = chain.rod_length();
+    let ml2 = chain.mass() * l * l;
+    let mut e = 0.5 * ml2 * sums.twice_kinetic + chain.mass() * chain.gravity() * l * v;
+    if chain.tip_mass() != 0.0 {
+        // `(M_t / 2) |v_tip|^2 + M_t g y_tip`, the tip's height `l joint`.
+        let [vx, vy] = sums.tip_velocity(l);
+        e += 0.5 * chain.tip_mass() * (vx * vx + vy * vy)
+            + chain.tip_mass() * chain.gravity() * (l * joint);
+    }
+    if chain.bending_spring() != 0.0 {
+        e += bending_energy(chain, phi);
+    }
+    Observed {
+        energy: e,
+        tip_velocity: sums.tip_velocity(l),
+        tip_acceleration: [l * ax, l * ay],
+    }
+}
+
+/// `auto`'s start on a rigid chain, as its doc says: BDF (`None`) at or past
+/// the crossover damping rate, DOP853 at `rtol <= 1e-8`, DOPRI5 otherwise.
+pub(crate) fn rigid_auto_start(chain: &Chain, rtol: f64) -> Option<Method> {
+    if chain.stiffest_damping_rate() >= bdf_crossover_gamma(chain) {
+        None
+    } else if rtol <= crate::solve::AUTO_DOP853_RTOL {
+        Some(Method::Dop853)
+    } else {
+        Some(Method::Dopri5)
+    }
+}

@@ -1,0 +1,200 @@
+//! What a run's summary reads from its states, by asking the model: the
+//! energy balance `E + W = E(0)`, the largest rise of `E`, the continuous
+//! maximum of the tip speed and, where the model tracks it, of the
+//! support force. One [`Model::observe`] pass per step.
+
+use super::recorder::{ContinuousMax, Recorder};
+use crate::model::Model;
+use crate::ode::StepView;
+
+/// The fraction of the energy scale plus the work done (its total
+/// variation) that the energy balance error of a run with a prescribed
+/// pivot motion may reach and still be `ok` (see
+/// [`Tally::balance_limit`]). Measured on `scenes/jerked-support.toml`
+/// (energy scale 60) at its rtol 1e-8: a balance error of 2.2e-5 with
+/// DOPRI5 and 1.2e-6 with DOP853, under 4e-7 of the scale; BDF stepping
+/// over a jerk of `tau = 1e-6` leaves 5, 0.08 of it
+/// (`simulate scenes/jerked-support.toml --json --method bdf --set
+/// pivot.jerk_time=1e-6`).
+pub const DRIVE_BALANCE_FRACTION: f64 = 0.01;
+
+/// NaN-propagating maximum: `f64::max` would drop a NaN and hide it.
+fn max_nan(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
+/// The summary's running values.
+pub(crate) struct Tally {
+    /// `E` at the start.
+    pub energy_start: f64,
+    /// `E` at the last step.
+    pub energy_end: f64,
+    /// `max |E + W - E(0)|` over the steps.
+    pub energy_balance_error: f64,
+    /// The largest rise of `E` over one step.
+    pub max_energy_rise: f64,
+    /// The tip speed's continuous maximum.
+    pub tip_speed: ContinuousMax,
+    /// The support force's largest magnitude at a step's end (models that
+    /// track it).
+    pub support_force_max: f64,
+    /// Where it was.
+    pub t_support_force_max: f64,
+    /// The energy balance error above which a run is not a solution of the
+    /// model: the model's energy scale.
+    energy_scale: f64,
+    /// A driven support only: the total variation `sum |W_{k+1} - W_k|` of
+    /// the work over the steps so far, the size of the work the drive and
+    /// the friction did, against which the balance is judged
+    /// ([`DRIVE_BALANCE_FRACTION`]).
+    work_variation: f64,
+    /// `W` at the last step's end.
+    work_last: f64,
+    driven: bool,
+    /// Index of `W` in the state, if the model keeps it.
+    work: Option<usize>,
+    /// The first time the energy balance error exceeded the limit, if it
+    /// did: a run that would be `ok` then ends `inaccurate` (see `solve`).
+    pub t_inaccurate: Option<f64>,
+    started: bool,
+    buf: Vec<f64>,
+    trig: Vec<(f64, f64)>,
+}
+
+impl Tally {
+    /// The tally of a run of `model`.
+    pub fn new<M: Model>(model: &M) -> Self {
+        let layout = model.layout();
+        Self {
+            energy_start: 0.0,
+            energy_end: 0.0,
+            energy_balance_error: 0.0,
+            max_energy_rise: 0.0,
+            tip_speed: ContinuousMax::default(),
+            support_force_max: 0.0,
+            t_support_force_max: 0.0,
+            energy_scale: model.energy_scale(),
+            work_variation: 0.0,
+            work_last: 0.0,
+            driven: model.is_driven(),
+            work: layout.work,
+            t_inaccurate: None,
+            started: false,
+            buf: vec![0.0; layout.dim],
+            trig: vec![(0.0, 0.0); layout.links],
+        }
+    }
+
+    /// `W` in `y` (0 for a model without it).
+    pub fn work_of(&self, y: &[f64]) -> f64 {
+        self.work.map_or(0.0, |i| y[i])
+    }
+
+    /// The balance error above which the run is `inaccurate`: the energy
+    /// scale; with a driven support, at most [`DRIVE_BALANCE_FRACTION`] of
+    /// the scale plus the work's total variation (never looser than the
+    /// scale).
+    pub fn balance_limit(&self) -> f64 {
+        if self.driven {
+            let drive = DRIVE_BALANCE_FRACTION * (self.energy_scale + self.work_variation);
+            drive.min(self.energy_scale)
+        } else {
+            self.energy_scale
+        }
+    }
+
+    fn note_support_force<M: Model>(&mut self, model: &M, t: f64, y: &[f64]) {
+        if model.tracks_support_force() {
+            let f = model.support_force(t, y);
+            let f = f[0].hypot(f[1]);
+            if f > self.support_force_max || f.is_nan() {
+                self.support_force_max = f;
+                self.t_support_force_max = t;
+            }
+        }
+    }
+
+    /// The start (a continuation goes on with the tally).
+    pub fn start<M: Model>(
+        &mut self,
+        model: &M,
+        rec: &mut Recorder,
+        t0: f64,
+        y0: &[f64],
+        f0: &[f64],
+    ) {
+        if self.started {
+            return;
+        }
+        self.started = true;
+        let m = model.observe(t0, y0, f0, &mut self.trig);
+        self.energy_start = m.energy;
+        self.work_last = self.work_of(y0);
+        self.energy_end = m.energy;
+        let speed = m.tip_velocity[0].hypot(m.tip_velocity[1]);
+        let slope = 2.0
+            * (m.tip_velocity[0] * m.tip_acceleration[0]
+                + m.tip_velocity[1] * m.tip_acceleration[1]);
+        self.tip_speed.start(t0, speed, slope);
+        self.note_support_force(model, t0, y0);
+        rec.note_finite(t0, &[m.energy, self.tip_speed.value]);
+    }
+
+    /// An accepted step.
+    pub fn step<M: Model>(&mut self, model: &M, rec: &mut Recorder, step: &StepView<'_>) {
+        let m = model.observe(step.t1, step.y1, step.f1, &mut self.trig);
+        let work = self.work_of(step.y1);
+        self.energy_balance_error = max_nan(
+            self.energy_balance_error,
+            (m.energy + work - self.energy_start).abs(),
+        );
+        if self.driven {
+            self.work_variation += (work - self.work_last).abs();
+            self.work_last = work;
+        }
+        if self.t_inaccurate.is_none() && self.energy_balance_error > self.balance_limit() {
+            self.t_inaccurate = Some(step.t1);
+        }
+        self.max_energy_rise = max_nan(self.max_energy_rise, m.energy - self.energy_end);
+        self.energy_end = m.energy;
+
+        let speed = m.tip_velocity[0].hypot(m.tip_velocity[1]);
+        let slope = 2.0
+            * (m.tip_velocity[0] * m.tip_acceleration[0]
+                + m.tip_velocity[1] * m.tip_acceleration[1]);
+        let buf = &mut self.buf;
+        self.tip_speed.step(step.t0, step.t1, speed, slope, |t| {
+            step.interpolant.eval(t, buf);
+            let v = model.tip_velocity(t, buf);
+            v[0].hypot(v[1])
+        });
+        self.note_support_force(model, step.t1, step.y1);
+        rec.note_finite(
+            step.t1,
+            &[
+                m.energy,
+                self.energy_balance_error,
+                self.max_energy_rise,
+                self.tip_speed.value,
+            ],
+        );
+    }
+
+    /// The run's end at `t` in `y`: a run that stopped before its first
+    /// right-hand side was finite has the start's energies and speed, from
+    /// the state alone (not the zeros the tally was made with).
+    pub fn finish<M: Model>(&mut self, model: &M, rec: &mut Recorder, t: f64, y: &[f64]) {
+        if self.started {
+            return;
+        }
+        self.energy_start = model.energy(t, y);
+        self.energy_end = self.energy_start;
+        let v = model.tip_velocity(t, y);
+        self.tip_speed.start(t, v[0].hypot(v[1]), 0.0);
+        rec.note_finite(t, &[self.energy_start, self.tip_speed.value]);
+    }
+}
