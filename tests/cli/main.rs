@@ -31,3 +31,4 @@ mod simulate;
 mod study;
 mod sweep;
 mod view;
+mod wind_model;

@@ -63,8 +63,8 @@ pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
     BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed, ReportChain, RigidModel,
 };
+pub use ode::{BandedDae, Interpolant, OdeSystem, Problem, SemiExplicitDae, StepView};
 pub use ode::{Cancel, Stats, Status};
-pub use ode::{Interpolant, StepView};
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};

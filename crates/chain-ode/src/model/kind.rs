@@ -163,6 +163,9 @@ impl Model for ModelKind {
     fn tracks_support_force(&self) -> bool {
         each!(self, m => m.tracks_support_force())
     }
+    fn refines_tip_speed(&self) -> bool {
+        each!(self, m => m.refines_tip_speed())
+    }
     fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
         each!(self, m => m.momentum(t, y))
     }

@@ -202,6 +202,14 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq {
         false
     }
 
+    /// True when the summary's tip speed maximum is refined inside the
+    /// steps on the continuous extension (the chains'); false keeps the
+    /// step ends' values only, so that a benchmark's work counters are its
+    /// integrator's alone (a lazy dense output costs right-hand sides).
+    fn refines_tip_speed(&self) -> bool {
+        true
+    }
+
     /// The momentum relative to the support.
     fn momentum(&self, _t: f64, _y: &[f64]) -> Vec2 {
         [0.0, 0.0]

@@ -139,6 +139,11 @@ impl Tally {
         let slope = 2.0
             * (m.tip_velocity[0] * m.tip_acceleration[0]
                 + m.tip_velocity[1] * m.tip_acceleration[1]);
+        let slope = if model.refines_tip_speed() {
+            slope
+        } else {
+            0.0
+        };
         self.tip_speed.start(t0, speed, slope);
         self.note_support_force(model, t0, y0);
         rec.note_finite(t0, &[m.energy, self.tip_speed.value]);
@@ -167,6 +172,11 @@ impl Tally {
             * (m.tip_velocity[0] * m.tip_acceleration[0]
                 + m.tip_velocity[1] * m.tip_acceleration[1]);
         let buf = &mut self.buf;
+        let slope = if model.refines_tip_speed() {
+            slope
+        } else {
+            0.0
+        };
         self.tip_speed.step(step.t0, step.t1, speed, slope, |t| {
             step.interpolant.eval(t, buf);
             let v = model.tip_velocity(t, buf);
