@@ -58,7 +58,7 @@ pub fn lever_arm(n: usize, i: usize) -> f64 {
 /// in `l`): the velocity of the current joint `sum_j w_j (-sin phi_j, cos phi_j)`
 /// and twice the kinetic energy in units of `m l^2`. [`RodSums::add`] is
 /// the one per-rod kernel of the tip velocity and the kinetic energy, here
-/// and in the solver's fused per-step pass (`solve/observer.rs`).
+/// and in the models' fused per-step pass (`model/rigid.rs`).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct RodSums {
     /// Velocity of the lower joint of the last rod added (the tip once

@@ -27,7 +27,7 @@
 //!   O(n) BDF runs on) and [`ChainSystem`] (the right-hand side `y' = f(y)`
 //!   and its Jacobian-vector product, as inherent methods);
 //! * the report's own model, as a control: [`report`] ([`report::ReportModel`],
-//!   its errata as switches) run by [`solve_report`];
+//!   its errata as switches), whose model [`ReportChain`] runs by [`solve`];
 //! * errors with their fields: [`InvalidParameter`], [`StartError`].
 //!
 //! Everything else is internal: the interface between problems and methods

@@ -59,7 +59,7 @@ pub struct ReportModel {
     /// rows `D_1`, `D_n` above); only the printed equation has the other.
     pub printed_friction_sign: bool,
     /// Erratum 4: `rk4` runs the report's stepper (explicit Euler in
-    /// `phi`, RK4 stages in `w` at frozen angles: `solve_report`) instead
+    /// `phi`, RK4 stages in `w` at frozen angles: [`crate::model::ReportChain`]) instead
     /// of RK4.
     pub stepper: bool,
 }

@@ -1,7 +1,7 @@
 //! Classical fixed-step RK4 on the whole state (angles and rates together),
 //! with the cubic Hermite interpolant as its continuous extension, and the
 //! one fixed-step loop ([`integrate`] over a [`FixedStep`]), which the
-//! report's stepper (`report_run.rs`) shares.
+//! report's stepper (`report_stepper.rs`) shares.
 
 use super::integrator::{Integrator, Span};
 use crate::ode::{
