@@ -3,9 +3,11 @@
 //! A file is written to a temporary file beside its target (same directory,
 //! so the rename cannot cross file systems), flushed, synced and renamed
 //! over the target. On any error the temporary file is removed and the
-//! target is left as it was. It lives here because this crate depends on
-//! nothing of the project: `falling-chain` (its `--out` files) and `xtask`
-//! (figure data, README, paper) write through it too.
+//! target is left as it was. It is a crate of its own, depending on
+//! nothing, so that every writer of the project reaches it without a
+//! drawing or a solver: the figures crate (its PNG and SVG files),
+//! fc-scene (the CLI's and Python's `--out` files), `paper` and `xtask`
+//! (figure data, README, paper) all write through it.
 //!
 //! What a target may be ([`output_target`]): absent, or a regular file, or
 //! a symbolic link whose final target is a regular file, which is then

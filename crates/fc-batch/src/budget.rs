@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use chain_ode::Cancel;
 
-use crate::error::Error;
+use fc_scene::error::Error;
 
 /// The largest budget (s): 30 days.
 pub const MAX_BUDGET: f64 = 30.0 * 86_400.0;
@@ -22,7 +22,7 @@ pub fn check_budget(what: &str, seconds: f64) -> Result<f64, Error> {
             what,
             format!(
                 "must be a number of seconds in (0, {MAX_BUDGET}] (got {})",
-                crate::error::number(seconds)
+                fc_scene::error::number(seconds)
             ),
         ))
     }

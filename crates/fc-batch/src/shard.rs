@@ -1,5 +1,6 @@
 //! Runs split across machines and joined again: a study's runs are numbered,
-//! `--shard I/N` takes runs `I, I + N, ...` ([`crate::sweep::Shard`]), and
+//! `--shard I/N` takes runs `I, I + N, ...` ([`Shard`]; a sweep's and a
+//! study's alike), and
 //! every row records where it comes from ([`Provenance`]: the number of runs
 //! of the whole study and a hash of its scene and options), so that
 //! [`merge`] can refuse shards of different studies, a missing run and a
@@ -12,9 +13,49 @@
 
 use std::collections::BTreeMap;
 
-use crate::error::{echo, Error};
-use crate::scene::Scene;
-use crate::sweep::MAX_RUNS;
+use fc_scene::error::{echo, Error};
+use fc_scene::scene::Scene;
+
+/// The most runs a sweep or a study may have (a sweep's: the product of
+/// the `--vary` counts).
+pub const MAX_RUNS: usize = 1_000_000;
+
+/// A slice of a sweep or a study (`--shard I/N`): runs `index, index + count, ...`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `I/N` with `0 <= I < N`.
+    pub fn parse(spec: &str) -> Result<Self, Error> {
+        let bad = || {
+            Error::field(
+                "--shard",
+                format!(
+                    "must be I/N with integers 0 <= I < N (got '{}')",
+                    echo(spec)
+                ),
+            )
+        };
+        let (i, n) = spec.split_once('/').ok_or_else(bad)?;
+        let (index, count): (usize, usize) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    /// Whether run number `run` is this shard's.
+    pub fn takes(&self, run: usize) -> bool {
+        run % self.count == self.index
+    }
+}
+
 
 /// The columns a study's table ends with.
 pub const COLUMNS: [&str; 2] = ["runs", "scene_hash"];
@@ -115,7 +156,7 @@ pub fn read(paths: &[std::path::PathBuf]) -> Result<Vec<(String, String)>, Error
                     "shard",
                     format!(
                         "'{}' is not a regular file of at most {MAX_SHARD_BYTES} bytes",
-                        crate::error::echo_path(path)
+                        fc_scene::error::echo_path(path)
                     ),
                 ));
             }
@@ -134,7 +175,7 @@ pub const BUDGET_NOTE: &str = "budget:";
 /// study: the header, the rows without a run number (a study's shared rows,
 /// such as precision's reference, computed by every shard: the first shard's
 /// are kept), then every run in run order, each record as it stood in its
-/// file. The tables are read as RFC 4180 CSV ([`crate::csv::Reader`]: a
+/// file. The tables are read as RFC 4180 CSV ([`fc_csv::Reader`]: a
 /// scene name with a comma, a quote or a line break is one quoted cell).
 /// Refused, with one line naming the file, when a table is not CSV, the
 /// headers differ, a table lacks the `run`, `runs` or `scene_hash` column,
@@ -143,7 +184,7 @@ pub const BUDGET_NOTE: &str = "budget:";
 /// shard's `--budget` (its `note` starts with [`BUDGET_NOTE`]: run that
 /// shard again), or shards disagree on the shared rows (wall times aside).
 pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
-    use crate::csv::{Reader, Record};
+    use fc_csv::{Reader, Record};
     let err = |what: &str, why: String| Error::field("merge", format!("{}: {why}", echo(what)));
     if shards.is_empty() {
         return Err(Error::field("merge", "no shard files given"));
@@ -185,8 +226,8 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
     for (s, (name, text)) in shards.iter().enumerate() {
         let mut reader = Reader::new(text.as_bytes()).max_cells(cols.len());
         let mut record = Record::default();
-        let bad = |e: crate::csv::ReadError| match e {
-            crate::csv::ReadError::Syntax { line, what } if what.starts_with("more than") => err(
+        let bad = |e: fc_csv::ReadError| match e {
+            fc_csv::ReadError::Syntax { line, what } if what.starts_with("more than") => err(
                 name,
                 format!(
                     "line {line} has more cells than the header's {}",

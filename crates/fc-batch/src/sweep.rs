@@ -4,7 +4,7 @@
 //! `--vary KEY=START:STOP:COUNT` (COUNT values, ends included) or
 //! `--vary KEY=V1,V2,...`; several `--vary` make the Cartesian product, the
 //! last one varying fastest. Runs are numbered from 0 in that order; a shard
-//! `I/N` takes runs `I, I + N, I + 2N, ...`.
+//! `I/N` takes runs `I, I + N, I + 2N, ...` ([`Shard`]).
 //!
 //! Bounds, checked before anything is built or run: at most [`MAX_RUNS`]
 //! runs in the whole grid (the product of the value counts, multiplied with
@@ -17,15 +17,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use chain_ode::Cancel;
 use rayon::prelude::*;
 
-use crate::csv::field as csv_field;
-use crate::error::{echo, Error};
-use crate::overrides::parse_value;
-use crate::scene::Scene;
-use crate::study::shard::Provenance;
-use crate::summary::RunSummary;
+use fc_csv::field as csv_field;
+use fc_scene::error::{echo, Error};
+use fc_scene::overrides::parse_value;
+use fc_scene::scene::Scene;
+use fc_scene::summary::RunSummary;
 
-/// The most runs a sweep may have (the product of the `--vary` counts).
-pub const MAX_RUNS: usize = 1_000_000;
+use crate::shard::{Provenance, Shard, MAX_RUNS};
 
 /// The most worker threads of a sweep or a convergence ladder (`--jobs`).
 pub const MAX_JOBS: usize = 256;
@@ -50,13 +48,6 @@ pub struct Vary {
     pub key: String,
     /// The values, in run order.
     pub values: Vec<toml::Value>,
-}
-
-/// A slice of a sweep: runs `index, index + count, ...`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Shard {
-    pub index: usize,
-    pub count: usize,
 }
 
 /// One finished run of a sweep.
@@ -147,34 +138,6 @@ impl Vary {
             key: key.to_string(),
             values,
         })
-    }
-}
-
-impl Shard {
-    /// Parses `I/N` with `0 <= I < N`.
-    pub fn parse(spec: &str) -> Result<Self, Error> {
-        let bad = || {
-            Error::field(
-                "--shard",
-                format!(
-                    "must be I/N with integers 0 <= I < N (got '{}')",
-                    echo(spec)
-                ),
-            )
-        };
-        let (i, n) = spec.split_once('/').ok_or_else(bad)?;
-        let (index, count): (usize, usize) = (
-            i.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
-        );
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Self { index, count })
-    }
-
-    fn takes(&self, run: usize) -> bool {
-        run % self.count == self.index
     }
 }
 
@@ -365,7 +328,7 @@ fn value_cell(v: &toml::Value) -> String {
     }
 }
 
-/// Where a sweep's rows come from ([`crate::study::shard`]): its number of
+/// Where a sweep's rows come from ([`crate::shard`]): its number of
 /// runs and the hash of its scene and varied values (each key and value as
 /// its CSV cell), the same from the CLI and from Python.
 pub fn provenance(scene: &Scene, vary: &[Vary]) -> Result<Provenance, Error> {

@@ -6,7 +6,7 @@
 //! steps, tolerances and errors: `1e-3`). A label never holds a comma
 //! ([`text`]: semicolons instead, so the figures' tables need no quotes);
 //! a user's text that must read back as given (a scene name) is
-//! [`crate::csv::field`], quoted when it holds a comma, a quote or a line
+//! [`crate::field`], quoted when it holds a comma, a quote or a line
 //! break.
 
 /// `x` in the shortest text that reads back to `x`: `0.0005`, `4.157`, `NaN`.
@@ -26,9 +26,9 @@ pub fn opt(x: Option<f64>, f: fn(f64) -> String) -> String {
 
 /// A text cell: commas (the separator) become semicolons, and a cell that
 /// still holds a quote or a line break is quoted (RFC 4180), so that every
-/// table reads back ([`crate::csv::Reader`]).
+/// table reads back ([`crate::Reader`]).
 pub fn text(s: &str) -> String {
-    crate::csv::field(&s.replace(',', ";")).into_owned()
+    crate::field(&s.replace(',', ";")).into_owned()
 }
 
 /// `x` with `decimals` decimals (long per-sample tables, wall times).
@@ -55,7 +55,7 @@ pub fn short_err(e: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::super::table::parse_num;
+    use crate::table::parse_num;
     use super::*;
 
     #[test]

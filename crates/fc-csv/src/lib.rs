@@ -1,6 +1,11 @@
-//! CSV: the project's one writer of cells ([`field`]) and its one reader
-//! ([`Reader`], [`records`]), RFC 4180 both ways, and a trajectory's samples,
-//! one row each.
+//! The CSV layer: the project's one writer of cells ([`field`]) and its one
+//! reader ([`Reader`], [`records`], and [`table::Table`] for a table read
+//! whole), RFC 4180 both ways, with the number formats of every table
+//! ([`format`]). It knows no chain and no solver: fc-scene writes a run's
+//! samples and summary rows with it, fc-batch its sweep rows and merged
+//! shards, fc-study and fc-paper-figures their tables, the Python module
+//! reads tables back with it, and `paper` fills its numbers from
+//! `figures/data/` through [`table::Table`].
 //!
 //! The dialect: records end in `\n` or `\r\n`; cells are separated by
 //! commas; a cell that holds a comma, a quote or a line break is quoted
@@ -11,11 +16,12 @@
 //! cell, text after a closing quote or a quoted cell never closed is an
 //! error naming its line.
 
+pub mod format;
+pub mod table;
+
 use std::borrow::Cow;
 use std::fmt;
-use std::io::{self, BufRead, Write};
-
-use chain_ode::Trajectory;
+use std::io::{self, BufRead};
 
 /// A text cell, quoted (RFC 4180) if it holds a comma, a quote or a line break.
 pub fn field(text: &str) -> Cow<'_, str> {
@@ -294,69 +300,6 @@ pub fn records(text: &str) -> Result<Vec<Vec<String>>, ReadError> {
     Ok(out)
 }
 
-/// The header of a trajectory CSV for `links` rods:
-/// `t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,...,phi_n`.
-pub fn trajectory_header(links: usize) -> String {
-    let mut h = String::from("t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated");
-    for i in 1..=links {
-        h.push_str(&format!(",phi_{i}"));
-    }
-    h
-}
-
-/// Writes the header and one row per sample of `traj`. Numbers are written
-/// with `{}`, which round-trips every `f64`. Tip position, tip velocity and
-/// energy are computed exactly from each sample's state, for either model
-/// (the trajectory's accessors); `phi_i` are the rods' angles.
-pub fn write_trajectory<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
-    writeln!(w, "{}", trajectory_header(traj.chain.links()))?;
-    let mut line = String::new();
-    for (k, s) in traj.samples().enumerate() {
-        let p = traj.tip(k);
-        let v = traj.tip_velocity(k);
-        let e = traj.energy(k);
-        line.clear();
-        line.push_str(&format!(
-            "{},{},{},{},{},{},{}",
-            s.t, p[0], p[1], v[0], v[1], e, s.dissipated
-        ));
-        for a in s.angles {
-            line.push(',');
-            line.push_str(&a.to_string());
-        }
-        writeln!(w, "{line}")?;
-    }
-    Ok(())
-}
-
-/// The header of a joint-force CSV for `links` rods:
-/// `t,tension_0,shear_0,...,tension_n,shear_n` (joint 0 is the pivot,
-/// joint n the free tip).
-pub fn forces_header(links: usize) -> String {
-    let mut h = String::from("t");
-    for k in 0..=links {
-        h.push_str(&format!(",tension_{k},shear_{k}"));
-    }
-    h
-}
-
-/// Writes the header and one row per sample of `traj`: its time and the
-/// joint forces ([`Trajectory::joint_forces`]: the rigid chain's from its
-/// banded DAE, the elastic chain's from its springs).
-pub fn write_forces<W: Write + ?Sized>(w: &mut W, traj: &Trajectory) -> io::Result<()> {
-    writeln!(w, "{}", forces_header(traj.chain.links()))?;
-    let mut line = String::new();
-    for k in 0..traj.len() {
-        line.clear();
-        line.push_str(&traj.times[k].to_string());
-        for [tension, shear] in traj.joint_forces(k) {
-            line.push_str(&format!(",{tension},{shear}"));
-        }
-        writeln!(w, "{line}")?;
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -426,14 +369,5 @@ mod tests {
         let mut reader = Reader::new("a,b,c\n".as_bytes()).max_cells(2);
         let e = reader.read(&mut Record::default()).unwrap_err().to_string();
         assert_eq!(e, "line 1: more than 2 cells");
-    }
-
-    #[test]
-    fn header_has_one_angle_column_per_rod() {
-        let h = trajectory_header(3);
-        assert_eq!(
-            h,
-            "t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,phi_2,phi_3"
-        );
     }
 }

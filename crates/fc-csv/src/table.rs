@@ -1,7 +1,7 @@
 //! A CSV table read whole (the study's tables, `figures/data/`): the
 //! header and the rows as text, with columns by name.
 //!
-//! The dialect is the project's one, RFC 4180 ([`crate::csv::Reader`]): a
+//! The dialect is the project's one, RFC 4180 ([`crate::Reader`]): a
 //! header record, then one record per row; a text cell holding a comma, a
 //! quote or a line break is quoted ([`super::format::text`] writes the
 //! figures' labels with semicolons for commas, so their tables need no
@@ -32,9 +32,9 @@ impl Table {
 
     /// Parses the text of a CSV file called `name`.
     pub fn parse(name: &str, text: &str) -> Result<Table, String> {
-        let mut reader = crate::csv::Reader::new(text.as_bytes());
-        let mut record = crate::csv::Record::default();
-        let bad = |e: crate::csv::ReadError| format!("{name}: {e}");
+        let mut reader = crate::Reader::new(text.as_bytes());
+        let mut record = crate::Record::default();
+        let bad = |e: crate::ReadError| format!("{name}: {e}");
         if !reader.read(&mut record).map_err(bad)? {
             return Err(format!("{name}: empty"));
         }

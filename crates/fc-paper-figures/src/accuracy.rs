@@ -11,9 +11,9 @@
 
 use std::fmt::Write as _;
 
-use super::format::num;
-use crate::scene::Prepared;
-use crate::RunSummary;
+use fc_csv::format::num;
+use fc_scene::scene::Prepared;
+use fc_scene::RunSummary;
 
 /// RK4's steps: `0.01` halved three times, and `0.0035`, the report's step
 /// `0.01` in its clock converted to ours at `n = 50` (`docs/model.md`,

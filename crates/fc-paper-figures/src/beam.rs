@@ -13,7 +13,7 @@ use chain_ode::beam::REFERENCE;
 use chain_ode::{solve_beam, BeamRun, Method};
 use rayon::prelude::*;
 
-use crate::study::format::{exp, exp_digits, num};
+use fc_csv::format::{exp, exp_digits, num};
 
 /// The adaptive methods' tolerances (`rtol = atol`, the test set's way).
 pub const RTOLS: [f64; 6] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8];
@@ -123,7 +123,7 @@ pub fn timing_text(rows: &[Row]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::table::Table;
+    use fc_csv::table::Table;
 
     /// The grid holds every method, and the table reads back with one row
     /// per run and NaN errors for a failed one.

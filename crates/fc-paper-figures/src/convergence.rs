@@ -2,9 +2,9 @@
 //! (`converge::run_level`, the continuum held fixed) with its deviation from
 //! the finest, and the smallest adequate `n` by each criterion.
 
-use super::format::{num, text};
-use crate::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
-use crate::scene::Scene;
+use fc_csv::format::{num, text};
+use fc_study::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
+use fc_scene::scene::Scene;
 
 /// The columns of [`rows`].
 pub const COLUMNS: &str = "scene,links,mass,damping,bending_viscosity,damping_rate,status,\

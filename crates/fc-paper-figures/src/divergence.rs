@@ -7,10 +7,10 @@
 use chain_ode::kinematics::tip;
 use chain_ode::{solve, Method};
 
-use super::precision::reference_options;
-use super::table::Table;
-use crate::error::Error;
-use crate::scene::Prepared;
+use fc_study::precision::reference_options;
+use fc_csv::table::Table;
+use fc_scene::error::Error;
+use fc_scene::scene::Prepared;
 
 /// Size of the perturbation of the initial angles in the divergence test.
 pub const PERTURBATION: f64 = 1e-10;
@@ -96,7 +96,7 @@ pub fn evaluation(p: &Prepared, undamped: &Prepared) -> Result<(String, f64), St
 /// for each `(damping, divergence)` (the amplification is the separation
 /// over [`PERTURBATION`]).
 pub fn csv_text(runs: &[(f64, &Divergence)]) -> String {
-    use super::format::{exp, num};
+    use fc_csv::format::{exp, num};
     let mut csv = String::from("damping,t,tip_separation,amplification\n");
     for (r, d) in runs {
         for &(t, sep) in &d.curve {
@@ -124,7 +124,7 @@ pub fn note(t: &Table) -> Result<String, String> {
         match separation(&curve) {
             Some(k) => format!(
                 "×{} by t = {:.2}",
-                super::format::short_err(AMPLIFICATION_MAX),
+                fc_csv::format::short_err(AMPLIFICATION_MAX),
                 curve[k].0
             ),
             None => format!(
@@ -133,10 +133,10 @@ pub fn note(t: &Table) -> Result<String, String> {
             ),
         }
     };
-    match super::table::distinct(&damping)[..] {
+    match fc_csv::table::distinct(&damping)[..] {
         [scene, undamped] => Ok(format!(
             "runs {} apart: {} (r = 0: {})",
-            super::format::exp(PERTURBATION),
+            fc_csv::format::exp(PERTURBATION),
             fmt(scene),
             fmt(undamped)
         )),

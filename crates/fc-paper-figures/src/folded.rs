@@ -19,8 +19,8 @@ use chain_ode::dynamics::{accelerations, Workspace};
 use chain_ode::{solve, Method, SolveOptions, Start, Trajectory, Vec2};
 use rayon::prelude::*;
 
-use super::format::{fixed, num, opt};
-use crate::scene::Scene;
+use fc_csv::format::{fixed, num, opt};
+use fc_scene::scene::Scene;
 
 /// The tables of [`vs_law`]: the fall of each n
 /// (`links,t,x_over_L,v_over_sqrt_gL,v_law_over_sqrt_gL`), the times to

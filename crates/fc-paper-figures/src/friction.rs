@@ -10,10 +10,10 @@
 
 use std::fmt::Write as _;
 
-use super::format::{exp, num};
+use fc_csv::format::{exp, num};
 use super::span_check::refined;
-use crate::scene::Scene;
-use crate::sweep::{self, Vary};
+use fc_scene::scene::Scene;
+use fc_batch::sweep::{self, Vary};
 
 /// DOPRI5's `rtol` at the scene's own `n` (`atol = rtol / 100`).
 pub const RTOL: f64 = 1e-10;

@@ -8,7 +8,7 @@ use std::fs;
 use std::process::Command;
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use super::format::text;
+use fc_csv::format::text;
 
 /// The value of the first line of `text` that starts with `key` (in the
 /// `key : value` form of /proc/cpuinfo and /proc/meminfo).
@@ -91,7 +91,7 @@ mod tests {
 
     #[test]
     fn the_machine_is_one_row() {
-        let t = crate::study::table::Table::parse("machine", &csv()).unwrap();
+        let t = fc_csv::table::Table::parse("machine", &csv()).unwrap();
         assert_eq!(t.len(), 1);
     }
 }

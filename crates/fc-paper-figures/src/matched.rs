@@ -6,8 +6,8 @@
 
 use std::fmt::Write as _;
 
-use super::format::{exp, exp_digits, fixed};
-use super::table::Table;
+use fc_csv::format::{exp, exp_digits, fixed};
+use fc_csv::table::Table;
 
 /// The explicit methods `explicit-best` chooses from.
 pub const EXPLICIT: [&str; 3] = ["rk4", "dopri5", "dop853"];

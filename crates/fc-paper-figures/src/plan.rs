@@ -7,10 +7,10 @@
 
 use chain_ode::Method;
 
-use super::format::{exp, exp_digits, text};
-use super::precision::{self, params, Checks, Plan, Point, Reference};
-use super::table::Table;
-use crate::scene::Prepared;
+use fc_csv::format::{exp, exp_digits, text};
+use fc_study::precision::{self, params, Checks, Plan, Point, Reference};
+use fc_csv::table::Table;
+use fc_scene::scene::Prepared;
 
 /// The plan of every method's every point from a timing table
 /// (`method,param,plan`), in [`Method::ALL`] order.
@@ -101,7 +101,7 @@ pub enum Eval {
 /// [`Eval::BeforeSeparation`]), the points ([`tables`], `""`) and, when
 /// timed (`plan` is `None`), `-timing` and `-cost-timing` (what BDF's
 /// units cost against a right-hand side at the start,
-/// [`super::work_cost::csv_text`]). `prepare` gives the scene with the
+/// [`fc_study::work_cost::csv_text`]). `prepare` gives the scene with the
 /// overrides passed (`chain.damping=0`, `run.t_end=...`) and no samples.
 pub fn figure(
     scene: &str,
@@ -125,7 +125,7 @@ pub fn figure(
         files.push(("-timing", timing));
         files.push((
             "-cost-timing",
-            super::work_cost::csv_text(&p.chain, &p.state)?,
+            fc_study::work_cost::csv_text(&p.chain, &p.state)?,
         ));
     }
     Ok(files)
@@ -139,7 +139,7 @@ pub fn timing_text(rows: &[Point]) -> String {
         let wall = if pt.walls.is_empty() {
             String::new()
         } else {
-            exp_digits(super::median(&pt.walls), 3)
+            exp_digits(fc_study::median(&pt.walls), 3)
         };
         csv.push_str(&format!(
             "{},{},{},{},{},{wall},{}\n",

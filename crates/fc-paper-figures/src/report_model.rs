@@ -11,9 +11,9 @@ use std::fmt::Write as _;
 use chain_ode::report::{finite_difference_tip_speeds, ReportModel};
 use chain_ode::{solve_report, Method, Trajectory};
 
-use super::format::{fixed, num};
-use crate::render;
-use crate::scene::Scene;
+use fc_csv::format::{fixed, num};
+use fc_study::render;
+use fc_scene::scene::Scene;
 
 /// The report's step over a span `t` of its clock: its code steps over
 /// `linspace(0, t, 100 t)`, so `dt = t / (100 t - 1)` (0.01001 at t = 10),
@@ -232,7 +232,7 @@ mod tests {
     use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
     use super::*;
-    use crate::study::report::linspace;
+    use crate::report::linspace;
 
     #[test]
     fn the_step_is_that_of_the_reports_linspace() {

@@ -11,8 +11,8 @@ use std::time::Instant;
 
 use chain_ode::{dense, Chain, ChainSystem};
 
-use super::format::{exp, fixed};
-use super::{log_slope, median};
+use fc_csv::format::{exp, fixed};
+use fc_study::{log_slope, median};
 
 /// Rods for the O(n) recursion.
 pub const FAST_N: [usize; 10] = [25, 50, 100, 200, 400, 1000, 2000, 4000, 7000, 10000];

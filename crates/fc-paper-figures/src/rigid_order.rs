@@ -21,12 +21,12 @@
 
 use std::fmt::Write as _;
 
-use super::format::{exp, exp_digits, fixed};
-use super::log_slope;
-use super::rigid_limit::{elastic, rigid};
-use crate::converge::{run_level, Deviation};
-use crate::error::Error;
-use crate::scene::Scene;
+use fc_csv::format::{exp, exp_digits, fixed};
+use fc_study::log_slope;
+use fc_study::rigid_limit::{elastic, rigid};
+use fc_study::converge::{run_level, Deviation};
+use fc_scene::error::Error;
+use fc_scene::scene::Scene;
 
 /// DOP853's `rtol` for every run (`atol = rtol / 100`).
 pub const RTOL: f64 = 1e-10;

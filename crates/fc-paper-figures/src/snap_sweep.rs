@@ -5,9 +5,9 @@
 
 use rayon::prelude::*;
 
-use super::snap::{self, Options, Snap, SNAP_HEADER};
-use crate::converge::refined_scene;
-use crate::scene::Scene;
+use fc_study::snap::{self, Options, Snap, SNAP_HEADER};
+use fc_study::converge::refined_scene;
+use fc_scene::scene::Scene;
 
 /// One case of links: its label, `EA` (`None`: rigid links), `EI`, whether
 /// the joint friction is kept (else `chain.damping = 0`), and the largest
@@ -53,7 +53,7 @@ pub fn sweep(
         .map(|&(sc, va, n, t_end)| {
             let (scene, base, _) = scenes[sc];
             let (variant, ea, ei, friction, _) = cases[va];
-            let err = |e: crate::Error| format!("{scene} {variant} n = {n}: {e}");
+            let err = |e: fc_scene::Error| format!("{scene} {variant} n = {n}: {e}");
             let mut set = vec![format!("chain.bending_stiffness={ei}")];
             if let Some(ea) = ea {
                 set.push(format!("chain.axial_stiffness={ea:e}"));

@@ -1,14 +1,14 @@
 //! The tables of the snap's tension wave (`snap-tension`, drawn by
 //! `super::plot::elastic::snap_tension`) from one measured run of
-//! [`super::snap::measure`]: the tension along the chain at six times, the
+//! [`fc_study::snap::measure`]: the tension along the chain at six times, the
 //! support force around the snap, and the run's peak and times.
 
 use std::fmt::Write as _;
 
 use chain_ode::Trajectory;
 
-use super::format::{fixed, num};
-use super::snap::{tension_profiles, Snap};
+use fc_csv::format::{fixed, num};
+use fc_study::snap::{tension_profiles, Snap};
 
 /// The times of the profiles: the tip's maximum speed `t_v` (the tip is
 /// arrested), four equal steps from it to the peak of the support force

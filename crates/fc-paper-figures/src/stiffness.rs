@@ -37,9 +37,9 @@ use std::fmt::Write as _;
 
 use chain_ode::{bdf_crossover_gamma, solve, Chain, Method, SolveOptions, Start, State};
 
-use super::format::{exp, exp_digits, fixed};
+use fc_csv::format::{exp, exp_digits, fixed};
 use super::matched::time_at;
-use super::precision::Reference;
+use fc_study::precision::Reference;
 
 /// End of each run: past the whip of the span d = 3 fall.
 pub const T_END: f64 = 3.0;

@@ -10,7 +10,7 @@ use chain_ode::analysis::{first_time_below, tip_track};
 use chain_ode::{solve, tip_mass_law, Chain, ChainParams, Method, SolveOptions, Start, Vec2};
 use rayon::prelude::*;
 
-use crate::study::format::num;
+use fc_csv::format::num;
 
 /// One mass ratio's run against the law.
 #[derive(Clone, Debug, PartialEq)]

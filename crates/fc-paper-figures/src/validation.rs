@@ -11,8 +11,8 @@ use chain_ode::kinematics::{kinetic_energy, potential_energy};
 use chain_ode::modes::hanging_frequencies;
 use chain_ode::{Chain, Trajectory};
 
-use super::format::num;
-use super::linear_fit;
+use fc_csv::format::num;
+use fc_study::linear_fit;
 
 /// The energy `E = T + V`, the dissipated work `W` and the balance
 /// `(E + W - E(0)) / (M g L)` at every sample of each run:

@@ -16,9 +16,9 @@ use std::path::Path;
 use chain_ode::Trajectory;
 use serde_json::Value;
 
-use super::table::Table;
-use crate::summary::RunSummary;
-use crate::viewer::{ViewRun, DATA_BUDGET_BYTES};
+use fc_csv::table::Table;
+use fc_scene::summary::RunSummary;
+use fc_viewer::{ViewRun, DATA_BUDGET_BYTES};
 
 /// The summary fields the page's table shows.
 pub const SHOWN: [&str; 10] = [
@@ -38,7 +38,7 @@ pub const SHOWN: [&str; 10] = [
 /// (`key,value`).
 pub fn tables(name: &str, traj: &Trajectory) -> Result<(String, String), String> {
     let mut csv = Vec::new();
-    crate::csv::write_trajectory(&mut csv, traj).map_err(|e| e.to_string())?;
+    fc_scene::csv::write_trajectory(&mut csv, traj).map_err(|e| e.to_string())?;
     let csv = String::from_utf8(csv).map_err(|e| e.to_string())?;
     let summary =
         serde_json::to_value(RunSummary::from_trajectory(name, traj)).map_err(|e| e.to_string())?;
@@ -61,7 +61,7 @@ pub fn tables(name: &str, traj: &Trajectory) -> Result<(String, String), String>
 /// its peak tip speed.
 pub fn view_run(csv: &Path, summary: &Table, label: &str) -> Result<(ViewRun, f64), String> {
     let mut run =
-        crate::run_csv::read_run_csv(csv, DATA_BUDGET_BYTES).map_err(|e| e.to_string())?;
+        fc_viewer::run_csv::read_run_csv(csv, DATA_BUDGET_BYTES).map_err(|e| e.to_string())?;
     let mut fields = serde_json::Map::new();
     for (key, value) in summary.strs("key")?.iter().zip(summary.strs("value")?) {
         // A JSON string ("ok") is a quoted CSV cell, read as its text.
@@ -96,7 +96,7 @@ mod tests {
     fn the_summary_reads_back_as_written() {
         let text = "name = \"t\"\n[chain]\nlinks = 10\n[start]\nkind = \"catenary\"\n\
                     p1 = [3, 0]\n[run]\nt_end = 0.5\noutput_dt = 0.05\n";
-        let scene = crate::scene::Scene::from_toml_str(text).unwrap();
+        let scene = fc_scene::scene::Scene::from_toml_str(text).unwrap();
         let traj = scene.prepare().and_then(|p| p.solve()).unwrap();
         let (csv, shown) = tables("t", &traj).unwrap();
         let dir = std::env::temp_dir().join(format!("viewer-peak-{}", std::process::id()));

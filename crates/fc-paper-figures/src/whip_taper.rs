@@ -1,7 +1,7 @@
 //! The tapered whip: the largest tip speed of the chain released from the
 //! U of span d = 3 against the taper of its mass per length
 //! (`chain.taper`, base to tip), on a ladder of `n` refined by the profile
-//! ([`crate::converge::refined_scene`]: total mass, length, taper and
+//! ([`fc_study::converge::refined_scene`]: total mass, length, taper and
 //! bending viscosity `eta = r l` held fixed). For each taper the converge
 //! logic ([`converge::smallest_adequate`] on `d(vmax)`) says which `n` is
 //! converged. The figure `whip-taper` draws its table.
@@ -10,9 +10,9 @@ use std::fmt::Write as _;
 
 use rayon::prelude::*;
 
-use crate::converge::{self, Deviation, Level};
-use crate::scene::Scene;
-use crate::study::format::num;
+use fc_study::converge::{self, Deviation, Level};
+use fc_scene::scene::Scene;
+use fc_csv::format::num;
 
 /// One run of the ladder.
 #[derive(Clone, Debug, PartialEq)]

@@ -27,7 +27,7 @@ pub fn check_writable(what: &'static str, path: &Path) -> Result<(), Error> {
             io::Error::new(io::ErrorKind::NotFound, "its directory does not exist"),
         ));
     }
-    figures::atomic::check_output(path).map_err(|e| Error::write(what, path, e))
+    fc_atomic::check_output(path).map_err(|e| Error::write(what, path, e))
 }
 
 /// The file a write to `path` reaches, for telling two outputs apart: the
@@ -96,7 +96,7 @@ pub fn check_distinct(outputs: &[(&'static str, Option<&Path>)]) -> Result<(), E
 pub struct PendingOutput {
     what: &'static str,
     path: std::path::PathBuf,
-    pending: figures::atomic::Pending,
+    pending: fc_atomic::Pending,
 }
 
 /// Checks `path` as [`check_writable`] does and creates its temporary file
@@ -105,7 +105,7 @@ pub struct PendingOutput {
 pub fn begin(what: &'static str, path: &Path) -> Result<PendingOutput, Error> {
     check_writable(what, path)?;
     let pending =
-        figures::atomic::Pending::create(path).map_err(|e| Error::write(what, path, e))?;
+        fc_atomic::Pending::create(path).map_err(|e| Error::write(what, path, e))?;
     Ok(PendingOutput {
         what,
         path: path.to_path_buf(),
@@ -138,13 +138,13 @@ impl PendingOutput {
 /// Writes `path` atomically: `fill` writes into a temporary file in the same
 /// directory, which is then flushed, synced and renamed over `path`. On any
 /// error the temporary file is removed and `path` is left as it was. The
-/// writer is the figures crate's ([`figures::atomic`], the project's one);
+/// writer is the fc-atomic crate's ([`fc_atomic`], the project's one);
 /// this adds the error that names the output (`what`, e.g. `"--out"`).
 pub fn write_atomic<F>(what: &'static str, path: &Path, fill: F) -> Result<(), Error>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    figures::atomic::write_atomic(path, fill).map_err(|e| Error::write(what, path, e))
+    fc_atomic::write_atomic(path, fill).map_err(|e| Error::write(what, path, e))
 }
 
 #[cfg(test)]

@@ -25,9 +25,9 @@ use chain_ode::{Chain, Start, Vec2};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::error::Error;
-use crate::scene::Scene;
-use crate::summary::RunSummary;
+use fc_scene::error::Error;
+use fc_scene::scene::Scene;
+use fc_scene::summary::RunSummary;
 
 /// One line stating the refinement, for help texts, figures and data.
 pub const SCALING: &str = "total mass M = n m and bending viscosity eta = r l kept: \
@@ -206,7 +206,7 @@ pub struct Report {
     pub adequate_links: Option<usize>,
     pub levels: Vec<ReportLevel>,
     /// The one-line stiffness hint of the ladder's runs, if an explicit
-    /// method kept detecting stiffness ([`crate::summary::stiffness_hint_for`]).
+    /// method kept detecting stiffness ([`fc_scene::summary::stiffness_hint_for`]).
     #[serde(skip)]
     pub stiffness_hint: Option<String>,
 }
@@ -242,7 +242,7 @@ pub fn parse_links(text: &str) -> Result<Vec<usize>, Error> {
                 .ok_or_else(|| {
                     bad(format!(
                         "'{}' is not an integer in 2..=1000000 (expected N1,N2,...)",
-                        crate::error::echo(s.trim())
+                        fc_scene::error::echo(s.trim())
                     ))
                 })
         })
@@ -252,7 +252,7 @@ pub fn parse_links(text: &str) -> Result<Vec<usize>, Error> {
     if links.len() < 2 {
         return Err(bad(format!(
             "needs at least two different numbers of rods (got '{}')",
-            crate::error::echo(text)
+            fc_scene::error::echo(text)
         )));
     }
     check_ladder_length(links.len())?;
@@ -285,7 +285,7 @@ pub fn check_tol(tol: f64) -> Result<(), Error> {
             "--tol",
             format!(
                 "must be a number in [{MIN_TOL:e}, 1) (got {})",
-                crate::error::number(tol)
+                fc_scene::error::number(tol)
             ),
         ))
     }
@@ -302,7 +302,7 @@ pub fn check_rtol(what: &str, rtol: f64) -> Result<f64, Error> {
             what,
             format!(
                 "must be a number in [{lo:e}, {hi}] (got {})",
-                crate::error::number(rtol)
+                fc_scene::error::number(rtol)
             ),
         ))
     }
@@ -352,7 +352,7 @@ pub fn run_levels_until(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: Option<&chain_ode::Cancel>,
 ) -> Result<Vec<Level>, Error> {
-    let jobs = crate::sweep::check_jobs("--jobs", jobs)?;
+    let jobs = fc_batch::sweep::check_jobs("--jobs", jobs)?;
     // The report's model keeps its time unit sqrt(l / g) per rod, which
     // changes with n: its levels are not one physical problem refined.
     scene.prepare()?.require_corrected("converge")?;
@@ -423,7 +423,7 @@ pub fn report(scene: &Scene, levels: &[Level], tol: f64) -> Result<Report, Error
         bending_viscosity: bending_viscosity(&base),
         reference_links: reference.links(),
         adequate_links: adequate,
-        stiffness_hint: crate::summary::stiffness_hint_for(levels.iter().map(|l| &l.summary)),
+        stiffness_hint: fc_scene::summary::stiffness_hint_for(levels.iter().map(|l| &l.summary)),
         levels: levels
             .iter()
             .map(|l| ReportLevel {

@@ -1,57 +1,34 @@
-//! The study on any scene: work-precision ([`precision`]), where each
-//! method fails ([`stability`]), and what a scene needs ([`needs`]: rods,
-//! method and tolerance, physical terms), with their time budget
-//! ([`budget`]) and shards ([`shard`]); the tables of the convergence in
-//! n ([`convergence`]), of matched accuracy ([`matched`]) and of when two
-//! runs separate ([`divergence`]), which the paper's figures use; the `EA`
+//! The studies of any scene, as plain data: work-precision ([`precision`]),
+//! where each method fails ([`stability`]), and what a scene needs
+//! ([`needs`]: rods, method and tolerance, physical terms), sharded and
+//! budgeted by fc-batch; the convergence in n ([`converge`]); the `EA`
 //! above which a scene may use rigid links ([`rigid_limit`]); the snap's
-//! force, impulse and tension ([`snap`]).
+//! force, impulse and tension ([`snap`]); the measured unit costs that
+//! weight the implicit methods' work ([`work_cost`]).
 //!
-//! Each takes a prepared scene (or a scene) and options and returns rows of
-//! plain data, with the text of its CSV table; it knows nothing of figure
-//! files or of the paper. The CLI's `precision`, `stability`, `needs` and
-//! `merge`, Python's functions of the same names and the figures of `cargo
-//! xtask figures` (which keeps the choice of scenes and the drawing) call
-//! these.
+//! Each takes a prepared scene (or a scene) and options and returns typed
+//! rows, with the text of its CSV table (the CSV layer, fc-csv); it knows
+//! nothing of figure files or of the paper. The drawings of its tables
+//! ([`plot`], and a run's snapshots, [`render`]) are behind the `plot`
+//! feature, so that Python builds without plotters. The CLI's `precision`,
+//! `stability`, `needs`, `converge` and `merge`, Python's functions of the
+//! same names and fc-paper-figures (the paper's figures) call these.
 
-pub mod accuracy;
-pub mod beam;
-pub mod budget;
-pub mod convergence;
-pub mod divergence;
-pub mod folded;
-pub mod format;
-pub mod friction;
-pub mod machine;
-pub mod matched;
+pub mod converge;
 pub mod needs;
-pub mod plan;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod precision;
-pub mod report;
-pub mod report_model;
-pub mod report_model_tip;
-pub mod rhs_cost;
+#[cfg(feature = "plot")]
+pub mod render;
 pub mod rigid_limit;
-pub mod rigid_order;
-pub mod scene_run;
-pub mod shard;
 pub mod snap;
-pub mod snap_sweep;
-pub mod snap_tension;
-pub mod span_check;
 pub mod stability;
-pub mod stiffness;
-pub mod table;
-pub mod tip_mass;
-pub mod validation;
-pub mod viewer_peak;
-pub mod whip_taper;
 pub mod work_cost;
 
 use chain_ode::Method;
 
-use crate::error::{echo, Error};
+use fc_scene::error::{echo, Error};
 
 /// The median of `xs` (NaN if empty).
 pub fn median(xs: &[f64]) -> f64 {

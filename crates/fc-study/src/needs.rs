@@ -24,11 +24,11 @@
 use chain_ode::Method;
 use serde::Serialize;
 
-use super::budget::Budget;
+use fc_batch::budget::Budget;
 use super::precision::{self, Checks, Point};
 use crate::converge::{self, Deviation, Level};
-use crate::error::Error;
-use crate::scene::Scene;
+use fc_scene::error::Error;
+use fc_scene::scene::Scene;
 
 /// An optional physical term of the model: its name, the scene key that
 /// switches it, whether the scene has it on, and the scene with it off.
@@ -502,7 +502,7 @@ pub fn run(
                     "{} {} {}",
                     p.method,
                     p.param_name,
-                    super::format::exp(p.param)
+                    fc_csv::format::exp(p.param)
                 )
             });
         needs.skipped.extend(methods_skipped);

@@ -3,24 +3,10 @@
 //! time and against work, a line per method, [`work_precision`]) and the
 //! stability map (a panel per method, a row per scene, a cell per step or
 //! tolerance coloured by how the run ended, [`stability_map`]). Both draw
-//! from the CSV table of [`super::precision::csv_text`] or
-//! [`super::stability::csv_text`] as read back ([`Table`]), so a figure drawn
-//! from a file is the figure drawn from the computation.
-
-pub mod accuracy;
-pub mod beam;
-pub mod convergence;
-pub mod elastic;
-pub mod folded;
-pub mod friction;
-pub mod report;
-pub mod report_model;
-pub mod rigid_order;
-pub mod stiffness;
-pub mod timing;
-pub mod tip_mass;
-pub mod validation;
-pub mod whip_taper;
+//! from the CSV table of [`crate::precision::csv_text`] or
+//! [`crate::stability::csv_text`] as read back ([`Table`]), so a figure drawn
+//! from a file is the figure drawn from the computation. The paper's own
+//! drawings are fc-paper-figures' (its `plot`), which build on these.
 
 use std::path::Path;
 
@@ -29,11 +15,10 @@ use figures::{
     palette, CategoryMap, CategoryPanel, FigureError, LinePlot, Output, RGBColor, Series, Style,
 };
 
-use super::format::{exp, short_err};
-use super::plan::Eval;
-use super::stability::{Outcome, MAX_STEPS};
-use super::table::{distinct, parse_num, Table};
-use super::work_cost::{UnitWeights, Weights};
+use fc_csv::format::{exp, short_err};
+use crate::stability::{Outcome, MAX_STEPS};
+use fc_csv::table::{distinct, parse_num, Table};
+use crate::work_cost::{UnitWeights, Weights};
 
 /// What a drawing reads its tables with: the table of the given suffix
 /// (`""` for the main table, `"-law"`, `"-times"`, ...; the caller maps
@@ -45,7 +30,7 @@ pub type Reader<'a> = &'a dyn Fn(&str) -> Result<Table, String>;
 const MAX_RESERVED_LINES: f64 = 12.0;
 
 /// Errors below this are drawn at it (a log axis cannot show 0).
-const DRAW_FLOOR: f64 = 1e-16;
+pub const DRAW_FLOOR: f64 = 1e-16;
 
 fn data(e: String) -> FigureError {
     FigureError::Data(e)
@@ -244,24 +229,9 @@ pub fn work_precision(label: &str, rows: &(f64, Vec<WpPoint>), notes: Vec<String
     work_precision_weighted(label, rows, notes, None)
 }
 
-/// The paper's work-precision figure of the scene called `label`, from its
-/// tables (`""`, `-timing`, `-cost-timing` and, with
-/// [`Eval::BeforeSeparation`], `-divergence`, whose note it adds), its
-/// work weighted by the measured unit costs.
-pub fn wp_figure(read: Reader, stem: &Path, label: &str, eval: Eval) -> Result<Output, String> {
-    let rows = wp_points(&read("")?, Some(&read("-timing")?))?;
-    let weights = Weights::from_table(&read("-cost-timing")?)?;
-    let notes = match eval {
-        Eval::End => vec![],
-        Eval::BeforeSeparation => vec![super::divergence::note(&read("-divergence")?)?],
-    };
-    let pair = work_precision_weighted(label, &rows, notes, Some(weights));
-    pair.save(stem).map_err(|e| e.to_string())
-}
-
 /// As [`work_precision`], with the work of the implicit methods weighted
 /// by measured unit costs when `weights` are given
-/// ([`super::work_cost`]): every residual (with its Newton solve),
+/// ([`crate::work_cost`]): every residual (with its Newton solve),
 /// Jacobian and LU factorisation in right-hand sides.
 pub fn work_precision_weighted(
     label: &str,
@@ -530,7 +500,7 @@ pub fn stability(title: &str, csv: &str, path: &Path) -> Result<(), FigureError>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::work_cost::UnitWeights;
+    use crate::work_cost::UnitWeights;
 
     fn point(
         method: &str,

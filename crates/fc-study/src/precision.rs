@@ -18,11 +18,11 @@ use std::time::Instant;
 use chain_ode::{solve, Cancel, Method, SolveOptions, Stats, Status, Trajectory};
 use rayon::prelude::*;
 
-use super::budget::Budget;
-use super::format::{exp, num, text};
-use super::shard::Provenance;
-use crate::error::{echo, Error};
-use crate::scene::Prepared;
+use fc_batch::budget::Budget;
+use fc_csv::format::{exp, num, text};
+use fc_batch::shard::Provenance;
+use fc_scene::error::{echo, Error};
+use fc_scene::scene::Prepared;
 
 /// The reference: DOPRI5 at these tolerances.
 pub const REF_RTOL: f64 = 1e-13;
@@ -837,7 +837,7 @@ pub fn rk4_floor(p: &Point) -> bool {
 }
 
 /// The table: a header line ([`COLUMNS`]) and a row per point, every
-/// number in the formats of [`super::format`]. With `provenance` (the
+/// number in the formats of [`fc_csv::format`]. With `provenance` (the
 /// CLI's), each row also has its median wall time, its run number and the
 /// provenance columns: `wall_seconds,run,runs,scene_hash`.
 pub fn csv_text(
@@ -856,7 +856,7 @@ pub fn csv_text(
     for pt in rows {
         let s = &pt.stats;
         let cells = [
-            crate::csv::field(scene).into_owned(),
+            fc_csv::field(scene).into_owned(),
             num(t_eval),
             pt.method.clone(),
             pt.param_name.to_string(),
@@ -947,8 +947,8 @@ pub fn check_check_dt(what: &str, dt: f64, t_end: f64, richardson: bool) -> Resu
                 "must be a step in [{lo:e}, run.t_end = {}]: the reference's checks take \
                  t_end / dt RK4 steps (3 t_end / dt with Richardson), at most \
                  {MAX_CHECK_STEPS:e} (got {})",
-                crate::error::number(t_end),
-                crate::error::number(dt)
+                fc_scene::error::number(t_end),
+                fc_scene::error::number(dt)
             ),
         ))
     }
@@ -959,10 +959,10 @@ pub fn check_check_dt(what: &str, dt: f64, t_end: f64, richardson: bool) -> Resu
 pub struct Options {
     pub methods: Vec<Method>,
     pub checks: Checks,
-    /// Seconds (checked: [`super::budget::check_budget`]).
+    /// Seconds (checked: [`fc_batch::budget::check_budget`]).
     pub budget: Option<f64>,
-    pub shard: Option<crate::sweep::Shard>,
-    /// Threads, 1..=256 (checked: [`crate::sweep::check_jobs`]).
+    pub shard: Option<fc_batch::shard::Shard>,
+    /// Threads, 1..=256 (checked: [`fc_batch::sweep::check_jobs`]).
     pub jobs: usize,
 }
 
@@ -1034,7 +1034,7 @@ impl Study {
 /// from outside ([`Error::Interrupted`]) in every phase; `progress` hears
 /// of each point.
 pub fn study(
-    scene: &crate::scene::Scene,
+    scene: &fc_scene::scene::Scene,
     options: &Options,
     outer: Option<&chain_ode::Cancel>,
     progress: &(dyn Fn() + Sync),
@@ -1060,7 +1060,7 @@ pub fn study(
         ladder(methods).len(),
     );
     let shard = options.shard;
-    let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
+    let take = |run: usize| shard.is_none_or(|s| s.takes(run));
     // The floor rule needs the coarser points of RK4's line: a
     // shard runs those it does not own to decide it (`run_lines`).
     let stop = |pt: &Point| rk4_floor(pt);
@@ -1217,7 +1217,7 @@ mod tests {
              [start]\nkind = \"catenary\"\np0 = [0.0, 0.0]\np1 = [3.0, 0.0]\n\
              [run]\nt_end = {t_end}\n"
         );
-        let mut p = crate::scene::Scene::from_toml_str(&text)
+        let mut p = fc_scene::scene::Scene::from_toml_str(&text)
             .unwrap()
             .prepare()
             .unwrap();

@@ -17,10 +17,10 @@
 
 use serde::Serialize;
 
-use super::format::{exp, num, opt};
+use fc_csv::format::{exp, num, opt};
 use crate::converge::{self, Deviation, Level};
-use crate::error::Error;
-use crate::scene::Scene;
+use fc_scene::error::Error;
+use fc_scene::scene::Scene;
 
 /// Passing rungs in a row that end the ladder.
 pub const CONFIRM: usize = 2;

@@ -24,9 +24,9 @@
 use chain_ode::{Trajectory, Vec2};
 use serde::Serialize;
 
-use super::format::{exp, num};
-use crate::error::Error;
-use crate::scene::Scene;
+use fc_csv::format::{exp, num};
+use fc_scene::error::Error;
+use fc_scene::scene::Scene;
 
 /// What to run.
 #[derive(Clone, Debug)]
@@ -208,7 +208,7 @@ pub fn snap_row(variant: &str, s: &Snap) -> String {
     format!(
         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.3e}\n",
         s.scene,
-        super::format::text(variant),
+        fc_csv::format::text(variant),
         s.links,
         num(s.total_mass),
         s.axial_stiffness.map_or(String::new(), exp),

@@ -7,11 +7,11 @@
 use chain_ode::{solve, Method, Status, Trajectory};
 use rayon::prelude::*;
 
-use super::budget::Budget;
-use super::format::{exp, num, opt, text};
-use super::shard::Provenance;
-use crate::error::Error;
-use crate::scene::Prepared;
+use fc_batch::budget::Budget;
+use fc_csv::format::{exp, num, opt, text};
+use fc_batch::shard::Provenance;
+use fc_scene::error::Error;
+use fc_scene::scene::Prepared;
 
 /// The step budget of every run (accepted and rejected steps).
 pub const MAX_STEPS: u64 = 200_000;
@@ -255,7 +255,7 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
         let ch = &p.chain;
         let mgl = ch.energy_scale();
         let mut line = [
-            crate::csv::field(&row.key).into_owned(),
+            fc_csv::field(&row.key).into_owned(),
             text(&row.label),
             ch.links().to_string(),
             num(ch.damping()),
@@ -315,7 +315,7 @@ pub fn timing_text(rows: &[Row], cells: &[Cell]) -> String {
         if let Ok(t) = &c.run {
             timing.push_str(&format!(
                 "{},{},{},{},{}\n",
-                crate::csv::field(&rows[c.row].key),
+                fc_csv::field(&rows[c.row].key),
                 c.method,
                 c.method.accuracy_name(),
                 exp(c.param),
@@ -521,11 +521,11 @@ pub const MAX_ROWS: usize = 1000;
 pub struct Options {
     pub methods: Vec<Method>,
     /// A row per value of this key (else one row, the scene).
-    pub vary: Option<crate::sweep::Vary>,
-    /// Seconds (checked: [`super::budget::check_budget`]).
+    pub vary: Option<fc_batch::sweep::Vary>,
+    /// Seconds (checked: [`fc_batch::budget::check_budget`]).
     pub budget: Option<f64>,
-    pub shard: Option<crate::sweep::Shard>,
-    /// Threads, 1..=256 (checked: [`crate::sweep::check_jobs`]).
+    pub shard: Option<fc_batch::shard::Shard>,
+    /// Threads, 1..=256 (checked: [`fc_batch::sweep::check_jobs`]).
     pub jobs: usize,
 }
 
@@ -566,8 +566,8 @@ impl Study {
 /// The rows of a study of `scene`: the scene, or one per value of `vary`
 /// (at most [`MAX_ROWS`], each scene checked), named `KEY=VALUE`.
 pub fn rows_of(
-    scene: &crate::scene::Scene,
-    vary: Option<&crate::sweep::Vary>,
+    scene: &fc_scene::scene::Scene,
+    vary: Option<&fc_batch::sweep::Vary>,
 ) -> Result<Vec<Row>, Error> {
     scene.prepare()?.require_corrected("stability")?;
     let Some(v) = vary else {
@@ -587,7 +587,7 @@ pub fn rows_of(
         .iter()
         .map(|x| {
             let s =
-                crate::sweep::scene_for(scene, std::slice::from_ref(v), std::slice::from_ref(x))?;
+                fc_batch::sweep::scene_for(scene, std::slice::from_ref(v), std::slice::from_ref(x))?;
             // A number as `{}` prints it: 1 and 1.0 are the same row.
             let cell = match x {
                 toml::Value::String(t) => t.clone(),
@@ -646,7 +646,7 @@ pub fn cells_failure(cells: &[Cell]) -> Option<String> {
 /// `options.jobs` threads. `outer` stops it from outside
 /// ([`Error::Interrupted`]); `progress` hears of each cell.
 pub fn run_study(
-    scene: &crate::scene::Scene,
+    scene: &fc_scene::scene::Scene,
     options: &Options,
     outer: Option<&chain_ode::Cancel>,
     progress: &(dyn Fn() + Sync),
@@ -670,7 +670,7 @@ pub fn run_study(
         total,
     );
     let shard = options.shard;
-    let take = |run: usize| shard.is_none_or(|s| run % s.count == s.index);
+    let take = |run: usize| shard.is_none_or(|s| s.takes(run));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.max(1))
         .build()

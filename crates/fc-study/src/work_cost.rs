@@ -11,8 +11,8 @@ use std::fmt::Write as _;
 
 use chain_ode::{unit_costs, Chain, State, UnitCosts};
 
-use super::format::exp_digits;
-use super::table::Table;
+use fc_csv::format::exp_digits;
+use fc_csv::table::Table;
 
 /// The cost table of `chain` at `state` (see the module doc), or why not.
 pub fn csv_text(chain: &Chain, state: &State) -> Result<String, String> {

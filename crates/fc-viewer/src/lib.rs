@@ -1,6 +1,9 @@
 //! The self-contained HTML viewer of `falling-chain view`: one page with the
 //! runs' data and every script inline (no network, no server), which plays,
-//! scrubs and steps through up to [`MAX_RUNS`] runs overlaid.
+//! scrubs and steps through up to [`MAX_RUNS`] runs overlaid, and a run read
+//! back from `simulate --out`'s CSV for it ([`run_csv`]). It builds on
+//! fc-scene (a run's summary); the CLI's `view`, Python's `view` and the
+//! paper's viewer figures (through fc-paper-figures) call it.
 //!
 //! The page's data model, one object per run in `#fc-data` (JSON):
 //! `label`; `summary` (the `simulate --json` object, or for a run read from
@@ -30,7 +33,9 @@ use std::fmt::Write as _;
 use chain_ode::Trajectory;
 use serde_json::{json, Value};
 
-use crate::{Error, RunSummary};
+use fc_scene::{Error, RunSummary};
+
+pub mod run_csv;
 
 /// The most runs one page overlays (one colour each).
 pub const MAX_RUNS: usize = 8;
@@ -222,7 +227,7 @@ pub fn check_page_path(field: &str, path: &std::path::Path) -> Result<(), Error>
             field,
             format!(
                 "must end in .html (got '{}')",
-                crate::error::echo_path(path)
+                fc_scene::error::echo_path(path)
             ),
         ))
     }

@@ -1,7 +1,7 @@
 //! A run read back from `simulate --out`'s CSV, for `view --from`.
 //!
 //! The file is `t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1..phi_n`
-//! ([`crate::csv::trajectory_header`]), optionally followed by the joint
+//! ([`fc_scene::csv::trajectory_header`]), optionally followed by the joint
 //! forces `tension_0..tension_n` and then `shear_0..shear_n` (issue
 //! "elastic links"). It holds neither the pivot `P0` nor the rod length
 //! `l`: both are recovered from the rows, since every row states
@@ -18,9 +18,9 @@ use std::path::Path;
 
 use serde_json::json;
 
-use crate::error::echo_path;
-use crate::viewer::{check_links, keeps, stride_for, JointForces, ViewRun, MAX_VIEW_LINKS};
-use crate::Error;
+use fc_scene::error::echo_path;
+use crate::{check_links, keeps, stride_for, JointForces, ViewRun, MAX_VIEW_LINKS};
+use fc_scene::Error;
 
 /// The largest CSV read (bytes): `simulate` keeps its samples within 1 GiB
 /// of memory, and their text is about as long.
@@ -105,7 +105,7 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
     }
     let means = sums.map(|s| s / rows as f64);
     let forces = usize::from(columns.tension) + usize::from(columns.shear);
-    crate::viewer::check_fits("--from", links, forces, false, budget)?;
+    crate::check_fits("--from", links, forces, false, budget)?;
     let stride = stride_for(rows, links, forces, budget);
 
     // Pass 2: the centred sums of the least squares, and the kept rows.
@@ -202,7 +202,7 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
             2,
             format!(
                 "tip_x, tip_y and the angles give no positive rod length (got {})",
-                crate::error::number(rod)
+                fc_scene::error::number(rod)
             ),
         ));
     }
@@ -238,12 +238,12 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
 /// Opens `path` (a regular file of at most [`MAX_RUN_CSV_BYTES`]), checks
 /// its header, and calls `each(line, row, links)` on every row in order
 /// (finite numbers, the right count, `t` strictly increasing). The file is
-/// read as RFC 4180 CSV by the project's one reader ([`crate::csv::Reader`]).
+/// read as RFC 4180 CSV by the project's one reader ([`fc_scene::csv::Reader`]).
 fn for_each_row(
     path: &Path,
     each: &mut dyn FnMut(usize, &Row, usize) -> Result<(), Error>,
 ) -> Result<Columns, Error> {
-    use crate::csv::{ReadError, Reader, Record};
+    use fc_scene::csv::{ReadError, Reader, Record};
     let read = |e| Error::read("--from", path, e);
     let bad = |line: usize, what: String| {
         Error::field(
@@ -312,7 +312,7 @@ fn for_each_row(
                         format!(
                             "column {} is not a finite number (got '{}')",
                             row.cells.len() + 1,
-                            crate::error::echo(cell)
+                            fc_scene::error::echo(cell)
                         ),
                     ))
                 }
@@ -332,8 +332,8 @@ fn for_each_row(
                 line_no,
                 format!(
                     "t must increase from row to row (got {} after {})",
-                    crate::error::number(row.t()),
-                    crate::error::number(previous)
+                    fc_scene::error::number(row.t()),
+                    fc_scene::error::number(previous)
                 ),
             ));
         }
@@ -382,7 +382,7 @@ fn parse_header(names: &[&str]) -> Result<Columns, String> {
     if let Some(extra) = rest.get(at) {
         return Err(format!(
             "unexpected column '{}': the header must be {expected}",
-            crate::error::echo(extra)
+            fc_scene::error::echo(extra)
         ));
     }
     Ok(Columns {

@@ -1,4 +1,4 @@
-//! The drawing of the accuracy table (`crate::study::accuracy`): per
+//! The drawing of the accuracy table (`crate::accuracy`): per
 //! scene, RK4's error against its step and the scene's own run's error.
 
 use std::path::Path;
@@ -6,8 +6,8 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, Series, Style};
 
 use super::Reader;
-use crate::study::accuracy::RK4_STEPS;
-use crate::study::table::distinct;
+use crate::accuracy::RK4_STEPS;
+use fc_csv::table::distinct;
 
 /// Errors below this are drawn at it (a log axis cannot show 0).
 const FLOOR: f64 = 1e-13;

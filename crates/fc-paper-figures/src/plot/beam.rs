@@ -1,4 +1,4 @@
-//! The drawing of BEAM's work-precision table (`crate::study::beam`):
+//! The drawing of BEAM's work-precision table (`crate::beam`):
 //! the error at `t = 5` against the wall time (from `-timing`) and against
 //! the accepted steps, a line per method.
 
@@ -8,7 +8,7 @@ use chain_ode::Method;
 use figures::{palette, LinePlot, Output, Series, Style};
 
 use super::{Reader, DRAW_FLOOR};
-use crate::study::format::exp;
+use fc_csv::format::exp;
 
 /// `beam-precision`: from the main table and `-timing`, the larger of the
 /// angle and rate errors against the reference at `t = 5` vs wall time

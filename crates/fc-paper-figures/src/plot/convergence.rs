@@ -1,12 +1,12 @@
-//! The drawing of the convergence in n (`crate::study::convergence::ladders`).
+//! The drawing of the convergence in n (`crate::convergence::ladders`).
 
 use std::path::Path;
 
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use crate::study::convergence::TOLS;
-use crate::study::table::distinct;
+use crate::convergence::TOLS;
+use fc_csv::table::distinct;
 
 /// Draws `convergence`'s tables to `<stem>.png` and `.svg`.
 pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {

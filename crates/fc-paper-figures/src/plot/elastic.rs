@@ -1,14 +1,14 @@
 //! The drawings of the elastic chain's study: the snap's support force and
-//! impulse against `n` (`crate::study::snap`), its tension wave
-//! (`crate::study::snap_tension`), and when the rigid model will do
-//! (`crate::study::rigid_limit`).
+//! impulse against `n` (`fc_study::snap`), its tension wave
+//! (`crate::snap_tension`), and when the rigid model will do
+//! (`fc_study::rigid_limit`).
 
 use std::path::Path;
 
 use figures::{cool, palette, LinePlot, Output, Series, Style};
 
 use super::Reader;
-use crate::study::table::distinct;
+use fc_csv::table::distinct;
 
 /// `snap-force`: from `-timing` (`snap::SNAP_HEADER` rows), the peak
 /// support force over `M g` and the impulse over `M sqrt(g L)` against

@@ -1,4 +1,4 @@
-//! The drawings of the folded chain's tables (`super::super::folded`):
+//! The drawings of the folded chain's tables (`crate::folded`):
 //! its fall against the law, the force on the pivot, the tip's
 //! acceleration.
 
@@ -7,8 +7,8 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use crate::study::folded::{FORCE_LAW_TO, WINDOW};
-use crate::study::table::distinct;
+use crate::folded::{FORCE_LAW_TO, WINDOW};
+use fc_csv::table::distinct;
 
 /// The running means drawn (all are in the data): the finest run's, whose
 /// comparison with the law a coarser mean's pulses would hide.
@@ -333,7 +333,7 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
             Series::points(
                 format!(
                     "n = {n}, mean over |ξ' - ξ| <= {}",
-                    crate::study::folded::ACCEL_WINDOW
+                    crate::folded::ACCEL_WINDOW
                 ),
                 means,
             )

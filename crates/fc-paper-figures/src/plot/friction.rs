@@ -1,4 +1,4 @@
-//! The drawing of the friction sensitivity (`crate::study::friction`): the
+//! The drawing of the friction sensitivity (`crate::friction`): the
 //! maximum tip speed over its value without friction, against the joint
 //! friction `r` (in the scenes' units at their own `n`), a colour per
 //! scene, solid at the scene's `n` and dashed on the refined chain, with
@@ -9,7 +9,7 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use crate::study::table::distinct;
+use fc_csv::table::distinct;
 
 /// The report's joint friction range (its units, n = 50) and its scenes' r.
 const REPORT_RANGE: (f64, f64) = (1e-4, 1e-3);

@@ -1,5 +1,5 @@
 //! The drawings of the report's figures from their tables
-//! (`crate::study::report`): catenaries, chain snapshots, tip speed and
+//! (`crate::report`): catenaries, chain snapshots, tip speed and
 //! velocity against time, and the maximum tip speed against the span.
 
 use std::path::Path;
@@ -7,7 +7,7 @@ use std::path::Path;
 use figures::{ChainSnapshots, LinePlot, Output, Series, Style};
 
 use super::Reader;
-use crate::study::table::{distinct, Table};
+use fc_csv::table::{distinct, Table};
 
 /// The legend entry of a scene: its name and where it was released.
 fn scene_label(scene: &str, p1: (f64, f64)) -> String {

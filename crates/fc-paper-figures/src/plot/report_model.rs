@@ -1,4 +1,4 @@
-//! The drawings of the report's own model (`crate::study::report_model`):
+//! The drawings of the report's own model (`crate::report_model`):
 //! its snapshots, titled with how the run ended, and its Fig. 9 beside
 //! the published one and the corrected model's.
 

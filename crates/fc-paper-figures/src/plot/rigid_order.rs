@@ -1,4 +1,4 @@
-//! The drawing of the rigid limit's order (`crate::study::rigid_order`):
+//! The drawing of the rigid limit's order (`crate::rigid_order`):
 //! the elastic chain's distance from the rigid one against `EA`, log-log,
 //! the tip path (left) and the tip at the end (right), a line per scene,
 //! with a `1/EA` guide and the fitted orders.
@@ -8,7 +8,7 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use crate::study::table::distinct;
+use fc_csv::table::distinct;
 
 /// Draws `elastic-rigid-order`'s tables to `<stem>.png` and `.svg`.
 pub fn rigid_order(read: Reader, stem: &Path) -> Result<Output, String> {

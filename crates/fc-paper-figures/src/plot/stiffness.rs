@@ -1,4 +1,4 @@
-//! The drawing of where BDF pays (`crate::study::stiffness`): left, DOPRI5's
+//! The drawing of where BDF pays (`crate::stiffness`): left, DOPRI5's
 //! cost over BDF's at matched error against the damping rate, a line per
 //! `n`, with the equal-cost line and, on it, the rate past which `auto`
 //! runs BDF for each `n`; right, the measured crossover against `n` beside
@@ -9,9 +9,9 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use crate::study::format::exp;
-use crate::study::stiffness::{TARGET, T_END};
-use crate::study::table::distinct;
+use fc_csv::format::exp;
+use crate::stiffness::{TARGET, T_END};
+use fc_csv::table::distinct;
 
 /// A crossover's label: one decimal below 10 (`3.2`), the nearest whole
 /// number from there (`16`, `106`), so that the figure prints the number

@@ -1,14 +1,14 @@
 //! The drawings of the wall-time studies: speed-ups at matched accuracy
-//! (`crate::study::matched`), the cost of a right-hand side
-//! (`crate::study::rhs_cost`); where BDF pays is [`super::stiffness`].
+//! (`crate::matched`), the cost of a right-hand side
+//! (`crate::rhs_cost`); where BDF pays is [`super::stiffness`].
 
 use std::path::Path;
 
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use crate::study::rhs_cost::FIT_FROM;
-use crate::study::table::distinct;
+use crate::rhs_cost::FIT_FROM;
+use fc_csv::table::distinct;
 
 /// The slope guides run this factor below the measured points.
 const GUIDE_OFFSET: f64 = 3.0;

@@ -1,4 +1,4 @@
-//! The drawing of the `tip-mass-fall` figure (`crate::study::tip_mass`):
+//! The drawing of the `tip-mass-fall` figure (`crate::tip_mass`):
 //! the folded chain with a tip mass against the energy-conserving law, the
 //! fall time over free fall and the tip speed at the end of the fall.
 

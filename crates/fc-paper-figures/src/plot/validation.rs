@@ -1,12 +1,12 @@
 //! The drawings of the energy budget and the normal modes
-//! (`crate::study::validation`).
+//! (`crate::validation`).
 
 use std::path::Path;
 
 use figures::{palette, LinePlot, Output, Series, Style};
 
 use super::Reader;
-use crate::study::table::distinct;
+use fc_csv::table::distinct;
 
 /// Draws `energy`'s tables to `<stem>.png` and `.svg`.
 pub fn energy_budget(read: Reader, stem: &Path) -> Result<Output, String> {
@@ -31,7 +31,7 @@ pub fn energy_budget(read: Reader, stem: &Path) -> Result<Output, String> {
             .collect();
         left.series
             .push(Series::line(format!("E - E(0), r = {r}"), de).with_color(palette(i)));
-        if crate::study::table::parse_num(r)? > 0.0 {
+        if fc_csv::table::parse_num(r)? > 0.0 {
             let w = rows
                 .iter()
                 .map(|&k| (time[k], dissipated[k] / scale[k]))

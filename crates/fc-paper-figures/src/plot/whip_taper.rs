@@ -1,4 +1,4 @@
-//! The drawing of the tapered whip's table (`super::super::whip_taper`):
+//! The drawing of the tapered whip's table (`crate::whip_taper`):
 //! the largest tip speed against the taper, a line per `n`, and its gain
 //! over the uniform chain.
 
@@ -7,7 +7,7 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, Series, Style};
 
 use super::Reader;
-use crate::study::table::distinct;
+use fc_csv::table::distinct;
 
 pub fn whip_taper(read: Reader, stem: &Path) -> Result<Output, String> {
     let t = read("")?;
