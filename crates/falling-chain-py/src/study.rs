@@ -2,10 +2,11 @@
 //! commands of the same names, returning the tables of their `--out` as
 //! dicts of numpy columns (`needs`: its `--json` object as a dict).
 
-use ::falling_chain::study::budget::check_budget;
-use ::falling_chain::study::{self, needs as core_needs, precision as core_precision};
-use ::falling_chain::study::{shard, stability as core_stability};
-use ::falling_chain::Error;
+use ::fc_batch::budget::check_budget;
+use ::fc_study::{self as study, needs as core_needs, precision as core_precision};
+use ::fc_batch::shard;
+use ::fc_study::stability as core_stability;
+use ::fc_scene::Error;
 use numpy::IntoPyArray;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -219,7 +220,7 @@ pub fn needs<'py>(
     let scene = scene.get().inner.clone();
     core_needs::check_tol("--tol", tol).map_err(value_error)?;
     let links = match links {
-        None => ::falling_chain::converge::DEFAULT_LINKS.to_vec(),
+        None => ::fc_study::converge::DEFAULT_LINKS.to_vec(),
         Some(l) => {
             let text = if let Ok(s) = l.cast::<PyString>() {
                 s.to_cow()?.into_owned()
@@ -232,7 +233,7 @@ pub fn needs<'py>(
                     })?;
                 v.join(",")
             };
-            ::falling_chain::converge::parse_links(&text).map_err(value_error)?
+            ::fc_study::converge::parse_links(&text).map_err(value_error)?
         }
     };
     let methods = match methods_of(methods)? {
@@ -247,7 +248,7 @@ pub fn needs<'py>(
     };
     let budget = budget_of(budget)?;
     let answer = run_interruptible(py, |cancel| {
-        study::budget::Budget::run(budget, Some(cancel), |b| {
+        ::fc_batch::budget::Budget::run(budget, Some(cancel), |b| {
             core_needs::run(&scene, &options, b, &|_, _, _| {})
         })
     })?

@@ -1,9 +1,10 @@
 //! `falling_chain.sweep`: the CLI's `sweep`, with numpy columns for its CSV.
 
-use ::falling_chain::study::shard::Provenance;
-use ::falling_chain::sweep as core;
-use ::falling_chain::sweep::{Shard, SweepRow, Vary};
-use ::falling_chain::Error;
+use ::fc_batch::shard::Provenance;
+use ::fc_batch::sweep as core;
+use ::fc_batch::shard::Shard;
+use ::fc_batch::sweep::{SweepRow, Vary};
+use ::fc_scene::Error;
 use numpy::IntoPyArray;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -17,7 +18,8 @@ use crate::scene::PyScene;
 /// The most runs a sweep may have (the sweep's own grid cap), so that no
 /// list of `vary` is longer than a sweep can run; and the most threads
 /// `jobs=` may ask for. Both are the CLI's.
-use ::falling_chain::sweep::{MAX_JOBS, MAX_RUNS};
+use ::fc_batch::shard::MAX_RUNS;
+use ::fc_batch::sweep::MAX_JOBS;
 
 /// One key of `vary`: a `str` is the right-hand side of `--vary KEY=...`
 /// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values
@@ -68,10 +70,10 @@ pub(crate) fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shar
 }
 
 /// The cells of CSV text of ours, read by the project's one reader
-/// (`falling_chain::csv`, RFC 4180: a name with a comma, a quote or a line
+/// (`fc_csv`, RFC 4180: a name with a comma, a quote or a line
 /// break is one quoted cell).
 pub(crate) fn csv_records(text: &str) -> PyResult<Vec<Vec<String>>> {
-    ::falling_chain::csv::records(text).map_err(|e| PyValueError::new_err(format!("csv: {e}")))
+    ::fc_csv::records(text).map_err(|e| PyValueError::new_err(format!("csv: {e}")))
 }
 
 /// What a summary column holds, read off the summary's JSON value.

@@ -141,7 +141,7 @@ pub fn run_timing(steps: &[(String, f64)]) -> String {
         let _ = writeln!(
             csv,
             "{step},{}",
-            falling_chain::study::format::fixed(*secs, 1)
+            fc_csv::format::fixed(*secs, 1)
         );
     }
     csv
