@@ -855,7 +855,7 @@ pub fn sync_readme(path: &std::path::Path, check: bool) -> Result<&'static str, 
         Ok("the key table is up to date")
     } else if check {
         Err(format!(
-            "{name}: the key table differs from crates/falling-chain/src/schema.rs \
+            "{name}: the key table differs from crates/fc-scene/src/schema.rs \
              (run `cargo xtask scene-keys`)"
         ))
     } else {
@@ -1040,7 +1040,7 @@ mod tests {
         let want = with_markdown_table(&readme).unwrap();
         assert!(
             readme == want,
-            "scenes/README.md's key table differs from crates/falling-chain/src/schema.rs \
+            "scenes/README.md's key table differs from crates/fc-scene/src/schema.rs \
              (run `cargo xtask scene-keys`); it should read:\n{}",
             markdown_table()
         );
