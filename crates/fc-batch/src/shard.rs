@@ -13,6 +13,7 @@
 
 use std::collections::BTreeMap;
 
+use fc_csv::Column;
 use fc_scene::error::{echo, Error};
 use fc_scene::scene::Scene;
 
@@ -58,7 +59,7 @@ impl Shard {
 
 
 /// The columns a study's table ends with.
-pub const COLUMNS: [&str; 2] = ["runs", "scene_hash"];
+pub const COLUMNS: [(&str, Column); 2] = [("runs", Column::Int), ("scene_hash", Column::Text)];
 
 /// Where a row comes from: the study's size and the hash of what it ran.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -99,7 +100,7 @@ impl Provenance {
 
     /// `,runs,scene_hash` for the end of a header line.
     pub fn header_suffix() -> String {
-        format!(",{}", COLUMNS.join(","))
+        format!(",{}", fc_csv::header(&COLUMNS))
     }
 
     /// `,<runs>,<hash>` for the end of a row.
@@ -214,7 +215,7 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
             )
         })
     };
-    let (c_run, c_runs, c_hash) = (col("run")?, col(COLUMNS[0])?, col(COLUMNS[1])?);
+    let (c_run, c_runs, c_hash) = (col("run")?, col(COLUMNS[0].0)?, col(COLUMNS[1].0)?);
     let c_wall = cols.iter().position(|h| *h == "wall_seconds");
     let c_note = cols.iter().position(|h| *h == "note");
     let mut study: Option<(String, String)> = None; // (runs, hash)

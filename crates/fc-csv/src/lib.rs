@@ -32,6 +32,41 @@ pub fn field(text: &str) -> Cow<'_, str> {
     }
 }
 
+/// What a column of a table holds, as the table's writer declares it beside
+/// its header ([`header`]), so that a reader (Python's numpy columns) takes
+/// the column as written rather than guessing from its cells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// An integer (a count, a 0/1 flag, a run number). A cell may be empty
+    /// where there is none (a run not made, the reference's run number): a
+    /// reader then takes the column as numbers with the empty cells missing.
+    Int,
+    /// A number; an empty cell is missing (NaN).
+    Float,
+    /// Text, whatever its cells look like.
+    Text,
+}
+
+/// A table's header line (without its line end): the names of `columns`,
+/// each a cell ([`field`]).
+pub fn header(columns: &[(&str, Column)]) -> String {
+    columns
+        .iter()
+        .map(|(name, _)| field(name))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// The type that `declared` (writers' column lists, searched in order)
+/// gives the column called `name`; `None` if none names it.
+pub fn column_type(declared: &[&[(&str, Column)]], name: &str) -> Option<Column> {
+    declared
+        .iter()
+        .flat_map(|cols| cols.iter())
+        .find(|(n, _)| *n == name)
+        .map(|&(_, c)| c)
+}
+
 /// Why a CSV could not be read.
 #[derive(Debug)]
 pub enum ReadError {
@@ -309,6 +344,16 @@ mod tests {
         assert_eq!(field("span-d3"), "span-d3");
         assert_eq!(field("a,b"), "\"a,b\"");
         assert_eq!(field("say \"hi\""), "\"say \"\"hi\"\"\"");
+    }
+
+    #[test]
+    fn headers_and_declared_types() {
+        let a = [("run", Column::Int), ("a,b", Column::Text)];
+        let b = [("run", Column::Float), ("x", Column::Float)];
+        assert_eq!(header(&a), "run,\"a,b\"");
+        assert_eq!(column_type(&[&a, &b], "run"), Some(Column::Int));
+        assert_eq!(column_type(&[&a, &b], "x"), Some(Column::Float));
+        assert_eq!(column_type(&[&a, &b], "y"), None);
     }
 
     fn read(text: &str) -> Result<Vec<(usize, Vec<String>, String)>, ReadError> {

@@ -6,6 +6,8 @@ use std::fmt;
 use chain_ode::Trajectory;
 use serde::{Deserialize, Serialize};
 
+use fc_csv::Column;
+
 use crate::csv::field as csv_field;
 
 /// The time span over which one method ran.
@@ -85,35 +87,35 @@ pub struct RunSummary {
 }
 
 /// Columns of [`RunSummary::csv_row`], in order.
-pub const SUMMARY_CSV_COLUMNS: [&str; 28] = [
-    "name",
-    "status",
-    "method",
-    "links",
-    "t_end",
-    "t_reached",
-    "t_failed",
-    "steps",
-    "rejected_steps",
-    "rhs_evals",
-    "jacobian_evals",
-    "lu_factorizations",
-    "stiffness_detections",
-    "wall_seconds",
-    "energy_start",
-    "energy_end",
-    "dissipated",
-    "energy_balance_error",
-    "max_energy_rise",
-    "energy_scale",
-    "damping_rate",
-    "tip_end_x",
-    "tip_end_y",
-    "tip_velocity_end_x",
-    "tip_velocity_end_y",
-    "tip_speed_max",
-    "t_tip_speed_max",
-    "segments",
+pub const SUMMARY_CSV_COLUMNS: [(&str, Column); 28] = [
+    ("name", Column::Text),
+    ("status", Column::Text),
+    ("method", Column::Text),
+    ("links", Column::Int),
+    ("t_end", Column::Float),
+    ("t_reached", Column::Float),
+    ("t_failed", Column::Float),
+    ("steps", Column::Int),
+    ("rejected_steps", Column::Int),
+    ("rhs_evals", Column::Int),
+    ("jacobian_evals", Column::Int),
+    ("lu_factorizations", Column::Int),
+    ("stiffness_detections", Column::Int),
+    ("wall_seconds", Column::Float),
+    ("energy_start", Column::Float),
+    ("energy_end", Column::Float),
+    ("dissipated", Column::Float),
+    ("energy_balance_error", Column::Float),
+    ("max_energy_rise", Column::Float),
+    ("energy_scale", Column::Float),
+    ("damping_rate", Column::Float),
+    ("tip_end_x", Column::Float),
+    ("tip_end_y", Column::Float),
+    ("tip_velocity_end_x", Column::Float),
+    ("tip_velocity_end_y", Column::Float),
+    ("tip_speed_max", Column::Float),
+    ("t_tip_speed_max", Column::Float),
+    ("segments", Column::Text),
 ];
 
 /// How many stiffness detections of an explicit method (DOPRI5, DOP853)
@@ -247,7 +249,7 @@ impl RunSummary {
 
     /// The header line of [`RunSummary::csv_row`] (no newline).
     pub fn csv_header() -> String {
-        SUMMARY_CSV_COLUMNS.join(",")
+        fc_csv::header(&SUMMARY_CSV_COLUMNS)
     }
 
     /// One CSV row (no newline) with the columns of [`SUMMARY_CSV_COLUMNS`]:

@@ -111,4 +111,36 @@ mod tests {
         let (a, b) = linear_fit(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]);
         assert!((a - 1.0).abs() < 1e-12 && (b - 2.0).abs() < 1e-12);
     }
+
+    /// The tables' headers are the declared columns' names (the bytes of
+    /// `figures/data/` and of `--out`), and a column name has one type in
+    /// every table that has it (so that a merged shard reads the same).
+    #[test]
+    fn declared_columns_are_the_headers_and_agree() {
+        assert_eq!(
+            fc_csv::header(&precision::COLUMNS),
+            "scene,t_eval,method,param_name,param,status,t_reached,steps,rejected_steps,\
+             rhs_evals,jacobian_evals,lu_factorizations,rhs_equiv,switched,err_tip,err_vmax,\
+             tip_ref_x,tip_ref_y,vmax_ref,note"
+        );
+        assert_eq!(
+            fc_csv::header(&stability::COLUMNS),
+            "scene,label,links,damping,damping_rate,t_end,method,param_name,param,outcome,\
+             status,t_reached,t_failed,steps,rejected_steps,rhs_evals,energy_balance_error,\
+             energy_scale_mgl,energy_error_rel,bdf_from,note"
+        );
+        let all: [&[(&str, fc_csv::Column)]; 6] = [
+            &precision::COLUMNS,
+            &precision::CLI_COLUMNS,
+            &stability::COLUMNS,
+            &stability::CLI_COLUMNS,
+            &fc_scene::SUMMARY_CSV_COLUMNS,
+            &fc_batch::shard::COLUMNS,
+        ];
+        for cols in all {
+            for &(name, kind) in cols {
+                assert_eq!(fc_csv::column_type(&all, name), Some(kind), "{name}");
+            }
+        }
+    }
 }

@@ -21,6 +21,7 @@ use rayon::prelude::*;
 use fc_batch::budget::Budget;
 use fc_csv::format::{exp, num, text};
 use fc_batch::shard::Provenance;
+use fc_csv::Column::{self, Float, Int, Text};
 use fc_scene::error::{echo, Error};
 use fc_scene::scene::Prepared;
 
@@ -53,10 +54,35 @@ pub const THIN_ABOVE: f64 = 0.5;
 pub const REPEATS_CHEAP: usize = 5;
 pub const REPEATS: usize = 3;
 
-/// The columns of the table ([`csv_text`]), before the CLI's extra ones.
-pub const COLUMNS: &str = "scene,t_eval,method,param_name,param,status,t_reached,steps,\
-                           rejected_steps,rhs_evals,jacobian_evals,lu_factorizations,rhs_equiv,\
-                           switched,err_tip,err_vmax,tip_ref_x,tip_ref_y,vmax_ref,note";
+/// The columns of the table ([`csv_text`]), before the CLI's extra ones,
+/// each with its type (the CSV layer's [`Column`]).
+pub const COLUMNS: [(&str, Column); 20] = [
+    ("scene", Text),
+    ("t_eval", Float),
+    ("method", Text),
+    ("param_name", Text),
+    ("param", Float),
+    ("status", Text),
+    ("t_reached", Float),
+    ("steps", Int),
+    ("rejected_steps", Int),
+    ("rhs_evals", Int),
+    ("jacobian_evals", Int),
+    ("lu_factorizations", Int),
+    ("rhs_equiv", Int),
+    ("switched", Int),
+    ("err_tip", Float),
+    ("err_vmax", Float),
+    ("tip_ref_x", Float),
+    ("tip_ref_y", Float),
+    ("vmax_ref", Float),
+    ("note", Text),
+];
+
+/// The columns the CLI's table adds before the provenance's
+/// ([`fc_batch::shard::COLUMNS`]): the median wall time and the run number
+/// (empty for the reference and its checks).
+pub const CLI_COLUMNS: [(&str, Column); 2] = [("wall_seconds", Float), ("run", Int)];
 
 /// Whether a point runs, and if not, why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -847,9 +873,10 @@ pub fn csv_text(
     rows: &[Point],
     provenance: Option<&Provenance>,
 ) -> String {
-    let mut csv = String::from(COLUMNS);
+    let mut csv = fc_csv::header(&COLUMNS);
     if provenance.is_some() {
-        csv.push_str(",wall_seconds,run");
+        csv.push(',');
+        csv.push_str(&fc_csv::header(&CLI_COLUMNS));
         csv.push_str(&Provenance::header_suffix());
     }
     csv.push('\n');

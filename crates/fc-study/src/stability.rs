@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use fc_batch::budget::Budget;
 use fc_csv::format::{exp, num, opt, text};
 use fc_batch::shard::Provenance;
+use fc_csv::Column::{self, Float, Int, Text};
 use fc_scene::error::Error;
 use fc_scene::scene::Prepared;
 
@@ -22,10 +23,36 @@ pub const DTS: [f64; 8] = [0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 2e-4, 1e-4];
 /// The adaptive methods' relative tolerances (atol = rtol / 100).
 pub const RTOLS: [f64; 7] = [1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12];
 
-/// The columns of the table ([`csv_text`]), before the CLI's extra ones.
-pub const COLUMNS: &str = "scene,label,links,damping,damping_rate,t_end,method,param_name,param,\
-                           outcome,status,t_reached,t_failed,steps,rejected_steps,rhs_evals,\
-                           energy_balance_error,energy_scale_mgl,energy_error_rel,bdf_from,note";
+/// The columns of the table ([`csv_text`]), before the CLI's extra ones,
+/// each with its type (the CSV layer's [`Column`]).
+pub const COLUMNS: [(&str, Column); 21] = [
+    ("scene", Text),
+    ("label", Text),
+    ("links", Int),
+    ("damping", Float),
+    ("damping_rate", Float),
+    ("t_end", Float),
+    ("method", Text),
+    ("param_name", Text),
+    ("param", Float),
+    ("outcome", Text),
+    ("status", Text),
+    ("t_reached", Float),
+    ("t_failed", Float),
+    ("steps", Int),
+    ("rejected_steps", Int),
+    ("rhs_evals", Int),
+    ("energy_balance_error", Float),
+    ("energy_scale_mgl", Float),
+    ("energy_error_rel", Float),
+    ("bdf_from", Float),
+    ("note", Text),
+];
+
+/// The columns the CLI's table adds before the provenance's
+/// ([`fc_batch::shard::COLUMNS`]): the run's wall time (empty for a cell
+/// not run) and its number.
+pub const CLI_COLUMNS: [(&str, Column); 2] = [("wall_seconds", Float), ("run", Int)];
 
 /// How a cell's run ended, in legend order.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -243,9 +270,10 @@ pub fn map_tables(
 /// `provenance` (the CLI's), each row also has its wall time, its number
 /// and the provenance columns: `wall_seconds,run,runs,scene_hash`.
 pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -> String {
-    let mut csv = String::from(COLUMNS);
+    let mut csv = fc_csv::header(&COLUMNS);
     if provenance.is_some() {
-        csv.push_str(",wall_seconds,run");
+        csv.push(',');
+        csv.push_str(&fc_csv::header(&CLI_COLUMNS));
         csv.push_str(&Provenance::header_suffix());
     }
     csv.push('\n');
