@@ -794,10 +794,7 @@ fn the_fuzzer_draws_every_scene_key() {
     }
     fs::remove_dir_all(&dir).unwrap();
     for path in NOT_FUZZED {
-        assert!(
-            fc_scene::schema::key(path).is_some(),
-            "{path} is not a key"
-        );
+        assert!(fc_scene::schema::key(path).is_some(), "{path} is not a key");
         assert!(!drawn.iter().any(|d| d == path), "{path} is fuzzed");
     }
     for k in fc_scene::schema::KEYS {

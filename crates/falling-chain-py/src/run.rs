@@ -385,11 +385,7 @@ impl Run {
 
     /// The run as the viewer's page holds it, thinned to `budget` bytes
     /// (`fc_viewer`), from the arrays this run holds.
-    pub(crate) fn view_run(
-        &self,
-        py: Python<'_>,
-        budget: usize,
-    ) -> PyResult<::fc_viewer::ViewRun> {
+    pub(crate) fn view_run(&self, py: Python<'_>, budget: usize) -> PyResult<::fc_viewer::ViewRun> {
         use ::fc_viewer::{fixed_bytes, keeps, stride_for, RodProfile, ViewRun};
         let (samples, n) = (self.head.samples, self.head.chain.links());
         let profile = RodProfile::of(&self.head.chain);

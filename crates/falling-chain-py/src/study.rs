@@ -3,11 +3,11 @@
 //! dicts of numpy columns (`needs`: its `--json` object as a dict).
 
 use ::fc_batch::budget::check_budget;
-use ::fc_study::{self as study, needs as core_needs, precision as core_precision};
 use ::fc_batch::shard;
-use ::fc_study::stability as core_stability;
-use ::fc_scene::Error;
 use ::fc_csv::{column_type, Column};
+use ::fc_scene::Error;
+use ::fc_study::stability as core_stability;
+use ::fc_study::{self as study, needs as core_needs, precision as core_precision};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};

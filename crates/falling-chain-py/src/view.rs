@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 
 use ::fc_scene::atomic::{check_writable, write_atomic};
-use ::fc_viewer::{self as viewer, DATA_BUDGET_BYTES};
 use ::fc_scene::Error;
+use ::fc_viewer::{self as viewer, DATA_BUDGET_BYTES};
 use pyo3::prelude::*;
 
 use crate::convert::value_error;

@@ -57,7 +57,6 @@ impl Shard {
     }
 }
 
-
 /// The columns a study's table ends with.
 pub const COLUMNS: [(&str, Column); 2] = [("runs", Column::Int), ("scene_hash", Column::Text)];
 

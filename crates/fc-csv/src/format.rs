@@ -55,8 +55,8 @@ pub fn short_err(e: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use crate::table::parse_num;
     use super::*;
+    use crate::table::parse_num;
 
     #[test]
     fn numbers_read_back_exactly() {

@@ -1,7 +1,8 @@
 //! The CSV layer: the project's one writer of cells ([`field`]) and its one
 //! reader ([`Reader`], [`records`], and [`table::Table`] for a table read
 //! whole), RFC 4180 both ways, with the number formats of every table
-//! ([`format`]). It knows no chain and no solver: fc-scene writes a run's
+//! ([`format`]) and the types its writer declares for its columns
+//! ([`Column`], [`header`]). It knows no chain and no solver: fc-scene writes a run's
 //! samples and summary rows with it, fc-batch its sweep rows and merged
 //! shards, fc-study and fc-paper-figures their tables, the Python module
 //! reads tables back with it, and `paper` fills its numbers from

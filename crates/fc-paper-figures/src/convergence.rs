@@ -3,8 +3,8 @@
 //! the finest, and the smallest adequate `n` by each criterion.
 
 use fc_csv::format::{num, text};
-use fc_study::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
 use fc_scene::scene::Scene;
+use fc_study::converge::{run_level, smallest_adequate, Deviation, Level, SCALING};
 
 /// The columns of [`rows`].
 pub const COLUMNS: &str = "scene,links,mass,damping,bending_viscosity,damping_rate,status,\

@@ -7,10 +7,10 @@
 use chain_ode::kinematics::tip;
 use chain_ode::{solve, Method};
 
-use fc_study::precision::reference_options;
 use fc_csv::table::Table;
 use fc_scene::error::Error;
 use fc_scene::scene::Prepared;
+use fc_study::precision::reference_options;
 
 /// Size of the perturbation of the initial angles in the divergence test.
 pub const PERTURBATION: f64 = 1e-10;

@@ -10,10 +10,10 @@
 
 use std::fmt::Write as _;
 
-use fc_csv::format::{exp, num};
 use super::span_check::refined;
-use fc_scene::scene::Scene;
 use fc_batch::sweep::{self, Vary};
+use fc_csv::format::{exp, num};
+use fc_scene::scene::Scene;
 
 /// DOPRI5's `rtol` at the scene's own `n` (`atol = rtol / 100`).
 pub const RTOL: f64 = 1e-10;

@@ -8,9 +8,9 @@
 use chain_ode::Method;
 
 use fc_csv::format::{exp, exp_digits, text};
-use fc_study::precision::{self, params, Checks, Plan, Point, Reference};
 use fc_csv::table::Table;
 use fc_scene::scene::Prepared;
+use fc_study::precision::{self, params, Checks, Plan, Point, Reference};
 
 /// The plan of every method's every point from a timing table
 /// (`method,param,plan`), in [`Method::ALL`] order.

@@ -9,12 +9,12 @@ use std::fmt::Write as _;
 use catenary::Catenary;
 use chain_ode::{Trajectory, Vec2};
 
+use fc_batch::sweep::{self, Vary};
 use fc_csv::format::{fixed, num};
 use fc_csv::table::Table;
+use fc_scene::scene::Scene;
 use fc_study::converge;
 use fc_study::render;
-use fc_scene::scene::Scene;
-use fc_batch::sweep::{self, Vary};
 
 /// A finished run of a named scene and where its free end was held (P1).
 pub struct Run<'a> {

@@ -12,8 +12,8 @@ use chain_ode::report::{finite_difference_tip_speeds, ReportModel};
 use chain_ode::{solve_report, Method, Trajectory};
 
 use fc_csv::format::{fixed, num};
-use fc_study::render;
 use fc_scene::scene::Scene;
+use fc_study::render;
 
 /// The report's step over a span `t` of its clock: its code steps over
 /// `linspace(0, t, 100 t)`, so `dt = t / (100 t - 1)` (0.01001 at t = 10),

@@ -13,8 +13,8 @@ use std::fmt::Write as _;
 use chain_ode::report::{finite_difference_tip_velocities, ReportModel};
 use chain_ode::{solve_report, Method, Trajectory};
 
-use fc_csv::format::{fixed, num};
 use super::report_model::report_dt;
+use fc_csv::format::{fixed, num};
 use fc_scene::scene::Scene;
 
 /// The two cases of each scene: the report's model as coded, and the same

@@ -22,11 +22,11 @@
 use std::fmt::Write as _;
 
 use fc_csv::format::{exp, exp_digits, fixed};
-use fc_study::log_slope;
-use fc_study::rigid_limit::{elastic, rigid};
-use fc_study::converge::{run_level, Deviation};
 use fc_scene::error::Error;
 use fc_scene::scene::Scene;
+use fc_study::converge::{run_level, Deviation};
+use fc_study::log_slope;
+use fc_study::rigid_limit::{elastic, rigid};
 
 /// DOP853's `rtol` for every run (`atol = rtol / 100`).
 pub const RTOL: f64 = 1e-10;

@@ -9,8 +9,8 @@ use std::path::Path;
 use chain_ode::{Trajectory, Vec2};
 
 use super::report::Run;
-use fc_study::render;
 use fc_scene::scene::Scene;
+use fc_study::render;
 
 /// Samples are recorded this many times finer than the scene's `output_dt`.
 pub const FINE: f64 = 32.0;

@@ -5,9 +5,9 @@
 
 use rayon::prelude::*;
 
-use fc_study::snap::{self, Options, Snap, SNAP_HEADER};
-use fc_study::converge::refined_scene;
 use fc_scene::scene::Scene;
+use fc_study::converge::refined_scene;
+use fc_study::snap::{self, Options, Snap, SNAP_HEADER};
 
 /// One case of links: its label, `EA` (`None`: rigid links), `EI`, whether
 /// the joint friction is kept (else `chain.damping = 0`), and the largest

@@ -6,11 +6,11 @@
 
 use std::fmt::Write as _;
 
+use fc_batch::sweep::{self, Vary};
 use fc_csv::format::num;
 use fc_csv::table::Table;
-use fc_study::converge;
 use fc_scene::scene::Scene;
-use fc_batch::sweep::{self, Vary};
+use fc_study::converge;
 
 /// The relative agreement Fig. 9's text states a range for.
 pub const AGREEMENT: f64 = 0.01;

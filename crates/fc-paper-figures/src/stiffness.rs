@@ -37,8 +37,8 @@ use std::fmt::Write as _;
 
 use chain_ode::{bdf_crossover_gamma, solve, Chain, Method, SolveOptions, Start, State};
 
-use fc_csv::format::{exp, exp_digits, fixed};
 use super::matched::time_at;
+use fc_csv::format::{exp, exp_digits, fixed};
 use fc_study::precision::Reference;
 
 /// End of each run: past the whip of the span d = 3 fall.

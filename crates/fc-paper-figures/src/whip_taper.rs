@@ -10,9 +10,9 @@ use std::fmt::Write as _;
 
 use rayon::prelude::*;
 
-use fc_study::converge::{self, Deviation, Level};
-use fc_scene::scene::Scene;
 use fc_csv::format::num;
+use fc_scene::scene::Scene;
+use fc_study::converge::{self, Deviation, Level};
 
 /// One run of the ladder.
 #[derive(Clone, Debug, PartialEq)]

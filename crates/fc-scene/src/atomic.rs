@@ -104,8 +104,7 @@ pub struct PendingOutput {
 /// run.
 pub fn begin(what: &'static str, path: &Path) -> Result<PendingOutput, Error> {
     check_writable(what, path)?;
-    let pending =
-        fc_atomic::Pending::create(path).map_err(|e| Error::write(what, path, e))?;
+    let pending = fc_atomic::Pending::create(path).map_err(|e| Error::write(what, path, e))?;
     Ok(PendingOutput {
         what,
         path: path.to_path_buf(),

@@ -24,9 +24,9 @@
 use chain_ode::Method;
 use serde::Serialize;
 
-use fc_batch::budget::Budget;
 use super::precision::{self, Checks, Point};
 use crate::converge::{self, Deviation, Level};
+use fc_batch::budget::Budget;
 use fc_scene::error::Error;
 use fc_scene::scene::Scene;
 

@@ -15,10 +15,10 @@ use figures::{
     palette, CategoryMap, CategoryPanel, FigureError, LinePlot, Output, RGBColor, Series, Style,
 };
 
-use fc_csv::format::{exp, short_err};
 use crate::stability::{Outcome, MAX_STEPS};
-use fc_csv::table::{distinct, parse_num, Table};
 use crate::work_cost::{UnitWeights, Weights};
+use fc_csv::format::{exp, short_err};
+use fc_csv::table::{distinct, parse_num, Table};
 
 /// What a drawing reads its tables with: the table of the given suffix
 /// (`""` for the main table, `"-law"`, `"-times"`, ...; the caller maps

@@ -19,8 +19,8 @@ use chain_ode::{solve, Cancel, Method, SolveOptions, Stats, Status, Trajectory};
 use rayon::prelude::*;
 
 use fc_batch::budget::Budget;
-use fc_csv::format::{exp, num, text};
 use fc_batch::shard::Provenance;
+use fc_csv::format::{exp, num, text};
 use fc_csv::Column::{self, Float, Int, Text};
 use fc_scene::error::{echo, Error};
 use fc_scene::scene::Prepared;

@@ -17,8 +17,8 @@
 
 use serde::Serialize;
 
-use fc_csv::format::{exp, num, opt};
 use crate::converge::{self, Deviation, Level};
+use fc_csv::format::{exp, num, opt};
 use fc_scene::error::Error;
 use fc_scene::scene::Scene;
 

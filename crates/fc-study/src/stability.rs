@@ -8,8 +8,8 @@ use chain_ode::{solve, Method, Status, Trajectory};
 use rayon::prelude::*;
 
 use fc_batch::budget::Budget;
-use fc_csv::format::{exp, num, opt, text};
 use fc_batch::shard::Provenance;
+use fc_csv::format::{exp, num, opt, text};
 use fc_csv::Column::{self, Float, Int, Text};
 use fc_scene::error::Error;
 use fc_scene::scene::Prepared;
@@ -614,8 +614,11 @@ pub fn rows_of(
     v.values
         .iter()
         .map(|x| {
-            let s =
-                fc_batch::sweep::scene_for(scene, std::slice::from_ref(v), std::slice::from_ref(x))?;
+            let s = fc_batch::sweep::scene_for(
+                scene,
+                std::slice::from_ref(v),
+                std::slice::from_ref(x),
+            )?;
             // A number as `{}` prints it: 1 and 1.0 are the same row.
             let cell = match x {
                 toml::Value::String(t) => t.clone(),

@@ -18,8 +18,8 @@ use std::path::Path;
 
 use serde_json::json;
 
-use fc_scene::error::echo_path;
 use crate::{check_links, keeps, stride_for, JointForces, ViewRun, MAX_VIEW_LINKS};
+use fc_scene::error::echo_path;
 use fc_scene::Error;
 
 /// The largest CSV read (bytes): `simulate` keeps its samples within 1 GiB

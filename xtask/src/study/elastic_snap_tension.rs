@@ -8,9 +8,9 @@
 //! them, the support force against time (`study::snap_tension` makes the
 //! tables, `study::plot::elastic::snap_tension` the drawing).
 
+use fc_paper_figures::{plot, snap_tension};
 use fc_study::converge::refined_scene;
 use fc_study::snap::{self, Options};
-use fc_paper_figures::{plot, snap_tension};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -21,9 +21,9 @@ pub mod whip_taper;
 
 use std::path::Path;
 
-use figures::Output;
-use fc_study::plot::{wp_points, work_precision_weighted, DRAW_FLOOR};
+use fc_study::plot::{work_precision_weighted, wp_points, DRAW_FLOOR};
 use fc_study::work_cost::Weights;
+use figures::Output;
 
 pub use fc_study::plot::{stability_figure, Reader};
 
@@ -43,4 +43,3 @@ pub fn wp_figure(read: Reader, stem: &Path, label: &str, eval: Eval) -> Result<O
     let pair = work_precision_weighted(label, &rows, notes, Some(weights));
     pair.save(stem).map_err(|e| e.to_string())
 }
-

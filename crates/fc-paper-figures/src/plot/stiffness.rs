@@ -9,8 +9,8 @@ use std::path::Path;
 use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
 
 use super::Reader;
-use fc_csv::format::exp;
 use crate::stiffness::{TARGET, T_END};
+use fc_csv::format::exp;
 use fc_csv::table::distinct;
 
 /// A crossover's label: one decimal below 10 (`3.2`), the nearest whole
