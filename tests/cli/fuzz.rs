@@ -550,7 +550,7 @@ impl Case {
                 // name, quoted as the CSV writer quotes it (or, with
                 // `same_out`, with its quotes unbalanced).
                 let named = dir.join("n.csv");
-                let cell = falling_chain::csv::field(NAMES[self.name]).into_owned();
+                let cell = fc_csv::field(NAMES[self.name]).into_owned();
                 let cell = if self.same_out {
                     cell.replacen('"', "", 1)
                 } else {
@@ -598,7 +598,7 @@ impl Case {
             "simulate" | "view" if self.same_out => Some(2),
             "precision" | "stability" if self.same_out && self.with_out => Some(2),
             "merge" if self.extra % 3 == 0 => {
-                let cell = falling_chain::csv::field(NAMES[self.name]);
+                let cell = fc_csv::field(NAMES[self.name]);
                 Some(if self.same_out && cell.contains('"') {
                     2
                 } else {
@@ -794,13 +794,10 @@ fn the_fuzzer_draws_every_scene_key() {
     }
     fs::remove_dir_all(&dir).unwrap();
     for path in NOT_FUZZED {
-        assert!(
-            falling_chain::schema::key(path).is_some(),
-            "{path} is not a key"
-        );
+        assert!(fc_scene::schema::key(path).is_some(), "{path} is not a key");
         assert!(!drawn.iter().any(|d| d == path), "{path} is fuzzed");
     }
-    for k in falling_chain::schema::KEYS {
+    for k in fc_scene::schema::KEYS {
         assert!(
             NOT_FUZZED.contains(&k.path) || drawn.iter().any(|d| d == k.path),
             "the fuzzer never draws {}",

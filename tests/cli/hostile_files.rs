@@ -90,7 +90,7 @@ fn two_outputs_on_one_file_are_refused_before_any_run() {
 
 /// The table's records as cells, read by the project's one reader.
 fn records(file: &Path) -> Vec<Vec<String>> {
-    falling_chain::csv::records(&fs::read_to_string(file).unwrap()).unwrap()
+    fc_csv::records(&fs::read_to_string(file).unwrap()).unwrap()
 }
 
 /// `records` without the column `wall_seconds` (which differs run to run).
@@ -279,7 +279,7 @@ fn page_data(page: &str) -> &str {
 fn view_with_forces_keeps_the_documented_data_cap() {
     let dir = scratch("files-view-cap");
     let s = scene("span-d3");
-    let cap = falling_chain::viewer::DATA_BUDGET_BYTES;
+    let cap = fc_viewer::DATA_BUDGET_BYTES;
     let out = path(&dir.join("v.html"));
     let eight = |links: &str, t_end: &str| {
         let mut args: Vec<String> = vec!["view".into()];

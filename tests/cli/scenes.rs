@@ -5,7 +5,7 @@ use std::fs;
 
 use chain_ode::kinematics::tip;
 use chain_ode::Start;
-use falling_chain::Scene;
+use fc_scene::Scene;
 
 use crate::common::*;
 
@@ -127,7 +127,7 @@ fn every_scene_command_names_an_unknown_set_key_and_writes_nothing() {
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         // The keys listed are the schema's, in table order.
-        let keys = falling_chain::schema::section_keys("chain").join(", ");
+        let keys = fc_scene::schema::section_keys("chain").join(", ");
         assert_eq!(
             err.trim_end(),
             format!("error: chain.lenght: unknown key: [chain] has the keys {keys}"),

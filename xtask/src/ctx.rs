@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use falling_chain::study::plot::Reader;
-use falling_chain::{Prepared, Scene};
+use fc_paper_figures::plot::Reader;
+use fc_scene::{Prepared, Scene};
 
 use crate::data::Table;
 use crate::registry::Figure;
@@ -121,7 +121,7 @@ impl Ctx {
         self.out.join(id)
     }
 
-    /// Draws `fig` with `draw` (a drawing of `falling_chain::study::plot`)
+    /// Draws `fig` with `draw` (a drawing of `fc_paper_figures::plot`)
     /// from its data files `<id><suffix>.csv`; returns the files written.
     pub fn draw(
         &self,
@@ -150,7 +150,7 @@ impl Ctx {
 
 /// Writes `text` to `path` atomically (xtask's every text output).
 pub fn write_text(path: &Path, text: &str) -> Result<(), String> {
-    falling_chain::atomic::write_atomic("xtask output", path, |w: &mut dyn Write| {
+    fc_scene::atomic::write_atomic("xtask output", path, |w: &mut dyn Write| {
         w.write_all(text.as_bytes())
     })
     .map_err(|e| e.to_string())

@@ -1,6 +1,6 @@
 //! `figures/data/`: the CSV files every figure is drawn from and the paper
 //! quotes, read as a [`Table`] and written in the study's formats
-//! (`falling_chain::study::format`): every number of the deterministic data
+//! (`fc_csv::format`): every number of the deterministic data
 //! is `num` (shortest text that reads back to the same `f64`, so a figure
 //! drawn from the file is the figure drawn from the computation) or `exp`,
 //! except long per-sample tables, which are `fixed` to a few decimals to
@@ -12,9 +12,9 @@
     unused_imports,
     reason = "the figure files' helpers: not every one is used by today's figures"
 )]
-pub use falling_chain::study::format::{exp, exp_digits, fixed, num, opt, short_err, text};
+pub use fc_csv::format::{exp, exp_digits, fixed, num, opt, short_err, text};
 #[allow(
     unused_imports,
     reason = "the figure files' helpers: not every one is used by today's figures"
 )]
-pub use falling_chain::study::table::{distinct, parse_num, Table};
+pub use fc_csv::table::{distinct, parse_num, Table};

@@ -251,7 +251,7 @@ fn figures_cmd(args: Args) -> Result<(), String> {
 /// `scenes/README.md` from falling-chain's scene schema; `--check` fails if
 /// it is stale (falling-chain's tests check it too).
 fn scene_keys(check: bool) -> Result<(), String> {
-    let done = falling_chain::schema::sync_readme(&root().join("scenes/README.md"), check)?;
+    let done = fc_scene::schema::sync_readme(&root().join("scenes/README.md"), check)?;
     println!("scenes/README.md: {done}");
     Ok(())
 }

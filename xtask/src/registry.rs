@@ -11,7 +11,7 @@ use crate::ctx::Ctx;
 use crate::report::{Catenaries, Sketch, Snapshots, TipSpeed, TipVelocity, VmaxVsSpan};
 use crate::report_model::{ReportSnapshots, ReportTip, ReportVmax};
 use crate::study;
-use falling_chain::study::report::{LinspaceSlice, SpanParams};
+use fc_paper_figures::report::{LinspaceSlice, SpanParams};
 use paper::catalogue::Entry;
 
 /// How a figure makes its data and draws itself.

@@ -3,8 +3,8 @@
 //! the registry, never a copy of code: `compute` takes the shared scene
 //! runs to `figures/data/<id>*.csv`, `draw` draws from those files.
 
-use falling_chain::study::plot;
-use falling_chain::study::report::{self, SpanParams};
+use fc_paper_figures::plot;
+use fc_paper_figures::report::{self, SpanParams};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -1,10 +1,10 @@
 //! `report-scenes-accuracy`: is each report figure drawn from a converged
 //! run? The report scenes with dynamics (and the folded chain), each at its
 //! own settings and by RK4 at a ladder of steps, against DOP853 at rtol
-//! 1e-12 (`falling_chain::study::accuracy` makes the table, its `plot`
+//! 1e-12 (`fc_paper_figures::accuracy` makes the table, its `plot`
 //! the drawing).
 
-use falling_chain::study::{accuracy, plot};
+use fc_paper_figures::{accuracy, plot};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -3,10 +3,10 @@
 //! snapshots of the report's model in its own clock ([`ReportSnapshots`],
 //! beside the corrected fig03 .. fig12), its Figs. 8 and 11 as its own tip
 //! speeds ([`ReportTip`]), and its Fig. 9 with what each erratum changes
-//! ([`ReportVmax`]). `falling_chain::study::report_model`
+//! ([`ReportVmax`]). `fc_paper_figures::report_model`
 //! makes the tables, its `plot` the drawings.
 
-use falling_chain::study::{plot, report_model, report_model_tip};
+use fc_paper_figures::{plot, report_model, report_model_tip};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -1,12 +1,12 @@
 //! The scene runs the report's figures share, each made once, in parallel
-//! (`falling_chain::study::scene_run`), and the summary of them the paper
+//! (`fc_paper_figures::scene_run`), and the summary of them the paper
 //! quotes (`scenes.csv`).
 
 use std::collections::BTreeMap;
 
 use chain_ode::Trajectory;
-use falling_chain::study::report;
-pub use falling_chain::study::scene_run::SceneRun;
+use fc_paper_figures::report;
+pub use fc_paper_figures::scene_run::SceneRun;
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;

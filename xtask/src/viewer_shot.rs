@@ -15,8 +15,8 @@
 //! is skipped with a line saying so, the committed PNG is kept and the rest
 //! of the run goes on.
 
-use falling_chain::study::viewer_peak;
-use falling_chain::viewer;
+use fc_paper_figures::viewer_peak;
+use fc_viewer as viewer;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -55,7 +55,7 @@ impl Make for ViewerPeak {
         let script = format!("fallingChain.seekTime({peak}); 0");
         let shot = browser::screenshot_page(&chromium, fig.id, &page, SIZE, &script)?;
         let png = ctx.out.join(format!("{}.png", fig.id));
-        falling_chain::atomic::write_atomic("figure", &png, |w| w.write_all(&shot))
+        fc_scene::atomic::write_atomic("figure", &png, |w| w.write_all(&shot))
             .map_err(|e| e.to_string())?;
         Ok(vec![ctx.relative(&png)])
     }

@@ -1,6 +1,6 @@
 //! `falling_chain.catenary`: what `falling-chain catenary --json` prints.
 
-use ::falling_chain::{CatenaryNames, CatenaryReport, Error};
+use ::fc_scene::{CatenaryNames, CatenaryReport, Error};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt};
 

@@ -1,8 +1,8 @@
 //! Conversions between Python objects and the values of the Rust API: scene
 //! values (TOML), the CLI's JSON objects, errors, and numpy arrays.
 
-use ::falling_chain::overrides::parse_value;
-use ::falling_chain::Error;
+use ::fc_scene::overrides::parse_value;
+use ::fc_scene::Error;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError, PyValueError};

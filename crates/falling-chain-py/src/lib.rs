@@ -1,6 +1,7 @@
-//! `falling_chain`, the Python module: a thin layer of PyO3 over the
-//! falling-chain crate (scenes, `--set`, `RunSummary`, sweeps, the catenary
-//! report) and chain-ode (`solve`, `kinematics`).
+//! `falling_chain`, the Python module: a thin layer of PyO3 over fc-scene
+//! (scenes, `--set`, `RunSummary`, the catenary report), fc-batch (sweeps,
+//! shards, `merge`), fc-study without its drawings (the studies), fc-viewer
+//! (`view`) and chain-ode (`solve`, `kinematics`).
 //!
 //! Every Python name maps to one call of the Rust API (ARCHITECTURE.md has
 //! the table); nothing of the scene schema, the methods or the summary is

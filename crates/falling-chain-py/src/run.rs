@@ -1,6 +1,6 @@
 //! `falling_chain.simulate` and the `Run` it returns.
 
-use ::falling_chain::{Error, RunSummary, Scene};
+use ::fc_scene::{Error, RunSummary, Scene};
 use chain_ode::kinematics::joints;
 use chain_ode::Model as _;
 use chain_ode::{Chain, Method, Status, Trajectory, Vec2};
@@ -347,7 +347,7 @@ impl Run {
     /// (more rods than `view` takes: 10^4, 5000 of unequal rods) shows as a
     /// short text instead, saying why.
     fn _repr_html_(&self, py: Python<'_>) -> PyResult<String> {
-        use ::falling_chain::viewer;
+        use ::fc_viewer as viewer;
         let degraded = |why: String| {
             format!(
                 "<pre>{}</pre><p>Not shown as a page: {}.</p>",
@@ -386,13 +386,9 @@ impl Run {
     }
 
     /// The run as the viewer's page holds it, thinned to `budget` bytes
-    /// (`falling_chain::viewer`), from the arrays this run holds.
-    pub(crate) fn view_run(
-        &self,
-        py: Python<'_>,
-        budget: usize,
-    ) -> PyResult<::falling_chain::viewer::ViewRun> {
-        use ::falling_chain::viewer::{fixed_bytes, keeps, stride_for, RodProfile, ViewRun};
+    /// (`fc_viewer`), from the arrays this run holds.
+    pub(crate) fn view_run(&self, py: Python<'_>, budget: usize) -> PyResult<::fc_viewer::ViewRun> {
+        use ::fc_viewer::{fixed_bytes, keeps, stride_for, RodProfile, ViewRun};
         let (samples, n) = (self.head.samples, self.head.chain.links());
         let profile = RodProfile::of(&self.head.chain);
         let budget = budget.saturating_sub(fixed_bytes(n, profile.is_some()));

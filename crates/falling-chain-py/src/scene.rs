@@ -2,14 +2,14 @@
 
 use std::path::PathBuf;
 
-use ::falling_chain::{Error, Scene};
+use ::fc_scene::{Error, Scene};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{table_to_dict, to_toml, value_error};
 
 /// The longest scene text: the largest scene file the CLI reads (1 MiB).
-const MAX_SCENE_TEXT: usize = ::falling_chain::scene::MAX_SCENE_BYTES as usize;
+const MAX_SCENE_TEXT: usize = ::fc_scene::scene::MAX_SCENE_BYTES as usize;
 
 /// A scene: a chain, how it starts and how to run it (the TOML files of
 /// `scenes/`, described in `scenes/README.md`).

@@ -2,39 +2,33 @@
 //! commands of the same names, returning the tables of their `--out` as
 //! dicts of numpy columns (`needs`: its `--json` object as a dict).
 
-use ::falling_chain::study::budget::check_budget;
-use ::falling_chain::study::{self, needs as core_needs, precision as core_precision};
-use ::falling_chain::study::{shard, stability as core_stability};
-use ::falling_chain::Error;
-use numpy::IntoPyArray;
+use ::fc_batch::budget::check_budget;
+use ::fc_batch::shard;
+use ::fc_csv::{column_type, Column};
+use ::fc_scene::Error;
+use ::fc_study::stability as core_stability;
+use ::fc_study::{self as study, needs as core_needs, precision as core_precision};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString};
+use pyo3::types::{PyDict, PyString};
 
 use crate::convert::{echo, json_to_dict, read_only, value_error};
 use crate::interrupt::run_interruptible;
 use crate::scene::PyScene;
-use crate::sweep::{csv_records, jobs_of, shard_of, vary_of};
-
-/// Columns that hold text whatever their cells look like.
-const TEXT: [&str; 10] = [
-    "scene",
-    "label",
-    "method",
-    "param_name",
-    "status",
-    "outcome",
-    "note",
-    "name",
-    "segments",
-    "scene_hash",
-];
+use crate::sweep::{column, csv_records, jobs_of, shard_of, vary_of, SWEEP_COLUMNS};
 
 /// A table of ours (header, then rows) as a dict of read-only numpy
-/// columns: int64 where every cell is an integer, float64 where every cell
-/// is a number or empty (NaN), str otherwise and for the columns of
-/// [`TEXT`].
-fn table<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDict>> {
+/// columns, each of the type its writer declares (`declared`, the CSV
+/// layer's [`Column`]s: int64, float64 with NaN for an empty cell, str; an
+/// integer column with an empty cell, a run not made, is float64). A column
+/// no writer declares is a sweep's varied key, whose values are the
+/// user's: int64 if every cell is an integer, float64 if every cell is a
+/// number, str otherwise (as `sweep` types it by its values).
+fn table<'py>(
+    py: Python<'py>,
+    text: &str,
+    declared: &[&[(&str, Column)]],
+) -> PyResult<Bound<'py, PyDict>> {
     let mut records = csv_records(text)?.into_iter();
     let header = records.next().unwrap_or_default();
     let rows: Vec<Vec<String>> = records.collect();
@@ -44,26 +38,16 @@ fn table<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDict>> {
             .iter()
             .map(|r| r.get(i).cloned().unwrap_or_default())
             .collect();
-        let ints: Option<Vec<i64>> = cells.iter().map(|c| c.parse::<i64>().ok()).collect();
-        let floats: Option<Vec<f64>> = cells
-            .iter()
-            .map(|c| {
-                if c.is_empty() {
-                    Some(f64::NAN)
-                } else {
-                    c.parse::<f64>().ok()
-                }
-            })
-            .collect();
-        let column = match (TEXT.contains(&name.as_str()), ints, floats) {
-            (false, Some(v), _) if !cells.is_empty() => v.into_pyarray(py).into_any(),
-            (false, _, Some(v)) => v.into_pyarray(py).into_any(),
-            _ => {
-                let np = py.import("numpy")?;
-                np.call_method1("array", (PyList::new(py, cells)?, "str"))?
+        let kind = column_type(declared, name).unwrap_or_else(|| {
+            if cells.iter().all(|c| c.parse::<i64>().is_ok()) {
+                Column::Int
+            } else if cells.iter().all(|c| c.parse::<f64>().is_ok()) {
+                Column::Float
+            } else {
+                Column::Text
             }
-        };
-        out.set_item(name, read_only(column)?)?;
+        });
+        out.set_item(name, read_only(column(py, kind, cells)?)?)?;
     }
     Ok(out)
 }
@@ -142,7 +126,12 @@ pub fn precision<'py>(
         core_precision::study(&scene, &options, Some(cancel), &|| {})
     })?
     .map_err(value_error)?;
-    table(py, &s.csv())
+    let declared: [&[(&str, Column)]; 3] = [
+        &core_precision::COLUMNS,
+        &core_precision::CLI_COLUMNS,
+        &shard::COLUMNS,
+    ];
+    table(py, &s.csv(), &declared)
 }
 
 /// Where each method fails on `scene` (`falling-chain stability --out`'s
@@ -193,7 +182,12 @@ pub fn stability<'py>(
         core_stability::run_study(&scene, &options, Some(cancel), &|| {})
     })?
     .map_err(value_error)?;
-    table(py, &s.csv())
+    let declared: [&[(&str, Column)]; 3] = [
+        &core_stability::COLUMNS,
+        &core_stability::CLI_COLUMNS,
+        &shard::COLUMNS,
+    ];
+    table(py, &s.csv(), &declared)
 }
 
 /// What `scene` needs at tolerance `tol` (`falling-chain needs --json` as a
@@ -219,7 +213,7 @@ pub fn needs<'py>(
     let scene = scene.get().inner.clone();
     core_needs::check_tol("--tol", tol).map_err(value_error)?;
     let links = match links {
-        None => ::falling_chain::converge::DEFAULT_LINKS.to_vec(),
+        None => ::fc_study::converge::DEFAULT_LINKS.to_vec(),
         Some(l) => {
             let text = if let Ok(s) = l.cast::<PyString>() {
                 s.to_cow()?.into_owned()
@@ -232,7 +226,7 @@ pub fn needs<'py>(
                     })?;
                 v.join(",")
             };
-            ::falling_chain::converge::parse_links(&text).map_err(value_error)?
+            ::fc_study::converge::parse_links(&text).map_err(value_error)?
         }
     };
     let methods = match methods_of(methods)? {
@@ -247,7 +241,7 @@ pub fn needs<'py>(
     };
     let budget = budget_of(budget)?;
     let answer = run_interruptible(py, |cancel| {
-        study::budget::Budget::run(budget, Some(cancel), |b| {
+        ::fc_batch::budget::Budget::run(budget, Some(cancel), |b| {
             core_needs::run(&scene, &options, b, &|_, _, _| {})
         })
     })?
@@ -267,7 +261,16 @@ pub fn merge<'py>(py: Python<'py>, paths: &Bound<'_, PyAny>) -> PyResult<Bound<'
     let paths = paths_of(paths)?;
     let texts = shard::read(&paths).map_err(|e| value_error(paths_named(e)))?;
     let merged = shard::merge(&texts).map_err(value_error)?;
-    table(py, &merged)
+    // A shard is precision's, stability's or a sweep's table: each names
+    // its columns with their types (the same name has one type in all).
+    let mut declared: Vec<&[(&str, Column)]> = vec![
+        &core_precision::COLUMNS,
+        &core_precision::CLI_COLUMNS,
+        &core_stability::COLUMNS,
+        &core_stability::CLI_COLUMNS,
+    ];
+    declared.extend_from_slice(SWEEP_COLUMNS);
+    table(py, &merged, &declared)
 }
 
 /// An error of [`shard::read`] about one file (its role `shard`) or the

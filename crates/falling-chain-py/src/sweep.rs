@@ -1,9 +1,10 @@
 //! `falling_chain.sweep`: the CLI's `sweep`, with numpy columns for its CSV.
 
-use ::falling_chain::study::shard::Provenance;
-use ::falling_chain::sweep as core;
-use ::falling_chain::sweep::{Shard, SweepRow, Vary};
-use ::falling_chain::Error;
+use ::fc_batch::shard::{self, Provenance, Shard};
+use ::fc_batch::sweep as core;
+use ::fc_batch::sweep::{SweepRow, Vary};
+use ::fc_csv::{column_type, Column};
+use ::fc_scene::{Error, SUMMARY_CSV_COLUMNS};
 use numpy::IntoPyArray;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -17,7 +18,7 @@ use crate::scene::PyScene;
 /// The most runs a sweep may have (the sweep's own grid cap), so that no
 /// list of `vary` is longer than a sweep can run; and the most threads
 /// `jobs=` may ask for. Both are the CLI's.
-use ::falling_chain::sweep::{MAX_JOBS, MAX_RUNS};
+use ::fc_batch::{shard::MAX_RUNS, sweep::MAX_JOBS};
 
 /// One key of `vary`: a `str` is the right-hand side of `--vary KEY=...`
 /// (`"0.3:5.97:120"`, `"rk4,dopri5"`); anything else is a sequence of values
@@ -68,61 +69,45 @@ pub(crate) fn shard_of(shard: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Shar
 }
 
 /// The cells of CSV text of ours, read by the project's one reader
-/// (`falling_chain::csv`, RFC 4180: a name with a comma, a quote or a line
+/// (`fc_csv`, RFC 4180: a name with a comma, a quote or a line
 /// break is one quoted cell).
 pub(crate) fn csv_records(text: &str) -> PyResult<Vec<Vec<String>>> {
-    ::falling_chain::csv::records(text).map_err(|e| PyValueError::new_err(format!("csv: {e}")))
+    ::fc_csv::records(text).map_err(|e| PyValueError::new_err(format!("csv: {e}")))
 }
 
-/// What a summary column holds, read off the summary's JSON value.
-#[derive(Clone, Copy, PartialEq)]
-enum Kind {
-    Int,
-    Float,
-    Text,
-}
-
-/// The kind of the CSV column `column` of a summary: its JSON field (or,
-/// for `tip_end_x`, the pair `tip_end`) says whether it is an integer, a
-/// number or text.
-fn column_kind(json: &serde_json::Value, column: &str) -> Kind {
-    let field = json.get(column).or_else(|| {
-        let base = column
-            .strip_suffix("_x")
-            .or_else(|| column.strip_suffix("_y"))?;
-        json.get(base)?.get(0)
-    });
-    match field {
-        Some(serde_json::Value::Number(x)) if x.is_f64() => Kind::Float,
-        Some(serde_json::Value::Number(_)) => Kind::Int,
-        Some(serde_json::Value::Null) => Kind::Float,
-        _ => Kind::Text,
-    }
-}
-
-/// The kind of a varied key's column from its values.
-fn value_kind(values: &[&toml::Value]) -> Kind {
+/// The type of a varied key's column from its values (a varied key's
+/// column is the one column no writer declares: its values are the user's).
+fn value_kind(values: &[&toml::Value]) -> Column {
     if values.iter().all(|v| v.is_integer()) {
-        Kind::Int
+        Column::Int
     } else if values.iter().all(|v| v.is_integer() || v.is_float()) {
-        Kind::Float
+        Column::Float
     } else {
-        Kind::Text
+        Column::Text
     }
 }
 
-/// A column of cells as a numpy array of its kind: int64, float64 (empty
-/// cells are NaN) or str.
-fn column<'py>(py: Python<'py>, kind: Kind, cells: Vec<String>) -> PyResult<Bound<'py, PyAny>> {
-    let bad = |c: &str| PyValueError::new_err(format!("sweep: cannot read the cell '{c}'"));
+/// A column of cells as a numpy array of its declared type: int64
+/// ([`Column::Int`] with every cell given; with an empty cell, a run not
+/// made, float64 with NaN there), float64 (empty cells are NaN) or str.
+pub(crate) fn column<'py>(
+    py: Python<'py>,
+    kind: Column,
+    cells: Vec<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let bad = |c: &str| PyValueError::new_err(format!("csv: cannot read the cell '{c}'"));
+    let kind = match kind {
+        Column::Int if cells.iter().any(String::is_empty) => Column::Float,
+        k => k,
+    };
     Ok(match kind {
-        Kind::Int => cells
+        Column::Int => cells
             .iter()
             .map(|c| c.parse::<i64>().map_err(|_| bad(c)))
             .collect::<PyResult<Vec<_>>>()?
             .into_pyarray(py)
             .into_any(),
-        Kind::Float => cells
+        Column::Float => cells
             .iter()
             .map(|c| {
                 if c.is_empty() {
@@ -134,7 +119,7 @@ fn column<'py>(py: Python<'py>, kind: Kind, cells: Vec<String>) -> PyResult<Boun
             .collect::<PyResult<Vec<_>>>()?
             .into_pyarray(py)
             .into_any(),
-        Kind::Text => {
+        Column::Text => {
             let np = py.import("numpy")?;
             let list = PyList::new(py, cells)?;
             np.call_method1("array", (list, "str"))?
@@ -142,8 +127,16 @@ fn column<'py>(py: Python<'py>, kind: Kind, cells: Vec<String>) -> PyResult<Boun
     })
 }
 
+/// The columns a sweep's table declares: its run number, the summary's
+/// and the provenance's (the varied keys' are typed by their values).
+pub(crate) const SWEEP_COLUMNS: &[&[(&str, Column)]] = &[
+    &[("run", Column::Int)],
+    &SUMMARY_CSV_COLUMNS,
+    &shard::COLUMNS,
+];
+
 /// The rows as the columns of `sweep --out`'s CSV: the cells are those of
-/// the CSV, typed by the summary's JSON fields.
+/// the CSV, typed as the CSV layer's writers declare them.
 fn columns<'py>(
     py: Python<'py>,
     vary: &[Vary],
@@ -159,29 +152,17 @@ fn columns<'py>(
     let mut table = csv_records(&text)?.into_iter();
     let header = table.next().unwrap_or_default();
     let table: Vec<Vec<String>> = table.collect();
-    let json = rows
-        .first()
-        .map(|r| serde_json::to_value(&r.summary))
-        .transpose()
-        .map_err(|e| PyValueError::new_err(format!("sweep: {e}")))?
-        .unwrap_or(serde_json::Value::Null);
     let out = PyDict::new(py);
     for (i, name) in header.iter().enumerate() {
-        let kind = if i == 0 || name == "runs" {
-            Kind::Int
-        } else if name == "scene_hash" {
-            Kind::Text
-        } else if i <= vary.len() {
+        let kind = if (1..=vary.len()).contains(&i) {
             value_kind(
                 &rows
                     .iter()
                     .filter_map(|r| r.values.get(i - 1))
                     .collect::<Vec<_>>(),
             )
-        } else if rows.is_empty() {
-            Kind::Float
         } else {
-            column_kind(&json, name)
+            column_type(SWEEP_COLUMNS, name).unwrap_or(Column::Text)
         };
         let cells = table
             .iter()

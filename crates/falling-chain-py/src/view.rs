@@ -2,9 +2,9 @@
 
 use std::path::PathBuf;
 
-use ::falling_chain::atomic::{check_writable, write_atomic};
-use ::falling_chain::viewer::{self, DATA_BUDGET_BYTES};
-use ::falling_chain::Error;
+use ::fc_scene::atomic::{check_writable, write_atomic};
+use ::fc_scene::Error;
+use ::fc_viewer::{self as viewer, DATA_BUDGET_BYTES};
 use pyo3::prelude::*;
 
 use crate::convert::value_error;

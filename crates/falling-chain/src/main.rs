@@ -11,12 +11,13 @@ use std::process::ExitCode;
 
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
-use falling_chain::atomic::{begin, check_distinct, check_writable};
-use falling_chain::error::{echo, echo_path, escape, number};
-use falling_chain::study::shard::Provenance;
-use falling_chain::summary::stiffness_hint_for_model;
-use falling_chain::{csv, CatenaryReport, Error, RunSummary, Scene};
+use fc_batch::shard::Provenance;
+use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::error::{echo, echo_path, escape, number};
+use fc_scene::summary::stiffness_hint_for_model;
+use fc_scene::{csv, CatenaryReport, Error, RunSummary, Scene};
 
+mod progress;
 mod study_commands;
 
 #[derive(Parser)]
@@ -137,10 +138,10 @@ impl JobsArgs {
     /// The number of threads: `--jobs` (1..=256), else every core.
     pub(crate) fn threads(&self) -> Result<usize, Error> {
         match self.jobs {
-            Some(n) => falling_chain::sweep::check_jobs("--jobs", n),
+            Some(n) => fc_batch::sweep::check_jobs("--jobs", n),
             None => Ok(std::thread::available_parallelism()
                 .map_or(1, |n| n.get())
-                .min(falling_chain::sweep::MAX_JOBS)),
+                .min(fc_batch::sweep::MAX_JOBS)),
         }
     }
 }
@@ -357,7 +358,7 @@ fn int_in(text: &str, lo: usize, hi: usize) -> Result<usize, String> {
 }
 
 fn parse_jobs(text: &str) -> Result<usize, String> {
-    int_in(text, 1, falling_chain::sweep::MAX_JOBS)
+    int_in(text, 1, fc_batch::sweep::MAX_JOBS)
 }
 
 fn parse_snapshots(text: &str) -> Result<usize, String> {
@@ -484,7 +485,7 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
         .transpose()?;
     let traj = match every {
         None => run.solve()?,
-        Some(every) => falling_chain::progress::solve_showing(&run, every)?,
+        Some(every) => progress::solve_showing(&run, every)?,
     };
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
@@ -509,7 +510,8 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
 }
 
 fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
-    use falling_chain::sweep::{self, Shard, Vary};
+    use fc_batch::shard::Shard;
+    use fc_batch::sweep::{self, Vary};
     let scene = args.scene.load()?;
     let vary = args
         .vary
@@ -668,7 +670,7 @@ fn draw_scene(
         traj.chain().links(),
         traj.method
     );
-    let fig = falling_chain::render::snapshots(&title, &traj, None, Some(release));
+    let fig = fc_study::render::snapshots(&title, &traj, None, Some(release));
     draw(&fig).map_err(|e| figure_error("--out", out, e))?;
     eprintln!(
         "wrote {} ({} {noun}, status {})",
@@ -719,7 +721,7 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
 }
 
 fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
-    use falling_chain::viewer::{self, ViewRun, DATA_BUDGET_BYTES};
+    use fc_viewer::{self as viewer, ViewRun, DATA_BUDGET_BYTES};
     viewer::check_page_path("--out", &args.out)?;
     let methods: Vec<Option<&str>> = match &args.method {
         None => vec![None],
@@ -765,7 +767,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     let from = args
         .from
         .iter()
-        .map(|p| falling_chain::run_csv::read_run_csv(p, budget))
+        .map(|p| fc_viewer::run_csv::read_run_csv(p, budget))
         .collect::<Result<Vec<_>, _>>()?;
     let out = begin("--out", &args.out)?;
     let mut runs = Vec::with_capacity(count);
@@ -822,7 +824,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
 }
 
 fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
-    use falling_chain::converge;
+    use fc_study::converge;
     converge::check_tol(args.tol)?;
     if let Some(r) = args.rtol {
         converge::check_rtol("--rtol", r)?;
@@ -887,7 +889,7 @@ fn remove_temporaries_on_signals() {
         .name("signals".into())
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
-                let _held = figures::atomic::remove_temporaries();
+                let _held = fc_atomic::remove_temporaries();
                 std::process::exit(128 + signal);
             }
         });

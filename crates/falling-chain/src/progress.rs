@@ -12,8 +12,8 @@ use std::time::{Duration, Instant};
 
 use chain_ode::Trajectory;
 
-use crate::scene::Prepared;
-use crate::Error;
+use fc_scene::scene::Prepared;
+use fc_scene::Error;
 
 /// One progress line: the time reached of `t_end`, after `elapsed` seconds.
 pub fn line(t: f64, t_end: f64, elapsed: f64) -> String {

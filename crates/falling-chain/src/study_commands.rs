@@ -1,18 +1,18 @@
 //! The study's commands: `precision`, `stability`, `needs` and `merge`
-//! (the computations are the library's `falling_chain::study`).
+//! (the computations are the fc-study crate's).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use falling_chain::atomic::{begin, check_distinct, check_writable};
-use falling_chain::error::echo_path;
-use falling_chain::study::budget::{check_budget, Budget};
-use falling_chain::study::format::exp;
-use falling_chain::study::shard;
-use falling_chain::study::{self, needs, plot, precision, stability};
-use falling_chain::sweep::{Shard, Vary};
-use falling_chain::Error;
+use fc_batch::budget::{check_budget, Budget};
+use fc_batch::shard::{self, Shard};
+use fc_batch::sweep::Vary;
+use fc_csv::format::exp;
+use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::error::echo_path;
+use fc_scene::Error;
+use fc_study::{self as study, needs, plot, precision, stability};
 
 use crate::{JobsArgs, SceneArgs};
 
@@ -329,7 +329,7 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
 
 pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     needs::check_tol("--tol", args.tol)?;
-    let links = falling_chain::converge::parse_links(&args.links)?;
+    let links = fc_study::converge::parse_links(&args.links)?;
     let methods = match &args.methods {
         Some(m) => study::parse_methods("--methods", Some(m))?,
         None => needs::default_methods(),
@@ -365,7 +365,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
     let out = begin("--out", &args.out)?;
     let merged = shard::merge(&texts)?;
     // Records, not lines: a quoted cell may hold a line break.
-    let rows = falling_chain::csv::records(&merged).map_or(0, |r| r.len().saturating_sub(1));
+    let rows = fc_csv::records(&merged).map_or(0, |r| r.len().saturating_sub(1));
     let shown = echo_path(out.path());
     out.write(|w| w.write_all(merged.as_bytes()))?;
     eprintln!("wrote {rows} rows from {} shards to {shown}", texts.len());

@@ -18,7 +18,8 @@
 //! about 1200 x 900 px with text of at least ~20 px, readable in print.
 
 mod animation;
-pub mod atomic;
+/// The atomic writer (the fc-atomic crate, under its old path).
+pub use fc_atomic as atomic;
 mod category;
 mod chart;
 mod clip;

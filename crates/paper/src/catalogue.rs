@@ -138,11 +138,7 @@ pub fn check_only(entries: &[Entry], only: &[String], extra: &str) -> Result<(),
 pub fn run_timing(steps: &[(String, f64)]) -> String {
     let mut csv = String::from("step,seconds\n");
     for (step, secs) in steps {
-        let _ = writeln!(
-            csv,
-            "{step},{}",
-            falling_chain::study::format::fixed(*secs, 1)
-        );
+        let _ = writeln!(csv, "{step},{}", fc_csv::format::fixed(*secs, 1));
     }
     csv
 }

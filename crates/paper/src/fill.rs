@@ -21,7 +21,7 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
-use falling_chain::study::table::Table;
+use fc_csv::table::Table;
 
 fn col(t: &Table, name: &str) -> Result<usize, String> {
     t.col(name)
@@ -263,8 +263,8 @@ pub fn run(root: &Path, check: bool) -> Result<(), String> {
 
 /// Writes `text` to `path` atomically.
 fn write_text(path: &Path, text: &str) -> Result<(), String> {
-    falling_chain::atomic::write_atomic("paper", path, |w| w.write_all(text.as_bytes()))
-        .map_err(|e| e.to_string())
+    fc_atomic::write_atomic(path, |w| w.write_all(text.as_bytes()))
+        .map_err(|e| format!("paper: cannot write '{}': {e}", path.display()))
 }
 
 #[cfg(test)]

@@ -102,8 +102,8 @@ pub fn build_into(root: &Path, out: &Path) -> Result<Vec<PathBuf>, String> {
                 b.print_pdf()?
             };
             let target = out.join(format!("{name}.pdf"));
-            falling_chain::atomic::write_atomic("pdf", &target, |w| w.write_all(&pdf))
-                .map_err(|e| e.to_string())?;
+            fc_atomic::write_atomic(&target, |w| w.write_all(&pdf))
+                .map_err(|e| format!("pdf: cannot write '{}': {e}", target.display()))?;
             println!("wrote {} ({} kB)", target.display(), pdf.len() / 1000);
             written.push(target);
         }

@@ -2,15 +2,15 @@
 //! scene, at its own `n` and mass per rod (the report's convention), the
 //! elastic chain's distance from the rigid one (tip path and maximum tip
 //! speed) against `EA`, and the `EA` above which it stays within 1e-3
-//! (`falling_chain::study::rigid_limit`; 5% damping of one joint, DOPRI5 at
+//! (`fc_study::rigid_limit`; 5% damping of one joint, DOPRI5 at
 //! rtol 1e-8 for every run). Its ladders take about 5 min on two cores
 //! (DOPRI5's steps grow like `sqrt(EA)`, to 5.6 million at `EA = 1e9`), so
 //! it is computed only by `--timings` and its files, which carry each run's
 //! wall time too, are timing files; without `--timings` it is drawn from
-//! them as committed (`falling_chain::study::plot::elastic::rigid_limit`).
+//! them as committed (`fc_paper_figures::plot::elastic::rigid_limit`).
 
-use falling_chain::study::plot;
-use falling_chain::study::rigid_limit::{self, Options};
+use fc_paper_figures::plot;
+use fc_study::rigid_limit::{self, Options};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

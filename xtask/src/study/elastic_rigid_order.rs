@@ -1,12 +1,12 @@
 //! `elastic-rigid-order`: an independent check of the dynamics. The
 //! elastic chain (maximal coordinates) against the rigid one (the angles)
 //! on three report scenes stopped before their whip, over a ladder of `EA`:
-//! the distance must fall like `1/EA` (`falling_chain::study::rigid_order`).
+//! the distance must fall like `1/EA` (`fc_paper_figures::rigid_order`).
 //! Deterministic: `elastic-rigid-order.csv` (every rung) and
 //! `elastic-rigid-order-fit.csv` (the fitted order of each scene).
 
-use falling_chain::study::plot;
-use falling_chain::study::rigid_order::{self, FIT_HEADER, HEADER};
+use fc_paper_figures::plot;
+use fc_paper_figures::rigid_order::{self, FIT_HEADER, HEADER};
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;

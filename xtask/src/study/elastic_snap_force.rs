@@ -1,5 +1,5 @@
 //! `snap-force`: the snap's peak support force and impulse against `n`
-//! (`falling_chain::study::snap_sweep`), for span d = 3, span d = 1 and the
+//! (`fc_paper_figures::snap_sweep`), for span d = 3, span d = 1 and the
 //! folded chain, each refined from its n = 50 scene at fixed total mass
 //! `M = 10` and bending viscosity (`converge::refined_scene`: the continuum
 //! convention), with rigid links and with elastic links: `EA = 1e4` to
@@ -12,10 +12,10 @@
 //! The sweep took 161 s on two shared cores (the folded chain at n = 400,
 //! `EA = 1e4`: 151 130 steps and 34 s for one run), so it is computed only
 //! by `--timings`; its file carries each run's wall time too. The drawing
-//! is `falling_chain::study::plot::elastic::snap_force`.
+//! is `fc_paper_figures::plot::elastic::snap_force`.
 
-use falling_chain::study::plot;
-use falling_chain::study::snap_sweep::{self, Case};
+use fc_paper_figures::plot;
+use fc_paper_figures::snap_sweep::{self, Case};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

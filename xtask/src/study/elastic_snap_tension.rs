@@ -1,5 +1,5 @@
 //! `snap-tension`: the tension along the chain around the snap, the wave
-//! running up from the tip (`falling_chain::study::snap`). Span d = 3
+//! running up from the tip (`fc_study::snap`). Span d = 3
 //! refined to n = 100 at fixed total mass `M = 10` (the continuum
 //! convention), elastic links `EA = 1e4`, `eta = 1.549`; DOPRI5 at rtol
 //! 1e-8, samples every 1e-3. The profiles are at the time of the tip's
@@ -8,9 +8,9 @@
 //! them, the support force against time (`study::snap_tension` makes the
 //! tables, `study::plot::elastic::snap_tension` the drawing).
 
-use falling_chain::converge::refined_scene;
-use falling_chain::study::snap::{self, Options};
-use falling_chain::study::{plot, snap_tension};
+use fc_paper_figures::{plot, snap_tension};
+use fc_study::converge::refined_scene;
+use fc_study::snap::{self, Options};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -28,4 +28,4 @@ pub mod whip_taper;
 
 /// Least-squares fits for the figure files (the library's).
 #[allow(unused_imports, reason = "for the figure files that fit slopes")]
-pub use falling_chain::study::{linear_fit, log_slope};
+pub use fc_study::{linear_fit, log_slope};

@@ -1,11 +1,11 @@
 //! `beam-precision`: work-precision of BEAM, the IVP test set's stiff beam
 //! (`chain_ode::beam`), every method against the published reference at
 //! t = 5. The runs and the tables are the library's
-//! (`falling_chain::study::beam`), the drawing too
-//! (`falling_chain::study::plot::beam`); the wall times go to
+//! (`fc_paper_figures::beam`), the drawing too
+//! (`fc_paper_figures::plot::beam`); the wall times go to
 //! `beam-precision-timing.csv`, written only by `--timings`.
 
-use falling_chain::study::{beam, plot};
+use fc_paper_figures::{beam, plot};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -5,8 +5,8 @@
 //! wall times: computed only by `--timings`, into `rhs-cost-timing.csv` and
 //! `rhs-cost-fit-timing.csv`.
 
-use falling_chain::study::plot;
-use falling_chain::study::rhs_cost;
+use fc_paper_figures::plot;
+use fc_paper_figures::rhs_cost;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -9,8 +9,8 @@
 //! another run) goes to `stability-map-timing.csv`.
 
 use chain_ode::Method;
-use falling_chain::study::plot;
-use falling_chain::study::stability::{self, Row, Skip};
+use fc_paper_figures::plot;
+use fc_study::stability::{self, Row, Skip};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -16,8 +16,8 @@
 //! work-precision figures, which come before it in the registry); it is a
 //! pure function of the committed files.
 
-use falling_chain::study::matched;
-use falling_chain::study::plot;
+use fc_paper_figures::matched;
+use fc_paper_figures::plot;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

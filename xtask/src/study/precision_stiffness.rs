@@ -1,5 +1,5 @@
 //! `stiffness`: where the implicit method pays, at matched accuracy
-//! (`falling_chain::study::stiffness` says how). The grid: for each `n`, the
+//! (`fc_paper_figures::stiffness` says how). The grid: for each `n`, the
 //! damping rates a quarter decade apart (`1, 1.8, 3.2, 5.6` times a power
 //! of ten: `10^(j/4)` to two digits) for `j` in its range, placed around the
 //! crossover; the cells past DOPRI5's budget are not run.
@@ -7,8 +7,8 @@
 //! All of it is wall times: computed only by `--timings`, into
 //! `stiffness-timing.csv` and `stiffness-crossover-timing.csv`.
 
-use falling_chain::study::plot;
-use falling_chain::study::stiffness;
+use fc_paper_figures::plot;
+use fc_paper_figures::stiffness;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -4,16 +4,16 @@
 //! evaluations of each method, relative to a reference computed far tighter
 //! than any plotted point and confirmed by two other methods.
 //!
-//! Which points a line runs is decided by their cost (see `falling_chain::study::plan`), and
+//! Which points a line runs is decided by their cost (see `fc_paper_figures::plan`), and
 //! so by wall times: `--timings` measures them and records the decision,
 //! the plan, with the wall times in `<id>-timing.csv`; without it the
 //! points of the recorded plan are run once each, untimed and in parallel,
 //! so that `<id>.csv` (steps, evaluations, errors: no wall time) is the
 //! same to the byte whenever the physics is.
 
-use falling_chain::study::plan::{self, Eval};
-use falling_chain::study::plot;
-use falling_chain::study::precision::Checks;
+use fc_paper_figures::plan::{self, Eval};
+use fc_paper_figures::plot;
+use fc_study::precision::Checks;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -2,13 +2,13 @@
 //! friction `r` for the span scenes, at their own n = 50 (DOPRI5 at rtol
 //! 1e-10) and on the refined chain of 200 rods with the continuum held
 //! fixed (`auto` at rtol 1e-8), over `r` from 0 to 20 times the scenes'
-//! 5e-4 (`falling_chain::study::friction`). Deterministic:
+//! 5e-4 (`fc_paper_figures::friction`). Deterministic:
 //! `span-friction.csv` (every run) and `span-friction-summary.csv` (per
 //! scene and n: the change from r = 0 to the scenes' r, across the report's
 //! range 1e-4 .. 1e-3, and the log-log slope at the scenes' r).
 
-use falling_chain::study::friction::{self, HEADER, SUMMARY_HEADER};
-use falling_chain::study::plot;
+use fc_paper_figures::friction::{self, HEADER, SUMMARY_HEADER};
+use fc_paper_figures::plot;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

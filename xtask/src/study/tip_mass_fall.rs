@@ -2,10 +2,10 @@
 //! (n = 400, r = 0) against the energy-conserving law, for `M / m_c` from
 //! 0.1 to 10: the fall time over free fall and the tip speed at the end of
 //! the fall. The runs and the table are the library's
-//! (`falling_chain::study::tip_mass`), the drawing `study::plot::tip_mass`;
+//! (`fc_paper_figures::tip_mass`), the drawing `study::plot::tip_mass`;
 //! this file keeps the choice of ratios.
 
-use falling_chain::study::{plot, tip_mass};
+use fc_paper_figures::{plot, tip_mass};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

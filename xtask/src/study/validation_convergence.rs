@@ -2,7 +2,7 @@
 //!
 //! Each scene is refined at fixed continuum properties (total mass
 //! `M = n m` and bending viscosity `eta = r l`, see
-//! `falling_chain::converge`) over the ladder n = 25 .. 1600, and to n = 3200
+//! `fc_study::converge`) over the ladder n = 25 .. 1600, and to n = 3200
 //! where the last doubling (800 -> 1600) still moved the maximum tip speed by
 //! more than 0.05% (half the finest tolerance asked for). The finest n is
 //! the reference. All runs: `auto`, rtol 1e-9, atol 1e-11, tip sampled every
@@ -10,8 +10,8 @@
 //! grows like n^4, so `auto` runs DOP853 on the coarse levels and the O(n)
 //! BDF on the fine ones.
 
-use falling_chain::study::convergence;
-use falling_chain::study::plot;
+use fc_paper_figures::convergence;
+use fc_paper_figures::plot;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -3,8 +3,8 @@
 //! the span d = 3 scene, for r = 0, the scene's r and a larger r. With the
 //! scene's n = 50 and m = 0.2 per rod, only r changes.
 
-use falling_chain::study::plot;
-use falling_chain::study::validation;
+use fc_paper_figures::plot;
+use fc_paper_figures::validation;
 use rayon::prelude::*;
 
 use crate::ctx::Ctx;

@@ -1,13 +1,13 @@
 //! `folded-vs-analytic`, `support-force` and `folded-tip-acceleration`:
 //! the folded chain with r = 0 against the energy-conserving law (Calkin &
 //! March 1989), the force on the pivot during the fall, and the tip's
-//! acceleration. The tables are `falling_chain::study::folded`'s; here are
+//! acceleration. The tables are `fc_paper_figures::folded`'s; here are
 //! the scenes and the drawing.
 
 use std::sync::OnceLock;
 
-use falling_chain::study::folded::{self, FoldedRun};
-use falling_chain::study::plot;
+use fc_paper_figures::folded::{self, FoldedRun};
+use fc_paper_figures::plot;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};
@@ -87,7 +87,7 @@ impl Make for FoldedTipAcceleration {
     /// `folded-tip-acceleration.csv`: `links,t,xi,accel_over_g,law_over_g`
     /// at every output sample of the fall of the runs of `ACCEL_LINKS`
     /// rods, and `-at.csv`, the comparison at a few `xi`
-    /// (`falling_chain::study::folded::tip_acceleration`).
+    /// (`fc_paper_figures::folded::tip_acceleration`).
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let (csv, at) = folded::tip_acceleration(folded_runs(ctx)?);
         write_all(ctx, fig.id, &[("", &csv), ("-at", &at)], &[])

@@ -3,8 +3,8 @@
 //! and the convergence order fitted to the relative errors (least squares
 //! in log-log over n >= 40).
 
-use falling_chain::study::plot;
-use falling_chain::study::validation;
+use fc_paper_figures::plot;
+use fc_paper_figures::validation;
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -2,11 +2,11 @@
 //! released) with its mass per length tapered 1:1 .. 100:1, on the ladder
 //! n = 50, 100, 200 refined by the profile; the largest tip speed and its
 //! gain over the uniform chain. The table and drawing are the library's
-//! (`falling_chain::study::whip_taper`, `study::plot::whip_taper`); this
+//! (`fc_paper_figures::whip_taper`, `study::plot::whip_taper`); this
 //! file keeps the tapers, the ladder and the tolerance. The whip's
 //! animation is made beside it.
 
-use falling_chain::study::{plot, whip_taper};
+use fc_paper_figures::{plot, whip_taper};
 
 use crate::ctx::Ctx;
 use crate::registry::{Figure, Make};

@@ -1,0 +1,177 @@
+//! The drawings of the elastic chain's study: the snap's support force and
+//! impulse against `n` (`fc_study::snap`), its tension wave
+//! (`crate::snap_tension`), and when the rigid model will do
+//! (`fc_study::rigid_limit`).
+
+use std::path::Path;
+
+use figures::{cool, palette, LinePlot, Output, Series, Style};
+
+use super::Reader;
+use fc_csv::table::distinct;
+
+/// `snap-force`: from `-timing` (`snap::SNAP_HEADER` rows), the peak
+/// support force over `M g` and the impulse over `M sqrt(g L)` against
+/// `n`, a line per `(scene, label)` of `scenes` (a style each) and per
+/// variant (a colour each).
+pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (scene, variant, links) = (t.strs("scene")?, t.strs("variant")?, t.nums("links")?);
+    let (peak, impulse) = (t.nums("peak_force_mg")?, t.nums("impulse")?);
+    let mut left = LinePlot::new(
+        "peak support force (rigid: at the 1e-3 samples)",
+        "n (rods, M = 10 fixed)",
+        "max |F_pivot| / (M g)",
+    );
+    let mut right = LinePlot::new(
+        "impulse of the snap, +-0.2 around the peak",
+        "n (rods, M = 10 fixed)",
+        "|J| / (M sqrt(g L))",
+    );
+    for p in [&mut left, &mut right] {
+        p.log_x = true;
+        p.log_y = true;
+        p.x_range = Some((20.0, 500.0));
+    }
+    left.y_range = Some((2.0, 300.0));
+    right.y_range = Some((0.1, 1e3));
+    let styles = [Style::LinePoints, Style::Dashed, Style::Points];
+    for (si, &(sc, label)) in scenes.iter().enumerate() {
+        for (vi, v) in distinct(&variant).into_iter().enumerate() {
+            let rows: Vec<usize> = (0..t.len())
+                .filter(|&j| scene[j] == sc && variant[j] == v)
+                .collect();
+            let pts = |col: &[f64]| -> Vec<(f64, f64)> {
+                rows.iter()
+                    .filter(|&&j| col[j].is_finite() && col[j] > 0.0)
+                    .map(|&j| (links[j], col[j]))
+                    .collect()
+            };
+            let name = format!("{label}, {v}");
+            left.series
+                .push(Series::new(name, pts(&peak), styles[si % 3]).with_color(palette(vi)));
+            right
+                .series
+                .push(Series::new("", pts(&impulse), styles[si % 3]).with_color(palette(vi)));
+        }
+    }
+    let title = "The snap: support force and impulse against n (total mass fixed)";
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
+
+/// `snap-tension`: the tension profiles of the main table (a colour per
+/// time, cool to warm) beside the support force of `-force`, each
+/// profile's time marked on it.
+pub fn snap_tension(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("")?;
+    let (time, s, tension) = (t.strs("t")?, t.nums("s_over_L")?, t.nums("tension_mg")?);
+    let f = read("-force")?;
+    let (ft, ff) = (f.nums("t")?, f.nums("pivot_force_mg")?);
+    let mut left = LinePlot::new(
+        "tension along the chain (pivot at 0, tip at 1)",
+        "s / L",
+        "tension / (M g)",
+    );
+    let mut right = LinePlot::new("support force", "t", "|F_pivot| / (M g)");
+    let times = distinct(&time);
+    let k_max = times.len().saturating_sub(1).max(1) as f64;
+    for (k, tk) in times.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = (0..t.len())
+            .filter(|&j| time[j] == *tk)
+            .map(|j| (s[j], tension[j]))
+            .collect();
+        let tv: f64 = tk.parse().unwrap_or(f64::NAN);
+        left.series.push(
+            Series::new(format!("t = {tv:.3}"), pts, Style::Line)
+                .with_color(cool(k as f64 / k_max)),
+        );
+        let at = ft
+            .iter()
+            .zip(&ff)
+            .min_by(|a, b| (a.0 - tv).abs().total_cmp(&(b.0 - tv).abs()))
+            .map(|(a, b)| (*a, *b));
+        if let Some(p) = at {
+            right
+                .series
+                .push(Series::new("", vec![p], Style::Points).with_color(cool(k as f64 / k_max)));
+        }
+    }
+    right.series.insert(
+        0,
+        Series::new(
+            "n = 100, EA = 1e4",
+            ft.iter().copied().zip(ff.iter().copied()).collect(),
+            Style::Line,
+        )
+        .with_color(figures::RGBColor(0, 0, 0)),
+    );
+    left.x_range = Some((0.0, 1.0));
+    let title = "The snap's wave: tension from the tip's arrest to the support's peak \
+                 (d = 3, n = 100, M = 10, EA = 1e4)";
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
+
+/// `elastic-rigid-limit`: from `-timing` (`rigid_limit::RUNGS_HEADER`
+/// rows) each scene's tip-path and maximum-speed deviations against `EA`,
+/// the tolerance, and from `-threshold-timing` each scene's answer.
+pub fn rigid_limit(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (scene, ea) = (t.strs("scene")?, t.nums("axial_stiffness")?);
+    let (path, speed) = (t.nums("tip_path")?, t.nums("tip_speed_max")?);
+    let a = read("-threshold-timing")?;
+    let (a_scene, a_thr, a_tol) = (a.strs("scene")?, a.nums("threshold")?, a.nums("tol")?);
+    let tol = a_tol.first().copied().unwrap_or(1e-3);
+    let mut left = LinePlot::new("tip path: max |tip - tip_rigid| / L", "EA", "deviation");
+    let mut right = LinePlot::new(
+        "maximum tip speed: |v_max / v_max_rigid - 1|",
+        "EA",
+        "deviation",
+    );
+    for p in [&mut left, &mut right] {
+        p.log_x = true;
+        p.log_y = true;
+        p.x_range = Some((5e2, 2e9));
+        p.y_range = Some((1e-8, 1e8));
+    }
+    let mut notes = vec![format!("EA above which both stay below {tol:e}:")];
+    for (k, s) in distinct(&scene).into_iter().enumerate() {
+        let rows: Vec<usize> = (0..t.len()).filter(|&j| scene[j] == s).collect();
+        let pts = |col: &[f64]| -> Vec<(f64, f64)> {
+            rows.iter()
+                .filter(|&&j| col[j].is_finite() && col[j] > 0.0)
+                .map(|&j| (ea[j], col[j]))
+                .collect()
+        };
+        let style = if k < 10 {
+            Style::LinePoints
+        } else {
+            Style::Dashed
+        };
+        left.series
+            .push(Series::new(s, pts(&path), style).with_color(palette(k)));
+        right
+            .series
+            .push(Series::new("", pts(&speed), style).with_color(palette(k)));
+        if let Some(j) = a_scene.iter().position(|x| *x == s) {
+            let thr = a_thr[j];
+            notes.push(if thr.is_finite() {
+                format!("{s}: {thr:.1e}")
+            } else {
+                format!("{s}: none up to 1e9")
+            });
+        }
+    }
+    for p in [&mut left, &mut right] {
+        p.series.push(
+            Series::new(
+                format!("tol = {tol:e}"),
+                vec![(5e2, tol), (2e9, tol)],
+                Style::Dashed,
+            )
+            .with_color(figures::RGBColor(0, 0, 0)),
+        );
+    }
+    right.annotations = notes;
+    let title = "When the rigid model will do: elastic against rigid links (report scenes)";
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}

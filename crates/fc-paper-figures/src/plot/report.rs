@@ -1,0 +1,295 @@
+//! The drawings of the report's figures from their tables
+//! (`crate::report`): catenaries, chain snapshots, tip speed and
+//! velocity against time, and the maximum tip speed against the span.
+
+use std::path::Path;
+
+use figures::{ChainSnapshots, LinePlot, Output, Series, Style};
+
+use super::Reader;
+use fc_csv::table::{distinct, Table};
+
+/// The legend entry of a scene: its name and where it was released.
+fn scene_label(scene: &str, p1: (f64, f64)) -> String {
+    format!("{scene} (P1 = ({:.3}, {:.3}))", p1.0, p1.1).replace(".000", "")
+}
+
+/// A scene of a tip figure: (name, legend label, (t_max, v_max)).
+type SceneRow = (String, String, (f64, f64));
+
+/// The scenes of `<id>-scenes.csv`.
+fn read_scenes(read: Reader) -> Result<Vec<SceneRow>, String> {
+    let t = read("-scenes")?;
+    let (name, x, y) = (t.strs("scene")?, t.nums("p1_x")?, t.nums("p1_y")?);
+    let (tm, vm) = (t.nums("t_tip_speed_max")?, t.nums("tip_speed_max")?);
+    Ok((0..t.len())
+        .map(|k| {
+            (
+                name[k].to_string(),
+                scene_label(name[k], (x[k], y[k])),
+                (tm[k], vm[k]),
+            )
+        })
+        .collect())
+}
+
+/// The samples of column pair `(a, b)` of `t` for each scene in `scenes`.
+fn per_scene(
+    t: &Table,
+    scenes: &[SceneRow],
+    a: &str,
+    b: &str,
+) -> Result<Vec<Vec<(f64, f64)>>, String> {
+    let (scene, a, b) = (t.strs("scene")?, t.nums(a)?, t.nums(b)?);
+    let names = distinct(&scene);
+    if names.len() != scenes.len() || names.iter().zip(scenes).any(|(n, s)| *n != s.0) {
+        return Err(format!("{}: its scenes differ from the legend's", t.name));
+    }
+    Ok(names
+        .iter()
+        .map(|n| {
+            (0..t.len())
+                .filter(|&k| scene[k] == *n)
+                .map(|k| (a[k], b[k]))
+                .collect()
+        })
+        .collect())
+}
+
+pub fn catenaries(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let t = read("")?;
+    let (kind, length, x, y) = (
+        t.strs("kind")?,
+        t.nums("length")?,
+        t.nums("x")?,
+        t.nums("y")?,
+    );
+    let mut p1 = None;
+    let mut curves: Vec<(f64, Vec<(f64, f64)>)> = vec![];
+    let mut lows = vec![];
+    for k in 0..t.len() {
+        match kind[k] {
+            "p1" => p1 = Some([x[k], y[k]]),
+            "lowest" => lows.push((x[k], y[k])),
+            _ => match curves.last_mut() {
+                Some((l, pts)) if *l == length[k] => pts.push((x[k], y[k])),
+                _ => curves.push((length[k], vec![(x[k], y[k])])),
+            },
+        }
+    }
+    let mut f = figures::ColoredCurves::new(title, curves, [0.0, 0.0]);
+    f.p1 = p1;
+    f.markers = lows;
+    f.markers_label = "lowest point";
+    f.colorbar_label = "L";
+    figures::colored_curves(&f, stem).map_err(|e| e.to_string())
+}
+
+/// Draws a snapshot table: every `every`-th frame and the last. With
+/// `shift > 0`, the `k`-th frame drawn is moved right by `k shift` (offset
+/// panels: the frames do not cover each other), the x axis is stretched
+/// to them, and `P0`, `P1` are those of the first frame.
+pub fn snapshots(
+    read: Reader,
+    stem: &Path,
+    title: &str,
+    every: usize,
+    shift: f64,
+    p1_label: Option<&str>,
+) -> Result<Output, String> {
+    let t = read("")?;
+    let (point, time, x, y) = (t.strs("point")?, t.nums("t")?, t.nums("x")?, t.nums("y")?);
+    let (mut p0, mut p1) = ([0.0, 0.0], None);
+    let mut frames: Vec<(f64, Vec<[f64; 2]>)> = vec![];
+    for k in 0..t.len() {
+        match point[k] {
+            "P0" => p0 = [x[k], y[k]],
+            "P1" => p1 = Some([x[k], y[k]]),
+            "0" => frames.push((time[k], vec![[x[k], y[k]]])),
+            _ => frames
+                .last_mut()
+                .ok_or_else(|| format!("{}: a joint before joint 0", t.name))?
+                .1
+                .push([x[k], y[k]]),
+        }
+    }
+    let every = every.max(1);
+    let last = frames.len().saturating_sub(1);
+    let frames = frames
+        .into_iter()
+        .enumerate()
+        .filter(|(k, _)| k % every == 0 || *k == last)
+        .map(|(_, f)| f)
+        .collect::<Vec<_>>();
+    let shown = frames.len();
+    let frames = frames
+        .into_iter()
+        .enumerate()
+        .map(|(k, (t, joints))| {
+            let dx = k as f64 * shift;
+            (t, joints.into_iter().map(|p| [p[0] + dx, p[1]]).collect())
+        })
+        .collect();
+    let x_label = format!("x, the k-th snapshot shifted right by {shift} k");
+    let mut f = ChainSnapshots::new(title, frames, p0);
+    f.p1 = p1;
+    if shift > 0.0 {
+        f.equal_aspect = false;
+        f.x_range = Some((-0.5 * shift, (shown as f64 - 0.5) * shift));
+        f.x_label = &x_label;
+    }
+    if let Some(label) = p1_label {
+        f.p1_label = label;
+    }
+    figures::chain_snapshots(&f, stem).map_err(|e| e.to_string())
+}
+
+pub fn tip_speed(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let scenes = read_scenes(read)?;
+    let t = read("")?;
+    let lines = per_scene(&t, &scenes, "t", "tip_speed")?;
+    let mut p = LinePlot::new(title, "t", "tip speed |v|");
+    for (s, pts) in scenes.iter().zip(lines) {
+        p.series.push(Series::line(s.1.clone(), pts));
+    }
+    // The continuous maxima, located between steps.
+    p.series.push(
+        Series::new(
+            "maximum (continuous)",
+            scenes.iter().map(|s| s.2).collect(),
+            Style::Points,
+        )
+        .with_color(figures::RGBColor(0, 0, 0)),
+    );
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}
+
+pub fn tip_velocity(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let scenes = read_scenes(read)?;
+    let t = read("")?;
+    let lines = per_scene(&t, &scenes, "v_x", "v_y")?;
+    let mut p = LinePlot::new(title, "v_x", "v_y");
+    p.equal_aspect = true;
+    for (s, pts) in scenes.iter().zip(lines) {
+        p.series.push(Series::line(s.1.clone(), pts));
+    }
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}
+
+pub fn vmax_vs_span(
+    read: Reader,
+    stem: &Path,
+    title: &str,
+    links: usize,
+) -> Result<Output, String> {
+    let t = read("")?;
+    let (set, d, v, status) = (
+        t.strs("set")?,
+        t.nums("d")?,
+        t.nums("tip_speed_max")?,
+        t.strs("status")?,
+    );
+    let ok = |which: &str| -> Vec<(f64, f64)> {
+        (0..t.len())
+            .filter(|&k| set[k] == which && status[k] == "ok")
+            .map(|k| (d[k], v[k]))
+            .collect()
+    };
+    let dense_count = set.iter().filter(|s| **s == "dense").count();
+    let fine = format!("n{links}");
+    let fine_count = set.iter().filter(|s| **s == fine).count();
+    let mut p = LinePlot::new(title, "span d", "maximum tip speed");
+    p.x_tick_step = Some(0.5);
+    p.series.push(Series::line(
+        format!("n = 50: {dense_count} spans (DOPRI5, rtol 1e-8)"),
+        ok("dense"),
+    ));
+    p.series.push(Series::new(
+        format!("n = {links}, continuum fixed: {fine_count} spans (auto, rtol 1e-8)"),
+        ok(&fine),
+        Style::LinePoints,
+    ));
+    p.series.push(Series::points(
+        "this model at the report's 14 spans (n = 50)",
+        ok("report"),
+    ));
+    let mut full = ok("stretched");
+    full.extend(ok(&format!("stretched-{fine}")));
+    p.series
+        .push(Series::points("stretched, d = L (n = 50, n = 200)", full));
+    // The narrow-span peak on finer spans (n = links and 2 links).
+    let pk = read("-peak")?;
+    let (pn, pd, pv, pst) = (
+        pk.strs("links")?,
+        pk.nums("d")?,
+        pk.nums("tip_speed_max")?,
+        pk.strs("status")?,
+    );
+    for (k, n) in distinct(&pn).into_iter().enumerate() {
+        let pts: Vec<(f64, f64)> = (0..pk.len())
+            .filter(|&j| pn[j] == n && pst[j] == "ok")
+            .map(|j| (pd[j], pv[j]))
+            .collect();
+        let style = if k == 0 {
+            Style::Points
+        } else {
+            Style::LinePoints
+        };
+        p.series.push(
+            Series::new(format!("n = {n}, finer spans near the peak"), pts, style)
+                .with_color(figures::palette(4 + k)),
+        );
+    }
+    // The whip switch of each curve: a dashed line between the two spans
+    // where the time of the maximum jumps.
+    let (lo, hi) = v
+        .iter()
+        .copied()
+        .filter(|x| x.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x), h.max(x))
+        });
+    let times = t.nums("t_tip_speed_max")?;
+    let row = |k: &str| (0..t.len()).find(|&i| set[i] == k);
+    for (suffix, who, grey) in [
+        ("", "n = 50", 90),
+        (&format!("-{fine}")[..], &format!("n = {links}")[..], 160),
+    ] {
+        let (Some(a), Some(b)) = (
+            row(&format!("switch-before{suffix}")),
+            row(&format!("switch-after{suffix}")),
+        ) else {
+            continue;
+        };
+        let at = 0.5 * (d[a] + d[b]);
+        p.series.push(
+            Series::new(
+                format!(
+                    "whip switch, {who}, d = {at:.2}: t of max {:.2} -> {:.2}",
+                    times[a], times[b]
+                ),
+                vec![(at, lo), (at, hi)],
+                Style::Dashed,
+            )
+            .with_color(figures::RGBColor(grey, grey, grey)),
+        );
+    }
+    // Where n = 50 is within 1% of the refined chain, from the data.
+    let ag = read("-agreement")?;
+    let (kind, from, to) = (ag.strs("kind")?, ag.nums("d")?, ag.nums("d_to")?);
+    let ranges: Vec<String> = (0..ag.len())
+        .filter(|&j| kind[j] == "within")
+        .map(|j| {
+            if from[j] == to[j] {
+                format!("d = {:.2}", from[j])
+            } else {
+                format!("{:.2} ≤ d ≤ {:.2}", from[j], to[j])
+            }
+        })
+        .collect();
+    p.annotations.push(format!(
+        "n = 50 within 1% of n = {links} at: {}",
+        ranges.join(", ")
+    ));
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}

@@ -1,0 +1,134 @@
+//! The drawings of the report's own model (`crate::report_model`):
+//! its snapshots, titled with how the run ended, and its Fig. 9 beside
+//! the published one and the corrected model's.
+
+use std::path::Path;
+
+use figures::{ChainSnapshots, LinePlot, Output, Series, Style};
+
+use super::Reader;
+
+/// The snapshots of `<id>.csv` (`point,t,x,y` and a last status row),
+/// titled `title (<status> at t = <t_reached>)`.
+pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let t = read("")?;
+    let (point, time, x, y) = (t.strs("point")?, t.strs("t")?, t.strs("x")?, t.strs("y")?);
+    let parse = |s: &str| s.parse::<f64>().map_err(|e| e.to_string());
+    let mut p0 = [0.0, 0.0];
+    let mut status = String::new();
+    let mut frames: Vec<(f64, Vec<[f64; 2]>)> = vec![];
+    for k in 0..t.len() {
+        match point[k] {
+            "P0" => p0 = [parse(x[k])?, parse(y[k])?],
+            "0" => frames.push((parse(time[k])?, vec![[parse(x[k])?, parse(y[k])?]])),
+            p if p.parse::<usize>().is_ok() => frames
+                .last_mut()
+                .ok_or_else(|| format!("{}: a joint before joint 0", t.name))?
+                .1
+                .push([parse(x[k])?, parse(y[k])?]),
+            s => status = format!("{s} at t = {}", time[k]),
+        }
+    }
+    let title = format!("{title} ({status})");
+    let f = ChainSnapshots::new(&title, frames, p0);
+    figures::chain_snapshots(&f, stem).map_err(|e| e.to_string())
+}
+
+/// The maximum tip speed against the span of `<id>.csv`: the published
+/// Fig. 9, the report's model by its own speeds, in its clock and in our
+/// units, and the corrected model (log y: the report's values, 1.7 ..
+/// 2.5, and ours, 5 .. 19, lie apart).
+pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let t = read("")?;
+    let d = t.nums("d")?;
+    let col = |name: &str| -> Result<Vec<(f64, f64)>, String> {
+        let v = t.nums(name)?;
+        Ok(d.iter()
+            .zip(v.iter())
+            .filter(|(_, v)| v.is_finite())
+            .map(|(&d, &v)| (d, v))
+            .collect())
+    };
+    let mut p = LinePlot::new(title, "span d", "maximum tip speed");
+    p.x_tick_step = Some(0.5);
+    p.log_y = true;
+    p.series.push(Series::points(
+        "the report's Fig. 9, read off its page",
+        col("read_off")?,
+    ));
+    p.series.push(Series::new(
+        "report's model, its own speed (rod 1 left out, last rod's middle)",
+        col("vmax_fd")?,
+        Style::LinePoints,
+    ));
+    p.series.push(Series::new(
+        "report's model, its clock, the tip's exact speed",
+        col("vmax_report")?,
+        Style::LinePoints,
+    ));
+    p.series.push(Series::new(
+        "report's model in our units (/ sqrt(l/g))",
+        col("vmax")?,
+        Style::LinePoints,
+    ));
+    p.series.push(Series::new(
+        "corrected model (DOPRI5, rtol 1e-8)",
+        col("corrected")?,
+        Style::LinePoints,
+    ));
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}
+
+/// The report's Fig. 8 or 11 in its model, from `<id>.csv`
+/// (`scene,t,speed,v_x,v_y`) and `<id>-cases.csv`: its own tip speed
+/// against time (left) and velocity (right), one line per scene, each
+/// labelled with how its run as coded ended and with the largest of its
+/// speeds when its stepper is RK4 instead; the axes span the speeds of the
+/// runs that ended ok (a diverging run leaves them).
+pub fn tip(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
+    let t = read("")?;
+    let c = read("-cases")?;
+    let (scene, time, speed) = (t.strs("scene")?, t.nums("t")?, t.nums("speed")?);
+    let (vx, vy) = (t.nums("v_x")?, t.nums("v_y")?);
+    let (cs, status, reached) = (c.strs("scene")?, c.strs("status")?, c.nums("t_reached")?);
+    let vmax = c.nums("vmax_fd")?;
+    let mut left = LinePlot::new(
+        "its own tip speed, its clock",
+        "t (report's clock)",
+        "tip speed",
+    );
+    let mut right = LinePlot::new("its own tip velocity", "v_x", "v_y");
+    right.equal_aspect = true;
+    // The ranges of the runs that ended ok: a diverging run's last
+    // differences (hundreds) would flatten every curve.
+    let top = (0..c.len())
+        .filter(|&k| status[k] == "ok")
+        .map(|k| vmax[k])
+        .fold(0.0, f64::max);
+    // A quarter above, to the next half unit.
+    let top = (2.5 * top).ceil() / 2.0;
+    if top > 0.0 {
+        left.y_range = Some((0.0, top));
+        (right.x_range, right.y_range) = (Some((-top, top)), Some((-top, top)));
+    }
+    // The cases come in pairs, as coded then with RK4 for the stepper.
+    for k in (0..c.len()).step_by(2) {
+        let name = cs[k];
+        let rows: Vec<usize> = (0..t.len()).filter(|&i| scene[i] == name).collect();
+        let label = format!(
+            "{name}: {} at t = {:.2}; RK4 stepper: max {:.2}",
+            status[k],
+            reached[k],
+            vmax.get(k + 1).copied().unwrap_or(f64::NAN)
+        );
+        left.series.push(Series::line(
+            label.clone(),
+            rows.iter().map(|&i| (time[i], speed[i])).collect(),
+        ));
+        right.series.push(Series::line(
+            name.to_string(),
+            rows.iter().map(|&i| (vx[i], vy[i])).collect(),
+        ));
+    }
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}

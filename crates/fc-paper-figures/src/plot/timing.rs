@@ -1,0 +1,148 @@
+//! The drawings of the wall-time studies: speed-ups at matched accuracy
+//! (`crate::matched`), the cost of a right-hand side
+//! (`crate::rhs_cost`); where BDF pays is [`super::stiffness`].
+
+use std::path::Path;
+
+use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+
+use super::Reader;
+use crate::rhs_cost::FIT_FROM;
+use fc_csv::table::distinct;
+
+/// The slope guides run this factor below the measured points.
+const GUIDE_OFFSET: f64 = 3.0;
+
+/// Draws `matched`'s tables to `<stem>.png` and `.svg`.
+pub fn matched(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (scene, pair, err, ratio) = (
+        t.strs("scene")?,
+        t.strs("pair")?,
+        t.nums("error")?,
+        t.nums("b_over_a")?,
+    );
+    let mut p = LinePlot::new(
+        "wp-matched: speed-up at matched error (wall_b / wall_a)",
+        "error max(err_tip, err_vmax)",
+        "wall_b / wall_a",
+    );
+    p.log_x = true;
+    p.log_y = true;
+    let styles = [Style::LinePoints, Style::Dashed, Style::Line];
+    for (i, pr) in distinct(&pair).into_iter().enumerate() {
+        for (j, sc) in distinct(&scene).into_iter().enumerate() {
+            let pts: Vec<(f64, f64)> = (0..t.len())
+                .filter(|&k| pair[k] == pr && scene[k] == sc)
+                .map(|k| (err[k], ratio[k]))
+                .collect();
+            if pts.is_empty() {
+                continue;
+            }
+            p.series.push(
+                Series::new(format!("{pr}, {sc}"), pts, styles[j % styles.len()])
+                    .with_color(palette(i)),
+            );
+        }
+    }
+    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+}
+
+/// Draws `cost`'s tables to `<stem>.png` and `.svg`.
+pub fn rhs_cost(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let (solver, n, secs) = (t.strs("solver")?, t.nums("n")?, t.nums("seconds_per_call")?);
+    let f = read("-fit-timing")?;
+    let (fit_solver, fit_slope) = (f.strs("solver")?, f.nums("slope")?);
+    let slope = |kind: &str| {
+        fit_solver
+            .iter()
+            .position(|s| *s == kind)
+            .map_or(f64::NAN, |k| fit_slope[k])
+    };
+    let (slope_fast, slope_dense) = (slope("recursion"), slope("dense"));
+    let (slope_assembly, slope_factor) = (slope("dense-assembly"), slope("dense-minus-assembly"));
+    let pts = |kind: &str| -> Vec<(f64, f64)> {
+        (0..t.len())
+            .filter(|&k| solver[k] == kind)
+            .map(|k| (n[k], secs[k]))
+            .collect()
+    };
+    let (fast, dense_pts, assembly) = (pts("recursion"), pts("dense"), pts("dense-assembly"));
+    if fast.is_empty() || dense_pts.is_empty() {
+        return Err(format!("{}: no recursion or dense rows", t.name));
+    }
+
+    // The figure: measured points, and reference slopes n and n^3
+    // through the last measured point of each, a factor GUIDE_OFFSET below.
+    let guide = |p: &[(f64, f64)], k: i32, ns: &[f64]| -> Vec<(f64, f64)> {
+        let (n1, t1) = p[p.len() - 1];
+        ns.iter()
+            .map(|&n| (n, t1 / GUIDE_OFFSET * (n / n1).powi(k)))
+            .collect()
+    };
+    let mut plot = LinePlot::new(
+        "Cost of one right-hand side",
+        "rods n",
+        "seconds per evaluation (median)",
+    );
+    plot.log_x = true;
+    plot.log_y = true;
+    plot.series.push(
+        Series::new(
+            format!("O(n) recursion (ChainSystem::rhs): slope {slope_fast:.2}"),
+            fast.clone(),
+            Style::LinePoints,
+        )
+        .with_color(palette(0)),
+    );
+    plot.series.push(
+        Series::new(
+            format!("dense: assemble A, b + Cholesky (faer): slope {slope_dense:.2}"),
+            dense_pts.clone(),
+            Style::LinePoints,
+        )
+        .with_color(palette(3)),
+    );
+    plot.series.push(
+        Series::new(
+            format!("dense, assembly of A and b only: slope {slope_assembly:.2}"),
+            assembly,
+            Style::LinePoints,
+        )
+        .with_color(palette(1)),
+    );
+    plot.series.push(
+        Series::new("∝ n", guide(&fast, 1, &[25.0, 10000.0]), Style::Dashed).with_color(palette(0)),
+    );
+    plot.series.push(
+        Series::new(
+            "∝ n³",
+            guide(&dense_pts, 3, &[100.0, 1000.0]),
+            Style::Dashed,
+        )
+        .with_color(palette(3)),
+    );
+    let at = |kind: &str, rods: f64| {
+        (0..t.len())
+            .find(|&k| solver[k] == kind && n[k] == rods)
+            .map(|k| secs[k])
+    };
+    let ratio = |rods: f64| Some(at("dense", rods)? / at("recursion", rods)?);
+    // Lines of text in the legend (invisible swatches), which gets room of
+    // its own above the data.
+    for line in [
+        format!("slopes fitted for n ≥ {FIT_FROM}; guides offset ×1/{GUIDE_OFFSET}"),
+        format!("dense less assembly (Cholesky + solve): slope {slope_factor:.2}"),
+        format!(
+            "dense / O(n): {:.0}× at n = 50, {:.0}× at n = 1000",
+            ratio(50.0).unwrap_or(f64::NAN),
+            ratio(1000.0).unwrap_or(f64::NAN)
+        ),
+    ] {
+        plot.series
+            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+    }
+    let out = figures::line_plot(&plot, stem).map_err(|e| e.to_string())?;
+    Ok(out)
+}

@@ -1,0 +1,92 @@
+//! A trajectory's CSV files (`simulate --out` and `--forces`): one row per
+//! sample, written with the cells of the CSV layer ([`fc_csv`], whose
+//! reader and cell writer are re-exported here).
+
+use std::io::{self, Write};
+
+use chain_ode::{Model, Trajectory};
+
+pub use fc_csv::{field, records, ReadError, Reader, Record, MAX_CELLS};
+
+/// The header of a trajectory CSV for `links` rods:
+/// `t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,...,phi_n`.
+pub fn trajectory_header(links: usize) -> String {
+    let mut h = String::from("t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated");
+    for i in 1..=links {
+        h.push_str(&format!(",phi_{i}"));
+    }
+    h
+}
+
+/// Writes the header and one row per sample of `traj`. Numbers are written
+/// with `{}`, which round-trips every `f64`. Tip position, tip velocity and
+/// energy are computed exactly from each sample's state, for either model
+/// (the trajectory's accessors); `phi_i` are the rods' angles.
+pub fn write_trajectory<M: Model, W: Write + ?Sized>(
+    w: &mut W,
+    traj: &Trajectory<M>,
+) -> io::Result<()> {
+    writeln!(w, "{}", trajectory_header(traj.links()))?;
+    let mut line = String::new();
+    for (k, s) in traj.samples().enumerate() {
+        let p = traj.tip(k);
+        let v = traj.tip_velocity(k);
+        let e = traj.energy(k);
+        line.clear();
+        line.push_str(&format!(
+            "{},{},{},{},{},{},{}",
+            s.t, p[0], p[1], v[0], v[1], e, s.dissipated
+        ));
+        for a in s.angles {
+            line.push(',');
+            line.push_str(&a.to_string());
+        }
+        writeln!(w, "{line}")?;
+    }
+    Ok(())
+}
+
+/// The header of a joint-force CSV for `links` rods:
+/// `t,tension_0,shear_0,...,tension_n,shear_n` (joint 0 is the pivot,
+/// joint n the free tip).
+pub fn forces_header(links: usize) -> String {
+    let mut h = String::from("t");
+    for k in 0..=links {
+        h.push_str(&format!(",tension_{k},shear_{k}"));
+    }
+    h
+}
+
+/// Writes the header and one row per sample of `traj`: its time and the
+/// joint forces ([`Trajectory::joint_forces`]: the rigid chain's from its
+/// banded DAE, the elastic chain's from its springs).
+pub fn write_forces<M: Model, W: Write + ?Sized>(
+    w: &mut W,
+    traj: &Trajectory<M>,
+) -> io::Result<()> {
+    writeln!(w, "{}", forces_header(traj.links()))?;
+    let mut line = String::new();
+    for k in 0..traj.len() {
+        line.clear();
+        line.push_str(&traj.times[k].to_string());
+        for [tension, shear] in traj.joint_forces(k) {
+            line.push_str(&format!(",{tension},{shear}"));
+        }
+        writeln!(w, "{line}")?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_has_one_angle_column_per_rod() {
+        let h = trajectory_header(3);
+        assert_eq!(
+            h,
+            "t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,phi_2,phi_3"
+        );
+    }
+}

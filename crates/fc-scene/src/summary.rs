@@ -1,0 +1,357 @@
+//! The scalar results of one run, as printed by `simulate --json` and as one
+//! CSV row per run (for sweeps).
+
+use std::fmt;
+
+use chain_ode::Trajectory;
+use serde::{Deserialize, Serialize};
+
+use fc_csv::Column;
+
+use crate::csv::field as csv_field;
+
+/// The time span over which one method ran.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SegmentSummary {
+    pub method: String,
+    pub t_start: f64,
+    pub t_end: f64,
+}
+
+/// What a run did, in the units of its scene.
+///
+/// The JSON keys `status`, `method`, `links`, `t_reached`, `steps`,
+/// `rejected_steps`, `rhs_evals`, `jacobian_evals`, `wall_seconds`,
+/// `energy_start`, `energy_end`, `dissipated`, `energy_balance_error`,
+/// `tip_end`, `tip_speed_max`, `t_tip_speed_max` are a contract (scripts
+/// read them); the others are extras.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// The scene's name.
+    pub name: String,
+    /// `ok`, `diverged`, `step_size_too_small` or `max_steps`.
+    pub status: String,
+    /// The method asked for (`segments` says which ran when).
+    pub method: String,
+    /// Number of rods `n`.
+    pub links: usize,
+    /// The end time asked for.
+    pub t_end: f64,
+    /// The last time with a finite state.
+    pub t_reached: f64,
+    /// When the run failed, if it did.
+    pub t_failed: Option<f64>,
+    pub steps: u64,
+    pub rejected_steps: u64,
+    pub rhs_evals: u64,
+    pub jacobian_evals: u64,
+    pub lu_factorizations: u64,
+    pub stiffness_detections: u64,
+    /// The implicit methods' rejections by cause and their Newton work
+    /// (`chain_ode::Stats`; 0 for the explicit methods). In `--json` only,
+    /// not in the CSV row; absent in older JSON reads as 0.
+    #[serde(default)]
+    pub error_test_failures: u64,
+    #[serde(default)]
+    pub newton_failures: u64,
+    #[serde(default)]
+    pub newton_iterations: u64,
+    /// Wall time of the integration (s).
+    pub wall_seconds: f64,
+    /// `E(0)`.
+    pub energy_start: f64,
+    /// `E(t_reached)`.
+    pub energy_end: f64,
+    /// Work dissipated by joint friction up to `t_reached`.
+    pub dissipated: f64,
+    /// `max |E + W - E(0)|` over the steps.
+    pub energy_balance_error: f64,
+    /// Largest step-to-step rise of `E`.
+    pub max_energy_rise: f64,
+    /// `M g L`, the scale for energy errors.
+    pub energy_scale: f64,
+    /// `r / min_i (m_i l_i^2)` (1/time), the stiffness parameter: the
+    /// damping rate of the most damped rod (`r / (m l^2)` for equal rods;
+    /// `Chain::stiffest_damping_rate`).
+    pub damping_rate: f64,
+    /// Tip position at `t_reached`.
+    pub tip_end: [f64; 2],
+    /// Tip velocity at `t_reached`.
+    pub tip_velocity_end: [f64; 2],
+    /// Continuous maximum of the tip speed over the run.
+    pub tip_speed_max: f64,
+    /// When it happened.
+    pub t_tip_speed_max: f64,
+    /// Which method ran over which span.
+    pub segments: Vec<SegmentSummary>,
+}
+
+/// Columns of [`RunSummary::csv_row`], in order.
+pub const SUMMARY_CSV_COLUMNS: [(&str, Column); 28] = [
+    ("name", Column::Text),
+    ("status", Column::Text),
+    ("method", Column::Text),
+    ("links", Column::Int),
+    ("t_end", Column::Float),
+    ("t_reached", Column::Float),
+    ("t_failed", Column::Float),
+    ("steps", Column::Int),
+    ("rejected_steps", Column::Int),
+    ("rhs_evals", Column::Int),
+    ("jacobian_evals", Column::Int),
+    ("lu_factorizations", Column::Int),
+    ("stiffness_detections", Column::Int),
+    ("wall_seconds", Column::Float),
+    ("energy_start", Column::Float),
+    ("energy_end", Column::Float),
+    ("dissipated", Column::Float),
+    ("energy_balance_error", Column::Float),
+    ("max_energy_rise", Column::Float),
+    ("energy_scale", Column::Float),
+    ("damping_rate", Column::Float),
+    ("tip_end_x", Column::Float),
+    ("tip_end_y", Column::Float),
+    ("tip_velocity_end_x", Column::Float),
+    ("tip_velocity_end_y", Column::Float),
+    ("tip_speed_max", Column::Float),
+    ("t_tip_speed_max", Column::Float),
+    ("segments", Column::Text),
+];
+
+/// How many stiffness detections of an explicit method (DOPRI5, DOP853)
+/// make a run worth a hint. One detection is 15 accepted steps in a row at
+/// the method's stability limit (`h |lambda| > 3.25`), which a transient
+/// (the whip) can give a few times; 10 of them, 150 steps held at the
+/// limit, mean that the step size is set by stability for a good part of
+/// the run, where an implicit method takes far fewer steps.
+pub const STIFFNESS_HINT_DETECTIONS: u64 = 10;
+
+/// The explicit methods whose stiffness detector [`stiffness_hint`] reads.
+const EXPLICIT_WITH_DETECTOR: [&str; 2] = ["dopri5", "dop853"];
+
+/// Whether `summary` is an explicit method's run that detected stiffness at
+/// least [`STIFFNESS_HINT_DETECTIONS`] times.
+pub fn looks_stiff(summary: &RunSummary) -> bool {
+    EXPLICIT_WITH_DETECTOR.contains(&summary.method.as_str())
+        && summary.stiffness_detections >= STIFFNESS_HINT_DETECTIONS
+}
+
+/// The one-line hint for runs that [`looks_stiff`]: `stiff` of `total` runs
+/// (one run: `total == 1`), by `method` with at most `detections`. Under
+/// the report's model (`report`), which runs only rk4, dopri5 and dop853,
+/// it names those and the way to the implicit methods.
+pub fn stiffness_hint(
+    method: &str,
+    detections: u64,
+    stiff: usize,
+    total: usize,
+    report: bool,
+) -> String {
+    let which = if total == 1 {
+        format!("{method} detected stiffness {detections} times")
+    } else {
+        format!("{stiff} of {total} runs detected stiffness (up to {detections} times, {method})")
+    };
+    let advice = if report {
+        "the report's model runs only rk4, dopri5 and dop853; with model.report = false, \
+         --method bdf or auto may need far fewer steps (the run goes on as asked)"
+    } else {
+        "--method bdf or auto may need far fewer steps (the run goes on as asked)"
+    };
+    format!("hint: {which} (each: 15 steps in a row at its stability limit); {advice}")
+}
+
+/// The hint for a set of summaries of the corrected model, if any of them
+/// [`looks_stiff`]: one line for the whole command.
+pub fn stiffness_hint_for<'a>(
+    summaries: impl IntoIterator<Item = &'a RunSummary>,
+) -> Option<String> {
+    stiffness_hint_for_model(summaries, false)
+}
+
+/// [`stiffness_hint_for`], for runs of the report's model when `report`.
+pub fn stiffness_hint_for_model<'a>(
+    summaries: impl IntoIterator<Item = &'a RunSummary>,
+    report: bool,
+) -> Option<String> {
+    let (mut total, mut stiff, mut most, mut method) = (0, 0, 0, "");
+    for s in summaries {
+        total += 1;
+        if looks_stiff(s) {
+            stiff += 1;
+            if s.stiffness_detections >= most {
+                most = s.stiffness_detections;
+                method = s.method.as_str();
+            }
+        }
+    }
+    (stiff > 0).then(|| stiffness_hint(method, most, stiff, total, report))
+}
+
+impl RunSummary {
+    /// The summary of `traj`, under the scene name `name`.
+    pub fn from_trajectory(name: &str, traj: &Trajectory) -> Self {
+        let s = &traj.summary;
+        let st = &traj.stats;
+        Self {
+            name: name.to_string(),
+            status: traj.status.as_str().to_string(),
+            method: traj.method.as_str().to_string(),
+            links: traj.chain().links(),
+            t_end: traj.t_end,
+            t_reached: traj.t_reached,
+            t_failed: traj.t_failed,
+            steps: st.steps,
+            rejected_steps: st.rejected_steps,
+            rhs_evals: st.rhs_evals,
+            jacobian_evals: st.jacobian_evals,
+            lu_factorizations: st.lu_factorizations,
+            stiffness_detections: st.stiffness_detections,
+            error_test_failures: st.error_test_failures,
+            newton_failures: st.newton_failures,
+            newton_iterations: st.newton_iterations,
+            wall_seconds: s.wall_seconds,
+            energy_start: s.energy_start,
+            energy_end: s.energy_end,
+            dissipated: s.dissipated,
+            energy_balance_error: s.energy_balance_error,
+            max_energy_rise: s.max_energy_rise,
+            energy_scale: traj.chain().energy_scale(),
+            damping_rate: traj.chain().stiffest_damping_rate(),
+            tip_end: s.tip_end,
+            tip_velocity_end: s.tip_velocity_end,
+            tip_speed_max: s.tip_speed_max,
+            t_tip_speed_max: s.t_tip_speed_max,
+            segments: traj
+                .segments
+                .iter()
+                .map(|g| SegmentSummary {
+                    method: g.method.as_str().to_string(),
+                    t_start: g.t_start,
+                    t_end: g.t_end,
+                })
+                .collect(),
+        }
+    }
+
+    /// True if the run reached its end time.
+    pub fn is_ok(&self) -> bool {
+        self.status == "ok"
+    }
+
+    /// One line of JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|e| {
+            serde_json::json!({ "error": format!("the summary did not serialise: {e}") })
+                .to_string()
+        })
+    }
+
+    /// The header line of [`RunSummary::csv_row`] (no newline).
+    pub fn csv_header() -> String {
+        fc_csv::header(&SUMMARY_CSV_COLUMNS)
+    }
+
+    /// One CSV row (no newline) with the columns of [`SUMMARY_CSV_COLUMNS`]:
+    /// full-precision numbers, empty cells for unknown values, segments as
+    /// `method@t_start..t_end` joined by `;`.
+    pub fn csv_row(&self) -> String {
+        let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        let segments = self
+            .segments
+            .iter()
+            .map(|g| format!("{}@{}..{}", g.method, g.t_start, g.t_end))
+            .collect::<Vec<_>>()
+            .join(";");
+        let cells = [
+            csv_field(&self.name).into_owned(),
+            csv_field(&self.status).into_owned(),
+            csv_field(&self.method).into_owned(),
+            self.links.to_string(),
+            self.t_end.to_string(),
+            self.t_reached.to_string(),
+            opt(self.t_failed),
+            self.steps.to_string(),
+            self.rejected_steps.to_string(),
+            self.rhs_evals.to_string(),
+            self.jacobian_evals.to_string(),
+            self.lu_factorizations.to_string(),
+            self.stiffness_detections.to_string(),
+            self.wall_seconds.to_string(),
+            self.energy_start.to_string(),
+            self.energy_end.to_string(),
+            self.dissipated.to_string(),
+            self.energy_balance_error.to_string(),
+            self.max_energy_rise.to_string(),
+            self.energy_scale.to_string(),
+            self.damping_rate.to_string(),
+            self.tip_end[0].to_string(),
+            self.tip_end[1].to_string(),
+            self.tip_velocity_end[0].to_string(),
+            self.tip_velocity_end[1].to_string(),
+            self.tip_speed_max.to_string(),
+            self.t_tip_speed_max.to_string(),
+            csv_field(&segments).into_owned(),
+        ];
+        cells.join(",")
+    }
+}
+
+impl fmt::Display for RunSummary {
+    /// A readable multi-line summary.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{}: {} ({}, {} rods)",
+            self.name, self.status, self.method, self.links
+        )?;
+        writeln!(
+            f,
+            "  t reached         {} of {}",
+            self.t_reached, self.t_end
+        )?;
+        if let Some(t) = self.t_failed {
+            writeln!(f, "  failed at         t = {t}")?;
+        }
+        if self.segments.len() > 1 {
+            let spans: Vec<String> = self
+                .segments
+                .iter()
+                .map(|g| format!("{} [{:.4}, {:.4}]", g.method, g.t_start, g.t_end))
+                .collect();
+            writeln!(f, "  segments          {}", spans.join(", "))?;
+        }
+        writeln!(
+            f,
+            "  work              {} steps ({} rejected), {} RHS, {} Jacobians, {} LU",
+            self.steps,
+            self.rejected_steps,
+            self.rhs_evals,
+            self.jacobian_evals,
+            self.lu_factorizations
+        )?;
+        writeln!(f, "  wall time         {:.3e} s", self.wall_seconds)?;
+        writeln!(
+            f,
+            "  energy            {:.9} -> {:.9}, dissipated {:.3e}",
+            self.energy_start, self.energy_end, self.dissipated
+        )?;
+        writeln!(
+            f,
+            "  energy balance    {:.3e} ({:.3e} of M g L = {})",
+            self.energy_balance_error,
+            self.energy_balance_error / self.energy_scale,
+            self.energy_scale
+        )?;
+        writeln!(
+            f,
+            "  tip at end        ({:.6}, {:.6}), velocity ({:.6}, {:.6})",
+            self.tip_end[0], self.tip_end[1], self.tip_velocity_end[0], self.tip_velocity_end[1]
+        )?;
+        write!(
+            f,
+            "  max tip speed     {:.6} at t = {:.6}",
+            self.tip_speed_max, self.t_tip_speed_max
+        )
+    }
+}

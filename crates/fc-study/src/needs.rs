@@ -1,0 +1,763 @@
+//! "Model no more than this scene needs": the smallest number of rods, the
+//! fastest method and tolerance at that number, and the optional physical
+//! terms whose effect stays below the tolerance.
+//!
+//! * Rods: `converge`'s ladder ([`crate::converge::run_levels`]: the scene
+//!   refined at fixed total mass and bending viscosity), the smallest `n`
+//!   from which on the maximum tip speed, the tip end and the tip path
+//!   (`max_t |tip - tip_ref| / L`) all agree with the finest within `tol`.
+//! * Method: `precision`'s lines ([`super::precision::run_lines`]) at that
+//!   `n`, each method from loose to tight until its error is below `tol`;
+//!   the fastest (least wall time) of those that get there, and the one of
+//!   least work.
+//! * Terms: for each term of [`TERMS`] the scene turns on, the run at that
+//!   `n` with the term switched off, against the same run with it on: the
+//!   term is needed if the tip path or the maximum tip speed moves by more
+//!   than `tol`.
+//!
+//! The time budget ([`Budget`]) holds in every phase: a ladder level, the
+//! reference, a method's point or a term's run still going at the deadline
+//! (or started after it) ends `interrupted` at once, and is listed in
+//! [`Needs::skipped`] (`rods n = 400`, `the reference`, `dop853 rtol 1e-9`,
+//! `term joint friction`); an incomplete ladder gives no `n`.
+
+use chain_ode::Method;
+use serde::Serialize;
+
+use super::precision::{self, Checks, Point};
+use crate::converge::{self, Deviation, Level};
+use fc_batch::budget::Budget;
+use fc_scene::error::Error;
+use fc_scene::scene::Scene;
+
+/// An optional physical term of the model: its name, the scene key that
+/// switches it, whether the scene has it on, and the scene with it off.
+pub struct Term {
+    pub name: &'static str,
+    /// The scene key that sets it.
+    pub key: &'static str,
+    pub is_on: fn(&Scene) -> bool,
+    pub off: fn(&Scene) -> Result<Scene, Error>,
+}
+
+/// The optional terms, one entry each: the joint friction, the elastic
+/// links (off: rigid links, `chain.axial_stiffness` absent, so its
+/// `chain.axial_damping` no longer acts) and the bending stiffness (off:
+/// `chain.bending_stiffness = 0`).
+pub const TERMS: &[Term] = &[
+    Term {
+        name: "joint friction",
+        key: "chain.damping",
+        is_on: |s| s.chain_params().damping > 0.0,
+        off: |s| s.with_value("chain.damping", toml::Value::Float(0.0)),
+    },
+    Term {
+        name: "elastic links",
+        key: "chain.axial_stiffness",
+        is_on: |s| s.chain_params().axial_stiffness.is_some(),
+        off: |s| {
+            let mut params = s.chain_params().clone();
+            params.axial_stiffness = None;
+            s.with_chain(&chain_ode::Chain::new(params)?)
+        },
+    },
+    Term {
+        name: "bending stiffness",
+        key: "chain.bending_stiffness",
+        is_on: |s| s.chain_params().bending_stiffness > 0.0,
+        off: |s| s.with_value("chain.bending_stiffness", toml::Value::Float(0.0)),
+    },
+];
+
+/// Whether `term` is needed in `scene` at `n` rods: the run with it off
+/// against `on_level` (the same run with it on, from the ladder), both with
+/// the ladder's method at `rtol`. Needed when the tip path (relative to the
+/// length) or the maximum tip speed moves by `tol` or more; a term the scene
+/// leaves off is not run (`needed: None`), nor is one whose off run fails.
+pub fn judge_term(
+    term: &Term,
+    scene: &Scene,
+    n: usize,
+    on_level: &Level,
+    tol: f64,
+    rtol: f64,
+) -> Result<TermNeed, Error> {
+    judge_term_until(term, scene, n, on_level, tol, rtol, None)
+}
+
+/// [`judge_term`], its run stopped when `cancel` is set (it then ends
+/// `interrupted` and the term is not judged: `needed` stays `None`).
+pub fn judge_term_until(
+    term: &Term,
+    scene: &Scene,
+    n: usize,
+    on_level: &Level,
+    tol: f64,
+    rtol: f64,
+    cancel: Option<&chain_ode::Cancel>,
+) -> Result<TermNeed, Error> {
+    let on = (term.is_on)(scene);
+    let mut need = TermNeed {
+        term: term.name,
+        key: term.key,
+        on,
+        tip_path: None,
+        tip_speed_max: None,
+        needed: None,
+    };
+    if on {
+        let off = converge::run_level_until(
+            &(term.off)(scene)?,
+            n,
+            Some(LADDER_METHOD),
+            Some(rtol),
+            cancel,
+        )?;
+        if off.summary.is_ok() {
+            let d = Deviation::between(&off, on_level);
+            need.tip_path = Some(d.tip_path);
+            need.tip_speed_max = Some(d.tip_speed_max);
+            need.needed = Some(d.tip_path >= tol || d.tip_speed_max >= tol);
+        }
+    }
+    Ok(need)
+}
+
+/// The ladder's method and its tolerance for `tol`: `auto` (the fine
+/// levels are stiff: the damping rate grows like `n^4`) at
+/// `rtol = tol / 1000`, within `[1e-10, 1e-6]`.
+pub const LADDER_METHOD: &str = "auto";
+
+/// The relative tolerance of the ladder's runs for `tol`.
+pub fn ladder_rtol(tol: f64) -> f64 {
+    (tol * 1e-3).clamp(1e-10, 1e-6)
+}
+
+/// The methods `needs` tries by default: every method but `bdf-dense`,
+/// the O(n^3) reference, which is never the fastest past a few rods.
+pub fn default_methods() -> Vec<Method> {
+    Method::ALL
+        .into_iter()
+        .filter(|&m| m != Method::BdfDense)
+        .collect()
+}
+
+/// What the term study found.
+#[derive(Clone, Debug, Serialize)]
+pub struct TermNeed {
+    pub term: &'static str,
+    pub key: &'static str,
+    /// Whether the scene turns it on (terms it leaves off are not run).
+    pub on: bool,
+    /// `max_t |tip - tip_on| / L` with the term off.
+    pub tip_path: Option<f64>,
+    /// The relative change of the maximum tip speed with the term off.
+    pub tip_speed_max: Option<f64>,
+    /// Whether switching it off moves either by more than `tol`.
+    pub needed: Option<bool>,
+}
+
+/// A method's cheapest point at or below `tol`.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodChoice {
+    pub method: String,
+    pub param_name: &'static str,
+    pub param: f64,
+    pub error: f64,
+    pub rhs_equiv: u64,
+    pub wall_seconds: f64,
+}
+
+impl MethodChoice {
+    fn of(p: &Point) -> Self {
+        Self {
+            method: p.method.clone(),
+            param_name: p.param_name,
+            param: p.param,
+            error: p.err(),
+            rhs_equiv: p.rhs_equiv(),
+            wall_seconds: super::median(&p.walls),
+        }
+    }
+}
+
+/// The answer of `needs`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Needs {
+    pub name: String,
+    pub tol: f64,
+    /// The ladder: `converge`'s report (levels, deviations, its own answer
+    /// on tip_speed_max and tip end).
+    pub ladder: converge::Report,
+    /// The smallest adequate `n` on tip path, tip end and tip speed.
+    pub links: Option<usize>,
+    /// How well the reference of the precision study agrees with its checks
+    /// (larger error of RK4, of BDF).
+    pub reference_agreement: [f64; 2],
+    /// The fastest method (wall time) reaching `tol` at `links`.
+    pub fastest: Option<MethodChoice>,
+    /// The method of least work (RHS evaluations + JVPs) reaching `tol`.
+    pub least_work: Option<MethodChoice>,
+    /// Every method's first point at or below `tol` (none: not reached).
+    pub methods: Vec<(String, Option<MethodChoice>)>,
+    pub terms: Vec<TermNeed>,
+    /// Points of the precision study not run for the budget.
+    pub skipped: Vec<String>,
+    /// How the reference run at `links` ended (`None`: not run, there is
+    /// no `links`).
+    pub reference_status: Option<String>,
+    /// What each method's line ran (empty when no method ran).
+    pub method_runs: Vec<MethodRuns>,
+}
+
+/// What one method's line ran at `links`: its points, how many ran (to
+/// their end, ok or failed) and how many the budget left out or stopped.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodRuns {
+    pub method: String,
+    pub points: usize,
+    pub ran: usize,
+    pub budget: usize,
+}
+
+impl Needs {
+    /// Whether every question got an answer (exit 0).
+    pub fn answered(&self) -> bool {
+        self.links.is_some() && self.fastest.is_some()
+    }
+
+    /// Whether the budget stopped a level of the ladder.
+    pub fn ladder_stopped(&self) -> bool {
+        self.skipped.iter().any(|s| s.starts_with("rods n = "))
+    }
+
+    /// Why no method is chosen at `links`, if none is: the reference did
+    /// not finish (the budget) or failed, no method ran, or the methods
+    /// that ran missed `tol` (and whether the budget stopped others).
+    /// "no method reaches" only when methods ran and missed.
+    pub fn no_method(&self) -> Option<String> {
+        let n = self.links?;
+        if self.fastest.is_some() {
+            return None;
+        }
+        let tol = self.tol;
+        Some(match self.reference_status.as_deref() {
+            Some("ok") => {
+                let ran: usize = self.method_runs.iter().map(|r| r.ran).sum();
+                let budget: usize = self.method_runs.iter().map(|r| r.budget).sum();
+                if ran == 0 && budget > 0 {
+                    format!("no method ran within --budget at n = {n}")
+                } else if budget > 0 {
+                    format!(
+                        "no method reaches --tol {tol} at n = {n} in the {ran} points that ran \
+                         ({budget} not run or stopped by --budget)"
+                    )
+                } else {
+                    format!("no method reaches --tol {tol} at n = {n} on its ladder")
+                }
+            }
+            Some(status) if status == chain_ode::Status::Interrupted.as_str() => format!(
+                "--budget stopped the reference run at n = {n} before it finished: no method ran"
+            ),
+            Some(status) => {
+                format!("the reference run at n = {n} ended {status}: no method could be measured")
+            }
+            None => format!("the reference at n = {n} did not run: no method ran"),
+        })
+    }
+
+    /// One line per reason for exit status 1: no `n` (the ladder missed
+    /// `tol`, a run failed, or the budget stopped it), or no method.
+    pub fn failures(&self) -> Vec<String> {
+        if self.links.is_none() {
+            let stopped: Vec<&str> = self
+                .skipped
+                .iter()
+                .filter(|s| s.starts_with("rods n = "))
+                .map(String::as_str)
+                .collect();
+            return vec![if stopped.is_empty() {
+                format!(
+                    "no n up to {} meets --tol {} (or a run failed): try a longer --links ladder",
+                    self.ladder.reference_links, self.tol
+                )
+            } else {
+                format!(
+                    "--budget stopped the ladder of n before it finished ({}): no n was found",
+                    stopped.join(", ")
+                )
+            }];
+        }
+        self.no_method().into_iter().collect()
+    }
+
+    /// One line of JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|e| {
+            serde_json::json!({ "error": format!("the answer did not serialise: {e}") }).to_string()
+        })
+    }
+}
+
+/// The smallest `--tol` of `needs`: the ladder runs at rtol 1e-10 at the
+/// tightest and the reference agrees with its checks to about 1e-11, so a
+/// smaller tolerance cannot be told from their rounding.
+pub const MIN_TOL: f64 = 1e-9;
+
+/// Checks `needs --tol`: a number in [[`MIN_TOL`], 1); `what` names it.
+pub fn check_tol(what: &str, tol: f64) -> Result<f64, Error> {
+    if tol.is_finite() && (MIN_TOL..1.0).contains(&tol) {
+        Ok(tol)
+    } else {
+        Err(Error::field(
+            what,
+            format!("must be a number in [{MIN_TOL:e}, 1) (got {tol})"),
+        ))
+    }
+}
+
+/// Checks, before any run, every bound of every run of `needs` on
+/// `scene`: the ladder's (checked by [`converge::run_levels_until`]), and
+/// the reference, its checks and each of `methods` at the largest `n` the
+/// answer can be (the ladder's but one, the finest being the reference),
+/// and each term's run without it there.
+pub fn check_bounds(scene: &Scene, links: &[usize], methods: &[Method]) -> Result<(), Error> {
+    let mut sorted = links.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    let Some(&n) = sorted.len().checked_sub(2).and_then(|k| sorted.get(k)) else {
+        return Ok(());
+    };
+    let mut p = converge::refined_scene(scene, n)?.prepare()?;
+    p.options.output_dt = None;
+    let t_eval = p.options.t_end;
+    precision::check_bounds(&p, t_eval, Checks::default(), methods)?;
+    for term in TERMS.iter().filter(|t| (t.is_on)(scene)) {
+        let off = converge::refined_scene(&(term.off)(scene)?, n)?
+            .with_value("run.method", toml::Value::String(LADDER_METHOD.into()))?;
+        off.prepare()?;
+    }
+    Ok(())
+}
+
+/// The options of [`run`].
+pub struct NeedsOptions {
+    pub tol: f64,
+    /// The ladder of `n` (the last the reference).
+    pub links: Vec<usize>,
+    pub methods: Vec<Method>,
+    pub jobs: usize,
+}
+
+/// The phases `progress` reports: `(phase, done, total)`.
+pub type Progress<'a> = &'a (dyn Fn(&str, usize, usize) + Sync);
+
+/// The smallest `n` of `levels` (coarse to fine, the last the reference)
+/// from which on tip speed, tip end and tip path agree within `tol`.
+pub fn adequate_links(levels: &[Level], tol: f64) -> Option<usize> {
+    if !levels.iter().all(|l| l.summary.is_ok()) {
+        return None;
+    }
+    converge::smallest_adequate(levels, |d| {
+        d.tip_speed_max < tol && d.tip_end < tol && d.tip_path < tol
+    })
+}
+
+/// Answers the question for `scene` (see the module's doc).
+pub fn run(
+    scene: &Scene,
+    options: &NeedsOptions,
+    budget: &Budget,
+    progress: Progress,
+) -> Result<Needs, Error> {
+    let tol = check_tol("--tol", options.tol)?;
+    scene.prepare()?.require_corrected("needs")?;
+    check_bounds(scene, &options.links, &options.methods)?;
+    let rtol = ladder_rtol(tol);
+    // The scene must be one that sampling can compare: its output_dt is
+    // the tip path's grid.
+    // Every phase runs under the budget: a run still going at the
+    // deadline, or started after it, ends `interrupted` and is listed.
+    let cancel = Some(budget.cancel());
+    // A budget already spent stops the ladder from its first run, whenever
+    // the budget's watcher gets to run.
+    if !budget.fits(0.0) {
+        budget.cancel().cancel();
+    }
+    let levels = converge::run_levels_until(
+        scene,
+        &options.links,
+        Some(LADDER_METHOD),
+        Some(rtol),
+        options.jobs,
+        &|d, t| progress("rods", d, t),
+        cancel,
+    )?;
+    let interrupted = |status: &str| status == chain_ode::Status::Interrupted.as_str();
+    let skipped_levels: Vec<String> = levels
+        .iter()
+        .filter(|l| interrupted(&l.summary.status))
+        .map(|l| format!("rods n = {}", l.links()))
+        .collect();
+    let ladder = converge::report(scene, &levels, tol)?;
+    let links = adequate_links(&levels, tol);
+    let mut needs = Needs {
+        name: scene.name().to_string(),
+        tol,
+        ladder,
+        links,
+        reference_agreement: [f64::NAN; 2],
+        fastest: None,
+        least_work: None,
+        methods: vec![],
+        terms: vec![],
+        skipped: skipped_levels,
+        reference_status: None,
+        method_runs: vec![],
+    };
+    let Some(n) = links else {
+        return Ok(needs);
+    };
+    let refined = converge::refined_scene(scene, n)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs.max(1))
+        .build()
+        .map_err(|e| Error::field("--jobs", e))?;
+
+    // The method, at n.
+    let mut prepared = refined.prepare()?;
+    prepared.options.output_dt = None;
+    let t_eval = prepared.options.t_end;
+    // The reference and its checks stop at the budget's deadline too.
+    prepared.options.cancel = Some(budget.cancel().clone());
+    let (reference, ref_rows) = precision::reference(&prepared, t_eval, Checks::default())?;
+    prepared.options.cancel = None;
+    needs.reference_status = ref_rows.first().map(|r| r.status.clone());
+    if reference.is_none() && ref_rows.iter().any(|r| interrupted(&r.status)) {
+        needs.skipped.push("the reference".to_string());
+    }
+    let checks_stopped: Vec<String> = ref_rows
+        .iter()
+        .skip(1)
+        .filter(|r| r.plan == precision::Plan::Budget)
+        .map(|r| format!("the reference's {}", r.method))
+        .collect();
+    needs.skipped.extend(checks_stopped);
+    let (a_rk4, a_bdf) = precision::agreement(&ref_rows);
+    needs.reference_agreement = [a_rk4, a_bdf];
+    if let Some(reference) = reference {
+        let total: usize = options
+            .methods
+            .iter()
+            .map(|&m| precision::params(m).len())
+            .sum();
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let rows = pool.install(|| {
+            precision::run_lines(
+                &prepared,
+                &options.methods,
+                &reference,
+                &|_| true,
+                budget,
+                &|p: &Point| p.ok() && p.err() <= tol,
+                &|| {
+                    let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                    progress("methods", d, total);
+                },
+            )
+        })?;
+        for &m in &options.methods {
+            let mine = || rows.iter().filter(move |p| p.method == m.as_str());
+            needs.method_runs.push(MethodRuns {
+                method: m.as_str().to_string(),
+                points: mine().count(),
+                ran: mine().filter(|p| p.plan == precision::Plan::Run).count(),
+                budget: mine().filter(|p| p.plan == precision::Plan::Budget).count(),
+            });
+            let first = rows
+                .iter()
+                .find(|p| p.method == m.as_str() && p.ok() && p.err() <= tol);
+            needs
+                .methods
+                .push((m.as_str().to_string(), first.map(MethodChoice::of)));
+        }
+        let reached: Vec<&MethodChoice> = needs
+            .methods
+            .iter()
+            .filter_map(|(_, c)| c.as_ref())
+            .collect();
+        needs.fastest = reached
+            .iter()
+            .min_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds))
+            .map(|c| (*c).clone());
+        needs.least_work = reached
+            .iter()
+            .min_by_key(|c| c.rhs_equiv)
+            .map(|c| (*c).clone());
+        let methods_skipped = rows
+            .iter()
+            .filter(|p| p.plan == precision::Plan::Budget)
+            .map(|p| {
+                format!(
+                    "{} {} {}",
+                    p.method,
+                    p.param_name,
+                    fc_csv::format::exp(p.param)
+                )
+            });
+        needs.skipped.extend(methods_skipped);
+    }
+
+    // The terms, at n, with the ladder's method and tolerance.
+    let on_level = levels
+        .iter()
+        .find(|l| l.links() == n)
+        .ok_or_else(|| Error::field("--links", "the adequate n is not a level of the ladder"))?;
+    for (k, term) in TERMS.iter().enumerate() {
+        progress("terms", k, TERMS.len());
+        let need = judge_term_until(term, scene, n, on_level, tol, rtol, cancel)?;
+        if need.on && need.needed.is_none() && budget.cancel().is_cancelled() {
+            needs.skipped.push(format!("term {}", need.term));
+        }
+        needs.terms.push(need);
+    }
+    progress("terms", TERMS.len(), TERMS.len());
+    Ok(needs)
+}
+
+impl std::fmt::Display for Needs {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{}: what the scene needs at tolerance {}",
+            self.name, self.tol
+        )?;
+        let l = &self.ladder;
+        writeln!(
+            f,
+            "  rods: ladder n = {} (reference {}), refined at fixed M and eta = r l, {} rtol {:e}",
+            l.levels
+                .iter()
+                .map(|x| x.links.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            l.reference_links,
+            LADDER_METHOD,
+            ladder_rtol(self.tol)
+        )?;
+        let reference_ok = l.levels.last().is_some_and(|x| x.status == "ok");
+        for x in &l.levels {
+            // A deviation from or of a run that did not finish is no number.
+            let d = |v: f64| {
+                if reference_ok && x.status == "ok" && v.is_finite() {
+                    format!("{v:>9.2e}")
+                } else {
+                    format!("{:>9}", "-")
+                }
+            };
+            writeln!(
+                f,
+                "    n {:>6}  {:>9}  d(vmax) {}  d(tip_end) {}  d(path) {}",
+                x.links,
+                x.status,
+                d(x.deviation.tip_speed_max),
+                d(x.deviation.tip_end),
+                d(x.deviation.tip_path)
+            )?;
+        }
+        match self.links {
+            Some(n) => writeln!(
+                f,
+                "  n = {n}: the smallest n whose tip path, tip end and maximum tip speed agree \
+                 with n = {} within {} (converge's answer on speed and tip end: {})",
+                l.reference_links,
+                self.tol,
+                l.adequate_links.map_or("none".into(), |n| n.to_string())
+            )?,
+            None if self.ladder_stopped() => {
+                return write!(
+                    f,
+                    "  no n: --budget stopped the ladder before it finished (not run: {})",
+                    self.skipped.join(", ")
+                )
+            }
+            None => {
+                return write!(
+                    f,
+                    "  no n below {} meets {} (or a run failed): refine further (--links)",
+                    l.reference_links, self.tol
+                )
+            }
+        }
+        let n = self.links.unwrap_or(0);
+        let agree = |a: f64| {
+            if a.is_finite() {
+                format!("{a:.0e}")
+            } else {
+                "- (the check did not finish)".to_string()
+            }
+        };
+        match self.reference_status.as_deref() {
+            Some("ok") => writeln!(
+                f,
+                "  methods at n = {n}: error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|); \
+                 reference DOPRI5 rtol 1e-13 agrees with RK4 to {}, BDF to {}",
+                agree(self.reference_agreement[0]),
+                agree(self.reference_agreement[1])
+            )?,
+            _ => writeln!(
+                f,
+                "  methods at n = {n}: {}",
+                self.no_method().unwrap_or_default()
+            )?,
+        }
+        for (m, c) in &self.methods {
+            let runs = self.method_runs.iter().find(|r| &r.method == m);
+            let (ran, budget) = runs.map_or((0, 0), |r| (r.ran, r.budget));
+            match c {
+                Some(c) => writeln!(
+                    f,
+                    "    {m:>9}: {} {:e}, error {:.1e}, {} RHS, {:.3} s",
+                    c.param_name, c.param, c.error, c.rhs_equiv, c.wall_seconds
+                )?,
+                None if ran == 0 && budget > 0 => {
+                    writeln!(f, "    {m:>9}: not run within --budget")?
+                }
+                None if budget > 0 => writeln!(
+                    f,
+                    "    {m:>9}: does not reach {} in the {ran} points that ran \
+                     ({budget} not run or stopped by --budget)",
+                    self.tol
+                )?,
+                None => writeln!(f, "    {m:>9}: does not reach {} on its ladder", self.tol)?,
+            }
+        }
+        if !self.skipped.is_empty() {
+            writeln!(f, "  not run for the budget: {}", self.skipped.join(", "))?;
+        }
+        match (&self.fastest, &self.least_work) {
+            (Some(a), Some(b)) => writeln!(
+                f,
+                "  fastest: {} at {} {:e} ({:.3} s); least work: {} at {} {:e} ({} RHS)",
+                a.method,
+                a.param_name,
+                a.param,
+                a.wall_seconds,
+                b.method,
+                b.param_name,
+                b.param,
+                b.rhs_equiv
+            )?,
+            _ => writeln!(f, "  {}", self.no_method().unwrap_or_default())?,
+        }
+        write!(f, "  terms:")?;
+        for t in &self.terms {
+            write!(f, "\n    {} ({}): ", t.term, t.key)?;
+            match (t.on, t.needed, t.tip_path, t.tip_speed_max) {
+                (false, ..) => write!(f, "off in this scene")?,
+                (true, Some(needed), Some(p), Some(v)) => write!(
+                    f,
+                    "{} (off: d(path) {p:.2e}, d(vmax) {v:.2e})",
+                    if needed {
+                        "needed"
+                    } else {
+                        "NOT needed: its effect is below the tolerance"
+                    }
+                )?,
+                (true, ..)
+                    if self
+                        .skipped
+                        .iter()
+                        .any(|s| s == &format!("term {}", t.term)) =>
+                {
+                    write!(f, "unknown: --budget stopped the run without it")?
+                }
+                (true, ..) => write!(f, "unknown: the run without it failed")?,
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A folded chain of 10 rods for 1 time unit (before its snap), with
+    /// `extra` chain keys (the joint friction at its default).
+    fn folded(extra: &str) -> Scene {
+        let text = format!(
+            "[chain]\nlength = 6.0\nlinks = 10\nmass = 0.2\n{extra}\n\
+             [start]\nkind = \"folded\"\ndown = 5\n[run]\nt_end = 1.0\noutput_dt = 0.05\n"
+        );
+        Scene::from_toml_str(&text).unwrap()
+    }
+
+    fn term(key: &str) -> &'static Term {
+        TERMS.iter().find(|t| t.key == key).unwrap()
+    }
+
+    /// The term's judgement for `scene` at `tol = 1e-3`.
+    fn judge(key: &str, scene: &Scene) -> TermNeed {
+        let tol = 1e-3;
+        let rtol = ladder_rtol(tol);
+        let on = converge::run_level(scene, 10, Some(LADDER_METHOD), Some(rtol)).unwrap();
+        judge_term(term(key), scene, 10, &on, tol, rtol).unwrap()
+    }
+
+    /// Every term's `off` scene has it off, and keeps the chain otherwise.
+    #[test]
+    fn each_term_switches_off() {
+        let s = folded(
+            "damping = 0.01\naxial_stiffness = 1e4\naxial_damping = 0.5\nbending_stiffness = 0.1",
+        );
+        assert_eq!(TERMS.len(), 3);
+        for t in TERMS {
+            assert!((t.is_on)(&s), "{}", t.key);
+            let off = (t.off)(&s).unwrap();
+            assert!(!(t.is_on)(&off), "{}", t.key);
+            for u in TERMS.iter().filter(|u| u.key != t.key) {
+                assert!((u.is_on)(&off), "{} lost {}", t.key, u.key);
+            }
+        }
+    }
+
+    /// Soft links (EA = 10 stretch a chain of weight 2 by about 20%) are
+    /// needed; stiff ones (EA = 1e7: a stretch of about 2e-7, the rigid
+    /// limit) are not. A judgement that ignored the links, or inverted the
+    /// test, fails one of the two.
+    #[test]
+    fn elastic_links_judged_by_their_stretch() {
+        let soft = judge(
+            "chain.axial_stiffness",
+            &folded("axial_stiffness = 10.0\naxial_damping = 1.0"),
+        );
+        assert_eq!(soft.needed, Some(true), "{soft:?}");
+        assert!(soft.tip_path.unwrap() > 1e-2, "{soft:?}");
+        let stiff = judge(
+            "chain.axial_stiffness",
+            &folded("axial_stiffness = 1e7\naxial_damping = 1.0"),
+        );
+        assert_eq!(stiff.needed, Some(false), "{stiff:?}");
+        assert!(stiff.tip_path.unwrap() < 1e-4, "{stiff:?}");
+        let rigid = judge("chain.axial_stiffness", &folded(""));
+        assert_eq!((rigid.on, rigid.needed), (false, None));
+    }
+
+    /// A stiff rope (EI = 1: the bending length (EI / (mu g))^(1/3) = 1.8
+    /// is a third of the chain) is needed; EI = 1e-9 (a bending length of
+    /// 3e-3, far below a rod) is not.
+    #[test]
+    fn bending_judged_by_its_bending_length() {
+        let stiff = judge(
+            "chain.bending_stiffness",
+            &folded("bending_stiffness = 1.0"),
+        );
+        assert_eq!(stiff.needed, Some(true), "{stiff:?}");
+        let weak = judge(
+            "chain.bending_stiffness",
+            &folded("bending_stiffness = 1e-9"),
+        );
+        assert_eq!(weak.needed, Some(false), "{weak:?}");
+    }
+}
