@@ -397,3 +397,48 @@ fn every_method_runs_the_wind_model_and_meets_a_tight_reference() {
         assert!(err < 1e-4, "{method}: tip error {err:e}");
     }
 }
+
+/// The outputs serve the model as they serve the chain: the trajectory CSV
+/// (`fc_scene::csv`) writes the model's own tip and energy for every sample,
+/// and the forces CSV a row of `n + 1` joints; the summary's balance holds.
+#[test]
+fn the_wind_models_trajectory_reaches_the_csv_writers() {
+    let c = chain(4, 0.02);
+    let model = WindModel::new(&c, 0.6).unwrap();
+    let start = State {
+        anchor: [0.0, 0.0],
+        angles: vec![0.3; 4],
+        rates: vec![0.0; 4],
+    };
+    let traj = solve(
+        model,
+        &start,
+        Method::Dopri5,
+        &options(Method::Dopri5, 1.0, Some(0.1)),
+    )
+    .unwrap();
+    assert_eq!(traj.status, Status::Ok);
+    let mut out = Vec::new();
+    fc_scene::csv::write_trajectory(&mut out, &traj).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,phi_2,phi_3,phi_4"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), traj.len());
+    for (k, row) in rows.iter().enumerate() {
+        let tip = traj.tip(k);
+        assert_eq!((row[1], row[2]), (tip[0], tip[1]));
+        assert_eq!(row[5], traj.energy(k));
+        // `E + W` is the start's energy at every sample.
+        assert!((row[5] + row[6] - rows[0][5]).abs() < 1e-7, "row {k}");
+    }
+    let mut out = Vec::new();
+    fc_scene::csv::write_forces(&mut out, &traj).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert_eq!(text.lines().nth(1).unwrap().split(',').count(), 1 + 2 * 5);
+}
