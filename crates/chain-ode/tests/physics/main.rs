@@ -21,6 +21,7 @@ mod failures;
 mod methods;
 mod modes;
 mod observed_rhs;
+mod one_energy;
 mod pivot;
 mod profile;
 mod profile_compression;
