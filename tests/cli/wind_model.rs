@@ -442,3 +442,70 @@ fn the_wind_models_trajectory_reaches_the_csv_writers() {
     let text = String::from_utf8(out).unwrap();
     assert_eq!(text.lines().nth(1).unwrap().split(',').count(), 1 + 2 * 5);
 }
+
+/// The model's work-precision table is the study's ([`fc_study::precision`]
+/// on a [`ModelSubject`](fc_study::subject::ModelSubject)), as a scene's is:
+/// the reference (DOPRI5 at 1e-13) is confirmed by its RK4 and BDF checks,
+/// each method's error falls as its tolerance tightens (at least 1e4 over
+/// the line), and the table's CSV reads back with one row per point. The
+/// reference's tip is the wind's: the windless chain's lies far from it.
+#[test]
+fn the_wind_model_gets_a_precision_table() {
+    use fc_batch::shard::Provenance;
+    use fc_study::precision::{self, Checks, Options};
+    use fc_study::subject::ModelSubject;
+
+    let c = chain(6, 0.05);
+    let start = State {
+        anchor: [0.0, 0.0],
+        angles: vec![0.0; 6],
+        rates: vec![0.0; 6],
+    };
+    let base = SolveOptions {
+        t_end: 1.5,
+        ..SolveOptions::default()
+    };
+    let subject = ModelSubject::new(
+        WindModel::new(&c, 0.4).unwrap(),
+        start.clone(),
+        base.clone(),
+        c.length(),
+    );
+    let options = Options {
+        methods: vec![Method::Dopri5, Method::Bdf],
+        checks: Checks::default(),
+        budget: None,
+        shard: None,
+        jobs: 2,
+    };
+    let provenance = Provenance {
+        runs: precision::ladder(&options.methods).len(),
+        hash: "0".repeat(16),
+    };
+    let s = precision::study_of(subject, "wind", provenance, &options, None, &|| {}).unwrap();
+    assert!(s.failures.is_empty(), "{:?}", s.failures);
+    let (a_rk4, a_bdf) = precision::agreement(&s.rows);
+    assert!(a_rk4 < 1e-6 && a_bdf < 1e-6, "{a_rk4:e} {a_bdf:e}");
+    for m in &options.methods {
+        let line: Vec<f64> = s
+            .rows
+            .iter()
+            .filter(|r| r.method == m.as_str())
+            .map(|r| r.err())
+            .collect();
+        assert_eq!(line.len(), precision::RTOLS.len(), "{m}");
+        assert!(line.iter().all(|e| e.is_finite()), "{m}: {line:?}");
+        assert!(line[line.len() - 1] < 1e-4 * line[0], "{m}: {line:?}");
+    }
+    let table = fc_csv::table::Table::parse("wind", &s.csv()).unwrap();
+    assert_eq!(table.len(), s.rows.len());
+    let windless = solve(
+        &c,
+        &start,
+        Method::Dop853,
+        &base.at_accuracy(Method::Dop853, 1e-12),
+    )
+    .unwrap();
+    let (r, w) = (s.reference.tip, windless.summary.tip_end);
+    assert!((r[0] - w[0]).hypot(r[1] - w[1]) > 0.05, "{r:?} {w:?}");
+}

@@ -24,6 +24,7 @@ pub mod render;
 pub mod rigid_limit;
 pub mod snap;
 pub mod stability;
+pub mod subject;
 pub mod work_cost;
 
 use chain_ode::Method;

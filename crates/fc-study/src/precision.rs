@@ -15,15 +15,15 @@
 
 use std::time::Instant;
 
-use chain_ode::{solve, Cancel, Method, SolveOptions, Stats, Status, Trajectory};
+use chain_ode::{Cancel, Method, Model, SolveOptions, Stats, Status, Trajectory};
 use rayon::prelude::*;
 
+use crate::subject::Subject;
 use fc_batch::budget::Budget;
 use fc_batch::shard::Provenance;
 use fc_csv::format::{exp, num, text};
 use fc_csv::Column::{self, Float, Int, Text};
 use fc_scene::error::{echo, Error};
-use fc_scene::scene::Prepared;
 
 /// The reference: DOPRI5 at these tolerances.
 pub const REF_RTOL: f64 = 1e-13;
@@ -164,7 +164,7 @@ pub struct Reference {
 
 impl Reference {
     /// Relative errors `(|tip - tip_ref| / L, |vmax - vmax_ref| / vmax_ref)`.
-    pub fn errors(&self, t: &Trajectory) -> (f64, f64) {
+    pub fn errors<M: Model>(&self, t: &Trajectory<M>) -> (f64, f64) {
         let s = &t.summary;
         self.errors_of(s.tip_end, s.tip_speed_max)
     }
@@ -246,16 +246,18 @@ impl Point {
         }
     }
 
-    /// The row of a finished run.
-    pub fn from_run(
+    /// The row of a finished run of `subject`, its errors measured
+    /// against `reference` ([`Subject::errors`]).
+    pub fn from_run<S: Subject>(
         method: String,
         param_name: &'static str,
         param: f64,
-        t: &Trajectory,
+        t: &Trajectory<S::Model>,
+        subject: &S,
         reference: &Reference,
     ) -> Point {
         let (err_tip, err_vmax) = if t.status.is_ok() {
-            reference.errors(t)
+            subject.errors(reference, t)
         } else {
             (f64::NAN, f64::NAN)
         };
@@ -271,7 +273,7 @@ impl Point {
             status: t.status.as_str().into(),
             t_reached: t.t_reached,
             stats: t.stats,
-            dim: 2 * t.chain().links() + 1,
+            dim: 2 * t.model.layout().links + 1,
             err_tip,
             err_vmax,
             switched: t.segments.len() > 1,
@@ -303,12 +305,11 @@ pub fn ladder(methods: &[Method]) -> Vec<(Method, f64)> {
         .collect()
 }
 
-/// The options of a point: the scene's, with the method's accuracy `param`
-/// (atol = rtol / 100) and no samples.
-pub fn options_for(p: &Prepared, method: Method, param: f64) -> SolveOptions {
-    let mut o = p.options.clone().at_accuracy(method, param);
-    o.output_dt = None;
-    o
+/// The options of a point: the subject's, with the method's accuracy
+/// `param` and no samples ([`Subject::options_for`]; for a scene, atol =
+/// rtol / 100).
+pub fn options_for<S: Subject>(p: &S, method: Method, param: f64) -> SolveOptions {
+    p.options_for(method, param)
 }
 
 /// The reference's options: DOPRI5's [`REF_RTOL`], [`REF_ATOL`] up to `t_end`.
@@ -345,8 +346,8 @@ impl Default for Checks {
 /// one (a time budget): a run it stops is a row of plan `budget` whose note
 /// says where it stopped, and the checks after it are rows not run (plan
 /// `budget`), so that the table says which phase the budget ended.
-pub fn reference(
-    p: &Prepared,
+pub fn reference<S: Subject>(
+    p: &S,
     t_eval: f64,
     checks: Checks,
 ) -> Result<(Option<Reference>, Vec<Point>), Error> {
@@ -356,29 +357,29 @@ pub fn reference(
 /// [`reference`], calling `phase(row, param)` as each of its runs starts
 /// (`reference-dopri5`, `check-rk4` at `check_dt` and at its half,
 /// `check-bdf`).
-pub fn reference_phases(
-    p: &Prepared,
+pub fn reference_phases<S: Subject>(
+    p: &S,
     t_eval: f64,
     checks: Checks,
     phase: &dyn Fn(&str, f64),
 ) -> Result<(Option<Reference>, Vec<Point>), Error> {
     let ref_opts = SolveOptions {
-        cancel: p.options.cancel.clone(),
+        cancel: p.options().cancel.clone(),
         ..reference_options(t_eval)
     };
     let cancelled = || ref_opts.cancel.as_ref().is_some_and(Cancel::is_cancelled);
-    let run = |method: Method, o: &SolveOptions| -> Result<Trajectory, Error> {
-        Ok(solve(&p.chain, &p.state, method, o)?)
+    let run = |method: Method, o: &SolveOptions| -> Result<Trajectory<S::Model>, Error> {
+        Ok(p.solve(method, o)?)
     };
     phase("reference-dopri5", REF_RTOL);
     let r = run(Method::Dopri5, &ref_opts)?;
     let reference = Reference {
         tip: r.summary.tip_end,
         vmax: r.summary.tip_speed_max,
-        length: p.chain.length(),
+        length: p.length(),
     };
-    let row = |name: &str, param_name: &'static str, param: f64, t: &Trajectory| {
-        let mut pt = Point::from_run(name.into(), param_name, param, t, &reference);
+    let row = |name: &str, param_name: &'static str, param: f64, t: &Trajectory<S::Model>| {
+        let mut pt = Point::from_run(name.into(), param_name, param, t, p, &reference);
         if t.status == Status::Interrupted {
             pt.plan = Plan::Budget;
             pt.note = format!(
@@ -532,14 +533,14 @@ pub fn reference_runs(t_eval: f64, checks: Checks) -> Vec<(&'static str, Method,
 /// is refused naming `--methods` (leave it out), while a single point out
 /// of its method's bounds (RK4's steps past `run.max_steps`) is a row not
 /// run, plan [`Plan::Bound`], its note the bound.
-pub fn check_bounds(
-    p: &Prepared,
+pub fn check_bounds<S: Subject>(
+    p: &S,
     t_eval: f64,
     checks: Checks,
     methods: &[Method],
 ) -> Result<(), Error> {
     for (what, method, o) in reference_runs(t_eval, checks) {
-        o.validate_for(&p.chain, method).map_err(|e| {
+        p.validate(method, &o).map_err(|e| {
             Error::field(
                 e.field,
                 format!("must be {} for {what} (got {})", e.accepted, echo(&e.got)),
@@ -569,9 +570,8 @@ pub fn check_bounds(
 /// The bound that `method` at accuracy `param` breaks on `p`, if any, as
 /// the one line of its error (the point is then not run: plan
 /// [`Plan::Bound`]).
-pub fn bound_of(p: &Prepared, method: Method, param: f64) -> Option<String> {
-    options_for(p, method, param)
-        .validate_for(&p.chain, method)
+pub fn bound_of<S: Subject>(p: &S, method: Method, param: f64) -> Option<String> {
+    p.validate(method, &options_for(p, method, param))
         .err()
         .map(|e| Error::from(e).to_string())
 }
@@ -593,26 +593,27 @@ pub fn agreement(rows: &[Point]) -> (f64, f64) {
 }
 
 /// One point, run once.
-pub fn run_point(
-    p: &Prepared,
+pub fn run_point<S: Subject>(
+    p: &S,
     method: Method,
     param: f64,
     reference: &Reference,
 ) -> Result<Point, Error> {
-    let t = solve(&p.chain, &p.state, method, &options_for(p, method, param))?;
+    let t = p.solve(method, &options_for(p, method, param))?;
     Ok(Point::from_run(
         method.as_str().into(),
         method.accuracy_name(),
         param,
         &t,
+        p,
         reference,
     ))
 }
 
 /// Every point of `jobs` as its plan says, each run once, untimed, in
 /// parallel on the current rayon pool (the order of `jobs` kept).
-pub fn run_planned(
-    p: &Prepared,
+pub fn run_planned<S: Subject>(
+    p: &S,
     jobs: &[(Method, f64, Plan)],
     reference: &Reference,
 ) -> Result<Vec<Point>, Error> {
@@ -638,7 +639,7 @@ pub fn repeats_for(wall: f64) -> usize {
 /// Runs every timed point again until it has its repeats, a round over all
 /// points at a time (so that a burst of load elsewhere on the machine falls
 /// on many points once rather than on one point every time).
-pub fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), Error> {
+pub fn repeat_interleaved<S: Subject>(p: &S, rows: &mut [Point]) -> Result<(), Error> {
     for _ in 1..REPEATS_CHEAP.max(REPEATS) {
         for pt in rows.iter_mut() {
             let Some((method, o)) = &pt.rerun else {
@@ -647,7 +648,7 @@ pub fn repeat_interleaved(p: &Prepared, rows: &mut [Point]) -> Result<(), Error>
             if pt.walls.len() >= repeats_for(pt.walls.first().copied().unwrap_or(0.0)) {
                 continue;
             }
-            let t = solve(&p.chain, &p.state, *method, o)?;
+            let t = p.solve(*method, o)?;
             pt.walls.push(t.summary.wall_seconds);
         }
     }
@@ -675,8 +676,8 @@ fn predict(rk4: bool, x: f64, done: &[(f64, f64)]) -> f64 {
 /// overrun the line's [`LINE_BUDGET`], is not run, nor is any point after
 /// it; RK4 stops once its errors reach [`ERR_FLOOR`]; an adaptive line whose
 /// first run exceeds [`THIN_ABOVE`] s runs every third tolerance only.
-pub fn timed_line(
-    p: &Prepared,
+pub fn timed_line<S: Subject>(
+    p: &S,
     method: Method,
     reference: &Reference,
 ) -> Result<Vec<Point>, Error> {
@@ -707,13 +708,14 @@ pub fn timed_line(
             continue;
         }
         let o = options_for(p, method, x);
-        let t = solve(&p.chain, &p.state, method, &o)?;
+        let t = p.solve(method, &o)?;
         let wall = t.summary.wall_seconds;
         let mut pt = Point::from_run(
             method.as_str().into(),
             method.accuracy_name(),
             x,
             &t,
+            p,
             reference,
         );
         if t.status.is_ok() {
@@ -744,8 +746,8 @@ pub fn timed_line(
 /// not own, unrecorded, while they can still fire `stop`, so that its rows
 /// are the whole run's rows of its run numbers (`merge` gives the
 /// unsharded table).
-pub fn run_lines(
-    p: &Prepared,
+pub fn run_lines<S: Subject>(
+    p: &S,
     methods: &[Method],
     reference: &Reference,
     take: &(dyn Fn(usize) -> bool + Sync),
@@ -779,7 +781,7 @@ pub fn run_lines(
              -> Result<Result<Point, f64>, Error> {
                 let mut o = options_for(p, method, x);
                 o.cancel = Some(budget.cancel().clone());
-                let t = solve(&p.chain, &p.state, method, &o)?;
+                let t = p.solve(method, &o)?;
                 if t.status == chain_ode::Status::Interrupted {
                     return Ok(Err(t.t_reached));
                 }
@@ -788,6 +790,7 @@ pub fn run_lines(
                     method.accuracy_name(),
                     x,
                     &t,
+                    p,
                     reference,
                 );
                 if pt.ok() {
@@ -1066,12 +1069,9 @@ pub fn study(
     outer: Option<&chain_ode::Cancel>,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Study, Error> {
-    let mut p = scene.prepare()?;
+    let p = scene.prepare()?;
     p.require_corrected("precision")?;
-    p.options.output_dt = None;
-    let t_eval = p.options.t_end;
     let methods = &options.methods;
-    check_bounds(&p, t_eval, options.checks, methods)?;
     let provenance = Provenance::new(
         scene,
         "precision",
@@ -1086,6 +1086,24 @@ pub fn study(
         ],
         ladder(methods).len(),
     );
+    study_of(p, scene.name(), provenance, options, outer, progress)
+}
+
+/// [`study`] of any [`Subject`] (a model with its start and options, such
+/// as BEAM or a model of another crate), named `name` in the table, at its
+/// options' `t_end`, with the given provenance columns.
+pub fn study_of<S: Subject>(
+    mut p: S,
+    name: &str,
+    provenance: Provenance,
+    options: &Options,
+    outer: Option<&chain_ode::Cancel>,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Study, Error> {
+    p.options_mut().output_dt = None;
+    let t_eval = p.options().t_end;
+    let methods = &options.methods;
+    check_bounds(&p, t_eval, options.checks, methods)?;
     let shard = options.shard;
     let take = |run: usize| shard.is_none_or(|s| s.takes(run));
     // The floor rule needs the coarser points of RK4's line: a
@@ -1099,7 +1117,7 @@ pub fn study(
     // budget and the caller's cancel.
     let (reference, mut rows) = Budget::run(options.budget, outer, |b| {
         let mut p = p.clone();
-        p.options.cancel = Some(b.cancel().clone());
+        p.options_mut().cancel = Some(b.cancel().clone());
         let (reference, mut rows) = reference(&p, t_eval, options.checks)?;
         if b.interrupted() {
             return Err(Error::Interrupted);
@@ -1154,7 +1172,7 @@ pub fn study(
             Reference {
                 tip: [f64::NAN; 2],
                 vmax: f64::NAN,
-                length: p.chain.length(),
+                length: p.length(),
             }
         }
     };
@@ -1186,8 +1204,8 @@ pub fn study(
         failures.extend(points_failure(&rows));
     }
     Ok(Study {
-        name: scene.name().to_string(),
-        links: p.chain.links(),
+        name: name.to_string(),
+        links: p.model().layout().links,
         t_eval,
         reference,
         rows,
@@ -1234,6 +1252,7 @@ pub fn points_failure(rows: &[Point]) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use fc_scene::scene::Prepared;
     use std::sync::Mutex;
     use std::time::Duration;
 

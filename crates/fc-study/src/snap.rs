@@ -21,7 +21,7 @@
 //!
 //! [`tension_profiles`] gives the tension at every joint at chosen times.
 
-use chain_ode::{Trajectory, Vec2};
+use chain_ode::{Model, Solve, StepView, Trajectory, Vec2, Watch};
 use serde::Serialize;
 
 use fc_csv::format::{exp, num};
@@ -75,6 +75,12 @@ pub struct Snap {
     /// Peak support force over `M g`, and when.
     pub peak_force: f64,
     pub t_peak_force: f64,
+    /// The largest support force over `M g` at any accepted step's end, and
+    /// when ([`StepPeak`], a watch on the run): for elastic links the same
+    /// as `peak_force`; for rigid links what the integrator's own steps
+    /// see, which grows as they shrink around the arrest (no limit).
+    pub peak_force_steps: f64,
+    pub t_peak_force_steps: f64,
     /// `|J|` over `M sqrt(g L)`, the window's ends, and the weight's share.
     pub impulse: f64,
     pub window: (f64, f64),
@@ -91,6 +97,35 @@ pub struct Snap {
 /// them.
 pub fn momentum(traj: &Trajectory, k: usize) -> Vec2 {
     traj.momentum(k)
+}
+
+/// The largest support force `|F_1|` (force units) at the start and at
+/// every accepted step's end of a run, and when: a [`Watch`] on the run
+/// ([`Solve::watch`]), asking the model ([`Model::support_force`]), so that
+/// a pulse between two output samples is still seen.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepPeak {
+    pub force: f64,
+    pub t: f64,
+}
+
+impl StepPeak {
+    fn see(&mut self, t: f64, f: Vec2) {
+        let m = f[0].hypot(f[1]);
+        if m > self.force {
+            (self.force, self.t) = (m, t);
+        }
+    }
+}
+
+impl<M: Model> Watch<M> for StepPeak {
+    fn start(&mut self, model: &M, t0: f64, y0: &[f64]) {
+        self.see(t0, model.support_force(t0, y0));
+    }
+
+    fn step(&mut self, model: &M, step: &StepView<'_>) {
+        self.see(step.t1, model.support_force(step.t1, step.y1));
+    }
 }
 
 /// The sample of `traj` nearest `t`.
@@ -122,7 +157,16 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
         s = s.with_value("run.t_end", toml::Value::Float(t))?;
     }
     let prepared = s.prepare()?;
-    let traj = prepared.solve()?;
+    prepared.require_corrected("the snap")?;
+    let mut steps = StepPeak::default();
+    let traj = Solve::new(
+        &prepared.chain,
+        &prepared.state,
+        prepared.method,
+        &prepared.options,
+    )
+    .watch(&mut steps)
+    .run()?;
     let chain = traj.chain();
     let p = chain.params();
     let (weight, mass) = (chain.weight(), chain.total_mass());
@@ -163,6 +207,8 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
         t_tip_speed_max: traj.summary.t_tip_speed_max,
         peak_force: peak / weight,
         t_peak_force: t_peak,
+        peak_force_steps: steps.force / weight,
+        t_peak_force_steps: steps.t,
         impulse,
         window,
         impulse_weight,
@@ -253,6 +299,43 @@ t_end = 3.6
         .unwrap()
     }
 
+    /// The watch sees every accepted step: with RK4 sampled at its own
+    /// step, every sample is a step end, so the watch's rigid peak is the
+    /// sampled peak of the support force (computed apart, from the samples,
+    /// by `analysis::pivot_forces`); a watch that skipped steps or read the
+    /// wrong state misses it.
+    #[test]
+    fn the_step_peak_is_the_peak_over_every_step() {
+        let dt = 1e-3;
+        let scene = scene_with(None, "tip_mass = 0.5\n")
+            .with_value("run.dt", toml::Value::Float(dt))
+            .unwrap();
+        let opts = Options {
+            method: "rk4".into(),
+            output_dt: dt,
+            ..Options::default()
+        };
+        let (snap, traj) = measure(&scene, &opts).unwrap();
+        assert_eq!(snap.status, "ok");
+        let f = chain_ode::analysis::pivot_forces(&traj);
+        let (sampled, t) = f
+            .iter()
+            .map(|p| (p.1[0].hypot(p.1[1]), p.0))
+            .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+        let w = traj.chain().weight();
+        assert!(
+            (snap.peak_force_steps - sampled / w).abs() < 1e-9 * snap.peak_force_steps,
+            "{} vs {}",
+            snap.peak_force_steps,
+            sampled / w
+        );
+        assert!(
+            (snap.t_peak_force_steps - t).abs() < 1e-9,
+            "{} vs {t}",
+            snap.t_peak_force_steps
+        );
+    }
+
     /// The impulse from the momentum balance is the time integral of the
     /// pivot force (trapezoid over fine samples), for both models: an
     /// independent formulation that a wrong momentum (a missing half rod, a
@@ -291,6 +374,15 @@ t_end = 3.6
             );
             let sampled = f.iter().map(|p| p.1[0].hypot(p.1[1])).fold(0.0, f64::max);
             assert!(sampled / traj.chain().weight() <= snap.peak_force * 1.001);
+            // For elastic links the watch's peak is the summary's own
+            // per-step peak.
+            if ea.is_some() {
+                assert_eq!(
+                    (snap.peak_force_steps, snap.t_peak_force_steps),
+                    (snap.peak_force, snap.t_peak_force),
+                    "{extra}"
+                );
+            }
             assert!(snap.peak_force > 2.0 && snap.t_peak_force > 2.0, "{snap:?}");
         }
     }
