@@ -61,7 +61,8 @@ pub use elastic::ElasticSystem;
 pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
-    BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed, ReportChain, RigidModel,
+    bdf_crossover_gamma, BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed,
+    ReportChain, RigidModel,
 };
 pub use ode::{BandedDae, Interpolant, OdeSystem, Problem, SemiExplicitDae, StepView};
 pub use ode::{Cancel, Stats, Status};
@@ -69,9 +70,9 @@ pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 pub use solve::{
-    bdf_crossover_gamma, solve, Accuracy, AutoPlan, Integrator, Method, Sample, Segment, Solve,
-    SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
-    BDF_DENSE_MAX_LINKS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
+    solve, Accuracy, AutoPlan, Integrator, Method, Sample, Segment, Solve, SolveOptions, Summary,
+    Trajectory, Watch, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,
+    DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 #[doc(hidden)]
 pub use solve::{unit_costs, with_general_sparse_lu, UnitCosts};

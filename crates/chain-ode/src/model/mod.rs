@@ -33,7 +33,7 @@ pub use elastic::ElasticModel;
 pub use kind::{IntoModel, ModelKind};
 pub use report::ReportChain;
 pub(crate) use rigid::rigid_energy;
-pub use rigid::RigidModel;
+pub use rigid::{bdf_crossover_gamma, RigidModel};
 
 use crate::chain::{Chain, InvalidParameter};
 use crate::kinematics::Vec2;

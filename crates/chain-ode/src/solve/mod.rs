@@ -41,8 +41,8 @@ use crate::model::{IntoModel, Layout, Model, ModelKind};
 use crate::ode::{BandedDae, Cancel, Observer, OdeSystem, Problem, Stats, Status, StepView};
 use crate::pivot::Pivot;
 use crate::state::State;
+pub use auto::AutoPlan;
 pub(crate) use auto::AUTO_DOP853_RTOL;
-pub use auto::{bdf_crossover_gamma, AutoPlan};
 #[doc(hidden)]
 pub use bdf::with_general_sparse_lu;
 pub use integrator::{Accuracy, Integrator};
