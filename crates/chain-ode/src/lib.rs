@@ -43,6 +43,8 @@ pub mod dynamics;
 mod dynamics_profile;
 pub mod elastic;
 pub mod kinematics;
+#[cfg(test)]
+mod methods_on_chains;
 pub mod model;
 pub mod modes;
 mod ode;

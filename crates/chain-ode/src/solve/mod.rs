@@ -30,6 +30,8 @@ mod step_size;
 mod tally;
 #[cfg(test)]
 mod test_problems;
+#[cfg(test)]
+pub(crate) mod testing;
 mod unit_costs;
 
 use std::time::Instant;
@@ -44,8 +46,9 @@ pub use auto::AutoPlan;
 pub(crate) use auto::AUTO_DOP853_RTOL;
 #[doc(hidden)]
 pub use bdf::with_general_sparse_lu;
+pub(crate) use integrator::Settings;
 pub use integrator::{Accuracy, Integrator, TimeScales};
-use integrator::{Run, Settings, Span};
+use integrator::{Run, Span};
 pub use method::{Method, Segment};
 use recorder::Recorder;
 pub use report_stepper::{REPORT_METHODS, REPORT_RK4};

@@ -331,13 +331,7 @@ pub(crate) fn slope(xy: &[(f64, f64)]) -> f64 {
     sxy / sxx
 }
 
-/// Records nothing.
-pub(crate) struct Quiet;
-
-impl Observer for Quiet {
-    fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
-    fn step(&mut self, _: &StepView<'_>) {}
-}
+pub(crate) use super::testing::Quiet;
 
 /// Evaluates every step's interpolant at the given times inside it.
 #[derive(Default)]
