@@ -10,10 +10,11 @@
 mod bdf {
     use crate::dae::ChainDae;
     use crate::elastic::ElasticDae;
-    use crate::ode::{Observer, Outcome, SemiExplicitDae, Stats, StepView};
-    use crate::solve::testing::{integrate_dae, picks_block_lu};
-    use crate::solve::{Settings, TimeScales};
-    use crate::{with_general_sparse_lu, Chain, ChainParams};
+    use crate::{Chain, ChainParams};
+    use fc_methods::testing::{integrate_dae, picks_block_lu};
+    use fc_methods::with_general_sparse_lu;
+    use fc_methods::{Observer, Outcome, SemiExplicitDae, Stats, StepView};
+    use fc_methods::{Settings, TimeScales};
 
     /// `dae` without its [`SemiExplicitDae::derivatives`]: the loop then
     /// evaluates the right-hand side for the observer.
@@ -191,9 +192,9 @@ mod bdf {
 mod block_lu {
     use crate::dae::ChainDae;
     use crate::elastic::ElasticDae;
-    use crate::ode::SemiExplicitDae;
-    use crate::solve::testing::{layout_of, random_state, worst_error, Lcg};
     use crate::{Chain, ChainParams};
+    use fc_methods::testing::{layout_of, random_state, worst_error, Lcg};
+    use fc_methods::SemiExplicitDae;
 
     /// An elastic chain of `n` rods with damped joints and links.
     fn elastic_chain(n: usize) -> Chain {

@@ -28,11 +28,12 @@
 //! `c_rel = l sum_i (q_i + mu) u_i / (n + mu)` ([`PivotPath`]). The state stays
 //! `[phi, w, W]`.
 
-use crate::chain::{check, number_text, Chain, InvalidParameter};
+use crate::chain::{check, number_text, Chain};
 use crate::kinematics::{lever_arm, Vec2};
 use crate::scalar::sin_cos;
+use fc_methods::InvalidParameter;
 /// The step caps of a prescribed motion, as the integrators read them.
-pub use crate::solve::TimeScales;
+pub use fc_methods::TimeScales;
 
 /// The pivot's motion, as given (every field in the chain's units).
 /// The default is a fixed pivot: [`Pivot::is_fixed`].

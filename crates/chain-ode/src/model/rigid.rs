@@ -2,16 +2,18 @@
 //! (`2 n + 1`), the pivot's path along the run, and the chain's one energy.
 
 use super::{Layout, Model, Observed};
-use crate::chain::{Chain, InvalidParameter};
+use crate::chain::Chain;
 use crate::elastic;
 use crate::kinematics::{bending_energy, joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
-use crate::ode::Problem;
-use crate::pivot::{centre_of_mass, PivotPath, TimeScales};
+use crate::pivot::{centre_of_mass, PivotPath};
 use crate::profile::Rods;
 use crate::scalar::Scalar;
-use crate::solve::{AutoPlan, Method, SolveOptions, BDF_DENSE_MAX_LINKS};
+use crate::solve::{SolveOptions, BDF_DENSE_MAX_LINKS};
 use crate::state::State;
 use crate::system::ChainSystem;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{AutoPlan, Method, TimeScales, AUTO_DOP853_RTOL};
 
 /// The rigid chain and where its pivot is along a run (the prescribed
 /// motion and, once let go, the free fall of the centre of mass).
@@ -355,7 +357,7 @@ pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
 pub(crate) fn rigid_auto_start(chain: &Chain, rtol: f64) -> Option<Method> {
     if chain.stiffest_damping_rate() >= bdf_crossover_gamma(chain) {
         None
-    } else if rtol <= crate::solve::AUTO_DOP853_RTOL {
+    } else if rtol <= AUTO_DOP853_RTOL {
         Some(Method::Dop853)
     } else {
         Some(Method::Dopri5)

@@ -1,55 +1,35 @@
-//! One way to run any method on any chain: [`solve`].
+//! The run layer: one way to run any method on any model, [`solve`].
 //!
-//! Every method is one file with one [`Integrator`](integrator::Integrator)
-//! (its name, whether it is adaptive, its accuracy parameter, how it runs),
-//! listed by one line in [`registry`] next to its [`Method`] variant.
-//! `auto` is a policy over the registry (`auto.rs`). Work counters come from
-//! a [`Counted`](crate::ode::Counted) system, never from counting by hand.
+//! The methods are fc-methods' (one [`Integrator`] per [`Method`], in its
+//! registry); they see only the [`Problem`] a model gives. This layer
+//! checks a run's options against its model ([`Model::validate`], on
+//! [`SolveOptions::validate_common`]), hands the model's problem to the
+//! method with the run's settings, cuts the run at the model's event, and
+//! watches it: the recorder (samples, the first non-finite time, cancel
+//! and progress), the summary's tally (which asks the model) and the
+//! caller's [`Watch`]es. Work counters come from what the methods called
+//! (a [`Counted`](fc_methods::Counted) system), never from counting by
+//! hand.
 
-mod auto;
 pub mod auto_elastic;
-mod bdf;
-mod bdf_dense;
-mod block_lu;
-mod diffsol_driver;
-mod dop853;
-mod dop853_tableau;
-mod dopri5;
-mod explicit;
-mod integrator;
-#[cfg(test)]
-mod known_solutions;
-mod method;
-mod newton_matrix;
 mod recorder;
-mod registry;
 mod report_stepper;
-mod rk4;
-mod sparse_lu;
-mod step_size;
 mod tally;
-#[cfg(test)]
-mod test_problems;
-#[cfg(test)]
-pub(crate) mod testing;
 mod unit_costs;
 
 use std::time::Instant;
 
-use crate::chain::{check, number_text, Chain, InvalidParameter};
+use fc_methods::registry;
+use fc_methods::{
+    Accuracy, AutoPlan, BandedDae, Cancel, InvalidParameter, Method, Observer, OdeSystem, Problem,
+    Run, Segment, Settings, Span, Stats, Status, StepView, TimeScales,
+};
+
+use crate::chain::{check, number_text, Chain};
 use crate::kinematics::Vec2;
 use crate::model::{IntoModel, Layout, Model, ModelKind};
-use crate::ode::{BandedDae, Cancel, Observer, OdeSystem, Problem, Stats, Status, StepView};
 use crate::pivot::Pivot;
 use crate::state::State;
-pub use auto::AutoPlan;
-pub(crate) use auto::AUTO_DOP853_RTOL;
-#[doc(hidden)]
-pub use bdf::with_general_sparse_lu;
-pub(crate) use integrator::Settings;
-pub use integrator::{Accuracy, Integrator, TimeScales};
-use integrator::{Run, Span};
-pub use method::{Method, Segment};
 use recorder::Recorder;
 pub use report_stepper::{REPORT_METHODS, REPORT_RK4};
 use tally::Tally;
@@ -818,9 +798,9 @@ fn trajectory<M: Model>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::all_finite;
     use crate::state::Start;
     use crate::system::ChainSystem;
+    use fc_methods::all_finite;
 
     /// Asks every method to stop once it has seen `k` accepted steps.
     struct StopAfter {

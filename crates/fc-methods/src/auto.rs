@@ -1,10 +1,12 @@
-//! `auto`: a policy over the registered methods. BDF from the start past
-//! the measured crossover damping rate; otherwise DOPRI5 (DOP853 at tight
-//! tolerances) until its stiffness detector keeps firing with `|lambda|`
-//! past the crossover's `48 gamma`, then BDF from that state; a rigid
-//! chain, for which that stiffness is the whip and the waves, is not handed
-//! over mid-run ([`hands_over`]). Elastic links hand over only when their
-//! axial modes are damped (`auto_elastic`).
+//! `auto`: a policy over the registered methods, run by the problem's
+//! [`AutoPlan`]: BDF from the start, or the plan's explicit method until
+//! its stiffness detector fires with `|lambda|` past the plan's threshold,
+//! then BDF from that state ([`hands_over`]); a problem without a plan gets
+//! [`AutoPlan::generic`]. The plans are the run layer's, from its models
+//! (chain-ode's: BDF from the start past the chain's measured crossover
+//! damping rate; a rigid chain, for which that stiffness is the whip and
+//! the waves, never handed over mid-run; elastic links handed over only
+//! when their axial modes are damped).
 
 use super::integrator::{Integrator, Run, Span};
 use super::{registry, Method};
@@ -12,9 +14,10 @@ use crate::ode::{Observer, Problem, Status, StepView};
 
 /// Relative tolerance at and below which `auto`'s explicit method is DOP853
 /// rather than DOPRI5 (measured on the work-precision diagrams).
-pub(crate) const AUTO_DOP853_RTOL: f64 = 1e-8;
+pub const AUTO_DOP853_RTOL: f64 = 1e-8;
 
-/// `auto`'s plan for one problem, from its model ([`crate::model::Model::auto_plan`]).
+/// `auto`'s plan for one problem, from its model (the run layer gives it:
+/// [`Problem::auto_plan`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AutoPlan {
     /// The explicit method to start with; `None`: BDF from the start.

@@ -363,7 +363,7 @@ pub(crate) fn integrate(problem: &dyn Problem, s: &Span<'_>, obs: &mut dyn Obser
 /// observer's derivatives at an accepted step are read off the state
 /// instead where the DAE can ([`SemiExplicitDae::derivatives`]: no
 /// evaluation, none counted).
-pub(crate) fn integrate_dae<D: SemiExplicitDae>(
+pub fn integrate_dae<D: SemiExplicitDae>(
     dae: D,
     t0: f64,
     y0: Vec<f64>,
@@ -439,13 +439,13 @@ pub(crate) const BDF: Integrator = Integrator {
 
 /// Whether [`integrate_dae`] would factorise `dae`'s Newton matrices by
 /// the block LU (at the state `0.1` everywhere; test support,
-/// [`crate::solve::testing`]). Panics on a malformed Jacobian pattern.
-#[cfg(test)]
+/// [`crate::testing`]). Panics on a malformed Jacobian pattern.
+#[cfg(any(test, feature = "test-support"))]
 #[allow(
     clippy::expect_used,
     reason = "test support: a malformed pattern fails the test"
 )]
-pub(crate) fn picks_block_lu<D: SemiExplicitDae>(dae: D) -> bool {
+pub fn picks_block_lu<D: SemiExplicitDae>(dae: D) -> bool {
     let y0 = vec![0.1; dae.dim()];
     let blocks = dae.blocks();
     let eqn = DaeEquations::new(dae, 0.0, y0).expect("a well-formed Jacobian pattern");

@@ -33,14 +33,14 @@ impl Accuracy {
 pub struct Integrator {
     /// The name on the command line, in scenes and in output. A contract:
     /// never renamed.
-    pub(crate) name: &'static str,
+    pub name: &'static str,
     /// True if the step adapts to `rtol`/`atol`.
-    pub(crate) adaptive: bool,
+    pub adaptive: bool,
     /// Integrates a problem over a span, showing the observer every
     /// accepted step. Never panics and never returns a NaN: a failure is a
     /// status with the last finite state. Leaves `segments` empty unless
     /// the method runs others (then it lists theirs).
-    pub(crate) run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
+    pub run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
 }
 
 impl Integrator {
@@ -57,7 +57,7 @@ impl Integrator {
 
 /// What a method is asked: from `(t0, y0)` to `t_end`, with `settings`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Span<'a> {
+pub struct Span<'a> {
     pub t0: f64,
     pub y0: &'a [f64],
     pub t_end: f64,
@@ -67,7 +67,7 @@ pub(crate) struct Span<'a> {
 /// What a method returns through the registry: its [`Outcome`] and, for a
 /// method that runs others (`auto`), which ran over which spans.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct Run {
+pub struct Run {
     pub outcome: Outcome,
     /// Empty for a method that runs alone (the registry records it).
     pub segments: Vec<Segment>,
@@ -85,7 +85,7 @@ impl From<Outcome> for Run {
 /// A run's options as the integrators read them (the run layer builds them
 /// from its own options), with the starting step the tests set.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Settings {
+pub struct Settings {
     /// Fixed step (RK4).
     pub dt: f64,
     pub rtol: f64,

@@ -7,7 +7,7 @@ use std::str::FromStr;
 
 use super::integrator::{Accuracy, Integrator};
 use super::registry;
-use crate::chain::InvalidParameter;
+use crate::error::InvalidParameter;
 
 /// An integration method. The variant is the public handle; its name and
 /// kind come from its integrator in the registry.
@@ -26,10 +26,13 @@ pub enum Method {
     /// diffsol's BDF on the explicit form with a dense Jacobian and dense LU:
     /// O(n^3) per factorisation, kept as the reference for `bdf` (`rtol`, `atol`).
     BdfDense,
-    /// BDF where the damping rate is past the measured crossover; otherwise
-    /// DOPRI5 (DOP853 at tight tolerances) to the end on a chain, and on a
-    /// problem that names no chain (the elastic chain) handing over to BDF
-    /// when the stiffness detector fires.
+    /// The problem's plan ([`crate::AutoPlan`]): BDF from the start, or an
+    /// explicit method (DOPRI5, DOP853 at tight tolerances) handing over to
+    /// BDF when its stiffness detector fires past the plan's threshold. A
+    /// chain's plan (chain-ode's): BDF past the measured crossover damping
+    /// rate, else the explicit method to the end (rigid links, lightly
+    /// damped elastic ones) or to the first stiffness detection (elastic
+    /// links whose joints are damped).
     Auto,
 }
 

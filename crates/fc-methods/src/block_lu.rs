@@ -124,17 +124,17 @@ const CONDENSED: [(usize, usize); 3] = [(5, 2), (6, 3), (4, 1)];
 /// size `S`, or alone (its row and column hold only the diagonal entry, as
 /// the chain's `W` does, whose row is left out of the Jacobian).
 #[derive(Clone, Debug)]
-pub(crate) struct BlockLayout {
+pub struct BlockLayout {
     /// The block size `S`.
-    pub(crate) size: usize,
+    pub size: usize,
     /// `P`, the unknowns of every block whose rows hold entries in their own
     /// block's columns only (the chain's `phi_i` and `w_i`): placed first in
     /// each block and condensed out before the block Thomas algorithm (see
     /// the module doc). Zero when the blocks do not all have the same
     /// number of them, or when they would leave nothing to condense onto.
-    pub(crate) local: usize,
+    pub local: usize,
     /// `order[p]`: the unknown at position `p` (block `p / S`).
-    pub(crate) order: Vec<usize>,
+    pub order: Vec<usize>,
     /// `place[u]`: `Ok(position)` in the blocks, or `Err(index)` in `lone`.
     place: Vec<Result<usize, usize>>,
     /// The unknowns alone.
@@ -867,7 +867,7 @@ impl Factors {
 /// tridiagonal in that grouping leaves it unusable: every factorisation
 /// fails (the caller checks the Jacobian's pattern first; see `bdf.rs`).
 #[derive(Default)]
-pub(crate) struct BlockLu {
+pub struct BlockLu {
     block: Vec<usize>,
     /// The factors; `None` until a pattern that is block tridiagonal in
     /// `block` was set.
@@ -971,10 +971,10 @@ impl LinearSolver<FaerSparseMat<f64>> for BlockLu {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diffsol_driver::slice;
+    use crate::newton_matrix::NewtonMatrix;
     use crate::ode::SemiExplicitDae;
-    use crate::solve::diffsol_driver::slice;
-    use crate::solve::newton_matrix::NewtonMatrix;
-    use crate::solve::testing::DenseSolve;
+    use crate::testing::DenseSolve;
     use diffsol::Vector;
     use faer::sparse::{Pair, SymbolicSparseColMat};
 
@@ -1094,9 +1094,9 @@ mod tests {
 
     #[test]
     fn a_singular_newton_matrix_ends_the_run_as_linear_solve_failed() {
+        use crate::bdf::integrate_dae;
         use crate::ode::Status;
-        use crate::solve::bdf::integrate_dae;
-        use crate::solve::test_problems::{options, Quiet};
+        use crate::test_problems::{options, Quiet};
         for blocks in [true, false] {
             let o = options(1e-6, 1e-8);
             let out = integrate_dae(

@@ -13,8 +13,8 @@ use std::rc::Rc;
 use diffsol::{FaerVec, Vector};
 use diffsol_la::LinearSolver;
 
-pub(crate) use super::bdf::{integrate_dae, picks_block_lu};
-pub(crate) use super::block_lu::BlockLayout;
+pub use super::bdf::{integrate_dae, picks_block_lu};
+pub use super::block_lu::BlockLayout;
 use super::block_lu::BlockLu;
 use super::diffsol_driver::slice;
 use super::newton_matrix::NewtonMatrix;
