@@ -4,11 +4,12 @@
 //! energy-conserving law and the Bessel-zero frequencies of the hanging
 //! chain.
 
-use crate::chain::{Chain, InvalidParameter};
+use crate::chain::Chain;
 use crate::kinematics::Vec2;
 use crate::model::Model;
 use crate::solve::Trajectory;
 use crate::system::ChainSystem;
+use fc_methods::InvalidParameter;
 
 /// The first zeros `j_{0,k}` of the Bessel function `J0`.
 pub const J0_ZEROS: [f64; 5] = [

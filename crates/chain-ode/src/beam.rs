@@ -38,8 +38,8 @@
 //!   definite: it is `Re(E G E*)` with `E = diag(exp(i z))` and `G` the
 //!   positive definite `C` at `z = 0`), so the index is 1.
 
-use crate::ode::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
 use crate::scalar::{Dual, Scalar};
+use fc_methods::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
 
 /// Segments of the test set's beam.
 pub const SEGMENTS: usize = 40;

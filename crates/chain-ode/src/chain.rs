@@ -3,6 +3,8 @@
 use std::borrow::Cow;
 use std::fmt;
 
+use fc_methods::InvalidParameter;
+
 use crate::pivot::Pivot;
 use crate::profile::{Profile, Rods};
 
@@ -88,30 +90,6 @@ pub struct Chain {
     /// The rods' masses and lengths for a profiled chain, `None` for equal rods.
     rods: Option<std::sync::Arc<Rods>>,
 }
-
-/// A parameter outside its accepted range. `Display` is one line naming the field.
-#[derive(Clone, Debug, PartialEq)]
-pub struct InvalidParameter {
-    /// The field, by its scene path (e.g. `chain.links`).
-    pub field: &'static str,
-    /// What is accepted: a range a user can act on (for bounds that depend
-    /// on other fields, with the numbers for this run).
-    pub accepted: Cow<'static, str>,
-    /// The value given, as text.
-    pub got: String,
-}
-
-impl fmt::Display for InvalidParameter {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}: must be {} (got {})",
-            self.field, self.accepted, self.got
-        )
-    }
-}
-
-impl std::error::Error for InvalidParameter {}
 
 pub(crate) fn check(
     ok: bool,

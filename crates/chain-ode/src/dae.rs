@@ -49,9 +49,9 @@ use std::cell::RefCell;
 use crate::chain::Chain;
 use crate::dynamics::{accelerations_with, damping_stencil, joint_stencil, Base, Workspace};
 use crate::kinematics::dissipation_rate;
-use crate::ode::SemiExplicitDae;
 use crate::pivot::Pivot;
 use crate::scalar::{sin_cos, Scalar};
+use fc_methods::SemiExplicitDae;
 
 /// The falling chain as `M y' = f(y)` with algebraic unknowns; see the module doc.
 #[derive(Clone, Debug)]

@@ -57,10 +57,10 @@ use crate::chain::Chain;
 use crate::dae::ChainDae;
 use crate::dynamics::{damping_stencil, Workspace};
 use crate::kinematics::Vec2;
-use crate::ode::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
 use crate::pivot::Pivot;
 use crate::scalar::{sin_cos, Dual, Scalar};
 use crate::state::State;
+use fc_methods::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
 
 /// Per-rod values of a profiled elastic chain (physical units): rod `i`'s
 /// half length, inverse mass and inverse moment of inertia, and joint `k`'s

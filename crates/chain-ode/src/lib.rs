@@ -1,5 +1,10 @@
-//! The falling chain of `n` rigid rods: its dynamics in O(n), its energy, and
-//! the integrators that run it.
+//! The falling chain of `n` rigid rods: its dynamics in O(n), its energy,
+//! its models (the rigid and the elastic chain, the report's model, BEAM),
+//! and the run layer that runs the integrators on them. The integrators
+//! themselves, and the interface they see ([`Problem`], [`OdeSystem`],
+//! [`SemiExplicitDae`]), live in `fc-methods`, which knows no chain; this
+//! crate re-exports what its callers name ([`Method`], [`Stats`],
+//! [`Status`], ...).
 //!
 //! Data flows one way: a [`Chain`] and a [`Start`] give a [`State`]; [`solve`]
 //! runs a [`Method`] on it and returns a [`Trajectory`] with its samples, its
@@ -30,9 +35,12 @@
 //!   its errata as switches), whose model [`ReportChain`] runs by [`solve`];
 //! * errors with their fields: [`InvalidParameter`], [`StartError`].
 //!
-//! Everything else is internal: the interface between problems and methods
-//! (`OdeSystem`, `Observer`, the call counter), the integrators and their
-//! registry, the scalar type of the recursion (`f64` or a dual number).
+//! * the interface a model's problem implements, from fc-methods:
+//!   [`OdeSystem`], [`Problem`], [`SemiExplicitDae`], [`BandedDae`].
+//!
+//! Everything else is internal: the observers of a run, the methods'
+//! insides (fc-methods'), the scalar type of the recursion (`f64` or a dual
+//! number).
 
 pub mod analysis;
 pub mod beam;
@@ -43,9 +51,10 @@ pub mod dynamics;
 mod dynamics_profile;
 pub mod elastic;
 pub mod kinematics;
+#[cfg(test)]
+mod methods_on_chains;
 pub mod model;
 pub mod modes;
-mod ode;
 pub mod pivot;
 pub mod profile;
 mod profile_refine;
@@ -56,24 +65,29 @@ mod state;
 mod system;
 pub mod tip_mass_law;
 
-pub use chain::{Chain, ChainParams, InvalidParameter, MAX_LINKS};
+pub use chain::{Chain, ChainParams, MAX_LINKS};
 pub use elastic::ElasticSystem;
+#[doc(hidden)]
+pub use fc_methods::with_general_sparse_lu;
+pub use fc_methods::{
+    Accuracy, AutoPlan, BandedDae, Cancel, Integrator, Interpolant, InvalidParameter, Method,
+    OdeSystem, Problem, Segment, SemiExplicitDae, Stats, Status, StepView,
+};
 pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
-    BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed, ReportChain, RigidModel,
+    bdf_crossover_gamma, BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed,
+    ReportChain, RigidModel,
 };
-pub use ode::{BandedDae, Interpolant, OdeSystem, Problem, SemiExplicitDae, StepView};
-pub use ode::{Cancel, Stats, Status};
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
 pub use solve::{
-    bdf_crossover_gamma, solve, Accuracy, AutoPlan, Integrator, Method, Sample, Segment, Solve,
-    SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE, BDF_DENSE_MAX_ELASTIC_LINKS,
-    BDF_DENSE_MAX_LINKS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
+    solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,
+    BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES,
+    REPORT_METHODS, RTOL_RANGE,
 };
 #[doc(hidden)]
-pub use solve::{unit_costs, with_general_sparse_lu, UnitCosts};
+pub use solve::{unit_costs, UnitCosts};
 pub use state::{Start, StartError, State, MAX_START_ANGLE};
 pub use system::ChainSystem;

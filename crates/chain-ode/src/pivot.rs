@@ -28,9 +28,12 @@
 //! `c_rel = l sum_i (q_i + mu) u_i / (n + mu)` ([`PivotPath`]). The state stays
 //! `[phi, w, W]`.
 
-use crate::chain::{check, number_text, Chain, InvalidParameter};
+use crate::chain::{check, number_text, Chain};
 use crate::kinematics::{lever_arm, Vec2};
 use crate::scalar::sin_cos;
+use fc_methods::InvalidParameter;
+/// The step caps of a prescribed motion, as the integrators read them.
+pub use fc_methods::TimeScales;
 
 /// The pivot's motion, as given (every field in the chain's units).
 /// The default is a fixed pivot: [`Pivot::is_fixed`].
@@ -87,50 +90,6 @@ fn min_jerk(u: f64) -> [f64; 3] {
 /// duration `tau`, at most `T / 16` on a harmonic motion of period
 /// `T = 2 pi / Omega` (see [`Pivot::time_scales`]).
 pub const STEPS_PER_TIME_SCALE: f64 = 16.0;
-
-/// The largest steps that resolve the pivot's prescribed motion (time
-/// units): at most `max_step` before `until`, a step that lands on `until`
-/// exactly, and at most `max_step_after` from there on. An adaptive
-/// explicit method's error estimate cannot see a drive that happens
-/// between its stages (a jerk shorter than the first step is zero at both
-/// the step's ends and at every stage past it); these caps make it see it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TimeScales {
-    /// The largest step before `until`.
-    pub max_step: f64,
-    /// The end of the first phase (the smooth jerk's `tau`), landed on
-    /// exactly; 0: one phase.
-    pub until: f64,
-    /// The largest step from `until` on.
-    pub max_step_after: f64,
-}
-
-impl TimeScales {
-    /// No cap: a fixed, released or uniformly accelerated pivot.
-    pub const NONE: Self = Self {
-        max_step: f64::INFINITY,
-        until: 0.0,
-        max_step_after: f64::INFINITY,
-    };
-
-    /// The largest step allowed at `t`.
-    pub fn max_step_at(&self, t: f64) -> f64 {
-        if t < self.until {
-            self.max_step
-        } else {
-            self.max_step_after
-        }
-    }
-
-    /// The smallest cap of the run (a fixed step must obey it throughout).
-    pub fn smallest(&self) -> f64 {
-        if self.until > 0.0 {
-            self.max_step.min(self.max_step_after)
-        } else {
-            self.max_step_after
-        }
-    }
-}
 
 impl Pivot {
     /// The time scales of the prescribed motion, as step caps: the smooth

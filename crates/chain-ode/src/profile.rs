@@ -12,7 +12,8 @@
 //! `m_i = mu_i m` and length `l_i = lambda_i l` in units of the mean rod,
 //! `m = M / n`, `l = L / n` (so `sum mu_i = sum lambda_i = n`).
 
-use crate::chain::{check, number_text, InvalidParameter};
+use crate::chain::{check, number_text};
+use fc_methods::InvalidParameter;
 
 /// The taper's accepted range, in words (`chain.taper`).
 pub const TAPER_RANGE: &str = "a finite number in 0.001..=1000";

@@ -35,9 +35,10 @@
 //! `E = (m l^2 / 2) (w^T A w) + m l^2 G sum_i q_i sin phi_i`; with every
 //! switch off it is the corrected chain's `T + V`.
 
-use crate::chain::{check, Chain, InvalidParameter};
+use crate::chain::{check, Chain};
 use crate::kinematics::Vec2;
-use crate::ode::{OdeSystem, Problem};
+use fc_methods::InvalidParameter;
+use fc_methods::{OdeSystem, Problem};
 
 /// The largest chain the report's model runs: its dense solve is O(n^3)
 /// per right-hand side (the report used `n <= 100`).

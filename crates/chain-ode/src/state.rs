@@ -2,8 +2,9 @@
 
 use catenary::CatenaryError;
 
-use crate::chain::{check, number_text, Chain, InvalidParameter};
+use crate::chain::{check, number_text, Chain};
 use crate::kinematics::Vec2;
+use fc_methods::InvalidParameter;
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 

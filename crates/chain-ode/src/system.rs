@@ -6,8 +6,8 @@ use crate::chain::Chain;
 use crate::dae::ChainDae;
 use crate::dynamics::{accelerations, accelerations_with, Base, Reactions, Workspace};
 use crate::kinematics::dissipation_rate;
-use crate::ode::{BandedDae, OdeSystem, Problem};
 use crate::scalar::Dual;
+use fc_methods::{BandedDae, OdeSystem, Problem};
 
 /// The falling chain as `y' = f(y)`, with preallocated workspaces.
 #[derive(Clone, Debug)]

@@ -9,12 +9,14 @@
 
 use super::{Layout, Model, Observed};
 use crate::beam::{BeamSystem, SEGMENTS, T_END};
-use crate::chain::{check, InvalidParameter};
+use crate::chain::check;
 use crate::kinematics::Vec2;
-use crate::ode::Problem;
 use crate::scalar::sin_cos;
-use crate::solve::{Accuracy, Method, SolveOptions, RTOL_RANGE};
+use crate::solve::{SolveOptions, RTOL_RANGE};
 use crate::state::State;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{Accuracy, Method};
 
 /// The step budget of a BEAM run (RK4 at its smallest step takes 10^7).
 pub const BEAM_MAX_STEPS: u64 = 10_000_000;
@@ -204,8 +206,8 @@ impl Model for BeamModel {
 mod tests {
     use super::*;
     use crate::beam::REFERENCE;
-    use crate::ode::Status;
     use crate::solve::{solve, Trajectory};
+    use fc_methods::Status;
 
     fn solve_beam(
         method: Method,

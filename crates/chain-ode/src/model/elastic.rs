@@ -8,14 +8,16 @@
 //! that the balance `E + W = E(0)` holds across the cut.
 
 use super::{Layout, Model, Observed};
-use crate::chain::{check, Chain, InvalidParameter};
+use crate::chain::{check, Chain};
 use crate::elastic::{self, ElasticSystem};
 use crate::kinematics::Vec2;
-use crate::ode::Problem;
-use crate::pivot::{PivotPath, TimeScales};
+use crate::pivot::PivotPath;
 use crate::solve::auto_elastic;
-use crate::solve::{AutoPlan, Method, SolveOptions, BDF_DENSE_MAX_ELASTIC_LINKS};
+use crate::solve::{SolveOptions, BDF_DENSE_MAX_ELASTIC_LINKS};
 use crate::state::State;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{AutoPlan, Method, TimeScales};
 
 /// The elastic chain, its pivot's path, and whether joint 0 has let go.
 #[derive(Clone, Debug, PartialEq)]

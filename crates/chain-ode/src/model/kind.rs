@@ -2,12 +2,13 @@
 //! chain is.
 
 use super::{ElasticModel, Layout, Model, Observed, ReportChain, RigidModel};
-use crate::chain::{Chain, InvalidParameter};
+use crate::chain::Chain;
 use crate::kinematics::Vec2;
-use crate::ode::Problem;
-use crate::pivot::TimeScales;
-use crate::solve::{AutoPlan, Integrator, Method, SolveOptions};
+use crate::solve::SolveOptions;
 use crate::state::State;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{AutoPlan, Integrator, Method, TimeScales};
 
 /// The crate's models of a chain. [`ModelKind::of`] chooses a chain's
 /// (rigid or elastic links), [`ReportChain`] is the report's; every

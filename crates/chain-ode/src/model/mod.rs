@@ -33,14 +33,15 @@ pub use elastic::ElasticModel;
 pub use kind::{IntoModel, ModelKind};
 pub use report::ReportChain;
 pub(crate) use rigid::rigid_energy;
-pub use rigid::RigidModel;
+pub use rigid::{bdf_crossover_gamma, RigidModel};
 
-use crate::chain::{Chain, InvalidParameter};
+use crate::chain::Chain;
 use crate::kinematics::Vec2;
-use crate::ode::Problem;
-use crate::pivot::TimeScales;
-use crate::solve::{AutoPlan, Integrator, Method, SolveOptions};
+use crate::solve::SolveOptions;
 use crate::state::State;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{AutoPlan, Integrator, Method, TimeScales};
 
 /// Where the parts of a model's state vector are.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -4,12 +4,14 @@
 //! first-order stepper.
 
 use super::{Layout, Model, Observed, RigidModel};
-use crate::chain::{check, Chain, InvalidParameter};
+use crate::chain::{check, Chain};
 use crate::kinematics::Vec2;
-use crate::ode::Problem;
 use crate::report::{ReportModel, ReportSystem};
-use crate::solve::{Integrator, Method, SolveOptions, REPORT_METHODS, REPORT_RK4};
+use crate::solve::{SolveOptions, REPORT_METHODS, REPORT_RK4};
 use crate::state::State;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{Integrator, Method};
 
 /// A chain run by the report's equations.
 #[derive(Clone, Debug, PartialEq)]

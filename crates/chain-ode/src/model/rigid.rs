@@ -2,16 +2,18 @@
 //! (`2 n + 1`), the pivot's path along the run, and the chain's one energy.
 
 use super::{Layout, Model, Observed};
-use crate::chain::{Chain, InvalidParameter};
+use crate::chain::Chain;
 use crate::elastic;
 use crate::kinematics::{bending_energy, joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
-use crate::ode::Problem;
-use crate::pivot::{centre_of_mass, PivotPath, TimeScales};
+use crate::pivot::{centre_of_mass, PivotPath};
 use crate::profile::Rods;
 use crate::scalar::Scalar;
-use crate::solve::{bdf_crossover_gamma, AutoPlan, Method, SolveOptions, BDF_DENSE_MAX_LINKS};
+use crate::solve::{SolveOptions, BDF_DENSE_MAX_LINKS};
 use crate::state::State;
 use crate::system::ChainSystem;
+use fc_methods::InvalidParameter;
+use fc_methods::Problem;
+use fc_methods::{AutoPlan, Method, TimeScales, AUTO_DOP853_RTOL};
 
 /// The rigid chain and where its pivot is along a run (the prescribed
 /// motion and, once let go, the free fall of the centre of mass).
@@ -329,12 +331,33 @@ fn rods_pass(chain: &Chain, rods: &Rods, y: &[f64], f: Option<&[f64]>) -> Observ
     }
 }
 
+/// The damping rate `gamma = r / (m l^2)` (1/time) past which the O(n) BDF
+/// overtakes DOPRI5 on this chain, and from which `auto` runs BDF from the
+/// start.
+///
+/// An explicit step is held below `~3.3 / |lambda|`, and the chain has two
+/// fast rates: damping, `|lambda| ~ 48 gamma`, and its fastest undamped mode,
+/// `omega_max ~ 3.4 sqrt(g L) / l` (the hanging chain's top frequency; it
+/// grows like n). So the crossover grows with n once `omega_max` dominates.
+/// An earlier form of the `stiffness` study (span d = 3, t = 1, equal
+/// rtol 1e-6, n = 25 to 3200) measured it and fits it as
+/// `27 sqrt(g/L) + 0.12 sqrt(g L) / l`: 12 at n = 25 and 168 at n = 3200 in
+/// the report's units, an empirical fit. At matched accuracy (error 1e-6)
+/// over a fall past the whip (t = 3) the study now measures 11, 15, 28 and
+/// 106 at n = 25, 100, 400 and 1600, 0.84 to 1.13 times this rule
+/// (`cargo xtask figures --timings --only stiffness`, wall times on a
+/// shared machine, known to a factor of about two).
+pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
+    let (g, big_l) = (chain.gravity(), chain.length());
+    27.0 * (g / big_l).sqrt() + 0.12 * (g * big_l).sqrt() / chain.rod_length()
+}
+
 /// `auto`'s start on a rigid chain, as its doc says: BDF (`None`) at or past
 /// the crossover damping rate, DOP853 at `rtol <= 1e-8`, DOPRI5 otherwise.
 pub(crate) fn rigid_auto_start(chain: &Chain, rtol: f64) -> Option<Method> {
     if chain.stiffest_damping_rate() >= bdf_crossover_gamma(chain) {
         None
-    } else if rtol <= crate::solve::AUTO_DOP853_RTOL {
+    } else if rtol <= AUTO_DOP853_RTOL {
         Some(Method::Dop853)
     } else {
         Some(Method::Dopri5)

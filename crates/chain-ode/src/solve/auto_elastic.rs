@@ -16,9 +16,8 @@
 //! at the first detection only at `zeta >=` [`AUTO_ELASTIC_ZETA`]; below
 //! it, stay explicit throughout.
 
-use super::auto::AUTO_DOP853_RTOL;
-use super::{AutoPlan, Method};
 use crate::chain::Chain;
+use fc_methods::{AutoPlan, Method, AUTO_DOP853_RTOL};
 
 /// The joint damping ratio `zeta = C / (2 sqrt(K m))` from which `auto`
 /// may hand an elastic chain over to BDF: placed between the measured 0.3

@@ -1,129 +1,41 @@
-//! One way to run any method on any chain: [`solve`].
+//! The run layer: one way to run any method on any model, [`solve`].
 //!
-//! Every method is one file with one [`Integrator`](integrator::Integrator)
-//! (its name, whether it is adaptive, its accuracy parameter, how it runs),
-//! listed by one line in [`registry`] next to its [`Method`] variant.
-//! `auto` is a policy over the registry (`auto.rs`). Work counters come from
-//! a [`Counted`](crate::ode::Counted) system, never from counting by hand.
+//! The methods are fc-methods' (one [`Integrator`] per [`Method`], in its
+//! registry); they see only the [`Problem`] a model gives. This layer
+//! checks a run's options against its model ([`Model::validate`], on
+//! [`SolveOptions::validate_common`]), hands the model's problem to the
+//! method with the run's settings, cuts the run at the model's event, and
+//! watches it: the recorder (samples, the first non-finite time, cancel
+//! and progress), the summary's tally (which asks the model) and the
+//! caller's [`Watch`]es. Work counters come from what the methods called
+//! (a [`Counted`](fc_methods::Counted) system), never from counting by
+//! hand.
 
-mod auto;
 pub mod auto_elastic;
-mod bdf;
-mod bdf_dense;
-mod block_lu;
-mod diffsol_driver;
-mod dop853;
-mod dop853_tableau;
-mod dopri5;
-mod explicit;
-mod integrator;
-#[cfg(test)]
-mod known_solutions;
-mod newton_matrix;
 mod recorder;
-mod registry;
 mod report_stepper;
-mod rk4;
-mod sparse_lu;
-mod step_size;
 mod tally;
-#[cfg(test)]
-mod test_problems;
 mod unit_costs;
 
-use std::fmt;
-use std::str::FromStr;
 use std::time::Instant;
 
-use crate::chain::{check, number_text, Chain, InvalidParameter};
+use fc_methods::registry;
+use fc_methods::{
+    Accuracy, AutoPlan, BandedDae, Cancel, InvalidParameter, Method, Observer, OdeSystem, Problem,
+    Run, Segment, Settings, Span, Stats, Status, StepView, TimeScales,
+};
+
+use crate::chain::{check, number_text, Chain};
 use crate::kinematics::Vec2;
 use crate::model::{IntoModel, Layout, Model, ModelKind};
-use crate::ode::{BandedDae, Cancel, Observer, OdeSystem, Problem, Stats, Status, StepView};
 use crate::pivot::Pivot;
 use crate::state::State;
-pub(crate) use auto::AUTO_DOP853_RTOL;
-pub use auto::{bdf_crossover_gamma, AutoPlan};
-#[doc(hidden)]
-pub use bdf::with_general_sparse_lu;
-pub use integrator::{Accuracy, Integrator};
-use integrator::{Run, Settings, Span};
 use recorder::Recorder;
 pub use report_stepper::{REPORT_METHODS, REPORT_RK4};
 use tally::Tally;
 pub use tally::DRIVE_BALANCE_FRACTION;
 #[doc(hidden)]
 pub use unit_costs::{unit_costs, UnitCosts};
-
-/// An integration method. The variant is the public handle; its name and
-/// kind come from its integrator in the registry.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Method {
-    /// Classical fixed-step Runge–Kutta 4 (`dt`).
-    Rk4,
-    /// Adaptive Dormand–Prince 5(4) with dense output (`rtol`, `atol`).
-    Dopri5,
-    /// Adaptive Dormand–Prince 8(5,3) with 7th-order dense output, for tight
-    /// tolerances (`rtol`, `atol`).
-    Dop853,
-    /// Implicit variable-order BDF from diffsol on the banded DAE, sparse LU:
-    /// O(n) per step (`rtol`, `atol`).
-    Bdf,
-    /// diffsol's BDF on the explicit form with a dense Jacobian and dense LU:
-    /// O(n^3) per factorisation, kept as the reference for `bdf` (`rtol`, `atol`).
-    BdfDense,
-    /// BDF where the damping rate is past the measured crossover; otherwise
-    /// DOPRI5 (DOP853 at tight tolerances) to the end on a chain, and on a
-    /// problem that names no chain (the elastic chain) handing over to BDF
-    /// when the stiffness detector fires.
-    Auto,
-}
-
-impl Method {
-    /// Every method, in the order figures list them (the registry's).
-    pub const ALL: [Method; registry::REGISTRY.len()] = registry::methods();
-
-    /// The name used on the command line, in scenes and in output.
-    pub fn as_str(self) -> &'static str {
-        registry::integrator(self).name
-    }
-
-    /// True if the method adapts its step to `rtol`/`atol`.
-    pub fn adaptive(self) -> bool {
-        registry::integrator(self).adaptive
-    }
-
-    /// The parameter that sets the method's accuracy.
-    pub fn accuracy(self) -> Accuracy {
-        registry::integrator(self).accuracy()
-    }
-
-    /// The name of that parameter: `"dt"` or `"rtol"`.
-    pub fn accuracy_name(self) -> &'static str {
-        self.accuracy().name()
-    }
-
-    /// What runs the method: its integrator in the registry.
-    pub fn integrator(self) -> &'static Integrator {
-        registry::integrator(self)
-    }
-}
-
-impl fmt::Display for Method {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl FromStr for Method {
-    type Err = InvalidParameter;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        registry::named(s).ok_or_else(|| InvalidParameter {
-            field: "run.method",
-            accepted: registry::accepted_names().into(),
-            got: s.to_string(),
-        })
-    }
-}
 
 /// Options of a run. Defaults: `t_end = 1`, `dt = 0.01`, `rtol = 1e-8`,
 /// `atol = 1e-10`, no output samples, at most 10^8 steps.
@@ -176,6 +88,20 @@ impl SolveOptions {
             }
         }
         self
+    }
+
+    /// These options as the integrators read them: no starting step, no
+    /// step caps (the run adds its model's, [`Model::time_scales`]).
+    pub(crate) fn settings(&self) -> Settings {
+        Settings {
+            dt: self.dt,
+            rtol: self.rtol,
+            atol: self.atol,
+            h_min: self.h_min,
+            max_steps: self.max_steps,
+            h0: None,
+            scales: TimeScales::NONE,
+        }
     }
 
     /// Checks every field on its own; the error names the first one out of
@@ -423,14 +349,6 @@ impl Summary {
     }
 }
 
-/// The time span over which one method ran (several for `auto`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Segment {
-    pub method: Method,
-    pub t_start: f64,
-    pub t_end: f64,
-}
-
 /// A finished run: the model as it was at the end, the samples, the
 /// summary, the work counters and how it ended. Every accessor of a sample
 /// asks the model.
@@ -646,7 +564,7 @@ impl<'a, M: Model> Solve<'a, M> {
         let layout = model.layout();
         let settings = Settings {
             scales: model.time_scales(),
-            ..Settings::of(options)
+            ..options.settings()
         };
         let span = Span {
             t0: 0.0,
@@ -880,9 +798,9 @@ fn trajectory<M: Model>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::all_finite;
     use crate::state::Start;
     use crate::system::ChainSystem;
+    use fc_methods::all_finite;
 
     /// Asks every method to stop once it has seen `k` accepted steps.
     struct StopAfter {
@@ -932,7 +850,7 @@ mod tests {
             t_end: 2.0,
             ..Default::default()
         };
-        let settings = Settings::of(&options);
+        let settings = options.settings();
         let span = Span {
             t0: 0.0,
             y0: &y0,
@@ -991,10 +909,11 @@ mod tests {
     #[test]
     fn every_method_stops_at_the_step_its_observer_asks() {
         let (chain, _, y0) = eight_rods_on_span_3();
-        let settings = Settings::of(&SolveOptions {
+        let settings = SolveOptions {
             t_end: 4.0,
             ..Default::default()
-        });
+        }
+        .settings();
         for method in Method::ALL {
             for k in [0, 1, 7] {
                 let mut sys = ChainSystem::new(&chain);

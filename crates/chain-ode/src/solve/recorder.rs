@@ -5,7 +5,7 @@
 //! run ([`ContinuousMax`]). It reads no state: the summary observer
 //! (`tally.rs`) asks the model.
 
-use crate::ode::{Cancel, StepView};
+use fc_methods::{Cancel, StepView};
 
 /// The samples of a run, its first non-finite time, and its cancel flag.
 pub(crate) struct Recorder {

@@ -19,10 +19,8 @@
 //! and the observer), registered for this model as [`REPORT_RK4`]; the
 //! model chooses it ([`crate::model::Model::integrator`]).
 
-use super::integrator::Integrator;
-use super::rk4::{self, FixedStep, Work};
-use super::Method;
-use crate::ode::OdeSystem;
+use fc_methods::rk4::{self, FixedStep, Work};
+use fc_methods::{Integrator, Method, OdeSystem};
 
 /// The methods the report's model runs: the explicit ones (its code had
 /// no implicit method, and `auto` would hand over to one).
@@ -80,9 +78,9 @@ pub const REPORT_RK4: Integrator = Integrator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::Status;
-    use crate::solve::integrator::{Settings, Span};
-    use crate::solve::test_problems::Quiet;
+    use fc_methods::testing::Quiet;
+    use fc_methods::Status;
+    use fc_methods::{Settings, Span, TimeScales};
 
     /// `q'' = -q` as `[q, v, W]` with `W' = 0`: the layout the stepper reads.
     struct Spring;
@@ -116,7 +114,7 @@ mod tests {
             h_min: 0.0,
             max_steps: 10,
             h0: None,
-            scales: crate::pivot::TimeScales::NONE,
+            scales: TimeScales::NONE,
         };
         let span = Span {
             t0: 0.0,

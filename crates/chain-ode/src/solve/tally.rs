@@ -5,7 +5,7 @@
 
 use super::recorder::{ContinuousMax, Recorder};
 use crate::model::Model;
-use crate::ode::StepView;
+use fc_methods::StepView;
 
 /// The fraction of the energy scale plus the work done (its total
 /// variation) that the energy balance error of a run with a prescribed

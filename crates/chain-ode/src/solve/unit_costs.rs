@@ -28,13 +28,10 @@ use diffsol::{FaerVec, Vector};
 use diffsol_la::LinearSolver;
 use faer::Mat;
 
-use super::block_lu::BlockLu;
-use super::newton_matrix::NewtonMatrix;
-use super::sparse_lu::LuLog;
 use crate::dae::ChainDae;
 use crate::dynamics::Workspace;
-use crate::ode::SemiExplicitDae;
 use crate::{Chain, ChainSystem, State};
+use fc_methods::{BlockLu, LuLog, NewtonMatrix, SemiExplicitDae};
 
 /// Seconds per call of each unit of work (see the module doc).
 #[derive(Clone, Copy, Debug, PartialEq)]

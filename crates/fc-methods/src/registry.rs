@@ -63,7 +63,7 @@ pub(crate) fn accepted_names() -> &'static str {
 
 /// Runs `method` on `problem` over `span` and records the span it covered
 /// (a method that runs others, `auto`, records theirs instead).
-pub(crate) fn run(
+pub fn run(
     method: Method,
     problem: &mut dyn Problem,
     span: &Span<'_>,
@@ -74,7 +74,7 @@ pub(crate) fn run(
 
 /// [`run`] with the integrator `it` standing for `method` (the report's
 /// stepper is its model's `rk4`).
-pub(crate) fn run_with(
+pub fn run_with(
     it: &Integrator,
     method: Method,
     problem: &mut dyn Problem,

@@ -4,8 +4,8 @@
 //! record or probe a run, and the least-squares slope behind every order
 //! measurement.
 
-use super::integrator::{Settings, Span};
-use super::{registry, Method, SolveOptions};
+use super::integrator::{Settings, Span, TimeScales};
+use super::{registry, Method};
 use crate::ode::{
     BandedDae, Observer, OdeSystem, Outcome, Problem, SemiExplicitDae, Status, StepView,
 };
@@ -294,14 +294,14 @@ pub(crate) fn every_adaptive(
 
 /// Settings of an adaptive run with these tolerances and a budget of 10^6.
 pub(crate) fn options(rtol: f64, atol: f64) -> Settings {
-    let o = SolveOptions {
+    Settings {
+        dt: 0.01,
         rtol,
         atol,
-        ..Default::default()
-    };
-    Settings {
+        h_min: 0.0,
         max_steps: 1_000_000,
-        ..Settings::of(&o)
+        h0: None,
+        scales: TimeScales::NONE,
     }
 }
 
@@ -331,13 +331,7 @@ pub(crate) fn slope(xy: &[(f64, f64)]) -> f64 {
     sxy / sxx
 }
 
-/// Records nothing.
-pub(crate) struct Quiet;
-
-impl Observer for Quiet {
-    fn start(&mut self, _: f64, _: &[f64], _: &[f64]) {}
-    fn step(&mut self, _: &StepView<'_>) {}
-}
+pub(crate) use super::testing::Quiet;
 
 /// Evaluates every step's interpolant at the given times inside it.
 #[derive(Default)]

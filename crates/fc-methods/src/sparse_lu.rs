@@ -32,7 +32,7 @@ struct Factors {
 
 /// What the factorisations did, shared with the driver that reports it.
 #[derive(Debug, Default)]
-pub(crate) struct LuLog {
+pub struct LuLog {
     /// Failed factorisations (including those found singular only by the
     /// solve that followed).
     pub failures: Cell<u64>,
@@ -210,7 +210,7 @@ mod tests {
     fn solve(lu: &SparseLu, b: [f64; 3]) -> Result<Vec<f64>, LaError> {
         let mut x = FaerVec::from_vec(b.to_vec(), FaerContext::default());
         lu.solve_in_place(&mut x)?;
-        Ok(crate::solve::diffsol_driver::slice(&x).to_vec())
+        Ok(crate::diffsol_driver::slice(&x).to_vec())
     }
 
     #[test]

@@ -1,42 +1,23 @@
-//! `auto`: a policy over the registered methods. BDF from the start past
-//! the measured crossover damping rate; otherwise DOPRI5 (DOP853 at tight
-//! tolerances) until its stiffness detector keeps firing with `|lambda|`
-//! past the crossover's `48 gamma`, then BDF from that state; a rigid
-//! chain, for which that stiffness is the whip and the waves, is not handed
-//! over mid-run ([`hands_over`]). Elastic links hand over only when their
-//! axial modes are damped (`auto_elastic`).
+//! `auto`: a policy over the registered methods, run by the problem's
+//! [`AutoPlan`]: BDF from the start, or the plan's explicit method until
+//! its stiffness detector fires with `|lambda|` past the plan's threshold,
+//! then BDF from that state ([`hands_over`]); a problem without a plan gets
+//! [`AutoPlan::generic`]. The plans are the run layer's, from its models
+//! (chain-ode's: BDF from the start past the chain's measured crossover
+//! damping rate; a rigid chain, for which that stiffness is the whip and
+//! the waves, never handed over mid-run; elastic links handed over only
+//! when their axial modes are damped).
 
 use super::integrator::{Integrator, Run, Span};
 use super::{registry, Method};
-use crate::chain::Chain;
 use crate::ode::{Observer, Problem, Status, StepView};
-
-/// The damping rate `gamma = r / (m l^2)` (1/time) past which the O(n) BDF
-/// overtakes DOPRI5 on this chain, and from which `auto` runs BDF from the
-/// start.
-///
-/// An explicit step is held below `~3.3 / |lambda|`, and the chain has two
-/// fast rates: damping, `|lambda| ~ 48 gamma`, and its fastest undamped mode,
-/// `omega_max ~ 3.4 sqrt(g L) / l` (the hanging chain's top frequency; it
-/// grows like n). So the crossover grows with n once `omega_max` dominates.
-/// An earlier form of the `stiffness` study (span d = 3, t = 1, equal
-/// rtol 1e-6, n = 25 to 3200) measured it and fits it as
-/// `27 sqrt(g/L) + 0.12 sqrt(g L) / l`: 12 at n = 25 and 168 at n = 3200 in
-/// the report's units, an empirical fit. At matched accuracy (error 1e-6)
-/// over a fall past the whip (t = 3) the study now measures 11, 15, 28 and
-/// 106 at n = 25, 100, 400 and 1600, 0.84 to 1.13 times this rule
-/// (`cargo xtask figures --timings --only stiffness`, wall times on a
-/// shared machine, known to a factor of about two).
-pub fn bdf_crossover_gamma(chain: &Chain) -> f64 {
-    let (g, big_l) = (chain.gravity(), chain.length());
-    27.0 * (g / big_l).sqrt() + 0.12 * (g * big_l).sqrt() / chain.rod_length()
-}
 
 /// Relative tolerance at and below which `auto`'s explicit method is DOP853
 /// rather than DOPRI5 (measured on the work-precision diagrams).
-pub(crate) const AUTO_DOP853_RTOL: f64 = 1e-8;
+pub const AUTO_DOP853_RTOL: f64 = 1e-8;
 
-/// `auto`'s plan for one problem, from its model ([`crate::model::Model::auto_plan`]).
+/// `auto`'s plan for one problem, from its model (the run layer gives it:
+/// [`Problem::auto_plan`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AutoPlan {
     /// The explicit method to start with; `None`: BDF from the start.

@@ -109,7 +109,7 @@ pub(crate) const BDF_DENSE: Integrator = Integrator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::test_problems::{options, oscillator_dense_check, van_der_pol, Quiet};
+    use crate::test_problems::{options, oscillator_dense_check, van_der_pol, Quiet};
 
     #[test]
     fn oscillator_matches_the_exact_solution_with_dense_output() {

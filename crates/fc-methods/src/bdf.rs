@@ -363,7 +363,7 @@ pub(crate) fn integrate(problem: &dyn Problem, s: &Span<'_>, obs: &mut dyn Obser
 /// observer's derivatives at an accepted step are read off the state
 /// instead where the DAE can ([`SemiExplicitDae::derivatives`]: no
 /// evaluation, none counted).
-pub(crate) fn integrate_dae<D: SemiExplicitDae>(
+pub fn integrate_dae<D: SemiExplicitDae>(
     dae: D,
     t0: f64,
     y0: Vec<f64>,
@@ -437,189 +437,21 @@ pub(crate) const BDF: Integrator = Integrator {
     run: |p, s, obs| integrate(p, s, obs).into(),
 };
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::{dae::ChainDae, elastic::ElasticDae, Chain, ChainParams};
-
-    /// Which LU `integrate_dae` would pick for `dae`.
-    fn picks_blocks<D: SemiExplicitDae>(dae: D) -> bool {
-        let y0 = vec![0.1; dae.dim()];
-        let blocks = dae.blocks();
-        let eqn = DaeEquations::new(dae, 0.0, y0).unwrap();
-        let log = Rc::new(LuLog::default());
-        matches!(
-            NewtonLu::choose(blocks, &eqn.jacobian_pattern, log),
-            NewtonLu::Block(_)
-        )
-    }
-
-    /// `dae` without its [`SemiExplicitDae::derivatives`]: the loop then
-    /// evaluates the right-hand side for the observer.
-    struct Evaluated<D>(D);
-
-    impl<D: SemiExplicitDae> SemiExplicitDae for Evaluated<D> {
-        fn dim(&self) -> usize {
-            self.0.dim()
-        }
-        fn differential_dim(&self) -> usize {
-            self.0.differential_dim()
-        }
-        fn rhs(&self, t: f64, y: &[f64], out: &mut [f64]) {
-            self.0.rhs(t, y, out)
-        }
-        fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
-            self.0.jacobian_entries(t, y, emit)
-        }
-        fn blocks(&self) -> Option<Vec<usize>> {
-            self.0.blocks()
-        }
-    }
-
-    /// Every `(t1, y1, f1)` the loop shows.
-    #[derive(Default)]
-    struct Record(Vec<(f64, Vec<f64>, Vec<f64>)>);
-
-    impl Observer for Record {
-        fn start(&mut self, t0: f64, y0: &[f64], f0: &[f64]) {
-            self.0.push((t0, y0.to_vec(), f0.to_vec()));
-        }
-        fn step(&mut self, s: &crate::ode::StepView<'_>) {
-            self.0.push((s.t1, s.y1.to_vec(), s.f1.to_vec()));
-        }
-    }
-
-    /// A run of `dae` from its consistent start `y` to `t_end`.
-    fn run<D: SemiExplicitDae>(dae: D, y: Vec<f64>, t_end: f64) -> (Outcome, Record) {
-        let opts = Settings {
-            dt: 0.01,
-            rtol: 1e-6,
-            atol: 1e-8,
-            h_min: 0.0,
-            max_steps: 100_000,
-            h0: None,
-            scales: crate::pivot::TimeScales::NONE,
-        };
-        let mut rec = Record::default();
-        let out = integrate_dae(dae, 0.0, y, t_end, &opts, &mut rec);
-        (out, rec)
-    }
-
-    #[test]
-    fn the_chains_derivatives_read_off_the_state_are_the_rhs_and_its_physics() {
-        use crate::pivot::Pivot;
-        let driven = Pivot {
-            amplitude: [0.1, 0.05],
-            frequency: 3.0,
-            ..Pivot::default()
-        };
-        let released = Pivot {
-            release: Some(0.0),
-            ..Pivot::default()
-        };
-        for (pivot, free) in [(Pivot::default(), false), (driven, false), (released, true)] {
-            let chain = Chain::new(ChainParams {
-                links: 7,
-                damping: 0.3,
-                bending_stiffness: 0.1,
-                tip_mass: 0.4,
-                pivot,
-                ..ChainParams::default()
-            })
-            .unwrap();
-            let dae = ChainDae::new(&chain).released(free);
-            let (n, d) = (chain.links(), dae.differential_dim());
-            let y: Vec<f64> = (0..dae.dim())
-                .map(|k| ((k * 7 + 3) % 11) as f64 * 0.37 - 1.5)
-                .collect();
-            let t = 0.7;
-            let mut full = vec![0.0; dae.dim()];
-            SemiExplicitDae::rhs(&dae, t, &y, &mut full);
-            let mut read = vec![f64::NAN; dae.dim()];
-            assert!(SemiExplicitDae::derivatives(&dae, t, &y, &mut read));
-            for k in 0..d {
-                assert_eq!(read[k].to_bits(), full[k].to_bits(), "{pivot:?} entry {k}");
-            }
-            // phi' = w, w' = alpha, and W' the friction's power
-            // r sum (w_i - w_{i-1})^2 over the joints between rods, less the
-            // power of a driven pivot's force on rod 0, -m l f_0 . P0'(t).
-            assert_eq!(&read[..n], &y[n..2 * n]);
-            assert_eq!(&read[n..2 * n], &y[2 * n + 1..3 * n + 1]);
-            let mut power: f64 = (1..n)
-                .map(|i| 0.3 * (y[n + i] - y[n + i - 1]).powi(2))
-                .sum();
-            if pivot.amplitude != [0.0, 0.0] {
-                // P0 = A sin(Omega t): P0' = A Omega cos(Omega t).
-                let v0 = [0.1 * 3.0 * (3.0 * t).cos(), 0.05 * 3.0 * (3.0 * t).cos()];
-                let (f0x, f0y) = (y[3 * n + 1], y[3 * n + 2]);
-                power -= chain.mass() * chain.rod_length() * (f0x * v0[0] + f0y * v0[1]);
-            }
-            assert!(
-                (read[2 * n] - power).abs() <= 1e-12 * power.abs().max(1.0),
-                "{pivot:?}"
-            );
-        }
-    }
-
-    #[test]
-    fn the_observer_sees_the_same_run_with_the_derivatives_read_off_as_evaluated() {
-        let chain = Chain::new(ChainParams {
-            links: 12,
-            damping: 0.05,
-            tip_mass: 0.2,
-            ..ChainParams::default()
-        })
-        .unwrap();
-        let dae = ChainDae::new(&chain);
-        let mut y = vec![0.0; dae.dim()];
-        for (i, p) in y[..12].iter_mut().enumerate() {
-            *p = -0.3 + 0.05 * i as f64;
-        }
-        dae.make_consistent(&mut y, &mut crate::dynamics::Workspace::new(12));
-        let (read, read_rec) = run(dae.clone(), y.clone(), 1.0);
-        let (evaluated, evaluated_rec) = run(Evaluated(dae), y, 1.0);
-        assert!(
-            read.status.is_ok() && read.stats.steps > 10,
-            "{:?}",
-            read.stats
-        );
-        // The same steps, states and derivatives, bit for bit ...
-        assert_eq!(read.y_end, evaluated.y_end);
-        assert_eq!(read_rec.0, evaluated_rec.0);
-        // ... with one right-hand side fewer per accepted step.
-        let (a, b) = (read.stats, evaluated.stats);
-        assert_eq!(b.rhs_evals - a.rhs_evals, a.steps, "{a:?} {b:?}");
-        assert_eq!(Stats { rhs_evals: 0, ..a }, Stats { rhs_evals: 0, ..b });
-    }
-
-    #[test]
-    fn the_chains_get_the_block_lu_and_the_general_one_can_be_forced() {
-        for n in [1, 2, 9] {
-            let rigid = Chain::new(ChainParams {
-                links: n,
-                bending_stiffness: 0.1,
-                tip_mass: 0.3,
-                ..ChainParams::default()
-            })
-            .unwrap();
-            assert!(picks_blocks(ChainDae::new(&rigid)), "rigid n = {n}");
-            let elastic = Chain::new(ChainParams {
-                links: n,
-                axial_stiffness: Some(1e3),
-                ..ChainParams::default()
-            })
-            .unwrap();
-            assert!(picks_blocks(ElasticDae::new(&elastic)), "elastic n = {n}");
-            assert!(!with_general_sparse_lu(|| picks_blocks(ChainDae::new(
-                &rigid
-            ))));
-        }
-        // BEAM's DAE groups its unknowns four to a segment.
-        for n in [2, 40] {
-            assert!(picks_blocks(crate::beam::BeamDae::new(n)), "beam n = {n}");
-        }
-        // After the closure, the default again.
-        let chain = Chain::report(4, 0.0).unwrap();
-        assert!(picks_blocks(ChainDae::new(&chain)));
-    }
+/// Whether [`integrate_dae`] would factorise `dae`'s Newton matrices by
+/// the block LU (at the state `0.1` everywhere; test support,
+/// [`crate::testing`]). Panics on a malformed Jacobian pattern.
+#[cfg(any(test, feature = "test-support"))]
+#[allow(
+    clippy::expect_used,
+    reason = "test support: a malformed pattern fails the test"
+)]
+pub fn picks_block_lu<D: SemiExplicitDae>(dae: D) -> bool {
+    let y0 = vec![0.1; dae.dim()];
+    let blocks = dae.blocks();
+    let eqn = DaeEquations::new(dae, 0.0, y0).expect("a well-formed Jacobian pattern");
+    let log = Rc::new(LuLog::default());
+    matches!(
+        NewtonLu::choose(blocks, &eqn.jacobian_pattern, log),
+        NewtonLu::Block(_)
+    )
 }

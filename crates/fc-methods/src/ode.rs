@@ -2,13 +2,14 @@
 //!
 //! A problem is a [`Problem`]: an [`OdeSystem`] `y' = f(t, y)` that may
 //! also state itself as a banded [`SemiExplicitDae`] (for the O(n) BDF) and
-//! name the chain it models (for `auto`'s crossover). An integrator advances
-//! it and hands every accepted step, with its continuous extension, to an
-//! [`Observer`]. Integrators never look inside the state; observers never
-//! step. This module depends on no method: `solve` depends on it, never the
-//! other way.
+//! carry its model's plan for `auto` ([`Problem::auto_plan`]). An
+//! integrator advances it and hands every accepted step, with its
+//! continuous extension, to an [`Observer`]. Integrators never look inside
+//! the state; observers never step. This module depends on no method (only
+//! on `auto`'s plan, plain data): the methods depend on it, never the other
+//! way.
 
-use crate::solve::AutoPlan;
+use crate::auto::AutoPlan;
 
 /// `y' = f(t, y)` on `R^dim`.
 pub trait OdeSystem {
@@ -253,8 +254,9 @@ pub enum Status {
     /// after the step was cut.
     LinearSolveFailed,
     /// The run reached `t_end` with every value finite, but its energy
-    /// balance error `max |E + W - E(0)|` exceeds the chain's energy scale
-    /// (`Chain::energy_scale`): the numbers are not a solution of the model.
+    /// balance error `max |E + W - E(0)|` exceeds the model's energy scale
+    /// (chain-ode's `Model::energy_scale`; the run layer decides it): the
+    /// numbers are not a solution of the model.
     Inaccurate,
     /// The run was stopped from outside (a [`Cancel`] was set: Ctrl-C in
     /// Python, a signal in the CLI) at the last accepted step.

@@ -1,9 +1,8 @@
 //! The one interface every method implements ([`Integrator`]), what it is
 //! told ([`Settings`]) and which parameter sets its accuracy ([`Accuracy`]).
 
-use super::{Segment, SolveOptions, Stats};
+use super::{Segment, Stats};
 use crate::ode::{Observer, Outcome, Problem};
-use crate::pivot::TimeScales;
 
 /// The parameter that sets a method's accuracy.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -11,7 +10,7 @@ pub enum Accuracy {
     /// The fixed step `dt` (`run.dt`).
     Step,
     /// The relative tolerance `rtol` (`run.rtol`), with `atol = rtol / 100`
-    /// when set through [`SolveOptions::at_accuracy`].
+    /// when set through chain-ode's `SolveOptions::at_accuracy`.
     Tolerance,
 }
 
@@ -34,14 +33,14 @@ impl Accuracy {
 pub struct Integrator {
     /// The name on the command line, in scenes and in output. A contract:
     /// never renamed.
-    pub(crate) name: &'static str,
+    pub name: &'static str,
     /// True if the step adapts to `rtol`/`atol`.
-    pub(crate) adaptive: bool,
+    pub adaptive: bool,
     /// Integrates a problem over a span, showing the observer every
     /// accepted step. Never panics and never returns a NaN: a failure is a
     /// status with the last finite state. Leaves `segments` empty unless
     /// the method runs others (then it lists theirs).
-    pub(crate) run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
+    pub run: fn(&mut dyn Problem, &Span<'_>, &mut dyn Observer) -> Run,
 }
 
 impl Integrator {
@@ -58,7 +57,7 @@ impl Integrator {
 
 /// What a method is asked: from `(t0, y0)` to `t_end`, with `settings`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Span<'a> {
+pub struct Span<'a> {
     pub t0: f64,
     pub y0: &'a [f64],
     pub t_end: f64,
@@ -68,7 +67,7 @@ pub(crate) struct Span<'a> {
 /// What a method returns through the registry: its [`Outcome`] and, for a
 /// method that runs others (`auto`), which ran over which spans.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct Run {
+pub struct Run {
     pub outcome: Outcome,
     /// Empty for a method that runs alone (the registry records it).
     pub segments: Vec<Segment>,
@@ -83,10 +82,10 @@ impl From<Outcome> for Run {
     }
 }
 
-/// A run's options as the integrators read them: [`SolveOptions`], plus the
-/// starting step the tests set.
+/// A run's options as the integrators read them (the run layer builds them
+/// from its own options), with the starting step the tests set.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Settings {
+pub struct Settings {
     /// Fixed step (RK4).
     pub dt: f64,
     pub rtol: f64,
@@ -104,19 +103,6 @@ pub(crate) struct Settings {
 }
 
 impl Settings {
-    /// The settings of a run with these options.
-    pub fn of(options: &SolveOptions) -> Self {
-        Self {
-            dt: options.dt,
-            rtol: options.rtol,
-            atol: options.atol,
-            h_min: options.h_min,
-            max_steps: options.max_steps,
-            h0: None,
-            scales: TimeScales::NONE,
-        }
-    }
-
     /// The step floor at time `t`.
     pub fn floor(&self, t: f64) -> f64 {
         self.h_min.max(1e-14 * t.abs().max(1.0))
@@ -147,6 +133,52 @@ impl Settings {
     }
 }
 
+/// The largest steps that resolve a prescribed motion of the problem (time
+/// units): at most `max_step` before `until`, a step that lands on `until`
+/// exactly, and at most `max_step_after` from there on. An adaptive
+/// explicit method's error estimate cannot see a drive that happens
+/// between its stages (a jerk shorter than the first step is zero at both
+/// the step's ends and at every stage past it); these caps make it see it.
+/// The run layer gives them (for the chain: `Pivot::time_scales`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeScales {
+    /// The largest step before `until`.
+    pub max_step: f64,
+    /// The end of the first phase (a smooth jerk's `tau`), landed on
+    /// exactly; 0: one phase.
+    pub until: f64,
+    /// The largest step from `until` on.
+    pub max_step_after: f64,
+}
+
+impl TimeScales {
+    /// No cap: no prescribed motion (for the chain: a fixed, released or
+    /// uniformly accelerated pivot).
+    pub const NONE: Self = Self {
+        max_step: f64::INFINITY,
+        until: 0.0,
+        max_step_after: f64::INFINITY,
+    };
+
+    /// The largest step allowed at `t`.
+    pub fn max_step_at(&self, t: f64) -> f64 {
+        if t < self.until {
+            self.max_step
+        } else {
+            self.max_step_after
+        }
+    }
+
+    /// The smallest cap of the run (a fixed step must obey it throughout).
+    pub fn smallest(&self) -> f64 {
+        if self.until > 0.0 {
+            self.max_step.min(self.max_step_after)
+        } else {
+            self.max_step_after
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -162,7 +194,7 @@ mod tests {
             h_min: 0.0,
             max_steps: 100,
             h0: None,
-            scales: crate::pivot::TimeScales::NONE,
+            scales: TimeScales::NONE,
         };
         let done = |steps, rejected_steps| Stats {
             steps,

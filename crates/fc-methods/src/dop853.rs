@@ -244,9 +244,9 @@ impl Pair for Stages {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrator::Span;
     use crate::ode::{Outcome, Status, StepView};
-    use crate::solve::integrator::Span;
-    use crate::solve::test_problems::{
+    use crate::test_problems::{
         kepler, kepler_exact, max_diff, options, oscillator_dense_check, relaxation, slope, toy,
         Probe, Quiet, Toy, ECC,
     };

@@ -9,19 +9,20 @@ use faer::sparse::{Pair, SymbolicSparseColMat};
 
 use crate::ode::SemiExplicitDae;
 
-pub(crate) struct NewtonMatrix {
+/// `M - c J` at one state, dense, with its sparsity pattern.
+pub struct NewtonMatrix {
     pub(crate) dim: usize,
     /// Row-major, dense (only the pattern's entries are handed over).
     pub(crate) a: Vec<f64>,
     pub(crate) pattern: SymbolicSparseColMat<usize>,
-    pub(crate) ctx: FaerContext,
+    pub ctx: FaerContext,
 }
 
 impl NewtonMatrix {
     /// `M - c J` of `dae` at `(t, y)` (`M` the identity on the
     /// differential unknowns, zero on the algebraic ones); `None` if the
     /// Jacobian's pattern is not a valid sparse pattern.
-    pub(crate) fn of<D: SemiExplicitDae>(dae: &D, t: f64, y: &[f64], c: f64) -> Option<Self> {
+    pub fn of<D: SemiExplicitDae>(dae: &D, t: f64, y: &[f64], c: f64) -> Option<Self> {
         let dim = dae.dim();
         let mut a = vec![0.0; dim * dim];
         let mut pairs: Vec<Pair<usize, usize>> = Vec::new();

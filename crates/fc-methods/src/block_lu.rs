@@ -124,17 +124,17 @@ const CONDENSED: [(usize, usize); 3] = [(5, 2), (6, 3), (4, 1)];
 /// size `S`, or alone (its row and column hold only the diagonal entry, as
 /// the chain's `W` does, whose row is left out of the Jacobian).
 #[derive(Clone, Debug)]
-pub(crate) struct BlockLayout {
+pub struct BlockLayout {
     /// The block size `S`.
-    size: usize,
+    pub size: usize,
     /// `P`, the unknowns of every block whose rows hold entries in their own
     /// block's columns only (the chain's `phi_i` and `w_i`): placed first in
     /// each block and condensed out before the block Thomas algorithm (see
     /// the module doc). Zero when the blocks do not all have the same
     /// number of them, or when they would leave nothing to condense onto.
-    local: usize,
+    pub local: usize,
     /// `order[p]`: the unknown at position `p` (block `p / S`).
-    order: Vec<usize>,
+    pub order: Vec<usize>,
     /// `place[u]`: `Ok(position)` in the blocks, or `Err(index)` in `lone`.
     place: Vec<Result<usize, usize>>,
     /// The unknowns alone.
@@ -768,7 +768,7 @@ fn factorise_blocks<const S: usize>(
 }
 
 /// The factors of one matrix on a [`BlockLayout`].
-struct Factors {
+pub(crate) struct Factors {
     layout: BlockLayout,
     /// diffsol's Newton matrix in CSC, as it writes it.
     a: FaerSparseMat<f64>,
@@ -867,9 +867,11 @@ impl Factors {
 /// tridiagonal in that grouping leaves it unusable: every factorisation
 /// fails (the caller checks the Jacobian's pattern first; see `bdf.rs`).
 #[derive(Default)]
-pub(crate) struct BlockLu {
+pub struct BlockLu {
     block: Vec<usize>,
-    factors: Option<Factors>,
+    /// The factors; `None` until a pattern that is block tridiagonal in
+    /// `block` was set.
+    pub(crate) factors: Option<Factors>,
     log: Rc<LuLog>,
 }
 
@@ -969,214 +971,18 @@ impl LinearSolver<FaerSparseMat<f64>> for BlockLu {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diffsol_driver::slice;
+    use crate::newton_matrix::NewtonMatrix;
     use crate::ode::SemiExplicitDae;
-    use crate::solve::diffsol_driver::slice;
-    use crate::solve::newton_matrix::NewtonMatrix;
-    use crate::{dae::ChainDae, elastic::ElasticDae, Chain, ChainParams};
+    use crate::testing::DenseSolve;
     use diffsol::Vector;
     use faer::sparse::{Pair, SymbolicSparseColMat};
 
-    /// The dense reference solve, on the Newton matrix's dense copy.
-    trait DenseSolve {
-        fn solve(&self, b: &[f64], transpose: bool) -> Vec<f64>;
-    }
-
-    impl DenseSolve for NewtonMatrix {
-        /// `A^-1 b` (`A^-T b`) by Gaussian elimination with partial pivoting
-        /// on the whole matrix.
-        fn solve(&self, b: &[f64], transpose: bool) -> Vec<f64> {
-            let n = self.dim;
-            let mut m: Vec<f64> = (0..n * n)
-                .map(|k| {
-                    let (i, j) = (k / n, k % n);
-                    if transpose {
-                        self.a[j * n + i]
-                    } else {
-                        self.a[k]
-                    }
-                })
-                .collect();
-            let mut x = b.to_vec();
-            for j in 0..n {
-                let p = (j..n)
-                    .max_by(|&r, &s| m[r * n + j].abs().total_cmp(&m[s * n + j].abs()))
-                    .unwrap();
-                for c in 0..n {
-                    m.swap(j * n + c, p * n + c);
-                }
-                x.swap(j, p);
-                for i in j + 1..n {
-                    let l = m[i * n + j] / m[j * n + j];
-                    for c in j..n {
-                        m[i * n + c] -= l * m[j * n + c];
-                    }
-                    x[i] -= l * x[j];
-                }
-            }
-            for i in (0..n).rev() {
-                let s: f64 = (i + 1..n).map(|c| m[i * n + c] * x[c]).sum();
-                x[i] = (x[i] - s) / m[i * n + i];
-            }
-            x
-        }
-    }
-
-    /// A reproducible sequence in `[-1, 1)`.
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
-
-    /// Solves `M - c J` of `dae` at a random state both ways (and
-    /// transposed) against the dense solve; returns the largest error
-    /// relative to the solution's size.
-    fn worst_error<D: SemiExplicitDae>(dae: &D, y: &[f64], c: f64, rng: &mut Lcg) -> f64 {
-        let m = NewtonMatrix::of(dae, 0.0, y, c).unwrap();
-        let log = Rc::new(LuLog::default());
-        let mut lu = BlockLu::new(dae.blocks().unwrap(), log.clone());
-        lu.set_sparsity(&m);
-        assert!(lu.factors.is_some(), "the layout was refused");
-        lu.set_linearisation(&m);
-        assert!(!log.last_failed.get());
-        let mut worst: f64 = 0.0;
-        for transpose in [false, true] {
-            let b: Vec<f64> = (0..m.dim).map(|_| rng.next()).collect();
-            let want = m.solve(&b, transpose);
-            let mut x = FaerVec::from_vec(b, m.ctx);
-            if transpose {
-                lu.solve_transpose_in_place(&mut x).unwrap();
-            } else {
-                lu.solve_in_place(&mut x).unwrap();
-            }
-            let size = want.iter().fold(0.0_f64, |s, v| s.max(v.abs()));
-            let diff = slice(&x)
-                .iter()
-                .zip(&want)
-                .fold(0.0_f64, |s, (a, b)| s.max((a - b).abs()));
-            worst = worst.max(diff / size);
-        }
-        worst
-    }
-
-    /// A random consistent-looking state of `dim` unknowns: angles in
-    /// `[-pi, pi)`, everything else in `[-scale, scale)`.
-    fn random_state(dim: usize, n: usize, scale: f64, rng: &mut Lcg) -> Vec<f64> {
-        (0..dim)
-            .map(|u| {
-                if u < n {
-                    std::f64::consts::PI * rng.next()
-                } else {
-                    scale * rng.next()
-                }
-            })
-            .collect()
-    }
-
-    /// An elastic chain of `n` rods with damped joints and links.
-    fn elastic_chain(n: usize) -> Chain {
-        Chain::new(ChainParams {
-            links: n,
-            damping: 0.01,
-            axial_stiffness: Some(1e4),
-            axial_damping: 0.1,
-            ..ChainParams::default()
-        })
-        .unwrap()
-    }
-
+    /// Every row of the tridiagonal test matrix couples its neighbours:
+    /// none is condensed. (The chains' and BEAM's local rows are checked
+    /// where those DAEs live, in chain-ode.)
     #[test]
-    fn the_block_solve_matches_a_dense_solve_on_random_chains() {
-        let mut rng = Lcg(20);
-        let mut worst: f64 = 0.0;
-        for n in [1usize, 2, 3, 7, 20, 41] {
-            for (r, ei, tip) in [
-                (5e-4, 0.0, 0.0),
-                (1.0, 0.0, 0.0),
-                (0.1, 0.3, 0.0),
-                (0.2, 0.0, 0.5),
-            ] {
-                let chain = Chain::new(ChainParams {
-                    links: n,
-                    damping: r,
-                    bending_stiffness: ei,
-                    tip_mass: tip,
-                    ..ChainParams::default()
-                })
-                .unwrap();
-                let dae = ChainDae::new(&chain);
-                let y = random_state(dae.dim(), n, 10.0, &mut rng);
-                for c in [1e-4, 1e-2, 0.3] {
-                    worst = worst.max(worst_error(&dae, &y, c, &mut rng));
-                }
-            }
-            let dae = ElasticDae::new(&elastic_chain(n));
-            let y = random_state(dae.dim(), n, 1.0, &mut rng);
-            for c in [1e-4, 1e-2] {
-                worst = worst.max(worst_error(&dae, &y, c, &mut rng));
-            }
-        }
-        println!("worst relative difference {worst:e}");
-        assert!(worst < 1e-9, "{worst:e}");
-    }
-
-    #[test]
-    fn the_block_solve_matches_a_dense_solve_on_beam() {
-        let mut rng = Lcg(40);
-        let mut worst: f64 = 0.0;
-        for n in [2usize, 5, 40] {
-            let dae = crate::beam::BeamDae::new(n);
-            let y = random_state(dae.dim(), n, 3.0, &mut rng);
-            for c in [1e-4, 1e-2, 0.3] {
-                worst = worst.max(worst_error(&dae, &y, c, &mut rng));
-            }
-        }
-        println!("worst relative difference {worst:e}");
-        assert!(worst < 1e-9, "{worst:e}");
-    }
-
-    /// The layout of `dae`'s Newton matrix.
-    fn layout_of<D: SemiExplicitDae>(dae: &D) -> BlockLayout {
-        let y = vec![0.1; dae.dim()];
-        let m = NewtonMatrix::of(dae, 0.0, &y, 0.01).unwrap();
-        BlockLayout::new(&dae.blocks().unwrap(), m.pattern.as_ref()).unwrap()
-    }
-
-    /// The rows `phi_i' = w_i` and `w_i' = alpha_i` (the elastic chain's
-    /// `theta_i' = w_i`, `x_i' = vx_i`, `y_i' = vy_i`; BEAM's `theta_i' =
-    /// omega_i`) hold entries of their own rod only, and are condensed out,
-    /// first in their block; no other row is. (A single rod is one block,
-    /// all of whose rows are local: nothing is condensed.)
-    #[test]
-    fn the_rows_local_to_a_rod_are_condensed() {
-        let one = Chain::report(1, 0.1).unwrap();
-        assert_eq!(layout_of(&ChainDae::new(&one)).local, 0);
-        for n in [2usize, 3, 9] {
-            let rigid = Chain::new(ChainParams {
-                links: n,
-                damping: 0.3,
-                bending_stiffness: 0.1,
-                tip_mass: 0.3,
-                ..ChainParams::default()
-            })
-            .unwrap();
-            let dae = ChainDae::new(&rigid);
-            let l = layout_of(&dae);
-            assert_eq!((l.size, l.local), (5, 2), "rigid n = {n}");
-            for k in 0..n {
-                assert_eq!(&l.order[5 * k..5 * k + 2], &[k, n + k], "rigid n = {n}");
-            }
-            let l = layout_of(&ElasticDae::new(&elastic_chain(n)));
-            assert_eq!((l.size, l.local), (6, 3), "elastic n = {n}");
-        }
-        let l = layout_of(&crate::beam::BeamDae::new(7));
-        assert_eq!((l.size, l.local), (4, 1), "beam");
-        // Every row of the tridiagonal test matrix couples its neighbours.
+    fn the_rows_of_the_tridiagonal_test_matrix_are_not_condensed() {
         let m = three_blocks();
         let l = BlockLayout::new(&[0, 0, 1, 1, 2, 2], m.pattern.as_ref()).unwrap();
         assert_eq!((l.size, l.local), (2, 0));
@@ -1288,9 +1094,9 @@ mod tests {
 
     #[test]
     fn a_singular_newton_matrix_ends_the_run_as_linear_solve_failed() {
+        use crate::bdf::integrate_dae;
         use crate::ode::Status;
-        use crate::solve::bdf::integrate_dae;
-        use crate::solve::test_problems::{options, Quiet};
+        use crate::test_problems::{options, Quiet};
         for blocks in [true, false] {
             let o = options(1e-6, 1e-8);
             let out = integrate_dae(

@@ -13,7 +13,7 @@ use crate::ode::{
 /// `t1 = t + h` (the solution in `y1`). The loop owns the rest: the step
 /// times, the budget, the cancel check, the finiteness checks, `f(t1, y1)`,
 /// the observer with the cubic Hermite interpolant.
-pub(crate) trait FixedStep {
+pub trait FixedStep {
     /// One step's stages, into `y1`, with `w`'s vectors as scratch.
     fn step<S: OdeSystem>(
         sys: &mut S,
@@ -28,7 +28,7 @@ pub(crate) trait FixedStep {
 
 /// A fixed step's scratch: three stage slopes and one stage state, each of
 /// the state's size, allocated once per run.
-pub(crate) struct Work {
+pub struct Work {
     pub k2: Vec<f64>,
     pub k3: Vec<f64>,
     pub k4: Vec<f64>,
@@ -69,7 +69,7 @@ impl FixedStep for Classic {
 /// Integrates `sys` over `span` with the fixed-step method `M` at steps of
 /// `span.settings.dt` (the last one shortened), under the step budget
 /// `span.settings.max_steps`. Every right-hand side is counted.
-pub(crate) fn integrate<M: FixedStep, S: OdeSystem + ?Sized>(
+pub fn integrate<M: FixedStep, S: OdeSystem + ?Sized>(
     sys: &mut S,
     span: &Span<'_>,
     obs: &mut dyn Observer,
@@ -162,19 +162,19 @@ pub(crate) const RK4: Integrator = Integrator {
 mod tests {
     use super::*;
     use crate::ode::all_finite;
-    use crate::solve::test_problems::{Quiet, OSCILLATOR};
+    use crate::test_problems::{Quiet, OSCILLATOR};
 
     #[test]
     fn a_step_budget_ends_with_max_steps_where_it_ran_out() {
         let mut sys = (OSCILLATOR.system)();
-        let settings = crate::solve::integrator::Settings {
+        let settings = crate::integrator::Settings {
             dt: 0.01,
             rtol: 1e-6,
             atol: 1e-8,
             h_min: 0.0,
             max_steps: 10,
             h0: None,
-            scales: crate::pivot::TimeScales::NONE,
+            scales: crate::TimeScales::NONE,
         };
         let span = Span {
             t0: 0.0,
