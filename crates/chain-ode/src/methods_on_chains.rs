@@ -61,6 +61,7 @@ mod bdf {
             max_steps: 100_000,
             h0: None,
             scales: TimeScales::NONE,
+            rho_inf: fc_methods::DEFAULT_RHO_INF,
         };
         let mut rec = Record::default();
         let out = integrate_dae(dae, 0.0, y, t_end, &opts, &mut rec);

@@ -71,7 +71,7 @@ pub fn with_general_sparse_lu<R>(f: impl FnOnce() -> R) -> R {
 
 /// The Newton matrices' LU: block-tridiagonal when the DAE's blocks allow
 /// it, the general sparse LU otherwise.
-enum NewtonLu {
+pub(crate) enum NewtonLu {
     Block(Box<BlockLu>),
     Sparse(Box<SparseLu>),
 }
@@ -85,7 +85,7 @@ impl Default for NewtonLu {
 impl NewtonLu {
     /// The block LU if `blocks` makes `pattern` block tridiagonal (and the
     /// general one is not forced), else the sparse LU; both log to `log`.
-    fn choose(
+    pub(crate) fn choose(
         blocks: Option<Vec<usize>>,
         pattern: &SymbolicSparseColMat<usize>,
         log: Rc<LuLog>,

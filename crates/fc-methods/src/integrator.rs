@@ -100,6 +100,11 @@ pub struct Settings {
     /// The step caps of a prescribed pivot motion (the adaptive explicit
     /// methods obey them; [`TimeScales::NONE`] by default).
     pub scales: TimeScales,
+    /// `gen-alpha`'s spectral radius at infinity, in [`RHO_INF_RANGE`]
+    /// (the others ignore it).
+    ///
+    /// [`RHO_INF_RANGE`]: crate::RHO_INF_RANGE
+    pub rho_inf: f64,
 }
 
 impl Settings {
@@ -195,6 +200,7 @@ mod tests {
             max_steps: 100,
             h0: None,
             scales: TimeScales::NONE,
+            rho_inf: crate::DEFAULT_RHO_INF,
         };
         let done = |steps, rejected_steps| Stats {
             steps,

@@ -32,6 +32,7 @@ mod dop853_tableau;
 mod dopri5;
 mod error;
 mod explicit;
+mod genalpha;
 mod integrator;
 #[cfg(test)]
 mod known_solutions;
@@ -52,6 +53,7 @@ pub mod testing;
 
 pub use auto::AutoPlan;
 pub use error::InvalidParameter;
+pub use genalpha::{DEFAULT_RHO_INF, RHO_INF_RANGE};
 pub use integrator::{Accuracy, Integrator, TimeScales};
 pub use method::{Method, Segment};
 pub use ode::{

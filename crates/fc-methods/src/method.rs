@@ -34,6 +34,11 @@ pub enum Method {
     /// damped elastic ones) or to the first stiffness detection (elastic
     /// links whose joints are damped).
     Auto,
+    /// The generalized-alpha method (Chung & Hulbert) in first-order form
+    /// on the banded DAE, adaptive, O(n) per step: second order, and
+    /// damping the modes its step does not resolve by `run.rho_inf` per
+    /// step instead of following them (`rtol`, `atol`).
+    GenAlpha,
 }
 
 impl Method {

@@ -9,6 +9,8 @@
 //! on `auto`'s plan, plain data): the methods depend on it, never the other
 //! way.
 
+use std::ops::Range;
+
 use crate::auto::AutoPlan;
 
 /// `y' = f(t, y)` on `R^dim`.
@@ -115,6 +117,17 @@ pub trait Problem: OdeSystem {
     /// layer does); `None`: the generic plan ([`AutoPlan::generic`]).
     fn auto_plan(&self) -> Option<AutoPlan> {
         None
+    }
+
+    /// The unknowns of the state that are a configuration (angles,
+    /// positions) whose rates are unknowns too: the second-order
+    /// structure. `gen-alpha` measures its local error on these alone, as
+    /// structural dynamics controls the displacements, so that the rates
+    /// of modes it damps unresolved do not hold its step (the run layer
+    /// gives the model's: its layout's angles and positions). Empty (the
+    /// default): every unknown.
+    fn configuration(&self) -> Vec<Range<usize>> {
+        Vec::new()
     }
 }
 

@@ -5,7 +5,7 @@
 use std::sync::OnceLock;
 
 use super::integrator::{Integrator, Run, Span};
-use super::{auto, bdf, bdf_dense, dop853, dopri5, rk4, Method, Segment};
+use super::{auto, bdf, bdf_dense, dop853, dopri5, genalpha, rk4, Method, Segment};
 use crate::ode::{Observer, Problem};
 
 /// Every method, in the order figures list them. Adding a method: its file,
@@ -18,6 +18,7 @@ pub(crate) const REGISTRY: &[Method] = &[
     Method::Bdf,
     Method::BdfDense,
     Method::Auto,
+    Method::GenAlpha,
 ];
 
 /// The registered methods, in registry order (`Method::ALL`).
@@ -41,6 +42,7 @@ pub(crate) fn integrator(method: Method) -> &'static Integrator {
         Method::Bdf => &bdf::BDF,
         Method::BdfDense => &bdf_dense::BDF_DENSE,
         Method::Auto => &auto::AUTO,
+        Method::GenAlpha => &genalpha::GEN_ALPHA,
     }
 }
 

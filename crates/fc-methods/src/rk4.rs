@@ -175,6 +175,7 @@ mod tests {
             max_steps: 10,
             h0: None,
             scales: crate::TimeScales::NONE,
+            rho_inf: crate::DEFAULT_RHO_INF,
         };
         let span = Span {
             t0: 0.0,

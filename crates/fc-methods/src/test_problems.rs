@@ -302,6 +302,7 @@ pub(crate) fn options(rtol: f64, atol: f64) -> Settings {
         max_steps: 1_000_000,
         h0: None,
         scales: TimeScales::NONE,
+        rho_inf: crate::DEFAULT_RHO_INF,
     }
 }
 

@@ -111,6 +111,7 @@ struct RunSection {
     output_dt: f64,
     max_steps: u64,
     h_min: f64,
+    rho_inf: f64,
 }
 
 impl SceneFile {
@@ -308,6 +309,7 @@ impl Scene {
             max_steps: run.max_steps,
             h_min: run.h_min,
             cancel: None,
+            rho_inf: run.rho_inf,
         };
         Ok(Self {
             name: name.unwrap_or_else(|| "scene".into()),

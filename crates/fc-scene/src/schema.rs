@@ -451,6 +451,15 @@ pub static KEYS: &[Key] = &[
         out_of_range: Some("-1"),
     },
     Key {
+        path: "run.rho_inf",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.9)),
+        kinds: Kinds::Any,
+        doc: "`gen-alpha`'s spectral radius at infinity, in [0, 1]: the share of a mode its step does not resolve that survives a step (1: the trapezoidal rule, no damping; 0: gone in one step); the other methods ignore it",
+        example: "0.6",
+        out_of_range: Some("1.5"),
+    },
+    Key {
         path: "model.report",
         ty: Type::Bool,
         default: DefaultValue::Value(Literal::Bool(false)),

@@ -37,7 +37,7 @@ pub use tally::DRIVE_BALANCE_FRACTION;
 #[doc(hidden)]
 pub use unit_costs::{unit_costs, UnitCosts};
 
-/// Options of a run. Defaults: `t_end = 1`, `dt = 0.01`, `rtol = 1e-8`,
+/// Options of a run. Defaults: `t_end = 1`, `dt = 0.01`, `rtol = 1e-8`, `rho_inf = 0.9`,
 /// `atol = 1e-10`, no output samples, at most 10^8 steps.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveOptions {
@@ -58,6 +58,11 @@ pub struct SolveOptions {
     /// A flag that stops the run from outside (`Status::Interrupted`);
     /// `None` runs to the end.
     pub cancel: Option<Cancel>,
+    /// `gen-alpha`'s spectral radius at infinity (`run.rho_inf`, in
+    /// [0, 1]): how much of a mode its step does not resolve survives a
+    /// step (1: all of it, the trapezoidal rule; 0: none). The other
+    /// methods ignore it.
+    pub rho_inf: f64,
 }
 
 impl Default for SolveOptions {
@@ -71,6 +76,7 @@ impl Default for SolveOptions {
             max_steps: 100_000_000,
             h_min: 0.0,
             cancel: None,
+            rho_inf: fc_methods::DEFAULT_RHO_INF,
         }
     }
 }
@@ -101,6 +107,7 @@ impl SolveOptions {
             max_steps: self.max_steps,
             h0: None,
             scales: TimeScales::NONE,
+            rho_inf: self.rho_inf,
         }
     }
 
@@ -133,6 +140,13 @@ impl SolveOptions {
         if let Some(o) = self.output_dt {
             check(pos(o), "run.output_dt", "a finite number > 0", o)?;
         }
+        let (lo, hi) = fc_methods::RHO_INF_RANGE;
+        check(
+            (lo..=hi).contains(&self.rho_inf),
+            "run.rho_inf",
+            "a number in [0, 1]",
+            self.rho_inf,
+        )?;
         check(
             self.h_min.is_finite() && self.h_min >= 0.0,
             "run.h_min",
@@ -644,6 +658,8 @@ impl<M: Model> Observer for Observers<'_, '_, '_, M> {
 struct Planned<'m> {
     inner: Box<dyn Problem + 'm>,
     plan: AutoPlan,
+    /// The layout's angles and positions ([`Problem::configuration`]).
+    configuration: Vec<std::ops::Range<usize>>,
 }
 
 impl OdeSystem for Planned<'_> {
@@ -665,6 +681,9 @@ impl Problem for Planned<'_> {
     fn auto_plan(&self) -> Option<AutoPlan> {
         Some(self.plan)
     }
+    fn configuration(&self) -> Vec<std::ops::Range<usize>> {
+        self.configuration.clone()
+    }
 }
 
 /// One segment of a run: `method` on the model's problem over `span`.
@@ -674,9 +693,14 @@ fn segment<M: Model>(
     span: &Span<'_>,
     parts: &mut Parts<'_, '_, M>,
 ) -> Run {
+    let layout = model.layout();
     let mut problem = Planned {
         inner: model.problem(),
         plan: model.auto_plan(span.settings.rtol),
+        configuration: std::iter::once(layout.angles)
+            .chain(layout.positions)
+            .filter(|r| !r.is_empty())
+            .collect(),
     };
     let mut obs = Observers { model, parts };
     registry::run_with(

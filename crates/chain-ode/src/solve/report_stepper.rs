@@ -115,6 +115,7 @@ mod tests {
             max_steps: 10,
             h0: None,
             scales: TimeScales::NONE,
+            rho_inf: fc_methods::DEFAULT_RHO_INF,
         };
         let span = Span {
             t0: 0.0,
