@@ -110,7 +110,7 @@ mod tests {
         }
         assert_eq!(
             accepted_names(),
-            "one of rk4, dopri5, dop853, bdf, bdf-dense, auto"
+            "one of rk4, dopri5, dop853, bdf, bdf-dense, auto, gen-alpha"
         );
     }
 

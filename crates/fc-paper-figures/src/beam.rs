@@ -23,10 +23,10 @@ pub const RTOLS: [f64; 6] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8];
 /// RK4's steps: its stability limit lies between the last two.
 pub const RK4_DTS: [f64; 5] = [1e-4, 2e-4, 3e-4, 4e-4, 5e-4];
 
-/// Every point of the figure: each method at each of its parameters, in
-/// `Method::ALL` order.
+/// Every point of the figure: each of the paper's methods
+/// ([`crate::PAPER_METHODS`]) at each of its parameters, in that order.
 pub fn grid() -> Vec<(Method, f64)> {
-    Method::ALL
+    crate::PAPER_METHODS
         .into_iter()
         .flat_map(|m| {
             let xs: &[f64] = if m.adaptive() { &RTOLS } else { &RK4_DTS };
@@ -224,7 +224,7 @@ mod tests {
     #[test]
     fn the_table_reads_back() {
         let g = grid();
-        for m in Method::ALL {
+        for m in crate::PAPER_METHODS {
             assert!(g.iter().any(|&(k, _)| k == m), "{m}");
         }
         let rows = rows(&[(Method::Rk4, 3e-4), (Method::Rk4, 1e-3)], false).expect("valid");

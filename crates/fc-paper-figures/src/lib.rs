@@ -35,3 +35,17 @@ pub mod tip_mass;
 pub mod validation;
 pub mod viewer_peak;
 pub mod whip_taper;
+
+/// The methods the paper's work-precision, stability and BEAM figures
+/// compare, in their order: every method but `gen-alpha`, whose figures
+/// are the elastic snap's (`precision` on that scene with every method).
+/// A figure's tables keep their rows when a method is added to the
+/// registry; a new method joins a figure by joining this list.
+pub const PAPER_METHODS: [chain_ode::Method; 6] = [
+    chain_ode::Method::Rk4,
+    chain_ode::Method::Dopri5,
+    chain_ode::Method::Dop853,
+    chain_ode::Method::Bdf,
+    chain_ode::Method::BdfDense,
+    chain_ode::Method::Auto,
+];

@@ -13,11 +13,11 @@ use fc_scene::scene::Prepared;
 use fc_study::precision::{self, params, Checks, Plan, Point, Reference};
 
 /// The plan of every method's every point from a timing table
-/// (`method,param,plan`), in [`Method::ALL`] order.
+/// (`method,param,plan`), in [`crate::PAPER_METHODS`] order.
 pub fn plan_of(t: &Table) -> Result<Vec<(Method, f64, Plan)>, String> {
     let (method, param, plan) = (t.strs("method")?, t.strs("param")?, t.strs("plan")?);
     let mut jobs = vec![];
-    for m in Method::ALL {
+    for m in crate::PAPER_METHODS {
         for &x in params(m) {
             let k = (0..t.len())
                 .find(|&k| method[k] == m.as_str() && param[k] == exp(x))
@@ -51,7 +51,7 @@ pub fn rows(
     };
     match plan {
         None => {
-            for method in Method::ALL {
+            for method in crate::PAPER_METHODS {
                 rows.extend(
                     precision::timed_line(p, method, &reference).map_err(|e| e.to_string())?,
                 );

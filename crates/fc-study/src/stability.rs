@@ -242,17 +242,18 @@ pub struct Skip {
     pub why: &'static str,
 }
 
-/// The paper's map: every method at every accuracy on every row
+/// The paper's map: each of `methods` at every accuracy on every row
 /// ([`jobs`], [`run_cells`] on the current rayon pool, each row's
 /// [`Skip`] honoured), as `(suffix, csv)`: the table ([`csv_text`], `""`)
 /// and, when `timings`, each run's wall time ([`timing_text`],
 /// `-timing`).
 pub fn map_tables(
     rows: &[Row],
+    methods: &[Method],
     skips: &[Option<Skip>],
     timings: bool,
 ) -> Vec<(&'static str, String)> {
-    let jobs = jobs(rows.len(), &Method::ALL);
+    let jobs = jobs(rows.len(), methods);
     let skip = |row: usize, method: Method, param: f64| {
         skips[row]
             .filter(|s| s.methods.contains(&method) && param < s.below)

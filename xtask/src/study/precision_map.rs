@@ -88,9 +88,9 @@ impl Make for StabilityMap {
         let skips: Vec<Option<Skip>> = SCENES.iter().map(|s| s.skip).collect();
         // Untimed runs: in parallel, at most `ctx.jobs` at once (their order
         // kept).
-        let tables = ctx
-            .pool()?
-            .install(|| stability::map_tables(&rows, &skips, ctx.timings));
+        let tables = ctx.pool()?.install(|| {
+            stability::map_tables(&rows, &fc_paper_figures::PAPER_METHODS, &skips, ctx.timings)
+        });
         ctx.write_tables(fig.id, &tables)
     }
 
