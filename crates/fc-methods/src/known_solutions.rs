@@ -552,9 +552,11 @@ fn a_blow_up_ends_step_size_too_small_just_before_the_pole() {
     let o = options(1e-8, 1e-10);
     let runs = every_adaptive(blow_up, 0.0, &[1.0], 2.0, &o);
     for (method, out) in runs {
-        let bound = match method {
-            Method::Bdf | Method::BdfDense => 1e-6,
-            _ => 5e-9,
+        // gen-alpha, of second order: measured |t_pole - 1| 6.2e-7, y 3.6e10.
+        let (bound, y_min, gap) = match method {
+            Method::Bdf | Method::BdfDense => (1e-6, 1e11, 1e-11),
+            Method::GenAlpha => (1e-6, 1e10, 1e-10),
+            _ => (5e-9, 1e11, 1e-11),
         };
         eprintln!("{method} blow-up: {out:?}");
         assert_eq!(out.status, Status::StepSizeTooSmall, "{method}");
@@ -566,9 +568,9 @@ fn a_blow_up_ends_step_size_too_small_just_before_the_pole() {
         );
         let y = out.y_end[0];
         // Measured 9e11 to 2.4e13.
-        assert!(y.is_finite() && y > 1e11, "{method}: {out:?}");
+        assert!(y.is_finite() && y > y_min, "{method}: {out:?}");
         let t_pole = out.t_reached + 1.0 / y;
-        assert!(t_pole - out.t_reached < 1e-11, "{method}: {out:?}");
+        assert!(t_pole - out.t_reached < gap, "{method}: {out:?}");
         assert!((t_pole - 1.0).abs() < bound, "{method}: pole at {t_pole}");
     }
     // RK4 has no floor: its fixed steps run into the pole and overflow.
