@@ -117,6 +117,8 @@ struct Case {
     h_min: f64,
     extra: i128,
     with_out: bool,
+    /// `run.rho_inf` (gen-alpha's damping; out of range drawn too).
+    rho_inf: f64,
     /// `chain.axial_stiffness` (written only when `elastic`),
     /// `chain.axial_damping`, `chain.bending_stiffness`.
     axial_stiffness: f64,
@@ -206,6 +208,7 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.0, 1e-300, &[0.0, 1e-300, 1.0, -1.0]),
             count(1, 6),
             any::<bool>(),
+            number(0.0, 1.0, &[0.0, 1.0, 1.5, -0.1, f64::NAN]),
         ),
         (
             number(1e2, 1e5, &[0.0, -1.0, 1e300, f64::NAN, f64::INFINITY]),
@@ -247,7 +250,7 @@ fn case() -> impl Strategy<Value = Case> {
             |(
                 (command, length, links, mass, gravity, damping, kind),
                 (p1, p1_on_circle, down, t_end, method, dt),
-                (rtol, atol, output_dt, h_min, extra, with_out),
+                (rtol, atol, output_dt, h_min, extra, with_out, rho_inf),
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
                 (acc, amp, jerk, freq, jerk_time, release, moving, taper, profiled),
                 (name, same_out, angle_big, rod_ratio),
@@ -271,6 +274,7 @@ fn case() -> impl Strategy<Value = Case> {
                 h_min,
                 extra,
                 with_out,
+                rho_inf,
                 axial_stiffness,
                 axial_damping,
                 bending_stiffness,
@@ -391,6 +395,7 @@ impl Case {
         writeln!(t, "atol = {}", toml_f(self.atol)).unwrap();
         writeln!(t, "output_dt = {}", toml_f(self.output_dt)).unwrap();
         writeln!(t, "h_min = {}", toml_f(self.h_min)).unwrap();
+        writeln!(t, "rho_inf = {}", toml_f(self.rho_inf)).unwrap();
         writeln!(t, "[model]\nreport = {}", self.report).unwrap();
         t
     }
@@ -764,6 +769,7 @@ fn the_fuzzer_draws_every_scene_key() {
             h_min: 0.0,
             extra: 1,
             with_out: false,
+            rho_inf: 0.9,
             axial_stiffness: 1e4,
             axial_damping: 0.0,
             bending_stiffness: 0.0,

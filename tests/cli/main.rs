@@ -17,6 +17,7 @@ mod cluster;
 mod common;
 mod converge;
 mod fuzz;
+mod gen_alpha;
 mod hostile;
 mod hostile_files;
 mod hostile_model;

@@ -299,10 +299,13 @@ fn a_sweep_in_three_shards_merges_to_the_unsharded_sweep() {
 fn precision_on_the_report_scene_is_its_figure_data() {
     let dir = scratch("precision-wp");
     let out = dir.join("p.csv");
+    // The figure's methods (fc_paper_figures::PAPER_METHODS).
     let o = run(&[
         "precision",
         &scene("span-d3"),
         "--quiet",
+        "--methods",
+        "rk4,dopri5,dop853,bdf,bdf-dense,auto",
         "--out",
         out.to_str().unwrap(),
     ]);

@@ -268,10 +268,11 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     Ok(report_failures(&s.failures))
 }
 
-/// Prints each failure on one line and returns exit 1, or exit 0 if none.
+/// Prints the failures on one line (joined by "; ") and returns exit 1, or
+/// exit 0 if none.
 fn report_failures(failures: &[String]) -> ExitCode {
-    for f in failures {
-        eprintln!("{f}");
+    if !failures.is_empty() {
+        eprintln!("{}", failures.join("; "));
     }
     if failures.is_empty() {
         ExitCode::SUCCESS
