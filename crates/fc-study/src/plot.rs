@@ -251,6 +251,11 @@ pub fn work_precision_weighted(
     let floor = |e: f64| e.max(DRAW_FLOOR);
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     for (i, method) in Method::ALL.into_iter().enumerate() {
+        // A method the table does not name is not drawn (no legend entry):
+        // a table of fewer methods draws as it did before they were added.
+        if !rows.iter().any(|pt| pt.method == method.as_str()) {
+            continue;
+        }
         let (label, pts) = method_label(method.as_str(), rows);
         let color = palette(i);
         // auto runs one of the explicit methods: drawn dashed and on top
@@ -546,8 +551,19 @@ mod tests {
             bdf: unit,
             dense: unit,
         };
+        let names: Vec<&'static str> = Method::ALL
+            .iter()
+            .map(|m| m.as_str())
+            .filter(|m| rows.iter().any(|r| r.method == *m))
+            .collect();
         let xs = |pair: &PlotPair, name: &str| -> Vec<f64> {
-            let k = Method::ALL.iter().position(|m| m.as_str() == name).unwrap();
+            // The series of the methods the table names, in ALL's order.
+            let named: Vec<&str> = Method::ALL
+                .iter()
+                .map(|m| m.as_str())
+                .filter(|m| names.contains(m))
+                .collect();
+            let k = named.iter().position(|&m| m == name).unwrap();
             pair.right.series[k].points.iter().map(|p| p.0).collect()
         };
         let data = (4.0, rows);
