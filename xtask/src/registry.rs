@@ -413,9 +413,9 @@ pub static FIGURES: &[Figure] = &[
         what: "the snap: peak support force and impulse against n (25 .. 400, total mass fixed) \
                for span d = 3, d = 1 and the folded chain, rigid and elastic (EA 1e4 with and \
                without EI 0.1 and friction to n = 200; EA 1e5 to n = 100) (minutes: computed only by \
-               --timings)",
-        data: &["snap-force-timing.csv"],
-        timing: Timing::Only,
+               --timings); span d = 3 with EA 1e6 and 1e7 to n = 100 (the -stiff file, every run)",
+        data: &["snap-force-stiff.csv", "snap-force-timing.csv"],
+        timing: Timing::Alongside,
         make: &study::elastic_snap_force::SnapForce,
     },
     Figure {

@@ -75,7 +75,7 @@ impl Axis {
         let first = (lo - 1e-9).ceil() as i64;
         let last = (hi + 1e-9).floor() as i64;
         let count = (last - first + 1).max(0) as usize;
-        if count < 2 {
+        if count < 2 || (hi - lo < 2.5 && 3 * count <= target.max(3) + 3) {
             return Axis::log_within(lo, hi, target);
         }
         let every = count.div_ceil(target.max(2)).max(1) as i64;
@@ -105,10 +105,10 @@ impl Axis {
         }
     }
 
-    /// A log axis over less than two powers of ten (`lo`, `hi` in `log10`
-    /// units): ticks at the first of the mantissa sets 1, 2, 5 and 1 .. 9
-    /// that puts at least three inside, else at nice linear steps of the
-    /// data; the other mantissas 1 .. 9 as minor grid lines.
+    /// A log axis over less than two and a half decades (`lo`, `hi` in
+    /// `log10` units): ticks at the first of the mantissa sets 1, 2, 5 and
+    /// 1 .. 9 that puts at least three inside, else at nice linear steps
+    /// of the data; the other mantissas 1 .. 9 as minor grid lines.
     fn log_within(lo: f64, hi: f64, target: usize) -> Axis {
         let decades = (lo.floor() as i64 - 1)..=(hi.ceil() as i64);
         let inside = |v: f64| v >= lo - 1e-9 && v <= hi + 1e-9;

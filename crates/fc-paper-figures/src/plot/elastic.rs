@@ -5,55 +5,104 @@
 
 use std::path::Path;
 
-use figures::{cool, palette, LinePlot, Output, Series, Style};
+use figures::{cool, palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 use fc_csv::table::distinct;
 
-/// `snap-force`: from `-timing` (`snap::SNAP_HEADER` rows), the peak
-/// support force over `M g` and the impulse over `M sqrt(g L)` against
-/// `n`, a line per `(scene, label)` of `scenes` (a style each) and per
-/// variant (a colour each).
+/// How each scene of `snap-force` is drawn: line style, mark, hollow.
+const SCENE_STYLES: [(Style, Marker, bool); 3] = [
+    (Style::LinePoints, Marker::Circle, false),
+    (Style::DashedPoints, Marker::Square, true),
+    (Style::Points, Marker::Triangle, false),
+];
+
+/// `snap-force`: from `-timing` and `-stiff` (`snap::SNAP_HEADER` rows,
+/// the second without wall times), the peak support force over `M g` and
+/// the impulse over `M sqrt(g L)` against `n`, a line per `(scene, label)`
+/// of `scenes` and variant: a colour per variant (the left panel's
+/// legend), a line style and mark per scene (the right panel's).
 pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<Output, String> {
-    let t = read("-timing")?;
-    let (scene, variant, links) = (t.strs("scene")?, t.strs("variant")?, t.nums("links")?);
-    let (peak, impulse) = (t.nums("peak_force_mg")?, t.nums("impulse")?);
+    // (scene, variant, n, peak, impulse) of both tables.
+    let mut rows: Vec<(String, String, f64, f64, f64)> = vec![];
+    for t in [read("-timing")?, read("-stiff")?] {
+        let (scene, variant, links) = (t.strs("scene")?, t.strs("variant")?, t.nums("links")?);
+        let (peak, impulse) = (t.nums("peak_force_mg")?, t.nums("impulse")?);
+        for j in 0..t.len() {
+            rows.push((
+                scene[j].to_string(),
+                variant[j].to_string(),
+                links[j],
+                peak[j],
+                impulse[j],
+            ));
+        }
+    }
+    let variants = distinct(&rows.iter().map(|r| r.1.as_str()).collect::<Vec<_>>())
+        .into_iter()
+        .map(str::to_string)
+        .collect::<Vec<_>>();
     let mut left = LinePlot::new(
         "peak support force (rigid: at the 1e-3 samples)",
         "n (rods, M = 10 fixed)",
         "max |F_pivot| / (M g)",
     );
     let mut right = LinePlot::new(
-        "impulse of the snap, +-0.2 around the peak",
+        "impulse of the snap, ±0.2 around the peak",
         "n (rods, M = 10 fixed)",
         "|J| / (M sqrt(g L))",
     );
+    let mut ns: Vec<f64> = rows.iter().map(|r| r.2).collect();
+    ns.sort_by(f64::total_cmp);
+    ns.dedup();
     for p in [&mut left, &mut right] {
         p.log_x = true;
         p.log_y = true;
-        p.x_range = Some((20.0, 500.0));
+        p.x_ticks = Some(ns.clone());
     }
-    left.y_range = Some((2.0, 300.0));
-    right.y_range = Some((0.1, 1e3));
-    let styles = [Style::LinePoints, Style::Dashed, Style::Points];
-    for (si, &(sc, label)) in scenes.iter().enumerate() {
-        for (vi, v) in distinct(&variant).into_iter().enumerate() {
-            let rows: Vec<usize> = (0..t.len())
-                .filter(|&j| scene[j] == sc && variant[j] == v)
-                .collect();
-            let pts = |col: &[f64]| -> Vec<(f64, f64)> {
-                rows.iter()
-                    .filter(|&&j| col[j].is_finite() && col[j] > 0.0)
-                    .map(|&j| (links[j], col[j]))
+    for (si, &(sc, _)) in scenes.iter().enumerate() {
+        let (style, marker, hollow) = SCENE_STYLES[si % SCENE_STYLES.len()];
+        for (vi, v) in variants.iter().enumerate() {
+            let mine: Vec<&(String, String, f64, f64, f64)> =
+                rows.iter().filter(|r| r.0 == sc && r.1 == *v).collect();
+            if mine.is_empty() {
+                continue;
+            }
+            let pts = |col: fn(&(String, String, f64, f64, f64)) -> f64| -> Vec<(f64, f64)> {
+                mine.iter()
+                    .filter(|r| col(r).is_finite() && col(r) > 0.0)
+                    .map(|r| (r.2, col(r)))
                     .collect()
             };
-            let name = format!("{label}, {v}");
-            left.series
-                .push(Series::new(name, pts(&peak), styles[si % 3]).with_color(palette(vi)));
-            right
-                .series
-                .push(Series::new("", pts(&impulse), styles[si % 3]).with_color(palette(vi)));
+            for (p, col) in [
+                (&mut left, (|r: &(String, String, f64, f64, f64)| r.3) as fn(&_) -> f64),
+                (&mut right, |r: &(String, String, f64, f64, f64)| r.4),
+            ] {
+                let mut series = Series::new("", pts(col), style)
+                    .with_color(palette(vi))
+                    .with_marker(marker);
+                if hollow {
+                    series = series.hollow();
+                }
+                p.series.push(series);
+            }
         }
+    }
+    // The legends: the variants' colours on the left, the scenes' styles
+    // on the right.
+    for (vi, v) in variants.iter().enumerate() {
+        left.series
+            .push(Series::legend_only(v.clone(), Style::Line).with_color(palette(vi)));
+    }
+    for (si, &(_, label)) in scenes.iter().enumerate() {
+        let (style, marker, hollow) = SCENE_STYLES[si % SCENE_STYLES.len()];
+        let mut entry = Series::legend_only(label, style)
+            .with_color(RGBColor(60, 60, 60))
+            .with_marker(marker);
+        if hollow {
+            entry = entry.hollow();
+        }
+        right.series.push(entry);
     }
     let title = "The snap: support force and impulse against n (total mass fixed)";
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
