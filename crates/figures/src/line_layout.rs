@@ -231,22 +231,25 @@ impl Plan {
         }
         // Right of the plot: stacked if that fits its height, else side by
         // side; taken if it leaves the plot at least 60% of its width.
-        let stacked = group(one, inset, true).1 <= plot.1;
-        let (gw, _) = group(one, inset, stacked);
+        let stacked_r = group(one, inset, true).1 <= plot.1;
+        let (gw, _) = group(one, inset, stacked_r);
         let (xr, yr, lr) = build_axes(p, sizes, size, (gw + inset, 0));
         let plot_r = lr.plot_size(size);
+        let right = Plan {
+            x: xr,
+            y: yr,
+            layout: lr,
+            plot: plot_r,
+            boxes: place_group(one, inset, stacked_r, (plot_r.0 + inset, 0)),
+            columns: 1,
+        };
         if 10 * plot_r.0 >= 6 * plot.0 {
-            return Plan {
-                x: xr,
-                y: yr,
-                layout: lr,
-                plot: plot_r,
-                boxes: place_group(one, inset, stacked, (plot_r.0 + inset, 0)),
-                columns: 1,
-            };
+            return right;
         }
         // Under the plot, across the whole panel: the legend in as many
-        // columns as fit, the note beside it if both fit, else under it.
+        // columns as fit, the note beside it if both fit, else under it;
+        // taken unless it leaves the plot less of its height than the
+        // column leaves of its width.
         let width = size.0 as i32 - 2 * inset;
         let count = legend_labels(p).len().max(1);
         let columns = (1..=count)
@@ -261,6 +264,9 @@ impl Plan {
         // Centred in the panel, whose left edge is this far left of the plot.
         let left = lb.left + lb.y_area;
         let at = ((size.0 as i32 - gw) / 2 - left, plot_b.1 + lb.x_area + inset);
+        if i64::from(plot_b.1) * i64::from(plot.0) < i64::from(plot_r.0) * i64::from(plot.1) {
+            return right;
+        }
         Plan {
             x: xb,
             y: yb,

@@ -179,10 +179,17 @@ pub fn rigid_limit(read: Reader, stem: &Path) -> Result<Output, String> {
     for p in [&mut left, &mut right] {
         p.log_x = true;
         p.log_y = true;
-        p.x_range = Some((5e2, 2e9));
-        p.y_range = Some((1e-8, 1e8));
     }
-    let mut notes = vec![format!("EA above which both stay below {tol:e}:")];
+    // The tolerance across the ladder of EA.
+    let (ea_lo, ea_hi) = ea
+        .iter()
+        .filter(|v| v.is_finite() && **v > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
+    // Each scene's answer as a mark on the tolerance line of the right
+    // panel (the numbers are the paper's, from the same table); the scenes
+    // with none are named in the note.
+    let mut none = vec![];
+    let mut thresholds = vec![];
     for (k, s) in distinct(&scene).into_iter().enumerate() {
         let rows: Vec<usize> = (0..t.len()).filter(|&j| scene[j] == s).collect();
         let pts = |col: &[f64]| -> Vec<(f64, f64)> {
@@ -191,36 +198,50 @@ pub fn rigid_limit(read: Reader, stem: &Path) -> Result<Output, String> {
                 .map(|&j| (ea[j], col[j]))
                 .collect()
         };
-        let style = if k < 10 {
-            Style::LinePoints
+        let (style, marker) = if k < 10 {
+            (Style::LinePoints, Marker::Circle)
         } else {
-            Style::Dashed
+            (Style::DashedPoints, Marker::Square)
         };
-        left.series
-            .push(Series::new(s, pts(&path), style).with_color(palette(k)));
-        right
-            .series
-            .push(Series::new("", pts(&speed), style).with_color(palette(k)));
+        left.series.push(
+            Series::new(s, pts(&path), style)
+                .with_color(palette(k))
+                .with_marker(marker),
+        );
+        right.series.push(
+            Series::new("", pts(&speed), style)
+                .with_color(palette(k))
+                .with_marker(marker),
+        );
         if let Some(j) = a_scene.iter().position(|x| *x == s) {
-            let thr = a_thr[j];
-            notes.push(if thr.is_finite() {
-                format!("{s}: {thr:.1e}")
+            if a_thr[j].is_finite() {
+                thresholds.push(
+                    Series::new("", vec![(a_thr[j], tol)], Style::Points)
+                        .with_color(palette(k))
+                        .with_marker(Marker::Triangle)
+                        .hollow(),
+                );
             } else {
-                format!("{s}: none up to 1e9")
-            });
+                none.push(s);
+            }
         }
     }
-    for p in [&mut left, &mut right] {
+    let black = figures::RGBColor(0, 0, 0);
+    for (p, label) in [(&mut left, format!("tol = {tol:e}")), (&mut right, String::new())] {
         p.series.push(
-            Series::new(
-                format!("tol = {tol:e}"),
-                vec![(5e2, tol), (2e9, tol)],
-                Style::Dashed,
-            )
-            .with_color(figures::RGBColor(0, 0, 0)),
+            Series::new(label, vec![(ea_lo, tol), (ea_hi, tol)], Style::Dashed).with_color(black),
         );
     }
-    right.annotations = notes;
+    right.series.extend(thresholds);
+    right.series.push(
+        Series::legend_only(format!("EA above which both stay below {tol:e}"), Style::Points)
+            .with_color(black)
+            .with_marker(Marker::Triangle)
+            .hollow(),
+    );
+    if !none.is_empty() {
+        right.annotations = vec![format!("none up to {ea_hi:.0e}: {}", none.join(", "))];
+    }
     let title = "When the rigid model will do: elastic against rigid links (report scenes)";
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
