@@ -490,8 +490,12 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "rm09-vmax-vs-span",
         report: None,
-        what: "Fig. 9 in the report's model (its 14 spans, n = 50, r = 0.0005, its dt = 0.01001 to its t = 12): its maximum tip speed in its clock, by its finite differences, in our units, and the corrected model's; with a pair of runs per erratum (the -errata file)",
-        data: &["rm09-vmax-vs-span.csv", "rm09-vmax-vs-span-errata.csv"],
+        what: "Fig. 9 in the report's model (its 14 spans, n = 50, r = 0.0005, its dt = 0.01001 to its t = 12): its maximum tip speed in its clock, by its finite differences, in our units, and the corrected model's; with a pair of runs per erratum (the -errata file) and each erratum undone at each span (the -errata-spans file, drawn)",
+        data: &[
+            "rm09-vmax-vs-span.csv",
+            "rm09-vmax-vs-span-errata.csv",
+            "rm09-vmax-vs-span-errata-spans.csv",
+        ],
         timing: Timing::None,
         make: &ReportVmax {
             title: "Fig. 9 from the report's model",

@@ -1,10 +1,11 @@
 //! The drawings of the report's own model (`crate::report_model`):
 //! its snapshots, titled with how the run ended, and its Fig. 9 beside
-//! the published one and the corrected model's.
+//! the published one, each erratum undone, and the corrected model's.
 
 use std::path::Path;
 
-use figures::{ChainSnapshots, LinePlot, Output, Series, Style};
+use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, RGBColor, Series, Style};
+use fc_csv::table::distinct;
 
 use super::Reader;
 
@@ -34,10 +35,13 @@ pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, Strin
     figures::chain_snapshots(&f, stem).map_err(|e| e.to_string())
 }
 
-/// The maximum tip speed against the span of `<id>.csv`: the published
-/// Fig. 9, the report's model by its own speeds, in its clock and in our
-/// units, and the corrected model (log y: the report's values, 1.7 ..
-/// 2.5, and ours, 5 .. 19, lie apart).
+/// The maximum tip speed against the span of `<id>.csv`, in two panels
+/// on linear axes: left, in the report's clock, the published Fig. 9 read
+/// off its page (open marks, over everything) beside the report's model by
+/// its own speed measure and by the tip's exact speed; right, in our
+/// units, the report's model as coded and with each erratum undone in turn
+/// (`<id>-errata-spans.csv`; a case that diverges at every span named in
+/// the note), and the corrected model.
 pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let t = read("")?;
     let d = t.nums("d")?;
@@ -49,34 +53,69 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
             .map(|(&d, &v)| (d, v))
             .collect())
     };
-    let mut p = LinePlot::new(title, "span d", "maximum tip speed");
-    p.x_tick_step = Some(0.5);
-    p.log_y = true;
-    p.series.push(Series::points(
-        "the report's Fig. 9, read off its page",
-        col("read_off")?,
-    ));
-    p.series.push(Series::new(
-        "report's model, its own speed (rod 1 left out, last rod's middle)",
-        col("vmax_fd")?,
-        Style::LinePoints,
-    ));
-    p.series.push(Series::new(
-        "report's model, its clock, the tip's exact speed",
-        col("vmax_report")?,
-        Style::LinePoints,
-    ));
-    p.series.push(Series::new(
-        "report's model in our units (/ sqrt(l/g))",
-        col("vmax")?,
-        Style::LinePoints,
-    ));
-    p.series.push(Series::new(
-        "corrected model (DOPRI5, rtol 1e-8)",
-        col("corrected")?,
-        Style::LinePoints,
-    ));
-    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+    let mut left = LinePlot::new(
+        "in its clock, as its code measures",
+        "span d",
+        "maximum tip speed (its units)",
+    );
+    let mut right = LinePlot::new(
+        "in our units: each erratum undone",
+        "span d",
+        "maximum tip speed / sqrt(g l)",
+    );
+    for p in [&mut left, &mut right] {
+        p.x_tick_step = Some(1.0);
+    }
+    left.series.push(
+        Series::new(
+            "its own speed (rod 1 left out, last rod's middle)",
+            col("vmax_fd")?,
+            Style::LinePoints,
+        )
+        .with_color(palette(1)),
+    );
+    left.series.push(
+        Series::new("the tip's exact speed", col("vmax_report")?, Style::LinePoints)
+            .with_color(palette(2)),
+    );
+    left.series.push(
+        Series::points("the report's Fig. 9, read off its page", col("read_off")?)
+            .with_color(RGBColor(0, 0, 0))
+            .hollow(),
+    );
+    let e = read("-errata-spans")?;
+    let (ed, case, ev, status) = (e.nums("d")?, e.strs("case")?, e.nums("vmax")?, e.strs("status")?);
+    let marks = [Marker::Circle, Marker::Square, Marker::Diamond, Marker::Triangle];
+    let mut failed = vec![];
+    for (k, c) in distinct(&case).into_iter().enumerate() {
+        let rows: Vec<usize> = (0..e.len()).filter(|&j| case[j] == c).collect();
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|&&j| status[j] == "ok")
+            .map(|&j| (ed[j], ev[j]))
+            .collect();
+        if pts.is_empty() {
+            let how = rows.first().map_or("failed", |&j| status[j]);
+            failed.push(format!("{c}: {how} at every span"));
+            continue;
+        }
+        let style = if k == 0 { Style::LinePoints } else { Style::DashedPoints };
+        right.series.push(
+            Series::new(c, pts, style)
+                .with_color(palette(3 + k))
+                .with_marker(marks[k % marks.len()]),
+        );
+    }
+    right.series.push(
+        Series::new(
+            "corrected model (DOPRI5, rtol 1e-8)",
+            col("corrected")?,
+            Style::Line,
+        )
+        .with_color(RGBColor(0, 0, 0)),
+    );
+    right.annotations = failed;
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
 
 /// The report's Fig. 8 or 11 in its model, from `<id>.csv`
