@@ -421,9 +421,9 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "snap-tension",
         report: None,
-        what: "the snap's wave: the tension along the chain at six times from the tip's arrest \
-               to the support's peak, and the support force against time (span d = 3, n = 100, \
-               total mass 10, EA = 1e4)",
+        what: "the snap's wave: the tension along the chain at six times, five from the tip's \
+               arrest to the support's peak and one 0.05 after it, and the support force against \
+               time (span d = 3, n = 100, total mass 10, EA = 1e4)",
         data: &["snap-tension.csv", "snap-tension-force.csv", "snap-tension-summary.csv"],
         timing: Timing::None,
         make: &study::elastic_snap_tension::SnapTension,

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use figures::{cool, palette, LinePlot, Marker, Output, RGBColor, Series, Style};
+use figures::{palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 use fc_csv::table::distinct;
@@ -108,32 +108,51 @@ pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
 
-/// `snap-tension`: the tension profiles of the main table (a colour per
-/// time, cool to warm) beside the support force of `-force`, each
-/// profile's time marked on it.
+/// `snap-tension`: the tension profiles of the main table, a colour each
+/// (five from the tip's arrest to the support's peak, solid; the last,
+/// after the peak, dashed), beside the support force of `-force` with each
+/// profile's time marked on it in its colour; the peak's time from
+/// `-summary`.
 pub fn snap_tension(read: Reader, stem: &Path) -> Result<Output, String> {
     let t = read("")?;
     let (time, s, tension) = (t.strs("t")?, t.nums("s_over_L")?, t.nums("tension_mg")?);
     let f = read("-force")?;
     let (ft, ff) = (f.nums("t")?, f.nums("pivot_force_mg")?);
+    let t_peak = read("-summary")?
+        .nums("t_peak_force")?
+        .first()
+        .copied()
+        .unwrap_or(f64::INFINITY);
     let mut left = LinePlot::new(
         "tension along the chain (pivot at 0, tip at 1)",
         "s / L",
         "tension / (M g)",
     );
     let mut right = LinePlot::new("support force", "t", "|F_pivot| / (M g)");
-    let times = distinct(&time);
-    let k_max = times.len().saturating_sub(1).max(1) as f64;
-    for (k, tk) in times.iter().enumerate() {
+    right.series.push(
+        Series::new(
+            "n = 100, EA = 1e4",
+            ft.iter().copied().zip(ff.iter().copied()).collect(),
+            Style::Line,
+        )
+        .with_color(RGBColor(0, 0, 0)),
+    );
+    for (k, tk) in distinct(&time).iter().enumerate() {
         let pts: Vec<(f64, f64)> = (0..t.len())
             .filter(|&j| time[j] == *tk)
             .map(|j| (s[j], tension[j]))
             .collect();
         let tv: f64 = tk.parse().unwrap_or(f64::NAN);
-        left.series.push(
-            Series::new(format!("t = {tv:.3}"), pts, Style::Line)
-                .with_color(cool(k as f64 / k_max)),
-        );
+        // A profile after the peak (the table's times are rounded; the
+        // last comes 0.05 after it).
+        let after = tv > t_peak + 0.01;
+        let (label, style) = if after {
+            (format!("t = {tv:.3}, after the peak"), Style::Dashed)
+        } else {
+            (format!("t = {tv:.3}"), Style::Line)
+        };
+        left.series
+            .push(Series::new(label, pts, style).with_color(palette(k)));
         let at = ft
             .iter()
             .zip(&ff)
@@ -142,20 +161,11 @@ pub fn snap_tension(read: Reader, stem: &Path) -> Result<Output, String> {
         if let Some(p) = at {
             right
                 .series
-                .push(Series::new("", vec![p], Style::Points).with_color(cool(k as f64 / k_max)));
+                .push(Series::new("", vec![p], Style::Points).with_color(palette(k)));
         }
     }
-    right.series.insert(
-        0,
-        Series::new(
-            "n = 100, EA = 1e4",
-            ft.iter().copied().zip(ff.iter().copied()).collect(),
-            Style::Line,
-        )
-        .with_color(figures::RGBColor(0, 0, 0)),
-    );
     left.x_range = Some((0.0, 1.0));
-    let title = "The snap's wave: tension from the tip's arrest to the support's peak \
+    let title = "The snap's wave: tension from the tip's arrest to the support's peak and after \
                  (d = 3, n = 100, M = 10, EA = 1e4)";
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
