@@ -97,9 +97,11 @@ pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
                 rows.iter()
                     .map(|&j| (t_links[j], 100.0 * rel_pivot[j]))
                     .collect(),
-                Style::Dashed,
+                Style::DashedPoints,
             )
-            .with_color(palette(k)),
+            .with_color(palette(k))
+            .with_marker(Marker::Square)
+            .hollow(),
         );
     }
     right.series.push(
@@ -112,7 +114,6 @@ pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
         .series
         .push(Series::new("", vec![(0.0, 0.0), (420.0, 0.0)], Style::Line).with_color(black));
     right.x_range = Some((0.0, 420.0));
-    right.y_range = Some((-2.0, 4.0));
     let [half, most] = title_law[..] else {
         return Err("the times table: expected two fall distances".to_string());
     };

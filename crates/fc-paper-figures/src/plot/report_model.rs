@@ -148,7 +148,24 @@ pub fn tip(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let top = (2.5 * top).ceil() / 2.0;
     if top > 0.0 {
         left.y_range = Some((0.0, top));
-        (right.x_range, right.y_range) = (Some((-top, top)), Some((-top, top)));
+    }
+    // The velocities of the runs that ended ok, padded by 4%.
+    let ok: Vec<&str> = (0..c.len())
+        .filter(|&k| status[k] == "ok")
+        .map(|k| cs[k])
+        .collect();
+    let bounds = (0..t.len())
+        .filter(|&i| ok.contains(&scene[i]) && vx[i].is_finite() && vy[i].is_finite())
+        .fold(None, |b: Option<(f64, f64, f64, f64)>, i| {
+            let (x, y) = (vx[i], vy[i]);
+            Some(b.map_or((x, x, y, y), |b| {
+                (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y))
+            }))
+        });
+    if let Some((x0, x1, y0, y1)) = bounds {
+        let pad = 0.04 * (x1 - x0).max(y1 - y0);
+        right.x_range = Some((x0 - pad, x1 + pad));
+        right.y_range = Some((y0 - pad, y1 + pad));
     }
     // The cases come in pairs, as coded then with RK4 for the stepper.
     for k in (0..c.len()).step_by(2) {
