@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use fc_paper_figures::plot::Reader;
@@ -33,6 +34,8 @@ pub struct Ctx {
     /// a box over data), for the warning after drawing and the registry's
     /// test.
     pub layout_problems: Mutex<Vec<(String, Vec<String>)>>,
+    /// How many panels drawn so far reported their layout.
+    pub panels_checked: AtomicUsize,
 }
 
 impl Ctx {
@@ -46,6 +49,7 @@ impl Ctx {
             timings,
             runs: BTreeMap::new(),
             layout_problems: Mutex::new(Vec::new()),
+            panels_checked: AtomicUsize::new(0),
         }
     }
 
@@ -137,6 +141,8 @@ impl Ctx {
     ) -> Result<Vec<String>, String> {
         let read = |suffix: &str| self.read(&format!("{}{suffix}.csv", fig.id));
         let out = draw(&read, &self.stem(fig.id)).map_err(|e| format!("{}: {e}", fig.id))?;
+        self.panels_checked
+            .fetch_add(out.panels.len(), Ordering::Relaxed);
         let problems = out.problems();
         if !problems.is_empty() {
             if let Ok(mut all) = self.layout_problems.lock() {

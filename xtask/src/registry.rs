@@ -548,4 +548,36 @@ mod tests {
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
         assert_eq!(FIGURES.len(), 60);
     }
+
+    /// The panels of the registry's line plots and pairs.
+    const PANELS: usize = 49;
+
+    /// Every figure drawn from the committed data (into a scratch folder)
+    /// whose drawing reports its layout (the line plots and pairs): its
+    /// data span at least half of each axis (decades on a log axis; the
+    /// wider axis under equal scales), and no legend or note box covers a
+    /// data point (`figures::PanelLayout::problems`). The viewer's
+    /// screenshot, drawn by Chromium, has no axes and is left out.
+    #[test]
+    fn every_figure_fills_its_axes_and_no_box_hides_its_data() {
+        let root = crate::root();
+        let mut ctx = Ctx::new(&root, 1, false);
+        let scratch = std::env::temp_dir().join(format!("xtask-layout-{}", std::process::id()));
+        std::fs::create_dir_all(&scratch).unwrap();
+        ctx.out = scratch.clone();
+        let mut reported = 0;
+        for f in FIGURES.iter().filter(|f| f.id != "viewer-peak") {
+            f.make
+                .draw(&ctx, f)
+                .unwrap_or_else(|e| panic!("{}: {e}", f.id));
+            reported += 1;
+        }
+        std::fs::remove_dir_all(&scratch).unwrap();
+        let problems = ctx.layout_problems.lock().unwrap().clone();
+        assert_eq!(problems, vec![], "figures whose layout hides their data");
+        assert_eq!(reported, FIGURES.len() - 1);
+        // The line plots and pairs of the registry, each panel checked.
+        let panels = ctx.panels_checked.load(std::sync::atomic::Ordering::Relaxed);
+        assert_eq!(panels, PANELS, "panels that reported their layout");
+    }
 }
