@@ -577,7 +577,9 @@ mod tests {
         assert_eq!(problems, vec![], "figures whose layout hides their data");
         assert_eq!(reported, FIGURES.len() - 1);
         // The line plots and pairs of the registry, each panel checked.
-        let panels = ctx.panels_checked.load(std::sync::atomic::Ordering::Relaxed);
+        let panels = ctx
+            .panels_checked
+            .load(std::sync::atomic::Ordering::Relaxed);
         assert_eq!(panels, PANELS, "panels that reported their layout");
     }
 }

@@ -432,7 +432,8 @@ mod tests {
         assert!(kept.len() <= 8, "{kept:?}");
         for corner in [(1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
             assert!(
-                kept.iter().any(|p| (p.0 - corner.0).hypot(p.1 - corner.1) < 0.02),
+                kept.iter()
+                    .any(|p| (p.0 - corner.0).hypot(p.1 - corner.1) < 0.02),
                 "{corner:?} dropped"
             );
         }

@@ -111,9 +111,7 @@ pub(crate) fn titled<DB: DrawingBackend>(
     let size = fitted(sizes.title(), text_size(title, sizes.title()).0, room);
     let text_h = text_size(title, sizes.title()).1;
     let y = title_margin(sizes) + (text_h / 2).min(5) + text_h / 2;
-    let style = sizes
-        .font(size)
-        .pos(Pos::new(HPos::Center, VPos::Center));
+    let style = sizes.font(size).pos(Pos::new(HPos::Center, VPos::Center));
     band.draw(&Text::new(title, (w as i32 / 2, y), style))?;
     Ok(below)
 }

@@ -14,10 +14,7 @@ use crate::FigureError;
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Swatch {
     /// A filled circle (the snapshots' anchors and markers).
-    Marker {
-        color: RGBColor,
-        radius: i32,
-    },
+    Marker { color: RGBColor, radius: i32 },
     /// A line (dashed or not) and a mark of any shape, or the mark alone
     /// (`width` 0): what a line plot's series draws.
     Series {
@@ -210,11 +207,20 @@ pub(crate) fn draw_entries<DB: DrawingBackend>(
         let (_, th) = text_size(label, size);
         let mid = top + th / 2;
         let x0 = cx + pad;
-        area.draw(&Text::new(label.as_str(), (x0 + swatch_area(sizes), top), font.clone()))?;
+        area.draw(&Text::new(
+            label.as_str(),
+            (x0 + swatch_area(sizes), top),
+            font.clone(),
+        ))?;
         let line = |color: RGBColor, width: u32, dashed: bool| -> Result<(), FigureError> {
             let pts = vec![(x0, mid), (x0 + len, mid)];
             if dashed {
-                area.draw(&DashedPathElement::new(pts, dash, gap, color.stroke_width(width)))?;
+                area.draw(&DashedPathElement::new(
+                    pts,
+                    dash,
+                    gap,
+                    color.stroke_width(width),
+                ))?;
             } else {
                 area.draw(&PathElement::new(pts, color.stroke_width(width)))?;
             }

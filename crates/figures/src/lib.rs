@@ -48,8 +48,8 @@ pub use curves::{colored_curves, ColoredCurves};
 pub use format::format_number;
 pub use line_layout::{line_plot_boxes, LinePlotBoxes, PanelLayout, MIN_FILL};
 pub use lines::{
-    line_plot, line_plot_pair, line_plot_pair_to, LinePlot, Marker, Series, Style,
-    LINE_PLOT_SIZE, PAIR_SIZE,
+    line_plot, line_plot_pair, line_plot_pair_to, LinePlot, Marker, Series, Style, LINE_PLOT_SIZE,
+    PAIR_SIZE,
 };
 pub use output::{FigureError, Output};
 pub use placement::PixelRect;

@@ -119,7 +119,12 @@ fn shown_points(p: &LinePlot) -> Vec<(f64, f64)> {
 /// Both axes of `p` for an area of `size` pixels, fitted to its data (or
 /// its fixed ranges), with `extra` pixels `(right, bottom)` kept beside
 /// the plot for the boxes. The padding keeps every mark clear of the frame.
-fn build_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32), extra: (i32, i32)) -> (Axis, Axis, Layout) {
+fn build_axes(
+    p: &LinePlot,
+    sizes: &Sizes,
+    size: (u32, u32),
+    extra: (i32, i32),
+) -> (Axis, Axis, Layout) {
     let pts = shown_points(p);
     let (x0, x1, y0, y1) = layout::bounds(&pts).unwrap_or((1.0, 10.0, 1.0, 10.0));
     let radius = p
@@ -181,7 +186,11 @@ pub(crate) struct Plan {
 }
 
 /// The legend and the note stacked (`true`) or side by side: its size.
-fn group((l, n): (Option<(i32, i32)>, Option<(i32, i32)>), inset: i32, stacked: bool) -> (i32, i32) {
+fn group(
+    (l, n): (Option<(i32, i32)>, Option<(i32, i32)>),
+    inset: i32,
+    stacked: bool,
+) -> (i32, i32) {
     match (l, n) {
         (Some(a), Some(b)) if stacked => (a.0.max(b.0), a.1 + inset + b.1),
         (Some(a), Some(b)) => (a.0 + inset + b.0, a.1.max(b.1)),
@@ -263,7 +272,10 @@ impl Plan {
         let plot_b = lb.plot_size(size);
         // Centred in the panel, whose left edge is this far left of the plot.
         let left = lb.left + lb.y_area;
-        let at = ((size.0 as i32 - gw) / 2 - left, plot_b.1 + lb.x_area + inset);
+        let at = (
+            (size.0 as i32 - gw) / 2 - left,
+            plot_b.1 + lb.x_area + inset,
+        );
         if i64::from(plot_b.1) * i64::from(plot.0) < i64::from(plot_r.0) * i64::from(plot.1) {
             return right;
         }
@@ -329,8 +341,9 @@ impl PanelLayout {
     /// The share of each axis's range that the data span.
     pub fn fill(&self) -> (f64, f64) {
         let share = |(a, b): (f64, f64), (lo, hi): (f64, f64)| (b - a) / (hi - lo);
-        self.data
-            .map_or((0.0, 0.0), |(dx, dy)| (share(dx, self.x), share(dy, self.y)))
+        self.data.map_or((0.0, 0.0), |(dx, dy)| {
+            (share(dx, self.x), share(dy, self.y))
+        })
     }
 
     /// What is wrong with this panel: data spanning less than
@@ -362,7 +375,10 @@ impl PanelLayout {
             }
         }
         if self.hidden > 0 {
-            out.push(format!("the legend or note covers {} data samples", self.hidden));
+            out.push(format!(
+                "the legend or note covers {} data samples",
+                self.hidden
+            ));
         }
         out
     }

@@ -161,7 +161,9 @@ impl Axis {
         let ticks: Vec<f64> = at
             .iter()
             .filter_map(|&v| self.to_plot(v))
-            .filter(|&p| p >= self.lo - 1e-9 * self.span().abs() && p <= self.hi + 1e-9 * self.span().abs())
+            .filter(|&p| {
+                p >= self.lo - 1e-9 * self.span().abs() && p <= self.hi + 1e-9 * self.span().abs()
+            })
             .collect();
         if ticks.len() < 2 {
             return self.clone();
@@ -170,7 +172,8 @@ impl Axis {
             .iter()
             .filter(|&&v| {
                 self.to_plot(v).is_some_and(|p| {
-                    p >= self.lo - 1e-9 * self.span().abs() && p <= self.hi + 1e-9 * self.span().abs()
+                    p >= self.lo - 1e-9 * self.span().abs()
+                        && p <= self.hi + 1e-9 * self.span().abs()
                 })
             })
             .map(|&v| crate::format::format_number(v, 4))

@@ -446,7 +446,10 @@ fn a_legend_that_would_hide_data_goes_beside_the_plot_and_the_axes_stay_fitted()
     let out = line_plot(&p, &dir.join("single")).unwrap();
     assert_eq!(out.problems(), Vec::<String>::new());
     let (fx, fy) = out.panels[0].fill();
-    assert!(fx > 0.85 && fy > 0.85, "the axes grew past the data: {fx} {fy}");
+    assert!(
+        fx > 0.85 && fy > 0.85,
+        "the axes grew past the data: {fx} {fy}"
+    );
     // The same in a narrow panel of a pair.
     let out = line_plot_pair(&p, &p, "pair", &dir.join("pair")).unwrap();
     assert_eq!(out.problems(), Vec::<String>::new());
@@ -470,7 +473,11 @@ fn a_range_wider_than_its_data_and_a_box_over_data_are_reported() {
     p.y_range = Some((1e-4, 1e4));
     p.series = vec![Series::line("data", vec![(0.0, 1.0), (1.0, 100.0)])];
     let out = line_plot(&p, &dir.join("decades")).unwrap();
-    assert!(out.problems()[0].contains("y axis (decades)"), "{:?}", out.problems());
+    assert!(
+        out.problems()[0].contains("y axis (decades)"),
+        "{:?}",
+        out.problems()
+    );
     // Data within a decade fill a log axis of their own.
     p.y_range = None;
     p.series = vec![Series::line("data", vec![(0.0, 1.4), (1.0, 3.5)])];
@@ -502,8 +509,14 @@ fn marks_are_drawn_over_every_line_and_hollow_ones_show_what_is_under_them() {
     let out = line_plot(&p, &dir.join("marks")).unwrap();
     let png = Png::read(&out.png);
     // The red marks lie under the line and the hollow squares, yet show.
-    assert!(png.count(near(RGBColor(200, 0, 0))) > 200, "red marks hidden");
-    assert!(png.count(near(RGBColor(0, 0, 200))) > 200, "blue outlines hidden");
+    assert!(
+        png.count(near(RGBColor(200, 0, 0))) > 200,
+        "red marks hidden"
+    );
+    assert!(
+        png.count(near(RGBColor(0, 0, 200))) > 200,
+        "blue outlines hidden"
+    );
     done(&dir);
 }
 

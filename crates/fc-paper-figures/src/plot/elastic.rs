@@ -75,7 +75,10 @@ pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<
                     .collect()
             };
             for (p, col) in [
-                (&mut left, (|r: &(String, String, f64, f64, f64)| r.3) as fn(&_) -> f64),
+                (
+                    &mut left,
+                    (|r: &(String, String, f64, f64, f64)| r.3) as fn(&_) -> f64,
+                ),
                 (&mut right, |r: &(String, String, f64, f64, f64)| r.4),
             ] {
                 let mut series = Series::new("", pts(col), style)
@@ -237,17 +240,23 @@ pub fn rigid_limit(read: Reader, stem: &Path) -> Result<Output, String> {
         }
     }
     let black = figures::RGBColor(0, 0, 0);
-    for (p, label) in [(&mut left, format!("tol = {tol:e}")), (&mut right, String::new())] {
+    for (p, label) in [
+        (&mut left, format!("tol = {tol:e}")),
+        (&mut right, String::new()),
+    ] {
         p.series.push(
             Series::new(label, vec![(ea_lo, tol), (ea_hi, tol)], Style::Dashed).with_color(black),
         );
     }
     right.series.extend(thresholds);
     right.series.push(
-        Series::legend_only(format!("EA above which both stay below {tol:e}"), Style::Points)
-            .with_color(black)
-            .with_marker(Marker::Triangle)
-            .hollow(),
+        Series::legend_only(
+            format!("EA above which both stay below {tol:e}"),
+            Style::Points,
+        )
+        .with_color(black)
+        .with_marker(Marker::Triangle)
+        .hollow(),
     );
     if !none.is_empty() {
         right.annotations = vec![format!("none up to {ea_hi:.0e}: {}", none.join(", "))];

@@ -319,9 +319,9 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
             s_lo = s_lo.min(p.1);
             s_hi = s_hi.max(p.1);
         }
-        right.series.push(
-            Series::line(format!("n = {n}, samples"), ratio).with_color(light(palette(i))),
-        );
+        right
+            .series
+            .push(Series::line(format!("n = {n}, samples"), ratio).with_color(light(palette(i))));
         let means: Vec<(f64, f64)> = (0..at.len())
             .filter(|&k| at_links[k] == *n && at_xi[k] >= RATIO_FROM && at_law_mean[k] > 0.0)
             .map(|k| (at_xi[k], at_mean[k] / at_law_mean[k]))
@@ -334,7 +334,10 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
             // The table's means: over the samples with |xi' - xi| <= the
             // study's window (not the support force's running mean).
             Series::points(
-                format!("n = {n}, means (|ξ' − ξ| ≤ {})", crate::folded::ACCEL_WINDOW),
+                format!(
+                    "n = {n}, means (|ξ' − ξ| ≤ {})",
+                    crate::folded::ACCEL_WINDOW
+                ),
                 means,
             )
             .with_color(palette(i))
@@ -375,9 +378,9 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
         )
         .with_color(black),
     );
-    right.series.push(
-        Series::new("", vec![(RATIO_FROM, 0.0), (1.0, 0.0)], Style::Line).with_color(gray),
-    );
+    right
+        .series
+        .push(Series::new("", vec![(RATIO_FROM, 0.0), (1.0, 0.0)], Style::Line).with_color(gray));
     right.series.extend(means_series);
     right.x_range = Some((RATIO_FROM, 1.0));
     let pad = 0.08 * (m_hi - m_lo);

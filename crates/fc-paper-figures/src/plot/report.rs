@@ -250,7 +250,11 @@ pub fn vmax_vs_span(
         let series = if k == 0 {
             Series::points(format!("n = {n}, finer spans near the peak"), pts).hollow()
         } else {
-            Series::new(format!("n = {n}, finer spans near the peak"), pts, Style::LinePoints)
+            Series::new(
+                format!("n = {n}, finer spans near the peak"),
+                pts,
+                Style::LinePoints,
+            )
         };
         p.series.push(series.with_color(figures::palette(4 + k)));
     }
@@ -300,9 +304,9 @@ pub fn vmax_vs_span(
         .collect();
     p.series.push(
         Series::points(format!("n = 50 within 1% of n = {links}"), within)
-        .with_color(figures::RGBColor(0, 0, 0))
-        .with_marker(Marker::Diamond)
-        .hollow(),
+            .with_color(figures::RGBColor(0, 0, 0))
+            .with_marker(Marker::Diamond)
+            .hollow(),
     );
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, RGBColor, Series, Style};
 use fc_csv::table::distinct;
+use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 
@@ -75,8 +75,12 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
         .with_color(palette(1)),
     );
     left.series.push(
-        Series::new("the tip's exact speed", col("vmax_report")?, Style::LinePoints)
-            .with_color(palette(2)),
+        Series::new(
+            "the tip's exact speed",
+            col("vmax_report")?,
+            Style::LinePoints,
+        )
+        .with_color(palette(2)),
     );
     left.series.push(
         Series::points("the report's Fig. 9, read off its page", col("read_off")?)
@@ -84,8 +88,18 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
             .hollow(),
     );
     let e = read("-errata-spans")?;
-    let (ed, case, ev, status) = (e.nums("d")?, e.strs("case")?, e.nums("vmax")?, e.strs("status")?);
-    let marks = [Marker::Circle, Marker::Square, Marker::Diamond, Marker::Triangle];
+    let (ed, case, ev, status) = (
+        e.nums("d")?,
+        e.strs("case")?,
+        e.nums("vmax")?,
+        e.strs("status")?,
+    );
+    let marks = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Diamond,
+        Marker::Triangle,
+    ];
     let mut failed = vec![];
     for (k, c) in distinct(&case).into_iter().enumerate() {
         let rows: Vec<usize> = (0..e.len()).filter(|&j| case[j] == c).collect();
@@ -99,7 +113,11 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
             failed.push(format!("{c}: {how} at every span"));
             continue;
         }
-        let style = if k == 0 { Style::LinePoints } else { Style::DashedPoints };
+        let style = if k == 0 {
+            Style::LinePoints
+        } else {
+            Style::DashedPoints
+        };
         right.series.push(
             Series::new(c, pts, style)
                 .with_color(palette(3 + k))
