@@ -434,7 +434,11 @@ pub static FIGURES: &[Figure] = &[
         what: "work-precision of BEAM, the IVP test set's stiff beam (40 segments, t = 0 .. 5): \
                every method's error at t = 5 against the published reference vs wall time and \
                vs accepted steps",
-        data: &["beam-precision.csv", "beam-precision-timing.csv"],
+        data: &[
+            "beam-precision.csv",
+            "beam-precision-timing.csv",
+            "beam-precision-machine-timing.csv",
+        ],
         timing: Timing::Alongside,
         make: &study::precision_beam::BeamPrecision,
     },

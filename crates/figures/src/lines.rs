@@ -244,6 +244,40 @@ fn swatch(s: &Series, color: RGBColor, sizes: &Sizes) -> Swatch {
     }
 }
 
+/// `piece` (plot space) cut at every vertex where it turns back by more
+/// than 120 degrees on the plot (pixels of a `plot` area): plotters joins a
+/// thick bitmap line's segments with mitres, which at such a turn reach far
+/// past the vertex, out of the frame.
+fn split_sharp(
+    piece: &[(f64, f64)],
+    x: &crate::ticks::Axis,
+    y: &crate::ticks::Axis,
+    plot: (i32, i32),
+) -> Vec<Vec<(f64, f64)>> {
+    let px = |p: (f64, f64)| {
+        (
+            (p.0 - x.lo) / x.span() * f64::from(plot.0),
+            (p.1 - y.lo) / y.span() * f64::from(plot.1),
+        )
+    };
+    let mut out = vec![];
+    let mut cur: Vec<(f64, f64)> = vec![];
+    for (k, &p) in piece.iter().enumerate() {
+        cur.push(p);
+        if k == 0 || k + 1 == piece.len() {
+            continue;
+        }
+        let (a, b, c) = (px(piece[k - 1]), px(p), px(piece[k + 1]));
+        let (u, v) = ((b.0 - a.0, b.1 - a.1), (c.0 - b.0, c.1 - b.1));
+        let norms = u.0.hypot(u.1) * v.0.hypot(v.1);
+        if norms > 0.0 && (u.0 * v.0 + u.1 * v.1) / norms < -0.5 {
+            out.push(std::mem::replace(&mut cur, vec![p]));
+        }
+    }
+    out.push(cur);
+    out
+}
+
 fn draw_plot<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &LinePlot,
@@ -263,7 +297,8 @@ fn draw_plot<DB: DrawingBackend>(
         }
         let color = color_of(i, s);
         let pts = to_plot(s, x, y);
-        for piece in clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi)) {
+        let pieces = clip::clip_polyline(&pts, (x.lo, x.hi), (y.lo, y.hi));
+        for piece in pieces.iter().flat_map(|p| split_sharp(p, x, y, plan.plot)) {
             if piece.len() < 2 {
                 continue;
             }

@@ -1,10 +1,11 @@
-//! `auto`: a policy over the registered methods. BDF from the start past
-//! the measured crossover damping rate; otherwise DOPRI5 (DOP853 at tight
-//! tolerances) until its stiffness detector keeps firing with `|lambda|`
-//! past the crossover's `48 gamma`, then BDF from that state; a rigid
-//! chain, for which that stiffness is the whip and the waves, is not handed
-//! over mid-run ([`hands_over`]). Elastic links hand over only when their
-//! axial modes are damped (`auto_elastic`).
+//! `auto`: a policy over the registered methods, each problem's
+//! [`AutoPlan`]: an explicit method, handed over to BDF mid-run when its
+//! stiffness detector fires past the plan's threshold ([`hands_over`]), or
+//! BDF from the start. A rigid chain runs BDF from the start past the
+//! measured crossover damping rate, else DOPRI5 (DOP853 at tight
+//! tolerances) to the end; elastic links hand over only when their axial
+//! modes are damped (`auto_elastic`); any other problem runs DOP853 to the
+//! end ([`AutoPlan::generic`]).
 
 use super::integrator::{Integrator, Run, Span};
 use super::{registry, Method};
@@ -48,16 +49,17 @@ pub struct AutoPlan {
 
 impl AutoPlan {
     /// The plan for a problem whose model says nothing of its stiffness:
-    /// DOP853 at `rtol <= 1e-8`, DOPRI5 otherwise, handing over to BDF at
-    /// the first stiffness detection.
-    pub fn generic(rtol: f64) -> Self {
+    /// DOP853 to the end, at every `rtol`. The detector measures `|lambda|`
+    /// alone, so it cannot tell damped stiffness, where BDF pays, from fast
+    /// undamped modes, which BDF must follow too; on BEAM (such modes) the
+    /// handover lost at every matched error and DOP853 was the fastest
+    /// explicit method (`cargo run --release -p fc-paper-figures --example
+    /// beam_auto`, methods §6). A model that knows its stiffness says so in
+    /// its own plan (the rigid and the elastic chain do).
+    pub fn generic(_rtol: f64) -> Self {
         Self {
-            explicit: Some(if rtol <= AUTO_DOP853_RTOL {
-                Method::Dop853
-            } else {
-                Method::Dopri5
-            }),
-            hand_over_above: 0.0,
+            explicit: Some(Method::Dop853),
+            hand_over_above: f64::INFINITY,
         }
     }
 }
