@@ -73,7 +73,10 @@ fn main() -> ExitCode {
         lines.push((m, line));
     }
     for (name, pick) in [
-        ("rate error", (|r: &(f64, f64, f64)| r.1) as fn(&(f64, f64, f64)) -> f64),
+        (
+            "rate error",
+            (|r: &(f64, f64, f64)| r.1) as fn(&(f64, f64, f64)) -> f64,
+        ),
         ("angle error", |r: &(f64, f64, f64)| r.0),
     ] {
         println!();

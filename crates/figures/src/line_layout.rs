@@ -185,12 +185,11 @@ pub(crate) struct Plan {
     pub columns: usize,
 }
 
+/// The sizes of a legend and a note box, either absent.
+type BoxSizes = (Option<(i32, i32)>, Option<(i32, i32)>);
+
 /// The legend and the note stacked (`true`) or side by side: its size.
-fn group(
-    (l, n): (Option<(i32, i32)>, Option<(i32, i32)>),
-    inset: i32,
-    stacked: bool,
-) -> (i32, i32) {
+fn group((l, n): BoxSizes, inset: i32, stacked: bool) -> (i32, i32) {
     match (l, n) {
         (Some(a), Some(b)) if stacked => (a.0.max(b.0), a.1 + inset + b.1),
         (Some(a), Some(b)) => (a.0 + inset + b.0, a.1.max(b.1)),
@@ -200,12 +199,7 @@ fn group(
 }
 
 /// The boxes of a group whose top-left corner is `at`.
-fn place_group(
-    (l, n): (Option<(i32, i32)>, Option<(i32, i32)>),
-    inset: i32,
-    stacked: bool,
-    at: (i32, i32),
-) -> Boxes {
+fn place_group((l, n): BoxSizes, inset: i32, stacked: bool, at: (i32, i32)) -> Boxes {
     let legend = l.map(|s| PixelRect::new(at, s));
     let note = n.map(|s| match (l, stacked) {
         (Some(a), true) => PixelRect::new((at.0, at.1 + a.1 + inset), s),
