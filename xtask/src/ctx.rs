@@ -5,6 +5,8 @@
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use fc_paper_figures::plot::Reader;
 use fc_scene::{Prepared, Scene};
@@ -27,6 +29,13 @@ pub struct Ctx {
     /// The scene runs of the report's figures, made once before they are
     /// computed (empty with `--draw-only`).
     pub runs: BTreeMap<&'static str, SceneRun>,
+    /// What each figure drawn so far got wrong in its layout (its id and
+    /// `figures::Output::problems`: data spanning less than half an axis,
+    /// a box over data), for the warning after drawing and the registry's
+    /// test.
+    pub layout_problems: Mutex<Vec<(String, Vec<String>)>>,
+    /// How many panels drawn so far reported their layout.
+    pub panels_checked: AtomicUsize,
 }
 
 impl Ctx {
@@ -39,6 +48,8 @@ impl Ctx {
             jobs,
             timings,
             runs: BTreeMap::new(),
+            layout_problems: Mutex::new(Vec::new()),
+            panels_checked: AtomicUsize::new(0),
         }
     }
 
@@ -129,9 +140,16 @@ impl Ctx {
         draw: impl Fn(Reader, &Path) -> Result<figures::Output, String>,
     ) -> Result<Vec<String>, String> {
         let read = |suffix: &str| self.read(&format!("{}{suffix}.csv", fig.id));
-        draw(&read, &self.stem(fig.id))
-            .map(|o| self.drawn(&o))
-            .map_err(|e| format!("{}: {e}", fig.id))
+        let out = draw(&read, &self.stem(fig.id)).map_err(|e| format!("{}: {e}", fig.id))?;
+        self.panels_checked
+            .fetch_add(out.panels.len(), Ordering::Relaxed);
+        let problems = out.problems();
+        if !problems.is_empty() {
+            if let Ok(mut all) = self.layout_problems.lock() {
+                all.push((fig.id.to_string(), problems));
+            }
+        }
+        Ok(self.drawn(&out))
     }
 
     /// The files a figure was drawn to, relative to the root.

@@ -207,6 +207,13 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         }
     }
     steps.push(("drawing and animations".into(), t0.elapsed().as_secs_f64()));
+    if let Ok(problems) = ctx.layout_problems.lock() {
+        for (id, lines) in problems.iter() {
+            for line in lines {
+                println!("warning: {id}: {line}");
+            }
+        }
+    }
 
     let entries = registry::entries();
     write_text(&ctx.out.join("README.md"), &catalogue::readme(&entries))?;

@@ -413,17 +413,17 @@ pub static FIGURES: &[Figure] = &[
         what: "the snap: peak support force and impulse against n (25 .. 400, total mass fixed) \
                for span d = 3, d = 1 and the folded chain, rigid and elastic (EA 1e4 with and \
                without EI 0.1 and friction to n = 200; EA 1e5 to n = 100) (minutes: computed only by \
-               --timings)",
-        data: &["snap-force-timing.csv"],
-        timing: Timing::Only,
+               --timings); span d = 3 with EA 1e6 and 1e7 to n = 100 (the -stiff file, every run)",
+        data: &["snap-force-stiff.csv", "snap-force-timing.csv"],
+        timing: Timing::Alongside,
         make: &study::elastic_snap_force::SnapForce,
     },
     Figure {
         id: "snap-tension",
         report: None,
-        what: "the snap's wave: the tension along the chain at six times from the tip's arrest \
-               to the support's peak, and the support force against time (span d = 3, n = 100, \
-               total mass 10, EA = 1e4)",
+        what: "the snap's wave: the tension along the chain at six times, five from the tip's \
+               arrest to the support's peak and one 0.05 after it, and the support force against \
+               time (span d = 3, n = 100, total mass 10, EA = 1e4)",
         data: &["snap-tension.csv", "snap-tension-force.csv", "snap-tension-summary.csv"],
         timing: Timing::None,
         make: &study::elastic_snap_tension::SnapTension,
@@ -434,7 +434,11 @@ pub static FIGURES: &[Figure] = &[
         what: "work-precision of BEAM, the IVP test set's stiff beam (40 segments, t = 0 .. 5): \
                every method's error at t = 5 against the published reference vs wall time and \
                vs accepted steps",
-        data: &["beam-precision.csv", "beam-precision-timing.csv"],
+        data: &[
+            "beam-precision.csv",
+            "beam-precision-timing.csv",
+            "beam-precision-machine-timing.csv",
+        ],
         timing: Timing::Alongside,
         make: &study::precision_beam::BeamPrecision,
     },
@@ -490,8 +494,12 @@ pub static FIGURES: &[Figure] = &[
     Figure {
         id: "rm09-vmax-vs-span",
         report: None,
-        what: "Fig. 9 in the report's model (its 14 spans, n = 50, r = 0.0005, its dt = 0.01001 to its t = 12): its maximum tip speed in its clock, by its finite differences, in our units, and the corrected model's; with a pair of runs per erratum (the -errata file)",
-        data: &["rm09-vmax-vs-span.csv", "rm09-vmax-vs-span-errata.csv"],
+        what: "Fig. 9 in the report's model (its 14 spans, n = 50, r = 0.0005, its dt = 0.01001 to its t = 12): its maximum tip speed in its clock, by its finite differences, in our units, and the corrected model's; with a pair of runs per erratum (the -errata file) and each erratum undone at each span (the -errata-spans file, drawn)",
+        data: &[
+            "rm09-vmax-vs-span.csv",
+            "rm09-vmax-vs-span-errata.csv",
+            "rm09-vmax-vs-span-errata-spans.csv",
+        ],
         timing: Timing::None,
         make: &ReportVmax {
             title: "Fig. 9 from the report's model",
@@ -543,5 +551,39 @@ mod tests {
         assert_eq!(paper::catalogue::check(&entries()), Ok(()));
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
         assert_eq!(FIGURES.len(), 60);
+    }
+
+    /// The panels of the registry's line plots and pairs.
+    const PANELS: usize = 49;
+
+    /// Every figure drawn from the committed data (into a scratch folder)
+    /// whose drawing reports its layout (the line plots and pairs): its
+    /// data span at least half of each axis (decades on a log axis; the
+    /// wider axis under equal scales), and no legend or note box covers a
+    /// data point (`figures::PanelLayout::problems`). The viewer's
+    /// screenshot, drawn by Chromium, has no axes and is left out.
+    #[test]
+    fn every_figure_fills_its_axes_and_no_box_hides_its_data() {
+        let root = crate::root();
+        let mut ctx = Ctx::new(&root, 1, false);
+        let scratch = std::env::temp_dir().join(format!("xtask-layout-{}", std::process::id()));
+        std::fs::create_dir_all(&scratch).unwrap();
+        ctx.out = scratch.clone();
+        let mut reported = 0;
+        for f in FIGURES.iter().filter(|f| f.id != "viewer-peak") {
+            f.make
+                .draw(&ctx, f)
+                .unwrap_or_else(|e| panic!("{}: {e}", f.id));
+            reported += 1;
+        }
+        std::fs::remove_dir_all(&scratch).unwrap();
+        let problems = ctx.layout_problems.lock().unwrap().clone();
+        assert_eq!(problems, vec![], "figures whose layout hides their data");
+        assert_eq!(reported, FIGURES.len() - 1);
+        // The line plots and pairs of the registry, each panel checked.
+        let panels = ctx
+            .panels_checked
+            .load(std::sync::atomic::Ordering::Relaxed);
+        assert_eq!(panels, PANELS, "panels that reported their layout");
     }
 }

@@ -57,7 +57,9 @@ impl Make for ReportVmax {
 
     /// `<id>.csv`: [`report_model::vmax`] at the scene's spans;
     /// `<id>-errata.csv`: [`report_model::errata`] of the scene (to the
-    /// report's t = 12) and of the horizontal ones (to its t = 10).
+    /// report's t = 12) and of the horizontal ones (to its t = 10);
+    /// `<id>-errata-spans.csv`: [`report_model::errata_spans`], each
+    /// erratum undone at each of the spans.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let base = &ctx.run(self.scene)?.scene;
         let csv = report_model::vmax(base, self.t_report)?;
@@ -67,9 +69,11 @@ impl Make for ReportVmax {
             ("horizontal-damped", run("horizontal-damped")?, 10.0),
             ("horizontal-undamped", run("horizontal-undamped")?, 10.0),
         ])?;
+        let spans = report_model::errata_spans(base, self.t_report)?;
         Ok(vec![
             ctx.write(&format!("{}.csv", fig.id), &csv)?,
             ctx.write(&format!("{}-errata.csv", fig.id), &errata)?,
+            ctx.write(&format!("{}-errata-spans.csv", fig.id), &spans)?,
         ])
     }
 

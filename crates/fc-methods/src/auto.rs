@@ -1,12 +1,12 @@
 //! `auto`: a policy over the registered methods, run by the problem's
 //! [`AutoPlan`]: BDF from the start, or the plan's explicit method until
 //! its stiffness detector fires with `|lambda|` past the plan's threshold,
-//! then BDF from that state ([`hands_over`]); a problem without a plan gets
-//! [`AutoPlan::generic`]. The plans are the run layer's, from its models
-//! (chain-ode's: BDF from the start past the chain's measured crossover
-//! damping rate; a rigid chain, for which that stiffness is the whip and
-//! the waves, never handed over mid-run; elastic links handed over only
-//! when their axial modes are damped).
+//! then BDF from that state ([`hands_over`]). The plans are the run
+//! layer's, from its models (chain-ode's: BDF from the start past the
+//! chain's measured crossover damping rate, else DOPRI5 (DOP853 at tight
+//! tolerances) to the end for a rigid chain, never handed over mid-run;
+//! elastic links handed over only when their axial modes are damped); a
+//! problem without a plan runs DOP853 to the end ([`AutoPlan::generic`]).
 
 use super::integrator::{Integrator, Run, Span};
 use super::{registry, Method};
@@ -29,16 +29,17 @@ pub struct AutoPlan {
 
 impl AutoPlan {
     /// The plan for a problem whose model says nothing of its stiffness:
-    /// DOP853 at `rtol <= 1e-8`, DOPRI5 otherwise, handing over to BDF at
-    /// the first stiffness detection.
-    pub fn generic(rtol: f64) -> Self {
+    /// DOP853 to the end, at every `rtol`. The detector measures `|lambda|`
+    /// alone, so it cannot tell damped stiffness, where BDF pays, from fast
+    /// undamped modes, which BDF must follow too; on BEAM (such modes) the
+    /// handover lost at every matched error and DOP853 was the fastest
+    /// explicit method (`cargo run --release -p fc-paper-figures --example
+    /// beam_auto`, methods §6). A model that knows its stiffness says so in
+    /// its own plan (the rigid and the elastic chain do).
+    pub fn generic(_rtol: f64) -> Self {
         Self {
-            explicit: Some(if rtol <= AUTO_DOP853_RTOL {
-                Method::Dop853
-            } else {
-                Method::Dopri5
-            }),
-            hand_over_above: 0.0,
+            explicit: Some(Method::Dop853),
+            hand_over_above: f64::INFINITY,
         }
     }
 }

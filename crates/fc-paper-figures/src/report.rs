@@ -102,15 +102,62 @@ pub fn tip_speed(runs: &[Run]) -> String {
     csv
 }
 
-/// `scene,v_x,v_y` at every sample of each run.
+/// The tip velocity's path is kept to within this share of its largest
+/// speed ([`simplify`]): well under a pixel of the figure.
+pub const VELOCITY_TOLERANCE: f64 = 5e-4;
+
+/// `scene,v_x,v_y` along each run's tip velocity: its samples, thinned to
+/// those the path needs to stay within [`VELOCITY_TOLERANCE`] of the
+/// run's largest speed ([`simplify`]), so that a run sampled finely
+/// through its whip draws a smooth loop from a table of modest size.
 pub fn tip_velocity(runs: &[Run]) -> String {
     let mut csv = String::from("scene,v_x,v_y\n");
     for run in runs {
-        for (vx, vy) in render::tip_velocity_path(run.traj) {
+        let path = render::tip_velocity_path(run.traj);
+        let top = path.iter().map(|p| p.0.hypot(p.1)).fold(0.0, f64::max);
+        for (vx, vy) in simplify(&path, VELOCITY_TOLERANCE * top) {
             let _ = writeln!(csv, "{},{},{}", run.name, fixed(vx, 6), fixed(vy, 6));
         }
     }
     csv
+}
+
+/// The points of the polyline `path` that keep it within `tol` of every
+/// point dropped (Douglas and Peucker's simplification; the ends kept).
+pub fn simplify(path: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
+    if path.len() < 3 {
+        return path.to_vec();
+    }
+    let mut keep = vec![false; path.len()];
+    let (first, last) = (0, path.len() - 1);
+    keep[first] = true;
+    keep[last] = true;
+    let mut stack = vec![(first, last)];
+    while let Some((a, b)) = stack.pop() {
+        let (p, q) = (path[a], path[b]);
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let len = dx.hypot(dy);
+        let dist = |r: (f64, f64)| {
+            if len > 0.0 {
+                ((r.0 - p.0) * dy - (r.1 - p.1) * dx).abs() / len
+            } else {
+                (r.0 - p.0).hypot(r.1 - p.1)
+            }
+        };
+        let far = (a + 1..b)
+            .map(|k| (k, dist(path[k])))
+            .fold((a, -1.0), |m, c| if c.1 > m.1 { c } else { m });
+        if far.1 > tol {
+            keep[far.0] = true;
+            stack.push((a, far.0));
+            stack.push((far.0, b));
+        }
+    }
+    path.iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(p, _)| *p)
+        .collect()
 }
 
 /// A row per named run: its method, chain, status, work, energy balance
@@ -362,4 +409,48 @@ pub fn vmax_tables(
     let (rods, pa, pb, pc) = p.peak;
     let peak = super::span_check::peak(base, rods, &linspace(pa, pb, pc), jobs)?;
     Ok(vec![("", csv), ("-agreement", agreement), ("-peak", peak)])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_simplified_path_stays_within_its_tolerance_and_keeps_the_corners() {
+        // A square traced by 400 points: its four corners and ends remain.
+        let mut path = vec![];
+        for k in 0..400 {
+            let s = f64::from(k) / 100.0;
+            path.push(match k / 100 {
+                0 => (s, 0.0),
+                1 => (1.0, s - 1.0),
+                2 => (3.0 - s, 1.0),
+                _ => (0.0, 4.0 - s),
+            });
+        }
+        let kept = simplify(&path, 1e-3);
+        assert!(kept.len() <= 8, "{kept:?}");
+        for corner in [(1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            assert!(
+                kept.iter()
+                    .any(|p| (p.0 - corner.0).hypot(p.1 - corner.1) < 0.02),
+                "{corner:?} dropped"
+            );
+        }
+        // A circle: the kept chords stay within the tolerance of the arc.
+        let circle: Vec<(f64, f64)> = (0..=2000)
+            .map(|k| {
+                let a = f64::from(k) * std::f64::consts::TAU / 2000.0;
+                (a.cos(), a.sin())
+            })
+            .collect();
+        let kept = simplify(&circle, 1e-3);
+        assert!(kept.len() < 200 && kept.len() > 20, "{}", kept.len());
+        for w in kept.windows(2) {
+            let half = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1) / 2.0;
+            // The sagitta of a chord of the unit circle.
+            let sagitta = 1.0 - (1.0 - half * half).sqrt();
+            assert!(sagitta <= 1.1e-3, "{sagitta}");
+        }
+    }
 }

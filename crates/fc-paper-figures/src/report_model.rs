@@ -197,6 +197,46 @@ pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
     Ok(csv)
 }
 
+/// Fig. 9 with each erratum undone in turn: `d,case,vmax,t_vmax,status,
+/// t_reached` at the report's 14 spans ([`report_spans`] on `base`), each
+/// case of [`CASES`] run as [`errata`] runs it (to `t_report` of the
+/// report's clock, at its step, in physical time when the clock is
+/// corrected), the maximum tip speed and its time in our units.
+pub fn errata_spans(base: &Scene, t_report: f64) -> Result<String, String> {
+    let mut csv = String::from("d,case,vmax,t_vmax,status,t_reached\n");
+    for d in report_spans() {
+        let s = base
+            .with_overrides(&[format!("start.p1.0={d}")])
+            .map_err(err)?;
+        let p = s.prepare().map_err(err)?;
+        let coded = ReportModel::AS_CODED.time_unit(&p.chain);
+        for (case, model) in CASES {
+            let unit = model.time_unit(&p.chain);
+            let mut o = p.options.clone();
+            o.t_end = t_report * coded / unit;
+            o.dt = report_dt(t_report) * coded / unit;
+            o.output_dt = None;
+            let traj = solve(
+                ModelKind::Report(ReportChain::new(&p.chain, *model)),
+                &p.state,
+                Method::Rk4,
+                &o,
+            )
+            .map_err(err)?;
+            let _ = writeln!(
+                csv,
+                "{},{case},{},{},{},{}",
+                num(d),
+                num(traj.summary.tip_speed_max / unit),
+                num(traj.summary.t_tip_speed_max * unit),
+                traj.status,
+                num(traj.t_reached * unit),
+            );
+        }
+    }
+    Ok(csv)
+}
+
 /// What each erratum changes: `scene,case,vmax,t_vmax,status,t_reached,
 /// balance,kink`, each `(name, scene, t_report)` of `scenes` in each case
 /// of [`CASES`] at the report's step and span (`dt = t / (100 t - 1)` and

@@ -30,13 +30,19 @@ impl SceneRun {
     /// Runs `scene` as its file says, sampled [`FINE`] times finer. A run
     /// that ends with a failed status is an error naming it.
     pub fn run(scene: Scene) -> Result<SceneRun, String> {
+        SceneRun::run_sampled(scene, FINE)
+    }
+
+    /// As [`SceneRun::run`], sampled `fine` times finer than the scene's
+    /// spacing (the tip velocity's loops, which turn fast in the whip).
+    pub fn run_sampled(scene: Scene, fine: f64) -> Result<SceneRun, String> {
         let name = scene.name().to_string();
         let mut prepared = scene.prepare().map_err(|e| e.to_string())?;
         let snapshot_dt = prepared
             .options
             .output_dt
             .unwrap_or(prepared.options.t_end / 50.0);
-        prepared.options.output_dt = Some(snapshot_dt / FINE);
+        prepared.options.output_dt = Some(snapshot_dt / fine);
         let release = scene
             .start()
             .release_point(&prepared.chain)

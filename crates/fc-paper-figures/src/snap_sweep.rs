@@ -83,3 +83,35 @@ pub fn sweep(
     }
     Ok(csv)
 }
+
+/// A [`sweep`]'s table without its last column, the runs' wall times
+/// (`wall_seconds`): the rows that reproduce to the byte.
+pub fn untimed(csv: &str) -> String {
+    csv.lines()
+        .map(|line| line.rsplit_once(',').map_or(line, |(kept, _)| kept))
+        .fold(String::new(), |mut out, line| {
+            out.push_str(line);
+            out.push('\n');
+            out
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_untimed_table_drops_the_wall_times_alone() {
+        let csv = format!(
+            "{SNAP_HEADER}span-d3,EA 1e6,100,10,1e6,1.5,0,0.001,ok,10.8,2.76,5.02,2.77,0.48,2.57,2.97,0.16,900,5400,4.012e0\n"
+        );
+        let t = untimed(&csv);
+        let mut lines = t.lines();
+        assert!(lines.next().unwrap().ends_with(",steps,rhs_evals"));
+        assert_eq!(
+            lines.next(),
+            Some("span-d3,EA 1e6,100,10,1e6,1.5,0,0.001,ok,10.8,2.76,5.02,2.77,0.48,2.57,2.97,0.16,900,5400")
+        );
+        assert_eq!(lines.next(), None);
+    }
+}

@@ -25,10 +25,6 @@ use fc_csv::table::{distinct, parse_num, Table};
 /// the suffix to a file).
 pub type Reader<'a> = &'a dyn Fn(&str) -> Result<Table, String>;
 
-/// The most lines of room a work-precision panel keeps above its data for
-/// its legend or note.
-const MAX_RESERVED_LINES: f64 = 12.0;
-
 /// Errors below this are drawn at it (a log axis cannot show 0).
 pub const DRAW_FLOOR: f64 = 1e-16;
 
@@ -311,40 +307,16 @@ pub fn work_precision_weighted(
     }
     text.extend(notes);
     right.annotations = text;
-    // Fitted to the data, with a third of a decade to spare below, and
-    // above only as much room as the legend and the note need to hide no
-    // data: none when they fit into a corner the data leave free (the
-    // lines fall to the lower right), else a line's height at a time
-    // (about 5% of the plot), the same for both panels.
+    // Fitted to the data, with a third of a decade to spare either way,
+    // the same for both panels; the legend and the note go where they hide
+    // no data (beside the plot if need be).
     let margin = 10f64.powf(1.0 / 3.0);
-    let range = |lines: f64| {
-        let (a, b) = ((lo / margin).log10(), (hi * margin).log10());
-        let top = b + (b - a) * lines * 0.05 / (1.0 - lines * 0.05);
-        (10f64.powf(a), 10f64.powf(top))
-    };
-    let mut lines = 0.0;
     for plot in [&mut left, &mut right] {
         plot.log_x = true;
         plot.log_y = true;
-        if !(lo.is_finite() && hi > 0.0) {
-            continue;
+        if lo.is_finite() && hi > 0.0 {
+            plot.y_range = Some((lo / margin, hi * margin));
         }
-        while lines < MAX_RESERVED_LINES {
-            plot.y_range = Some(range(lines));
-            match figures::line_plot_boxes(plot) {
-                Ok(b) if b.hidden > 0 => lines += 1.0,
-                _ => break,
-            }
-        }
-    }
-    if lo.is_finite() && hi > 0.0 {
-        // A panel of the pair is narrower than the single plot the boxes
-        // were laid out in: a line more.
-        if lines > 0.0 {
-            lines += 1.0;
-        }
-        left.y_range = Some(range(lines));
-        right.y_range = Some(range(lines));
     }
     let title =
         format!("Work-precision: {label}; error: larger of tip position, max tip speed errors");

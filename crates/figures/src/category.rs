@@ -106,6 +106,9 @@ struct PanelPlan {
     ch: i32,
     row_label_w: i32,
     cols_rotated: bool,
+    /// Whether its row labels are drawn (a panel right of one with the
+    /// same rows shares that one's).
+    show_rows: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -174,10 +177,10 @@ impl Plan {
                 .cell_text
                 .iter()
                 .flatten()
-                .map(|s| text_width(s, t.note()))
+                .map(|s| text_width(s, cell_text_size(t)))
                 .max()
                 .unwrap_or(0);
-            let mut cw = t.px(90.0).max(text_w + t.px(14.0));
+            let mut cw = t.px(84.0).max(text_w + t.px(14.0));
             let cols_rotated = col_label_w + t.px(12.0) > cw;
             if cols_rotated {
                 cw = cw.max((tick * 1.4) as i32);
@@ -208,8 +211,14 @@ impl Plan {
             let gh = chunk.iter().map(|s| s.2).max().unwrap_or(0);
             let col_area = chunk.iter().map(|s| s.3).max().unwrap_or(0);
             let mut x = margin + ylab_w;
-            for s in chunk {
-                let gx = x + s.6 + t.px(12.0);
+            let first = panels.len();
+            for (k, s) in chunk.iter().enumerate() {
+                // Rows as the first panel of this row of panels: their
+                // labels are that panel's.
+                let same_rows =
+                    k > 0 && map.panels[first + k].row_labels == map.panels[first].row_labels;
+                let label_w = if same_rows { 0 } else { s.6 + t.px(12.0) };
+                let gx = x + label_w;
                 let gy = y + ptitle;
                 panels.push(PanelPlan {
                     gx,
@@ -218,9 +227,10 @@ impl Plan {
                     ch: s.5,
                     row_label_w: s.6,
                     cols_rotated: s.7,
+                    show_rows: !same_rows,
                 });
                 grids_y = (grids_y.0.min(gy), grids_y.1.max(gy + s.2));
-                x += s.0 + gap;
+                x += s.0 - s.6 - t.px(12.0) + label_w + gap;
             }
             width = width.max(x - gap + margin);
             y += ptitle + gh + col_area + t.px(20.0);
@@ -230,9 +240,9 @@ impl Plan {
             y += (t.label() * 1.4) as i32;
         }
         let legend_y = y + t.px(10.0);
-        let (legend_w, legend_h) = legend_size(map, &sizes);
+        let width = width.max(t.px(900.0));
+        let (_, legend_h) = legend_size(map, &sizes, width - 2 * margin);
         let height = legend_y + legend_h + margin;
-        let width = width.max(legend_w + 2 * margin).max(t.px(900.0));
         Plan {
             sizes,
             size: (width as u32, height.max(t.px(500.0)) as u32),
@@ -245,12 +255,42 @@ impl Plan {
     }
 }
 
-fn legend_size(map: &CategoryMap, t: &Sizes) -> (i32, i32) {
-    let w: i32 = legend_entries(map)
+/// The size of cell texts: as large as tick labels, so that the cells can
+/// be read where the figure is printed at the width of a page.
+fn cell_text_size(t: &Sizes) -> f64 {
+    t.tick() * 1.1
+}
+
+/// The legend's entries in rows at most `width` wide (each row's entries
+/// in order), filled greedily.
+fn legend_rows(map: &CategoryMap, t: &Sizes, width: i32) -> Vec<Vec<(String, RGBColor)>> {
+    let mut rows: Vec<Vec<(String, RGBColor)>> = vec![];
+    let mut used = 0;
+    for e in legend_entries(map) {
+        let w = legend_item_w(&e.0, t);
+        match rows.last_mut() {
+            Some(row) if used + w <= width => {
+                used += w;
+                row.push(e);
+            }
+            _ => {
+                used = w;
+                rows.push(vec![e]);
+            }
+        }
+    }
+    rows
+}
+
+/// The legend's size when its rows are at most `width` wide.
+fn legend_size(map: &CategoryMap, t: &Sizes, width: i32) -> (i32, i32) {
+    let rows = legend_rows(map, t, width);
+    let w = rows
         .iter()
-        .map(|(l, _)| legend_item_w(l, t))
-        .sum();
-    (w, (t.legend() * 1.5) as i32)
+        .map(|r| r.iter().map(|(l, _)| legend_item_w(l, t)).sum::<i32>())
+        .max()
+        .unwrap_or(0);
+    (w, (t.legend() * 1.5) as i32 * rows.len().max(1) as i32)
 }
 
 fn legend_item_w(label: &str, t: &Sizes) -> i32 {
@@ -313,7 +353,7 @@ impl Draw for Figure<'_, '_> {
                         let RGBColor(cr, cg, cb) = color;
                         let lum = 0.299 * cr as f64 + 0.587 * cg as f64 + 0.114 * cb as f64;
                         let ink = if lum < 110.0 { &WHITE } else { &BLACK };
-                        let style = center(t.note()).color(ink);
+                        let style = center(cell_text_size(t)).color(ink);
                         root.draw(&Text::new(text, (x0 + pp.cw / 2, y0 + pp.ch / 2), style))?;
                     }
                 }
@@ -338,7 +378,8 @@ impl Draw for Figure<'_, '_> {
                 BLACK.stroke_width(t.axis()),
             ))?;
             let right = t.font(t.tick()).pos(Pos::new(HPos::Right, VPos::Center));
-            for (r, l) in p.row_labels.iter().enumerate() {
+            let shown = if pp.show_rows { &p.row_labels[..] } else { &[] };
+            for (r, l) in shown.iter().enumerate() {
                 let y = pp.gy + r as i32 * pp.ch + pp.ch / 2;
                 root.draw(&Text::new(
                     l.clone(),
@@ -362,10 +403,15 @@ impl Draw for Figure<'_, '_> {
             }
         }
         if !map.x_label.is_empty() {
+            let size = layout::fitted(
+                t.label(),
+                text_width(map.x_label, t.label()),
+                w - 2 * t.px(30.0),
+            );
             root.draw(&Text::new(
                 map.x_label.to_string(),
                 (w / 2, plan.x_label_y + (t.label() * 0.7) as i32),
-                center(t.label()),
+                center(size),
             ))?;
         }
         if !map.y_label.is_empty() {
@@ -379,27 +425,30 @@ impl Draw for Figure<'_, '_> {
                 style,
             ))?;
         }
-        // Legend, centred.
-        let (lw, lh) = legend_size(map, t);
-        let mut x = (w - lw) / 2 + t.px(18.0);
-        let cy = plan.legend_y + lh / 2;
+        // Legend, each row centred.
         let sq = t.px(32.0);
+        let row_h = (t.legend() * 1.5) as i32;
         let left = t.font(t.legend()).pos(Pos::new(HPos::Left, VPos::Center));
-        for (label, color) in &legend_entries(map) {
-            root.draw(&Rectangle::new(
-                [(x, cy - sq / 2), (x + sq, cy + sq / 2)],
-                color.filled(),
-            ))?;
-            root.draw(&Rectangle::new(
-                [(x, cy - sq / 2), (x + sq, cy + sq / 2)],
-                BLACK.stroke_width(t.px(1.0) as u32),
-            ))?;
-            root.draw(&Text::new(
-                label.clone(),
-                (x + sq + t.px(10.0), cy),
-                left.clone(),
-            ))?;
-            x += legend_item_w(label, t);
+        for (k, row) in legend_rows(map, t, w - 2 * t.px(30.0)).iter().enumerate() {
+            let rw: i32 = row.iter().map(|(l, _)| legend_item_w(l, t)).sum();
+            let mut x = (w - rw) / 2 + t.px(18.0);
+            let cy = plan.legend_y + k as i32 * row_h + row_h / 2;
+            for (label, color) in row {
+                root.draw(&Rectangle::new(
+                    [(x, cy - sq / 2), (x + sq, cy + sq / 2)],
+                    color.filled(),
+                ))?;
+                root.draw(&Rectangle::new(
+                    [(x, cy - sq / 2), (x + sq, cy + sq / 2)],
+                    BLACK.stroke_width(t.px(1.0) as u32),
+                ))?;
+                root.draw(&Text::new(
+                    label.clone(),
+                    (x + sq + t.px(10.0), cy),
+                    left.clone(),
+                ))?;
+                x += legend_item_w(label, t);
+            }
         }
         Ok(())
     }

@@ -4,8 +4,10 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::layout::Layout;
-use crate::sizes::Sizes;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use crate::layout::{fitted, Layout};
+use crate::sizes::{text_width, Sizes};
 use crate::ticks::Axis;
 use crate::FigureError;
 
@@ -33,6 +35,8 @@ pub(crate) fn chart<'a, DB: DrawingBackend>(
         .build_cartesian_2d(x.coord(), y.coord())?;
     let fx = |v: &f64| x.label_at(*v);
     let fy = |v: &f64| y.label_at(*v);
+    let (w, h) = area.dim_in_pixel();
+    let plot = layout.plot_size((w, h));
     chart
         .configure_mesh()
         .bold_line_style(RGBColor(220, 220, 220).stroke_width(sizes.px(1.0) as u32))
@@ -40,12 +44,27 @@ pub(crate) fn chart<'a, DB: DrawingBackend>(
         .axis_style(BLACK.stroke_width(sizes.axis()))
         .set_all_tick_mark_size(sizes.px(8.0))
         .label_style(sizes.font(sizes.tick()))
-        .axis_desc_style(sizes.font(sizes.label()))
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
-        .x_desc(x_desc)
-        .y_desc(y_desc)
         .draw()?;
+    // The axis names, each centred on its side of the plot, at the outer
+    // edge of its label area; a name longer than its side is set smaller.
+    let label = sizes.label();
+    let half = (label * 0.6) as i32;
+    let x_size = fitted(label, text_width(x_desc, label), plot.0);
+    let y_size = fitted(label, text_width(y_desc, label), plot.1);
+    let centre = |s: f64| sizes.font(s).pos(Pos::new(HPos::Center, VPos::Center));
+    let (x0, y0) = (layout.left + layout.y_area, layout.top);
+    area.draw(&Text::new(
+        x_desc,
+        (x0 + plot.0 / 2, y0 + plot.1 + layout.x_area - half),
+        centre(x_size),
+    ))?;
+    area.draw(&Text::new(
+        y_desc,
+        (layout.left + half, y0 + plot.1 / 2),
+        centre(y_size).transform(FontTransform::Rotate270),
+    ))?;
     Ok(chart)
 }
 

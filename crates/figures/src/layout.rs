@@ -3,6 +3,7 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::sizes::{text_size, Sizes};
 use crate::FigureError;
@@ -92,9 +93,10 @@ pub(crate) fn title_height(sizes: &Sizes, title: &str) -> i32 {
     title_margin(sizes) + text_h + 2 * (text_h / 2).min(5)
 }
 
-/// Draw `title` centred at the top of `area` (plotters'
-/// `DrawingArea::titled`, below our margin) and return the area under it,
-/// [`title_height`] shorter.
+/// Draw `title` centred at the top of `area` (below our margin, in the
+/// band [`title_height`] takes) and return the area under it. A title
+/// wider than the area is set in a smaller font, so that it never runs off
+/// the canvas.
 pub(crate) fn titled<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     sizes: &Sizes,
@@ -103,8 +105,25 @@ pub(crate) fn titled<DB: DrawingBackend>(
     if title.is_empty() {
         return Ok(area.clone());
     }
-    let (_, below) = area.split_vertically(title_margin(sizes));
-    Ok(below.titled(title, sizes.font(sizes.title()))?)
+    let (band, below) = area.split_vertically(title_height(sizes, title));
+    let (w, _) = band.dim_in_pixel();
+    let room = w as i32 - 2 * sizes.px(10.0);
+    let size = fitted(sizes.title(), text_size(title, sizes.title()).0, room);
+    let text_h = text_size(title, sizes.title()).1;
+    let y = title_margin(sizes) + (text_h / 2).min(5) + text_h / 2;
+    let style = sizes.font(size).pos(Pos::new(HPos::Center, VPos::Center));
+    band.draw(&Text::new(title, (w as i32 / 2, y), style))?;
+    Ok(below)
+}
+
+/// `size` scaled down so that a text `width` px wide at it fits in `room`
+/// px (`size` itself when it fits).
+pub(crate) fn fitted(size: f64, width: i32, room: i32) -> f64 {
+    if width > room && width > 0 && room > 0 {
+        size * f64::from(room) / f64::from(width)
+    } else {
+        size
+    }
 }
 
 #[cfg(test)]

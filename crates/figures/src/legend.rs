@@ -5,25 +5,23 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
+use crate::lines::Marker;
+use crate::marks::{self, Mark};
 use crate::sizes::{text_size, Sizes};
 use crate::FigureError;
 
 /// How a legend entry is drawn.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Swatch {
-    Line {
+    /// A filled circle (the snapshots' anchors and markers).
+    Marker { color: RGBColor, radius: i32 },
+    /// A line (dashed or not) and a mark of any shape, or the mark alone
+    /// (`width` 0): what a line plot's series draws.
+    Series {
         color: RGBColor,
         width: u32,
         dashed: bool,
-    },
-    Marker {
-        color: RGBColor,
-        radius: i32,
-    },
-    LineMarker {
-        color: RGBColor,
-        width: u32,
-        radius: i32,
+        mark: Option<(Marker, i32, bool)>,
     },
 }
 
@@ -62,6 +60,37 @@ pub(crate) fn box_size(sizes: &Sizes, lines: &[String], swatch: bool) -> (i32, i
     (w + left + 2 * padding(sizes), h + 2 * padding(sizes))
 }
 
+/// The entries of each of `columns` columns of a legend of `count`
+/// entries, filled column by column: `(first, count)`.
+fn column_ranges(count: usize, columns: usize) -> Vec<(usize, usize)> {
+    let columns = columns.clamp(1, count.max(1));
+    let rows = count.div_ceil(columns);
+    (0..columns)
+        .map(|c| (c * rows, rows.min(count.saturating_sub(c * rows))))
+        .filter(|r| r.1 > 0)
+        .collect()
+}
+
+/// Gap between two columns of a legend.
+fn column_gap(sizes: &Sizes) -> i32 {
+    sizes.px(24.0)
+}
+
+/// Size in pixels of a legend of `labels` in `columns` columns (filled
+/// column by column); one column is [`box_size`]'s.
+pub(crate) fn legend_size(sizes: &Sizes, labels: &[String], columns: usize) -> (i32, i32) {
+    let parts: Vec<(i32, i32)> = column_ranges(labels.len(), columns)
+        .into_iter()
+        .map(|(a, n)| box_size(sizes, &labels[a..a + n], true))
+        .collect();
+    let pad = 2 * padding(sizes);
+    let w = parts.iter().map(|p| p.0 - pad).sum::<i32>()
+        + column_gap(sizes) * (parts.len() as i32 - 1).max(0)
+        + pad;
+    let h = parts.iter().map(|p| p.1).max().unwrap_or(pad);
+    (w, h)
+}
+
 /// Add a legend entry to `chart`. plotters keeps a label with each series
 /// drawn; this series draws nothing, so every entry is one series whatever
 /// the pieces its data was drawn in. plotters calls the swatch closure with
@@ -73,41 +102,17 @@ pub(crate) fn add_entry<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (
     swatch: Swatch,
 ) -> Result<(), FigureError> {
     let len = swatch_length(sizes);
-    let (dash, gap) = (sizes.px(12.0), sizes.px(7.0));
     let entry = chart
         .draw_series(std::iter::empty::<EmptyElement<(f64, f64), DB>>())?
         .label(label);
     match swatch {
-        Swatch::Line {
-            color,
-            width,
-            dashed: false,
-        } => entry.legend(move |(x, y)| {
-            PathElement::new(vec![(x, y), (x + len, y)], color.stroke_width(width))
-        }),
-        Swatch::Line {
-            color,
-            width,
-            dashed: true,
-        } => entry.legend(move |(x, y)| {
-            DashedPathElement::new(
-                vec![(x, y), (x + len, y)],
-                dash,
-                gap,
-                color.stroke_width(width),
-            )
-        }),
         Swatch::Marker { color, radius } => {
             entry.legend(move |(x, y)| Circle::new((x + len / 2, y), radius, color.filled()))
         }
-        Swatch::LineMarker {
-            color,
-            width,
-            radius,
-        } => entry.legend(move |(x, y)| {
-            EmptyElement::at((x, y))
-                + PathElement::new(vec![(0, 0), (len, 0)], color.stroke_width(width))
-                + Circle::new((len / 2, 0), radius, color.filled())
+        // A line plot's series: drawn by `draw_entries`, not here; its
+        // colour as a line.
+        Swatch::Series { color, width, .. } => entry.legend(move |(x, y)| {
+            PathElement::new(vec![(x, y), (x + len, y)], color.stroke_width(width.max(1)))
         }),
     };
     Ok(())
@@ -158,5 +163,98 @@ pub(crate) fn draw_note<DB: DrawingBackend>(
         text.push_line(line.as_str());
     }
     area.draw(&text)?;
+    Ok(())
+}
+
+/// Draws a legend of `entries` (label and swatch) in `columns` columns in
+/// a box like the note's, its top-left corner at `origin` in pixels of
+/// `area`; its size is [`legend_size`]. Drawn by us rather than by
+/// plotters' series labels, so that it may sit outside the plot area.
+pub(crate) fn draw_entries<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    sizes: &Sizes,
+    origin: (i32, i32),
+    entries: &[(String, Swatch)],
+    columns: usize,
+) -> Result<(), FigureError> {
+    let labels: Vec<String> = entries.iter().map(|e| e.0.clone()).collect();
+    let (w, h) = legend_size(sizes, &labels, columns);
+    let (x, y) = origin;
+    // Where each entry goes: its column's left edge and its row.
+    let mut place = vec![(0, 0); entries.len()];
+    let mut left = x;
+    for (a, n) in column_ranges(entries.len(), columns) {
+        for (row, k) in (a..a + n).enumerate() {
+            place[k] = (left, row);
+        }
+        let (cw, _) = box_size(sizes, &labels[a..a + n], true);
+        left += cw - 2 * padding(sizes) + column_gap(sizes);
+    }
+    let corners = [(x, y), (x + w, y + h)];
+    area.draw(&Rectangle::new(corners, WHITE.mix(0.9).filled()))?;
+    area.draw(&Rectangle::new(
+        corners,
+        BORDER.stroke_width(sizes.px(1.0) as u32),
+    ))?;
+    let size = sizes.legend();
+    let font = sizes.font(size);
+    let pad = padding(sizes);
+    let len = swatch_length(sizes);
+    let (dash, gap) = (sizes.px(12.0), sizes.px(7.0));
+    for (i, (label, swatch)) in entries.iter().enumerate() {
+        let (cx, row) = place[i];
+        let top = y + pad + (row as f64 * size * LINE_SPACING).round() as i32;
+        let (_, th) = text_size(label, size);
+        let mid = top + th / 2;
+        let x0 = cx + pad;
+        area.draw(&Text::new(
+            label.as_str(),
+            (x0 + swatch_area(sizes), top),
+            font.clone(),
+        ))?;
+        let line = |color: RGBColor, width: u32, dashed: bool| -> Result<(), FigureError> {
+            let pts = vec![(x0, mid), (x0 + len, mid)];
+            if dashed {
+                area.draw(&DashedPathElement::new(
+                    pts,
+                    dash,
+                    gap,
+                    color.stroke_width(width),
+                ))?;
+            } else {
+                area.draw(&PathElement::new(pts, color.stroke_width(width)))?;
+            }
+            Ok(())
+        };
+        let mark = |color: RGBColor, marker: Marker, radius: i32, hollow: bool| {
+            marks::draw(
+                area,
+                std::iter::once((x0 + len / 2, mid)),
+                Mark {
+                    marker,
+                    radius,
+                    color,
+                    hollow,
+                    outline: sizes.px(2.0) as u32,
+                },
+            )
+        };
+        match *swatch {
+            Swatch::Marker { color, radius } => mark(color, Marker::Circle, radius, false)?,
+            Swatch::Series {
+                color,
+                width,
+                dashed,
+                mark: m,
+            } => {
+                if width > 0 {
+                    line(color, width, dashed)?;
+                }
+                if let Some((marker, radius, hollow)) = m {
+                    mark(color, marker, radius, hollow)?;
+                }
+            }
+        }
+    }
     Ok(())
 }

@@ -33,6 +33,7 @@ mod layout;
 mod legend;
 mod line_layout;
 mod lines;
+mod marks;
 mod output;
 mod placement;
 mod sizes;
@@ -45,9 +46,9 @@ pub use category::{category_map, category_map_to, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
 pub use format::format_number;
-pub use line_layout::{line_plot_boxes, LinePlotBoxes};
+pub use line_layout::{line_plot_boxes, LinePlotBoxes, PanelLayout, MIN_FILL};
 pub use lines::{
-    line_plot, line_plot_pair, line_plot_pair_to, LinePlot, Series, Style, LINE_PLOT_SIZE,
+    line_plot, line_plot_pair, line_plot_pair_to, LinePlot, Marker, Series, Style, LINE_PLOT_SIZE,
     PAIR_SIZE,
 };
 pub use output::{FigureError, Output};

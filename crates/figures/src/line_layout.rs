@@ -1,6 +1,8 @@
-//! The layout of a line plot, made before drawing: both axes (with room
-//! above the data when the boxes would hide it), and where the legend and
-//! the note box go.
+//! The layout of a line plot, made before drawing: both axes (fitted to
+//! the data), and where the legend and the note box go: in a corner of the
+//! plot where they hide no data, else beside the plot (right of it, or
+//! under it when a column would leave the plot too narrow). The axes never
+//! grow to make room for the boxes, so the data fill their ranges.
 
 use crate::layout::{self, Layout};
 use crate::legend;
@@ -19,11 +21,27 @@ pub(crate) fn to_plot(s: &Series, x: &Axis, y: &Axis) -> Vec<Option<(f64, f64)>>
 }
 
 pub(crate) fn has_line(style: Style) -> bool {
-    matches!(style, Style::Line | Style::LinePoints | Style::Dashed)
+    matches!(
+        style,
+        Style::Line | Style::LinePoints | Style::Dashed | Style::DashedPoints
+    )
 }
 
 pub(crate) fn has_marks(style: Style) -> bool {
-    matches!(style, Style::Points | Style::LinePoints)
+    matches!(
+        style,
+        Style::Points | Style::LinePoints | Style::DashedPoints
+    )
+}
+
+pub(crate) fn is_dashed(style: Style) -> bool {
+    matches!(style, Style::Dashed | Style::DashedPoints)
+}
+
+/// The radius of a series' marks: hollow marks are drawn larger, so that
+/// a filled mark under one shows inside it.
+pub(crate) fn mark_radius(s: &Series, sizes: &Sizes) -> i32 {
+    sizes.px(if s.hollow { 8.0 } else { 5.5 })
 }
 
 /// The pieces of series `s` drawn on axes `x`, `y` (plot space): its line
@@ -49,25 +67,33 @@ fn drawn_pieces(s: &Series, x: &Axis, y: &Axis) -> Vec<Vec<(f64, f64)>> {
     pieces
 }
 
-/// Where the data of `p` is drawn, in pixels of a `plot` area.
-fn occupancy(p: &LinePlot, x: &Axis, y: &Axis, plot: (i32, i32)) -> Occupancy {
-    let pieces: Vec<Vec<(f64, f64)>> = p
-        .series
+/// Every piece of data of `p` as drawn on `x`, `y`.
+fn all_pieces(p: &LinePlot, x: &Axis, y: &Axis) -> Vec<Vec<(f64, f64)>> {
+    p.series
         .iter()
         .flat_map(|s| drawn_pieces(s, x, y))
-        .collect();
-    Occupancy::new(&pieces, x, y, plot)
+        .collect()
 }
 
-/// Size of the legend of `p` (`None` if no series is labelled).
-fn legend_size(p: &LinePlot, sizes: &Sizes) -> Option<(i32, i32)> {
-    let labels: Vec<String> = p
-        .series
+/// Where the data of `p` is drawn, in pixels of a `plot` area.
+fn occupancy(p: &LinePlot, x: &Axis, y: &Axis, plot: (i32, i32)) -> Occupancy {
+    Occupancy::new(&all_pieces(p, x, y), x, y, plot)
+}
+
+/// The legend lines of `p`: the labelled series.
+fn legend_labels(p: &LinePlot) -> Vec<String> {
+    p.series
         .iter()
         .filter(|s| !s.label.is_empty())
         .map(|s| s.label.clone())
-        .collect();
-    (!labels.is_empty()).then(|| legend::box_size(sizes, &labels, true))
+        .collect()
+}
+
+/// Size of the legend of `p` in `columns` columns (`None` if no series is
+/// labelled).
+fn legend_size(p: &LinePlot, sizes: &Sizes, columns: usize) -> Option<(i32, i32)> {
+    let labels = legend_labels(p);
+    (!labels.is_empty()).then(|| legend::legend_size(sizes, &labels, columns))
 }
 
 /// Size of the note box of `p` (`None` without notes).
@@ -80,64 +106,69 @@ fn inset(sizes: &Sizes) -> i32 {
     sizes.px(14.0)
 }
 
-/// Choose both axes for `p` in an area of `size` pixels. If the legend and
-/// the note box would hide data wherever they go, room is made above the
-/// data (unless the y range is fixed).
-fn choose_axes(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> (Axis, Axis, Layout) {
+/// The data of `p` that can be shown on its axes (data space).
+fn shown_points(p: &LinePlot) -> Vec<(f64, f64)> {
     let valid = |v: f64, log: bool| v.is_finite() && (!log || v > 0.0);
-    let pts: Vec<(f64, f64)> = p
-        .series
+    p.series
         .iter()
         .flat_map(|s| s.points.iter().copied())
         .filter(|&(x, y)| valid(x, p.log_x) && valid(y, p.log_y))
-        .collect();
+        .collect()
+}
+
+/// Both axes of `p` for an area of `size` pixels, fitted to its data (or
+/// its fixed ranges), with `extra` pixels `(right, bottom)` kept beside
+/// the plot for the boxes. The padding keeps every mark clear of the frame.
+fn build_axes(
+    p: &LinePlot,
+    sizes: &Sizes,
+    size: (u32, u32),
+    extra: (i32, i32),
+) -> (Axis, Axis, Layout) {
+    let pts = shown_points(p);
     let (x0, x1, y0, y1) = layout::bounds(&pts).unwrap_or((1.0, 10.0, 1.0, 10.0));
-    let pad = 0.04;
-    let build = |headroom: f64| {
-        let mut layout = Layout::standard(sizes, 0);
-        let (_, ph) = layout.plot_size(size);
-        let ty = (ph as f64 / (95.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
-        let mut y = Axis::auto(y0, y1, p.y_range, p.log_y, pad, ty);
-        if headroom > 0.0 {
-            let hi = y.hi + headroom * y.span();
-            y = if y.log {
-                Axis::log(y.lo, hi, ty)
-            } else {
-                Axis::linear(y.lo, hi, ty)
-            };
-        }
-        layout = Layout::standard(sizes, y.max_label_width(sizes.tick()));
-        let (pw, _) = layout.plot_size(size);
-        let tx = (pw as f64 / (170.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
-        let mut x = Axis::auto(x0, x1, p.x_range, p.log_x, pad, tx);
-        if let (Some(step), false) = (p.x_tick_step, p.log_x) {
-            x = Axis::linear_step(x.lo, x.hi, step);
-        }
-        if p.equal_aspect && !p.log_x && !p.log_y {
-            let (bx, by) = ((x.lo, x.hi), (y.lo, y.hi));
-            for _ in 0..2 {
-                let (ex, ey) = layout::equalize(bx, by, layout.plot_size(size));
-                x = Axis::linear(ex.0, ex.1, tx);
-                y = Axis::linear(ey.0, ey.1, ty);
-                layout = Layout::standard(sizes, y.max_label_width(sizes.tick()));
-            }
-        }
-        (x, y, layout)
+    let radius = p
+        .series
+        .iter()
+        .filter(|s| has_marks(s.style))
+        .map(|s| mark_radius(s, sizes))
+        .max()
+        .unwrap_or(0);
+    let with_extra = |mut l: Layout| {
+        l.right += extra.0;
+        l.bottom += extra.1;
+        l
     };
-    let (x, y, layout) = build(0.0);
-    let (legend, note) = (legend_size(p, sizes), note_size(p, sizes));
-    if (legend.is_none() && note.is_none()) || p.y_range.is_some() {
-        return (x, y, layout);
+    let mut layout = with_extra(Layout::standard(sizes, 0));
+    let (_, ph) = layout.plot_size(size);
+    // A mark's radius and a few pixels, as a fraction of the plot.
+    let clear = |px: i32| (f64::from(radius) + f64::from(sizes.px(4.0))) / f64::from(px.max(1));
+    let ty = (ph as f64 / (95.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
+    let y = Axis::auto(y0, y1, p.y_range, p.log_y, 0.04 + clear(ph), ty);
+    layout = with_extra(Layout::standard(sizes, y.max_label_width(sizes.tick())));
+    let (pw, _) = layout.plot_size(size);
+    let tx = (pw as f64 / (170.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
+    let mut x = Axis::auto(x0, x1, p.x_range, p.log_x, 0.04 + clear(pw), tx);
+    let mut y = y;
+    if let (Some(step), false) = (p.x_tick_step, p.log_x) {
+        x = Axis::linear_step(x.lo, x.hi, step);
     }
-    let plot = layout.plot_size(size);
-    let occ = occupancy(p, &x, &y, plot);
-    let inset = inset(sizes);
-    if placement::place_boxes(&occ, plot, inset, legend, note).hidden == 0 {
-        return (x, y, layout);
+    if p.equal_aspect && !p.log_x && !p.log_y {
+        let (bx, by) = ((x.lo, x.hi), (y.lo, y.hi));
+        for _ in 0..2 {
+            let (ex, ey) = layout::equalize(bx, by, layout.plot_size(size));
+            // One tick step on both axes: equal scales read as equal.
+            let (ax, ay) = (Axis::linear(ex.0, ex.1, tx), Axis::linear(ey.0, ey.1, ty));
+            let step = ax.step().max(ay.step());
+            x = Axis::linear_step(ex.0, ex.1, step);
+            y = Axis::linear_step(ey.0, ey.1, step);
+            layout = with_extra(Layout::standard(sizes, y.max_label_width(sizes.tick())));
+        }
     }
-    let band = placement::top_band(plot, inset, legend, note);
-    let frac = (band + 2 * inset) as f64 / plot.1.max(1) as f64;
-    build(frac / (1.0 - frac).max(0.3))
+    if let Some(at) = &p.x_ticks {
+        x = x.with_ticks_at(at);
+    }
+    (x, y, layout)
 }
 
 /// Axes, margins and the places of the legend and the note box of one plot.
@@ -147,29 +178,203 @@ pub(crate) struct Plan {
     pub layout: Layout,
     /// Size of the plot area.
     pub plot: (i32, i32),
+    /// In pixels of the plot area (y down): in it, hiding no data, or
+    /// beside it (right of the plot, or under its x label).
     pub boxes: Boxes,
+    /// The legend's columns (more than one only under the plot).
+    pub columns: usize,
+}
+
+/// The sizes of a legend and a note box, either absent.
+type BoxSizes = (Option<(i32, i32)>, Option<(i32, i32)>);
+
+/// The legend and the note stacked (`true`) or side by side: its size.
+fn group((l, n): BoxSizes, inset: i32, stacked: bool) -> (i32, i32) {
+    match (l, n) {
+        (Some(a), Some(b)) if stacked => (a.0.max(b.0), a.1 + inset + b.1),
+        (Some(a), Some(b)) => (a.0 + inset + b.0, a.1.max(b.1)),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => (0, 0),
+    }
+}
+
+/// The boxes of a group whose top-left corner is `at`.
+fn place_group((l, n): BoxSizes, inset: i32, stacked: bool, at: (i32, i32)) -> Boxes {
+    let legend = l.map(|s| PixelRect::new(at, s));
+    let note = n.map(|s| match (l, stacked) {
+        (Some(a), true) => PixelRect::new((at.0, at.1 + a.1 + inset), s),
+        (Some(a), false) => PixelRect::new((at.0 + a.0 + inset, at.1), s),
+        (None, _) => PixelRect::new(at, s),
+    });
+    Boxes {
+        legend,
+        note,
+        hidden: 0,
+    }
 }
 
 impl Plan {
     /// The plan of `p` in an area of `size` pixels (under its title).
     pub fn new(p: &LinePlot, sizes: &Sizes, size: (u32, u32)) -> Plan {
-        let (x, y, layout) = choose_axes(p, sizes, size);
+        let one = (legend_size(p, sizes, 1), note_size(p, sizes));
+        let inset = inset(sizes);
+        let (x, y, layout) = build_axes(p, sizes, size, (0, 0));
         let plot = layout.plot_size(size);
         let occ = occupancy(p, &x, &y, plot);
-        let boxes = placement::place_boxes(
-            &occ,
-            plot,
-            inset(sizes),
-            legend_size(p, sizes),
-            note_size(p, sizes),
-        );
-        Plan {
-            x,
-            y,
-            layout,
-            plot,
-            boxes,
+        let inside = placement::place_boxes(&occ, plot, inset, one.0, one.1);
+        if inside.hidden == 0 {
+            return Plan {
+                x,
+                y,
+                layout,
+                plot,
+                boxes: inside,
+                columns: 1,
+            };
         }
+        // Right of the plot: stacked if that fits its height, else side by
+        // side; taken if it leaves the plot at least 60% of its width.
+        let stacked_r = group(one, inset, true).1 <= plot.1;
+        let (gw, _) = group(one, inset, stacked_r);
+        let (xr, yr, lr) = build_axes(p, sizes, size, (gw + inset, 0));
+        let plot_r = lr.plot_size(size);
+        let right = Plan {
+            x: xr,
+            y: yr,
+            layout: lr,
+            plot: plot_r,
+            boxes: place_group(one, inset, stacked_r, (plot_r.0 + inset, 0)),
+            columns: 1,
+        };
+        if 10 * plot_r.0 >= 6 * plot.0 {
+            return right;
+        }
+        // Under the plot, across the whole panel: the legend in as many
+        // columns as fit, the note beside it if both fit, else under it;
+        // taken unless it leaves the plot less of its height than the
+        // column leaves of its width.
+        let width = size.0 as i32 - 2 * inset;
+        let count = legend_labels(p).len().max(1);
+        let columns = (1..=count)
+            .rev()
+            .find(|&c| legend_size(p, sizes, c).is_none_or(|s| s.0 <= width))
+            .unwrap_or(1);
+        let both = (legend_size(p, sizes, columns), one.1);
+        let stacked = group(both, inset, false).0 > width;
+        let (gw, gh) = group(both, inset, stacked);
+        let (xb, yb, lb) = build_axes(p, sizes, size, (0, gh + inset));
+        let plot_b = lb.plot_size(size);
+        // Centred in the panel, whose left edge is this far left of the plot.
+        let left = lb.left + lb.y_area;
+        let at = (
+            (size.0 as i32 - gw) / 2 - left,
+            plot_b.1 + lb.x_area + inset,
+        );
+        if i64::from(plot_b.1) * i64::from(plot.0) < i64::from(plot_r.0) * i64::from(plot.1) {
+            return right;
+        }
+        Plan {
+            x: xb,
+            y: yb,
+            layout: lb,
+            plot: plot_b,
+            boxes: place_group(both, inset, stacked, at),
+            columns,
+        }
+    }
+
+    /// What this plan draws: its axes, the extent of its data, its boxes.
+    pub fn report(&self, p: &LinePlot) -> PanelLayout {
+        let pieces = all_pieces(p, &self.x, &self.y);
+        let data = layout::bounds(pieces.iter().flatten()).map(|(a, b, c, d)| ((a, b), (c, d)));
+        PanelLayout {
+            plot: self.plot,
+            x: (self.x.lo, self.x.hi),
+            y: (self.y.lo, self.y.hi),
+            log_x: self.x.log,
+            log_y: self.y.log,
+            equal_aspect: p.equal_aspect && !p.log_x && !p.log_y,
+            data,
+            legend: self.boxes.legend,
+            note: self.boxes.note,
+            hidden: self.boxes.hidden,
+        }
+    }
+}
+
+/// What one panel of a line plot draws, for the checks of the figures
+/// that use it: its axis ranges, how much of them its data span, where its
+/// boxes are and what data they cover. Ranges are in plot space (`log10`
+/// of the data on a log axis), pixels those of the SVG.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PanelLayout {
+    /// Size of the plot area (inside the axes).
+    pub plot: (i32, i32),
+    pub x: (f64, f64),
+    pub y: (f64, f64),
+    pub log_x: bool,
+    pub log_y: bool,
+    /// Equal scales on both axes, so that one axis holds more than its data.
+    pub equal_aspect: bool,
+    /// The extent of the data drawn (inside the axes), `(x, y)`.
+    pub data: Option<((f64, f64), (f64, f64))>,
+    /// Legend and note box, in pixels of the plot area (outside it when
+    /// they sit beside the plot).
+    pub legend: Option<PixelRect>,
+    pub note: Option<PixelRect>,
+    /// Samples of the drawn data (about 6 px apart along every line, and
+    /// every mark) that the boxes cover or come within 6 px of.
+    pub hidden: usize,
+}
+
+/// The least share of an axis's range (decades on a log axis) its data
+/// must span.
+pub const MIN_FILL: f64 = 0.5;
+
+impl PanelLayout {
+    /// The share of each axis's range that the data span.
+    pub fn fill(&self) -> (f64, f64) {
+        let share = |(a, b): (f64, f64), (lo, hi): (f64, f64)| (b - a) / (hi - lo);
+        self.data.map_or((0.0, 0.0), |(dx, dy)| {
+            (share(dx, self.x), share(dy, self.y))
+        })
+    }
+
+    /// What is wrong with this panel: data spanning less than
+    /// [`MIN_FILL`] of an axis (of either one for equal scales, which fix
+    /// the other), or a box over data. Empty when nothing is.
+    pub fn problems(&self) -> Vec<String> {
+        let mut out = vec![];
+        let (fx, fy) = self.fill();
+        let unit = |log: bool| if log { " (decades)" } else { "" };
+        if self.data.is_none() {
+            out.push("no data drawn".to_string());
+        } else if self.equal_aspect {
+            if fx.max(fy) < MIN_FILL {
+                out.push(format!(
+                    "the data span {:.0}% of x and {:.0}% of y (equal scales)",
+                    100.0 * fx,
+                    100.0 * fy
+                ));
+            }
+        } else {
+            for (name, f, log) in [("x", fx, self.log_x), ("y", fy, self.log_y)] {
+                if f < MIN_FILL {
+                    out.push(format!(
+                        "the data span {:.0}% of the {name} axis{}",
+                        100.0 * f,
+                        unit(log)
+                    ));
+                }
+            }
+        }
+        if self.hidden > 0 {
+            out.push(format!(
+                "the legend or note covers {} data samples",
+                self.hidden
+            ));
+        }
+        out
     }
 }
 
@@ -188,13 +393,18 @@ pub struct LinePlotBoxes {
     pub hidden: usize,
 }
 
-/// The layout [`line_plot`](crate::line_plot) draws `p` with: where its legend and note box go.
-pub fn line_plot_boxes(p: &LinePlot) -> Result<LinePlotBoxes, FigureError> {
-    font::ensure_registered()?;
+/// The plan of `p` drawn alone on [`LINE_PLOT_SIZE`] at the SVG's scale.
+pub(crate) fn single_plan(p: &LinePlot) -> Plan {
     let sizes = Sizes::STANDARD;
     let (w, h) = LINE_PLOT_SIZE;
     let title_h = layout::title_height(&sizes, p.title) as u32;
-    let plan = Plan::new(p, &sizes, (w, h - title_h));
+    Plan::new(p, &sizes, (w, h - title_h))
+}
+
+/// The layout [`line_plot`](crate::line_plot) draws `p` with: where its legend and note box go.
+pub fn line_plot_boxes(p: &LinePlot) -> Result<LinePlotBoxes, FigureError> {
+    font::ensure_registered()?;
+    let plan = single_plan(p);
     Ok(LinePlotBoxes {
         plot: plan.plot,
         legend: plan.boxes.legend,

@@ -16,12 +16,18 @@ use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::{BitMapBackend, DrawingArea, DrawingBackend, IntoDrawingArea, SVGBackend};
 
 use crate::font;
+use crate::line_layout::PanelLayout;
 
-/// The files one figure was written to.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// The files one figure was written to, and, for a line plot or a pair,
+/// what each panel drew ([`PanelLayout`]: its axes, its data's extent,
+/// its boxes), for checks of the figure.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Output {
     pub png: PathBuf,
     pub svg: PathBuf,
+    /// Empty for the figures that report no layout (snapshots, maps, the
+    /// sketch).
+    pub panels: Vec<PanelLayout>,
 }
 
 impl Output {
@@ -31,7 +37,26 @@ impl Output {
         Self {
             png: with_suffix(stem, ".png"),
             svg: with_suffix(stem, ".svg"),
+            panels: Vec::new(),
         }
+    }
+
+    /// What is wrong with the panels drawn (see [`PanelLayout::problems`]),
+    /// each line naming its panel; empty when nothing is.
+    pub fn problems(&self) -> Vec<String> {
+        self.panels
+            .iter()
+            .enumerate()
+            .flat_map(|(k, p)| {
+                let which = match (self.panels.len(), k) {
+                    (1, _) => String::new(),
+                    (_, 0) => "left panel: ".to_string(),
+                    (_, 1) => "right panel: ".to_string(),
+                    (_, k) => format!("panel {k}: "),
+                };
+                p.problems().into_iter().map(move |e| format!("{which}{e}"))
+            })
+            .collect()
     }
 }
 

@@ -268,22 +268,6 @@ pub(crate) fn place_boxes(
     }
 }
 
-/// Height of the band at the top of a `plot` that holds the legend and the
-/// note: side by side if they fit in its width, else one under the other.
-pub(crate) fn top_band(
-    plot: (i32, i32),
-    inset: i32,
-    legend: Option<(i32, i32)>,
-    note: Option<(i32, i32)>,
-) -> i32 {
-    match (legend, note) {
-        (Some(l), Some(n)) if l.0 + n.0 + 3 * inset <= plot.0 => l.1.max(n.1),
-        (Some(l), Some(n)) => l.1 + inset + n.1,
-        (Some(b), None) | (None, Some(b)) => b.1,
-        (None, None) => 0,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -325,13 +309,5 @@ mod tests {
         let b = place_boxes(&occ, plot, 10, Some((250, 150)), Some((250, 150)));
         assert!(b.legend.is_some() && b.note.is_some());
         assert_ne!(b.legend, b.note);
-    }
-
-    #[test]
-    fn top_band_fits_side_by_side_or_stacked() {
-        let (l, n) = (Some((300, 100)), Some((200, 60)));
-        assert_eq!(top_band((1000, 800), 10, l, n), 100);
-        assert_eq!(top_band((520, 800), 10, l, n), 170);
-        assert_eq!(top_band((520, 800), 10, None, n), 60);
     }
 }

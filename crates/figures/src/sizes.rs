@@ -39,9 +39,6 @@ impl Sizes {
     pub fn legend(&self) -> f64 {
         28.0 * self.scale
     }
-    pub fn note(&self) -> f64 {
-        26.0 * self.scale
-    }
     /// Width of a data line.
     pub fn line(&self) -> u32 {
         self.px(3.0) as u32

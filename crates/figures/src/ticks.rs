@@ -66,12 +66,18 @@ impl Axis {
         }
     }
 
-    /// A log axis over `[lo, hi]` given in `log10` units.
+    /// A log axis over `[lo, hi]` given in `log10` units: ticks at the
+    /// powers of ten when at least two lie inside, else at 1, 2, 5 (or
+    /// every mantissa, or nice linear steps) times them, labelled as plain
+    /// numbers, so that data within a decade get ticks of their own.
     pub fn log(lo: f64, hi: f64, target: usize) -> Axis {
         let (lo, hi) = nondegenerate(lo, hi);
         let first = (lo - 1e-9).ceil() as i64;
         let last = (hi + 1e-9).floor() as i64;
         let count = (last - first + 1).max(0) as usize;
+        if count < 2 || (hi - lo < 2.5 && 3 * count <= target.max(3) + 3) {
+            return Axis::log_within(lo, hi, target);
+        }
         let every = count.div_ceil(target.max(2)).max(1) as i64;
         let ticks: Vec<f64> = (first..=last)
             .filter(|k| k.rem_euclid(every) == 0)
@@ -96,6 +102,86 @@ impl Axis {
             ticks,
             labels,
             minor,
+        }
+    }
+
+    /// A log axis over less than two and a half decades (`lo`, `hi` in
+    /// `log10` units): ticks at the first of the mantissa sets 1, 2, 5 and
+    /// 1 .. 9 that puts at least three inside, else at nice linear steps
+    /// of the data; the other mantissas 1 .. 9 as minor grid lines.
+    fn log_within(lo: f64, hi: f64, target: usize) -> Axis {
+        let decades = (lo.floor() as i64 - 1)..=(hi.ceil() as i64);
+        let inside = |v: f64| v >= lo - 1e-9 && v <= hi + 1e-9;
+        let at = |mantissas: &[f64]| -> Vec<f64> {
+            decades
+                .clone()
+                .flat_map(|k| mantissas.iter().map(move |m| k as f64 + m.log10()))
+                .filter(|&v| inside(v))
+                .collect()
+        };
+        let all: Vec<f64> = (1..=9).map(f64::from).collect();
+        let mut ticks = at(&[1.0, 2.0, 5.0]);
+        if ticks.len() < 3 {
+            ticks = at(&all);
+        }
+        if ticks.len() > target.max(3) + 3 {
+            ticks = at(&[1.0, 2.0, 5.0]);
+        }
+        if ticks.len() < 3 {
+            let (a, b) = (10f64.powf(lo), 10f64.powf(hi));
+            let step = nice_step((b - a) / target.max(3) as f64);
+            ticks = multiples(a, b, step)
+                .into_iter()
+                .filter(|&v| v > 0.0)
+                .map(f64::log10)
+                .collect();
+        }
+        let labels = ticks
+            .iter()
+            .map(|&t| crate::format::format_number(10f64.powf(t), 3))
+            .collect();
+        let minor = at(&all)
+            .into_iter()
+            .filter(|v| !ticks.iter().any(|t| (t - v).abs() < 1e-9))
+            .collect();
+        Axis {
+            lo,
+            hi,
+            log: true,
+            ticks,
+            labels,
+            minor,
+        }
+    }
+
+    /// An axis like this one (linear or log) over `[lo, hi]` (plot space)
+    /// with ticks at the data values `at` inside it, labelled as plain
+    /// numbers (a ladder of `n`, the steps of a method).
+    pub fn with_ticks_at(&self, at: &[f64]) -> Axis {
+        let ticks: Vec<f64> = at
+            .iter()
+            .filter_map(|&v| self.to_plot(v))
+            .filter(|&p| {
+                p >= self.lo - 1e-9 * self.span().abs() && p <= self.hi + 1e-9 * self.span().abs()
+            })
+            .collect();
+        if ticks.len() < 2 {
+            return self.clone();
+        }
+        let labels = at
+            .iter()
+            .filter(|&&v| {
+                self.to_plot(v).is_some_and(|p| {
+                    p >= self.lo - 1e-9 * self.span().abs()
+                        && p <= self.hi + 1e-9 * self.span().abs()
+                })
+            })
+            .map(|&v| crate::format::format_number(v, 4))
+            .collect();
+        Axis {
+            ticks,
+            labels,
+            ..self.clone()
         }
     }
 
@@ -141,6 +227,14 @@ impl Axis {
 
     pub fn span(&self) -> f64 {
         self.hi - self.lo
+    }
+
+    /// The step between its first two ticks (its span without two).
+    pub fn step(&self) -> f64 {
+        match self.ticks[..] {
+            [a, b, ..] => b - a,
+            _ => self.span(),
+        }
     }
 
     /// The label of the tick nearest to `v` (for plotters' formatter).
@@ -210,22 +304,16 @@ fn nondegenerate(lo: f64, hi: f64) -> (f64, f64) {
     }
 }
 
-/// A log range (log10 units) that always holds at least two powers of ten.
+/// A log range (log10 units) of the data padded by `pad` of its span (at
+/// least a fiftieth of a decade each side): data within a decade keep a
+/// range of their own ([`Axis::log`] gives it ticks).
 fn log_range(min: f64, max: f64, pad: f64) -> (f64, f64) {
     if !(min > 0.0 && max > 0.0 && min.is_finite() && max.is_finite()) {
         return (0.0, 1.0);
     }
     let (a, b) = (min.log10(), max.log10());
-    let p = (b - a) * pad;
-    let (lo, hi) = (a - p, b + p);
-    if hi.floor() - lo.ceil() >= 1.0 {
-        (lo, hi)
-    } else {
-        // Less than two decades inside: widen to whole decades.
-        let lo = lo.floor();
-        let hi = hi.ceil().max(lo + 1.0);
-        (lo, hi)
-    }
+    let p = ((b - a) * pad).max(0.02);
+    (a - p, b + p)
 }
 
 /// 1, 2, 2.5 or 5 times a power of ten, at least `raw`.
@@ -297,10 +385,18 @@ mod tests {
         assert!(a.log);
         assert!(a.labels.contains(&"10⁻⁶".to_string()), "{:?}", a.labels);
         assert!(a.labels.iter().all(|l| l.starts_with("10")));
-        // Less than a decade of data still gets two labelled decades.
+        // Data within a decade keep their range and get ticks inside it.
         let b = Axis::auto(2.0, 8.0, None, true, 0.03, 8);
-        assert_eq!(b.labels, vec!["10⁰", "10¹"]);
-        assert!(!b.minor.is_empty());
+        assert_eq!(b.labels, vec!["2", "3", "4", "5", "6", "7", "8"]);
+        assert!(b.lo > 2f64.log10() - 0.05 && b.hi < 8f64.log10() + 0.05);
+        let t = Axis::auto(1.4, 3.5, None, true, 0.04, 6);
+        assert_eq!(t.labels, vec!["1.5", "2", "2.5", "3", "3.5"]);
+        let i = Axis::auto(0.35, 0.75, None, true, 0.04, 6);
+        assert_eq!(i.labels, vec!["0.4", "0.5", "0.6", "0.7"]);
+        let n = Axis::auto(25.0, 400.0, None, true, 0.04, 6);
+        assert_eq!(n.labels, vec!["50", "100", "200"]);
+        let ladder = n.with_ticks_at(&[25.0, 50.0, 100.0, 200.0, 400.0]);
+        assert_eq!(ladder.labels, vec!["25", "50", "100", "200", "400"]);
         // Many decades: labels thinned.
         let c = Axis::auto(1e-14, 1e2, None, true, 0.0, 6);
         assert!(c.ticks.len() <= 6, "{:?}", c.labels);

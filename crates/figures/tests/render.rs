@@ -414,6 +414,112 @@ fn legend_and_note_share_the_one_free_corner() {
     assert!(note.y0 >= legend.y1 && note.y1 < b.plot.1 / 2, "{b:?}");
 }
 
+/// Lines filling the whole plot: a legend anywhere inside would cover them.
+fn filled(n: usize) -> Vec<Series> {
+    (0..n)
+        .map(|k| {
+            let y = k as f64 / (n - 1) as f64;
+            Series::line(
+                format!("level {k}"),
+                (0..=40).map(|i| (i as f64 / 40.0, y)).collect(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_legend_that_would_hide_data_goes_beside_the_plot_and_the_axes_stay_fitted() {
+    let dir = scratch("beside");
+    let mut p = LinePlot::new("Beside", "x", "y");
+    p.series = filled(12);
+    p.annotations = vec!["a note beside the legend".into()];
+    let b = line_plot_boxes(&p).unwrap();
+    let (legend, note) = (b.legend.unwrap(), b.note.unwrap());
+    assert_eq!(b.hidden, 0, "{b:?}");
+    for r in [legend, note] {
+        assert!(
+            r.x0 >= b.plot.0 || r.y0 >= b.plot.1,
+            "a box inside the plot over its data: {b:?}"
+        );
+    }
+    assert!(!legend.overlaps(&note), "{b:?}");
+    let out = line_plot(&p, &dir.join("single")).unwrap();
+    assert_eq!(out.problems(), Vec::<String>::new());
+    let (fx, fy) = out.panels[0].fill();
+    assert!(
+        fx > 0.85 && fy > 0.85,
+        "the axes grew past the data: {fx} {fy}"
+    );
+    // The same in a narrow panel of a pair.
+    let out = line_plot_pair(&p, &p, "pair", &dir.join("pair")).unwrap();
+    assert_eq!(out.problems(), Vec::<String>::new());
+    assert_has_text(&svg_texts(&out.svg), "level 11");
+    done(&dir);
+}
+
+#[test]
+fn a_range_wider_than_its_data_and_a_box_over_data_are_reported() {
+    let dir = scratch("report");
+    let mut p = LinePlot::new("Too wide", "x", "y");
+    p.series = vec![Series::line("data", vec![(0.0, 1.0), (1.0, 2.0)])];
+    p.x_range = Some((0.0, 10.0));
+    let out = line_plot(&p, &dir.join("wide")).unwrap();
+    let problems = out.problems();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(problems[0].contains("x axis"), "{problems:?}");
+    // Decades on a log axis: data over two of eight.
+    p.log_y = true;
+    p.x_range = None;
+    p.y_range = Some((1e-4, 1e4));
+    p.series = vec![Series::line("data", vec![(0.0, 1.0), (1.0, 100.0)])];
+    let out = line_plot(&p, &dir.join("decades")).unwrap();
+    assert!(
+        out.problems()[0].contains("y axis (decades)"),
+        "{:?}",
+        out.problems()
+    );
+    // Data within a decade fill a log axis of their own.
+    p.y_range = None;
+    p.series = vec![Series::line("data", vec![(0.0, 1.4), (1.0, 3.5)])];
+    let out = line_plot(&p, &dir.join("within")).unwrap();
+    assert_eq!(out.problems(), Vec::<String>::new());
+    // A box over data, as a layout would report it.
+    let mut panel = out.panels[0].clone();
+    panel.hidden = 3;
+    assert_eq!(
+        panel.problems(),
+        vec!["the legend or note covers 3 data samples".to_string()]
+    );
+    done(&dir);
+}
+
+#[test]
+fn marks_are_drawn_over_every_line_and_hollow_ones_show_what_is_under_them() {
+    let dir = scratch("marks");
+    let mut p = LinePlot::new("Marks", "x", "y");
+    let pts: Vec<(f64, f64)> = (0..5).map(|i| (f64::from(i), f64::from(i))).collect();
+    p.series = vec![
+        Series::points("under", pts.clone()).with_color(RGBColor(200, 0, 0)),
+        Series::new("hollow squares", pts.clone(), Style::DashedPoints)
+            .with_color(RGBColor(0, 0, 200))
+            .with_marker(Marker::Square)
+            .hollow(),
+        Series::line("a line over both", pts).with_color(RGBColor(0, 160, 0)),
+    ];
+    let out = line_plot(&p, &dir.join("marks")).unwrap();
+    let png = Png::read(&out.png);
+    // The red marks lie under the line and the hollow squares, yet show.
+    assert!(
+        png.count(near(RGBColor(200, 0, 0))) > 200,
+        "red marks hidden"
+    );
+    assert!(
+        png.count(near(RGBColor(0, 0, 200))) > 200,
+        "blue outlines hidden"
+    );
+    done(&dir);
+}
+
 #[test]
 fn category_map_cells_and_legend() {
     let dir = scratch("category");

@@ -11,8 +11,11 @@
 //!
 //! The sweep took 161 s on two shared cores (the folded chain at n = 400,
 //! `EA = 1e4`: 151 130 steps and 34 s for one run), so it is computed only
-//! by `--timings`; its file carries each run's wall time too. The drawing
-//! is `fc_paper_figures::plot::elastic::snap_force`.
+//! by `--timings`; its file carries each run's wall time too. The stiffer
+//! links of span d = 3, `EA = 1e6` and `1e7` to n = 100 (the rigid limit
+//! of its peak), are run by every `cargo xtask figures` into
+//! `snap-force-stiff.csv`, without wall times. The drawing is
+//! `fc_paper_figures::plot::elastic::snap_force`.
 
 use fc_paper_figures::plot;
 use fc_paper_figures::snap_sweep::{self, Case};
@@ -46,9 +49,19 @@ const VARIANTS: &[Case] = &[
     ("EA 1e5", Some(1e5), 0.0, true, 100),
 ];
 
+/// The stiffer links, on span d = 3 alone: `EA = 1e6` and `1e7` to n = 100
+/// (at n = 100, `EA = 1e7`: about 11 s), where the elastic peak meets the
+/// rigid one.
+const STIFF: &[Case] = &[
+    ("EA 1e6", Some(1e6), 0.0, true, 100),
+    ("EA 1e7", Some(1e7), 0.0, true, 100),
+];
+
 pub struct SnapForce;
 
 impl Make for SnapForce {
+    /// `snap-force-stiff.csv`: span d = 3 with the [`STIFF`] links, one
+    /// row per case and n, no wall times; with `--timings`,
     /// `snap-force-timing.csv`: one row per scene, case and n.
     fn compute(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {
         let scenes = (SCENES.iter())
@@ -56,10 +69,17 @@ impl Make for SnapForce {
             .collect::<Result<Vec<_>, String>>()?;
         let scenes: Vec<_> = scenes.iter().map(|(s, sc, t)| (*s, sc, *t)).collect();
         let tick = |note: String| println!("  {}: {note}", fig.id);
-        let csv = ctx
-            .pool()?
-            .install(|| snap_sweep::sweep(&scenes, VARIANTS, &LINKS, ETA, &tick))?;
-        Ok(vec![ctx.write(&format!("{}-timing.csv", fig.id), &csv)?])
+        let pool = ctx.pool()?;
+        let stiff = pool.install(|| snap_sweep::sweep(&scenes[..1], STIFF, &LINKS, ETA, &tick))?;
+        let mut files = vec![ctx.write(
+            &format!("{}-stiff.csv", fig.id),
+            &snap_sweep::untimed(&stiff),
+        )?];
+        if ctx.timings {
+            let csv = pool.install(|| snap_sweep::sweep(&scenes, VARIANTS, &LINKS, ETA, &tick))?;
+            files.push(ctx.write(&format!("{}-timing.csv", fig.id), &csv)?);
+        }
+        Ok(files)
     }
 
     fn draw(&self, ctx: &Ctx, fig: &Figure) -> Result<Vec<String>, String> {

@@ -3,7 +3,9 @@
 //! t = 5. The runs and the tables are the library's
 //! (`fc_paper_figures::beam`), the drawing too
 //! (`fc_paper_figures::plot::beam`); the wall times go to
-//! `beam-precision-timing.csv`, written only by `--timings`.
+//! `beam-precision-timing.csv`, written only by `--timings`, beside the
+//! machine they were measured on (`beam-precision-machine-timing.csv`, as
+//! `machine-timing.csv`): BEAM's times may come from a run of their own.
 
 use fc_paper_figures::{beam, plot};
 
@@ -24,6 +26,10 @@ impl Make for BeamPrecision {
         let mut files = vec![ctx.write(&format!("{id}.csv"), &beam::csv_text(&rows))?];
         if ctx.timings {
             files.push(ctx.write(&format!("{id}-timing.csv"), &beam::timing_text(&rows))?);
+            files.push(ctx.write(
+                &format!("{id}-machine-timing.csv"),
+                &crate::timing::machine_csv(),
+            )?);
         }
         Ok(files)
     }

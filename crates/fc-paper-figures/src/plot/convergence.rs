@@ -47,7 +47,6 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
     right.log_y = true;
     let gray = RGBColor(120, 120, 120);
     let top = vmax.iter().copied().fold(0.0, f64::max);
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     let mut references = vec![];
     for (s, name) in scenes.iter().enumerate() {
         let rows = ladder(name);
@@ -66,14 +65,6 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
             .into_iter()
             .filter(|&k| links[k] != reference[k])
             .collect();
-        for &k in &below {
-            for v in [dev_v[k], dev_path[k]] {
-                if v > 0.0 && v.is_finite() {
-                    lo = lo.min(v);
-                    hi = hi.max(v);
-                }
-            }
-        }
         references.push(reference_n);
         right.series.push(
             Series::new(
@@ -120,12 +111,9 @@ pub fn convergence_n(read: Reader, stem: &Path) -> Result<Output, String> {
             mass[0], eta[0]
         ));
     }
-    // Room above the data for the boxes; on the right, half a decade
-    // below the smallest deviation and room above for the legend.
-    left.y_range = Some((0.0, 1.6 * top));
-    if lo.is_finite() {
-        right.y_range = Some((lo / 3.0, hi * 300.0));
-    }
+    // The speeds from zero; the deviations fitted (the boxes go where
+    // they hide no data, beside the plots if need be).
+    left.y_range = Some((0.0, 1.04 * top));
     let title = "Convergence in n at fixed total mass and bending viscosity (auto, rtol 1e-9)";
     let out = figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())?;
     Ok(out)

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+use figures::{palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 use crate::folded::{FORCE_LAW_TO, WINDOW};
@@ -97,9 +97,11 @@ pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
                 rows.iter()
                     .map(|&j| (t_links[j], 100.0 * rel_pivot[j]))
                     .collect(),
-                Style::Dashed,
+                Style::DashedPoints,
             )
-            .with_color(palette(k)),
+            .with_color(palette(k))
+            .with_marker(Marker::Square)
+            .hollow(),
         );
     }
     right.series.push(
@@ -112,7 +114,6 @@ pub fn vs_law(read: Reader, stem: &Path) -> Result<Output, String> {
         .series
         .push(Series::new("", vec![(0.0, 0.0), (420.0, 0.0)], Style::Line).with_color(black));
     right.x_range = Some((0.0, 420.0));
-    right.y_range = Some((-2.0, 4.0));
     let [half, most] = title_law[..] else {
         return Err("the times table: expected two fall distances".to_string());
     };
@@ -208,13 +209,16 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
     // fall) and the law's rise stay in the frame.
     left.x_range = Some((0.0, 1.0));
     left.log_y = true;
-    // Above the raw force's peak, a decade and a half for the legend.
+    // Above the raw force's peak, a decade and a half for the legend and
+    // the note: on a log axis that costs a third of the height, where
+    // beside the plot they would take two thirds of it.
     let raw_top = folded
         .iter()
         .filter(|&&k| links[k] == RAW)
         .map(|&k| fy[k])
         .fold(1.0, f64::max);
     left.y_range = Some((0.3, 30.0 * raw_top));
+
     left.annotations = vec![
         format!("mean: over {WINDOW} time units"),
         "momentum at ξ = 0.5".to_string(),
@@ -247,8 +251,7 @@ pub fn support_force(read: Reader, stem: &Path) -> Result<Output, String> {
             peak(&|k| fx[k].hypot(fy[k]))
         ),
     ];
-    // Room above the peak for the legend and the note.
-    right.y_range = Some((-0.2, 1.45 * top));
+
     let title = "Force F on the pivot P₀ / weight M g of the chain (mass M): two experiments";
     let out = figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())?;
     Ok(out)
@@ -261,9 +264,10 @@ const LINEAR_TO: f64 = 0.8;
 const RATIO_FROM: f64 = 0.7;
 
 /// Draws `tip_acceleration`'s tables: on linear axes (the accelerations
-/// change sign), the acceleration itself up to `xi = LINEAR_TO`, and its
-/// ratio to the law from `xi = RATIO_FROM` to the end, every sample drawn (none clipped)
-/// with the means of the `-at` table.
+/// change sign), the acceleration itself up to `xi = LINEAR_TO`, and from
+/// `xi = RATIO_FROM` to the end the means of the `-at` table over the
+/// law's (marks, on a range fitted to them), over every sample's ratio
+/// drawn light behind them (clipped to that range; its extremes named).
 pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
     let c = read("")?;
     let (links, xi, a, law) = (
@@ -285,13 +289,16 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
         "downward tip acceleration / g",
     );
     let mut right = LinePlot::new(
-        "ξ ≥ 0.7: every sample, over the law's",
+        "ξ ≥ 0.7: window means over the law's",
         "ξ = x / L",
         "tip acceleration / the law's",
     );
     let names = distinct(&links);
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut notes: Vec<String> = vec![];
+    let marks = [Marker::Circle, Marker::Square, Marker::Diamond];
+    // The range of the means and of the samples' ratio on the right.
+    let (mut m_lo, mut m_hi) = (0.0f64, 1.0f64);
+    let (mut s_lo, mut s_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut means_series = vec![];
     for (i, n) in names.iter().enumerate() {
         let rows: Vec<usize> = (0..c.len()).filter(|&k| links[k] == *n).collect();
         let near: Vec<(f64, f64)> = rows
@@ -299,45 +306,43 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
             .filter(|&&k| xi[k] <= LINEAR_TO)
             .map(|&k| (xi[k], a[k]))
             .collect();
-        for p in &near {
-            lo = lo.min(p.1);
-            hi = hi.max(p.1);
-        }
         left.series.push(
             Series::line(format!("n = {n} (from the dynamics at each sample)"), near)
                 .with_color(palette(i)),
         );
-        right.series.push(
-            Series::line(
-                format!("n = {n}"),
-                rows.iter()
-                    .filter(|&&k| xi[k] >= RATIO_FROM && law[k].is_finite() && law[k] > 0.0)
-                    .map(|&k| (xi[k], a[k] / law[k]))
-                    .collect(),
-            )
-            .with_color(palette(i)),
-        );
+        let ratio: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|&&k| xi[k] >= RATIO_FROM && law[k].is_finite() && law[k] > 0.0)
+            .map(|&k| (xi[k], a[k] / law[k]))
+            .collect();
+        for p in &ratio {
+            s_lo = s_lo.min(p.1);
+            s_hi = s_hi.max(p.1);
+        }
+        right
+            .series
+            .push(Series::line(format!("n = {n}, samples"), ratio).with_color(light(palette(i))));
         let means: Vec<(f64, f64)> = (0..at.len())
             .filter(|&k| at_links[k] == *n && at_xi[k] >= RATIO_FROM && at_law_mean[k] > 0.0)
             .map(|k| (at_xi[k], at_mean[k] / at_law_mean[k]))
             .collect();
-        for k in (0..at.len()).filter(|&k| at_links[k] == *n && at_mean[k] < 0.0) {
-            notes.push(format!(
-                "n = {n}, ξ = {}: mean {:.1} g (the law's {:.0} g)",
-                at_xi[k], at_mean[k], at_law_mean[k]
-            ));
+        for p in &means {
+            m_lo = m_lo.min(p.1);
+            m_hi = m_hi.max(p.1);
         }
-        right.series.push(
+        means_series.push(
             // The table's means: over the samples with |xi' - xi| <= the
             // study's window (not the support force's running mean).
             Series::points(
                 format!(
-                    "n = {n}, mean over |ξ' - ξ| <= {}",
+                    "n = {n}, means (|ξ' − ξ| ≤ {})",
                     crate::folded::ACCEL_WINDOW
                 ),
                 means,
             )
-            .with_color(palette(i)),
+            .with_color(palette(i))
+            .with_marker(marks[i % marks.len()])
+            .hollow(),
         );
     }
     // The law at the finest run's samples.
@@ -365,10 +370,6 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
         .with_color(gray),
     );
     left.x_range = Some((0.0, LINEAR_TO));
-    if lo.is_finite() {
-        // Room above the data for the legend.
-        left.y_range = Some((lo.min(0.0), 1.0 + 1.6 * (hi - 1.0)));
-    }
     right.series.push(
         Series::new(
             "the law",
@@ -377,17 +378,25 @@ pub fn tip_acceleration(read: Reader, stem: &Path) -> Result<Output, String> {
         )
         .with_color(black),
     );
-    right.series.push(
-        Series::new("zero", vec![(RATIO_FROM, 0.0), (1.0, 0.0)], Style::Line).with_color(gray),
-    );
+    right
+        .series
+        .push(Series::new("", vec![(RATIO_FROM, 0.0), (1.0, 0.0)], Style::Line).with_color(gray));
+    right.series.extend(means_series);
     right.x_range = Some((RATIO_FROM, 1.0));
-    // The negative means, as lines of the legend (blank swatches).
-    for line in notes {
-        right
-            .series
-            .push(Series::new(line, vec![], Style::Points).with_color(RGBColor(255, 255, 255)));
+    let pad = 0.08 * (m_hi - m_lo);
+    right.y_range = Some((m_lo - pad, m_hi + pad));
+    if s_lo.is_finite() {
+        right.annotations = vec![format!(
+            "light: every sample's ratio, {s_lo:.0} to {s_hi:.0} (clipped)"
+        )];
     }
     let title =
         "Folded chain, r = 0: why the tip beats g (linear axes: the acceleration changes sign)";
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
+
+/// `c` two thirds of the way to white.
+fn light(c: RGBColor) -> RGBColor {
+    let f = |v: u8| ((u16::from(v) + 2 * 255) / 3) as u8;
+    RGBColor(f(c.0), f(c.1), f(c.2))
 }

@@ -1,12 +1,12 @@
 //! The drawing of the friction sensitivity (`crate::friction`): the
 //! maximum tip speed over its value without friction, against the joint
 //! friction `r` (in the scenes' units at their own `n`), a colour per
-//! scene, solid at the scene's `n` and dashed on the refined chain, with
-//! the report's `r` and its range marked.
+//! scene, solid at the scene's `n` and dashed with open marks on the
+//! refined chain, with the report's `r` and its range marked.
 
 use std::path::Path;
 
-use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+use figures::{palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 use fc_csv::table::distinct;
@@ -50,13 +50,16 @@ pub fn friction(read: Reader, stem: &Path) -> Result<Output, String> {
                 lo = lo.min(q.1);
                 hi = hi.max(q.1);
             }
-            let style = if j == 0 {
-                Style::LinePoints
+            // The scene's n solid with filled marks, the refined chain
+            // dashed with open squares.
+            let series = if j == 0 {
+                Series::new(format!("{s}, n = {n}"), pts, Style::LinePoints)
             } else {
-                Style::Dashed
+                Series::new(format!("{s}, n = {n}"), pts, Style::DashedPoints)
+                    .with_marker(Marker::Square)
+                    .hollow()
             };
-            p.series
-                .push(Series::new(format!("{s}, n = {n}"), pts, style).with_color(palette(k)));
+            p.series.push(series.with_color(palette(k)));
         }
     }
     if lo.is_finite() && hi.is_finite() {

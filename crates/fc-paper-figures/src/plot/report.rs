@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use figures::{ChainSnapshots, LinePlot, Output, Series, Style};
+use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, Series, Style};
 
 use super::Reader;
 use fc_csv::table::{distinct, Table};
@@ -176,6 +176,12 @@ pub fn tip_velocity(read: Reader, stem: &Path, title: &str) -> Result<Output, St
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }
 
+/// Fig. 9: the maximum tip speed against the span, at n = 50 (a dense
+/// sweep, the report's spans) and refined (`links`, continuum fixed), the
+/// narrow-span peak on finer spans, the whip switches (short dashed marks
+/// at the foot of the curves), and, from `-agreement`, the spans where
+/// n = 50 is within 1% of the refined chain, marked on its curve (the
+/// ranges they make are the paper's, from the same table).
 pub fn vmax_vs_span(
     read: Reader,
     stem: &Path,
@@ -200,24 +206,35 @@ pub fn vmax_vs_span(
     let fine_count = set.iter().filter(|s| **s == fine).count();
     let mut p = LinePlot::new(title, "span d", "maximum tip speed");
     p.x_tick_step = Some(0.5);
-    p.series.push(Series::line(
-        format!("n = 50: {dense_count} spans (DOPRI5, rtol 1e-8)"),
-        ok("dense"),
-    ));
-    p.series.push(Series::new(
-        format!("n = {links}, continuum fixed: {fine_count} spans (auto, rtol 1e-8)"),
-        ok(&fine),
-        Style::LinePoints,
-    ));
-    p.series.push(Series::points(
-        "this model at the report's 14 spans (n = 50)",
-        ok("report"),
-    ));
+    p.series.push(
+        Series::line(
+            format!("n = 50: {dense_count} spans (DOPRI5, rtol 1e-8)"),
+            ok("dense"),
+        )
+        .with_color(palette(0)),
+    );
+    p.series.push(
+        Series::new(
+            format!("n = {links} (continuum fixed): {fine_count} spans (auto)"),
+            ok(&fine),
+            Style::LinePoints,
+        )
+        .with_color(palette(1)),
+    );
+    p.series.push(
+        Series::points("n = 50 at the report's 14 spans", ok("report"))
+            .with_color(palette(2))
+            .with_marker(Marker::Square),
+    );
     let mut full = ok("stretched");
     full.extend(ok(&format!("stretched-{fine}")));
-    p.series
-        .push(Series::points("stretched, d = L (n = 50, n = 200)", full));
-    // The narrow-span peak on finer spans (n = links and 2 links).
+    p.series.push(
+        Series::points(format!("stretched, d = L (n = 50, {links})"), full)
+            .with_color(palette(3))
+            .with_marker(Marker::Diamond),
+    );
+    // The narrow-span peak on finer spans (n = links and 2 links): the
+    // first as open marks over the second's line.
     let pk = read("-peak")?;
     let (pn, pd, pv, pst) = (
         pk.strs("links")?,
@@ -230,18 +247,20 @@ pub fn vmax_vs_span(
             .filter(|&j| pn[j] == n && pst[j] == "ok")
             .map(|j| (pd[j], pv[j]))
             .collect();
-        let style = if k == 0 {
-            Style::Points
+        let series = if k == 0 {
+            Series::points(format!("n = {n}, finer spans near the peak"), pts).hollow()
         } else {
-            Style::LinePoints
+            Series::new(
+                format!("n = {n}, finer spans near the peak"),
+                pts,
+                Style::LinePoints,
+            )
         };
-        p.series.push(
-            Series::new(format!("n = {n}, finer spans near the peak"), pts, style)
-                .with_color(figures::palette(4 + k)),
-        );
+        p.series.push(series.with_color(figures::palette(4 + k)));
     }
-    // The whip switch of each curve: a dashed line between the two spans
-    // where the time of the maximum jumps.
+    // The whip switch of each curve: a short dashed mark at the foot of
+    // the curves, between the two spans where the time of the maximum
+    // jumps.
     let (lo, hi) = v
         .iter()
         .copied()
@@ -265,31 +284,29 @@ pub fn vmax_vs_span(
         p.series.push(
             Series::new(
                 format!(
-                    "whip switch, {who}, d = {at:.2}: t of max {:.2} -> {:.2}",
+                    "whip switch, {who} (t of max {:.2} → {:.2})",
                     times[a], times[b]
                 ),
-                vec![(at, lo), (at, hi)],
+                vec![(at, lo), (at, lo + 0.3 * (hi - lo))],
                 Style::Dashed,
             )
             .with_color(figures::RGBColor(grey, grey, grey)),
         );
     }
-    // Where n = 50 is within 1% of the refined chain, from the data.
+    // Where n = 50 is within 1% of the refined chain, from the data: each
+    // such span marked on the n = 50 curve (the ranges are the text's).
     let ag = read("-agreement")?;
-    let (kind, from, to) = (ag.strs("kind")?, ag.nums("d")?, ag.nums("d_to")?);
-    let ranges: Vec<String> = (0..ag.len())
-        .filter(|&j| kind[j] == "within")
-        .map(|j| {
-            if from[j] == to[j] {
-                format!("d = {:.2}", from[j])
-            } else {
-                format!("{:.2} ≤ d ≤ {:.2}", from[j], to[j])
-            }
-        })
+    let (kind, from) = (ag.strs("kind")?, ag.nums("d")?);
+    let (v50, rel) = (ag.nums("vmax_n50")?, ag.nums("rel_diff")?);
+    let within: Vec<(f64, f64)> = (0..ag.len())
+        .filter(|&j| kind[j] == "span" && rel[j].abs() <= 0.01)
+        .map(|j| (from[j], v50[j]))
         .collect();
-    p.annotations.push(format!(
-        "n = 50 within 1% of n = {links} at: {}",
-        ranges.join(", ")
-    ));
+    p.series.push(
+        Series::points(format!("n = 50 within 1% of n = {links}"), within)
+            .with_color(figures::RGBColor(0, 0, 0))
+            .with_marker(Marker::Diamond)
+            .hollow(),
+    );
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }

@@ -1,10 +1,11 @@
 //! The drawings of the report's own model (`crate::report_model`):
 //! its snapshots, titled with how the run ended, and its Fig. 9 beside
-//! the published one and the corrected model's.
+//! the published one, each erratum undone, and the corrected model's.
 
 use std::path::Path;
 
-use figures::{ChainSnapshots, LinePlot, Output, Series, Style};
+use fc_csv::table::distinct;
+use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 
@@ -34,10 +35,13 @@ pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, Strin
     figures::chain_snapshots(&f, stem).map_err(|e| e.to_string())
 }
 
-/// The maximum tip speed against the span of `<id>.csv`: the published
-/// Fig. 9, the report's model by its own speeds, in its clock and in our
-/// units, and the corrected model (log y: the report's values, 1.7 ..
-/// 2.5, and ours, 5 .. 19, lie apart).
+/// The maximum tip speed against the span of `<id>.csv`, in two panels
+/// on linear axes: left, in the report's clock, the published Fig. 9 read
+/// off its page (open marks, over everything) beside the report's model by
+/// its own speed measure and by the tip's exact speed; right, in our
+/// units, the report's model as coded and with each erratum undone in turn
+/// (`<id>-errata-spans.csv`; a case that diverges at every span named in
+/// the note), and the corrected model.
 pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let t = read("")?;
     let d = t.nums("d")?;
@@ -49,34 +53,87 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
             .map(|(&d, &v)| (d, v))
             .collect())
     };
-    let mut p = LinePlot::new(title, "span d", "maximum tip speed");
-    p.x_tick_step = Some(0.5);
-    p.log_y = true;
-    p.series.push(Series::points(
-        "the report's Fig. 9, read off its page",
-        col("read_off")?,
-    ));
-    p.series.push(Series::new(
-        "report's model, its own speed (rod 1 left out, last rod's middle)",
-        col("vmax_fd")?,
-        Style::LinePoints,
-    ));
-    p.series.push(Series::new(
-        "report's model, its clock, the tip's exact speed",
-        col("vmax_report")?,
-        Style::LinePoints,
-    ));
-    p.series.push(Series::new(
-        "report's model in our units (/ sqrt(l/g))",
-        col("vmax")?,
-        Style::LinePoints,
-    ));
-    p.series.push(Series::new(
-        "corrected model (DOPRI5, rtol 1e-8)",
-        col("corrected")?,
-        Style::LinePoints,
-    ));
-    figures::line_plot(&p, stem).map_err(|e| e.to_string())
+    let mut left = LinePlot::new(
+        "in its clock, as its code measures",
+        "span d",
+        "maximum tip speed (its units)",
+    );
+    let mut right = LinePlot::new(
+        "in our units: each erratum undone",
+        "span d",
+        "maximum tip speed / sqrt(g l)",
+    );
+    for p in [&mut left, &mut right] {
+        p.x_tick_step = Some(1.0);
+    }
+    left.series.push(
+        Series::new(
+            "its own speed (rod 1 left out, last rod's middle)",
+            col("vmax_fd")?,
+            Style::LinePoints,
+        )
+        .with_color(palette(1)),
+    );
+    left.series.push(
+        Series::new(
+            "the tip's exact speed",
+            col("vmax_report")?,
+            Style::LinePoints,
+        )
+        .with_color(palette(2)),
+    );
+    left.series.push(
+        Series::points("the report's Fig. 9, read off its page", col("read_off")?)
+            .with_color(RGBColor(0, 0, 0))
+            .hollow(),
+    );
+    let e = read("-errata-spans")?;
+    let (ed, case, ev, status) = (
+        e.nums("d")?,
+        e.strs("case")?,
+        e.nums("vmax")?,
+        e.strs("status")?,
+    );
+    let marks = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Diamond,
+        Marker::Triangle,
+    ];
+    let mut failed = vec![];
+    for (k, c) in distinct(&case).into_iter().enumerate() {
+        let rows: Vec<usize> = (0..e.len()).filter(|&j| case[j] == c).collect();
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|&&j| status[j] == "ok")
+            .map(|&j| (ed[j], ev[j]))
+            .collect();
+        if pts.is_empty() {
+            let how = rows.first().map_or("failed", |&j| status[j]);
+            failed.push(format!("{c}: {how} at every span"));
+            continue;
+        }
+        let style = if k == 0 {
+            Style::LinePoints
+        } else {
+            Style::DashedPoints
+        };
+        right.series.push(
+            Series::new(c, pts, style)
+                .with_color(palette(3 + k))
+                .with_marker(marks[k % marks.len()]),
+        );
+    }
+    right.series.push(
+        Series::new(
+            "corrected model (DOPRI5, rtol 1e-8)",
+            col("corrected")?,
+            Style::Line,
+        )
+        .with_color(RGBColor(0, 0, 0)),
+    );
+    right.annotations = failed;
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
 
 /// The report's Fig. 8 or 11 in its model, from `<id>.csv`
@@ -109,7 +166,24 @@ pub fn tip(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let top = (2.5 * top).ceil() / 2.0;
     if top > 0.0 {
         left.y_range = Some((0.0, top));
-        (right.x_range, right.y_range) = (Some((-top, top)), Some((-top, top)));
+    }
+    // The velocities of the runs that ended ok, padded by 4%.
+    let ok: Vec<&str> = (0..c.len())
+        .filter(|&k| status[k] == "ok")
+        .map(|k| cs[k])
+        .collect();
+    let bounds = (0..t.len())
+        .filter(|&i| ok.contains(&scene[i]) && vx[i].is_finite() && vy[i].is_finite())
+        .fold(None, |b: Option<(f64, f64, f64, f64)>, i| {
+            let (x, y) = (vx[i], vy[i]);
+            Some(b.map_or((x, x, y, y), |b| {
+                (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y))
+            }))
+        });
+    if let Some((x0, x1, y0, y1)) = bounds {
+        let pad = 0.04 * (x1 - x0).max(y1 - y0);
+        right.x_range = Some((x0 - pad, x1 + pad));
+        right.y_range = Some((y0 - pad, y1 + pad));
     }
     // The cases come in pairs, as coded then with RK4 for the stepper.
     for k in (0..c.len()).step_by(2) {

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+use figures::{palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 use crate::rhs_cost::FIT_FROM;
@@ -13,7 +13,10 @@ use fc_csv::table::distinct;
 /// The slope guides run this factor below the measured points.
 const GUIDE_OFFSET: f64 = 3.0;
 
-/// Draws `matched`'s tables to `<stem>.png` and `.svg`.
+/// Draws `matched`'s tables to `<stem>.png` and `.svg`: for each pair
+/// `a/b` (a colour) and scene (a line style), how many times faster `a` is
+/// than `b` at matched error (`wall_b / wall_a`), with the line of equal
+/// times, below which `a` is the slower.
 pub fn matched(read: Reader, stem: &Path) -> Result<Output, String> {
     let t = read("-timing")?;
     let (scene, pair, err, ratio) = (
@@ -23,14 +26,17 @@ pub fn matched(read: Reader, stem: &Path) -> Result<Output, String> {
         t.nums("b_over_a")?,
     );
     let mut p = LinePlot::new(
-        "wp-matched: speed-up at matched error (wall_b / wall_a)",
+        "Speed-up of a over b at matched error",
         "error max(err_tip, err_vmax)",
-        "wall_b / wall_a",
+        "speed-up of a over b (b's time / a's)",
     );
     p.log_x = true;
     p.log_y = true;
-    let styles = [Style::LinePoints, Style::Dashed, Style::Line];
+    let styles = [Style::LinePoints, Style::DashedPoints, Style::Line];
+    let marks = [Marker::Circle, Marker::Square, Marker::Circle];
+    let (mut e_lo, mut e_hi) = (f64::INFINITY, 0.0f64);
     for (i, pr) in distinct(&pair).into_iter().enumerate() {
+        let (a, b) = pr.split_once('/').unwrap_or((pr, ""));
         for (j, sc) in distinct(&scene).into_iter().enumerate() {
             let pts: Vec<(f64, f64)> = (0..t.len())
                 .filter(|&k| pair[k] == pr && scene[k] == sc)
@@ -39,11 +45,32 @@ pub fn matched(read: Reader, stem: &Path) -> Result<Output, String> {
             if pts.is_empty() {
                 continue;
             }
-            p.series.push(
-                Series::new(format!("{pr}, {sc}"), pts, styles[j % styles.len()])
-                    .with_color(palette(i)),
-            );
+            for q in &pts {
+                e_lo = e_lo.min(q.0);
+                e_hi = e_hi.max(q.0);
+            }
+            let mut series = Series::new(
+                format!("a = {a}, b = {b}: {}", sc.trim_start_matches("wp-")),
+                pts,
+                styles[j % styles.len()],
+            )
+            .with_color(palette(i))
+            .with_marker(marks[j % marks.len()]);
+            if j % styles.len() == 1 {
+                series = series.hollow();
+            }
+            p.series.push(series);
         }
+    }
+    if e_lo.is_finite() {
+        p.series.push(
+            Series::new(
+                "equal times: below it, a is the slower",
+                vec![(e_lo, 1.0), (e_hi, 1.0)],
+                Style::Dashed,
+            )
+            .with_color(RGBColor(0, 0, 0)),
+        );
     }
     figures::line_plot(&p, stem).map_err(|e| e.to_string())
 }

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use figures::{palette, LinePlot, Output, RGBColor, Series, Style};
+use figures::{palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 
@@ -29,8 +29,12 @@ pub fn fall(read: Reader, stem: &Path, links: usize) -> Result<Output, String> {
     );
     left.series
         .push(Series::new("law (full extension)", zip(&lk, &lt), Style::Dashed).with_color(black));
+    // The law where the runs are measured: open marks over the runs' line.
     left.series.push(
-        Series::new("law at 0.99 (L - l)", zip(&k, &t_law), Style::Points).with_color(palette(1)),
+        Series::new("law at 0.99 (L - l)", zip(&k, &t_law), Style::Points)
+            .with_color(palette(1))
+            .with_marker(Marker::Diamond)
+            .hollow(),
     );
     left.series.push(
         Series::new(
@@ -55,7 +59,10 @@ pub fn fall(read: Reader, stem: &Path, links: usize) -> Result<Output, String> {
         .with_color(black),
     );
     right.series.push(
-        Series::new("law at 0.99 (L - l)", zip(&k, &v_law), Style::Points).with_color(palette(1)),
+        Series::new("law at 0.99 (L - l)", zip(&k, &v_law), Style::Points)
+            .with_color(palette(1))
+            .with_marker(Marker::Diamond)
+            .hollow(),
     );
     right.series.push(
         Series::new(
