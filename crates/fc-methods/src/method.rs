@@ -32,7 +32,9 @@ pub enum Method {
     /// chain's plan (chain-ode's): BDF past the measured crossover damping
     /// rate, else the explicit method to the end (rigid links, lightly
     /// damped elastic ones) or to the first stiffness detection (elastic
-    /// links whose joints are damped).
+    /// links whose joints are damped). A problem without a plan
+    /// ([`crate::AutoPlan::generic`]: BEAM, a model from outside) runs DOP853
+    /// to the end.
     Auto,
     /// The generalized-alpha method (Chung & Hulbert) in first-order form
     /// on the banded DAE, adaptive, O(n) per step: second order, and
