@@ -154,7 +154,7 @@ struct DaeEquations<D> {
 
 /// A pattern from `(row, column)` pairs, and each pair's CSC position;
 /// `None` if an entry is out of range (a programming error of the DAE).
-fn pattern(
+pub(crate) fn pattern(
     dim: usize,
     entries: &[(usize, usize)],
 ) -> Option<(SymbolicSparseColMat<usize>, Vec<usize>)> {

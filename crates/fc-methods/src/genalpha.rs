@@ -36,7 +36,7 @@ use std::rc::Rc;
 
 use diffsol::{FaerContext, FaerSparseMat, FaerVec, Matrix, Vector};
 use diffsol_la::{LinearOp, LinearSolver};
-use faer::sparse::{Pair, SymbolicSparseColMat};
+use faer::sparse::SymbolicSparseColMat;
 
 use crate::bdf::NewtonLu;
 use crate::diffsol_driver::{slice, slice_mut};
@@ -122,20 +122,10 @@ impl NewtonOp {
         dae.jacobian_entries(t0, y0, &mut |r, c, _| entries.push((r, c)));
         let m = entries.len();
         entries.extend((0..nd).map(|i| (i, i)));
-        if entries.iter().any(|&(r, c)| r >= dim || c >= dim) {
-            return None;
-        }
-        let pairs: Vec<Pair<usize, usize>> =
-            entries.iter().map(|&(r, c)| Pair::new(r, c)).collect();
-        let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs).ok()?;
-        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-        let slots = entries
-            .iter()
-            .map(|&(r, c)| {
-                let col = &row_idx[col_ptr[c]..col_ptr[c + 1]];
-                Some(col_ptr[c] + col.binary_search(&r).ok()?)
-            })
-            .collect::<Option<Vec<usize>>>()?;
+        // The Jacobian's entries and the differential diagonal, with their
+        // CSC positions (bdf's pattern builder).
+        let (pattern, slots) = crate::bdf::pattern(dim, &entries)?;
+        let row_idx = pattern.row_idx();
         let nnz = row_idx.len();
         Some(Self {
             dim,
