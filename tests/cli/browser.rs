@@ -461,3 +461,40 @@ fn frame_times_of_the_folded_chain_at_400_rods() {
     assert!(num(&stats, "frames") > 0.0);
     no_errors(&mut b);
 }
+
+/// A run with a floor draws it: the line at the scene's `floor.height`
+/// (level here), in the floor's grey where no rod covers it at `t = 0`;
+/// a run without a floor draws none.
+#[test]
+fn the_floor_is_drawn_at_its_height() {
+    let dir = scratch("browser-floor");
+    let floor_page = page(&dir, "floor.html", &[&scene("span-d3-floor")], 0);
+    let Some(mut b) = open(&floor_page, &dir) else {
+        return;
+    };
+    b.eval("fallingChain.seek(0); 0").unwrap();
+    let line = b.eval("fallingChain.drawnFloor(0)").unwrap();
+    let v: Vec<f64> = (0..4).map(|k| line[k].as_f64().unwrap()).collect();
+    assert_eq!((v[1], v[3]), (-3.0, -3.0), "{v:?}");
+    assert!(v[0] < 0.0 && v[2] > 3.0, "{v:?}");
+    // Far left of the chain (which spans x in [0, 3] at t = 0).
+    let at = b
+        .eval(&format!(
+            "fallingChain.toPixel({}, -3)",
+            v[0] + 0.1 * (v[2] - v[0])
+        ))
+        .unwrap();
+    let (x, y) = (
+        at[0].as_f64().unwrap().round() as usize,
+        at[1].as_f64().unwrap().round() as usize,
+    );
+    let px = pixels(&mut b);
+    let dot = &px[4 * (y * 640 + x)..4 * (y * 640 + x) + 4];
+    assert_eq!(of_colour(dot, "#808080"), 1, "{dot:?} at ({x}, {y})");
+    no_errors(&mut b);
+    let plain = page(&dir, "plain.html", &[&scene("span-d3")], 0);
+    let Some(mut b) = open(&plain, &dir) else {
+        return;
+    };
+    assert!(b.eval("fallingChain.drawnFloor(0)").unwrap().is_null());
+}

@@ -153,6 +153,11 @@ struct Case {
     /// (1: the drawn list): `1e6`, the largest ratio accepted, and `1e7`,
     /// refused; the other rods are 1.
     rod_ratio: f64,
+    /// The `[floor]` section (written only when `floored`): `floor.height`,
+    /// `angle`, `stiffness`, `damping`, `friction`, `slip_speed`, each in
+    /// and out of its range (a floor above the start is refused by name).
+    floor: [f64; 6],
+    floored: bool,
 }
 
 /// Scene names the fuzzer draws: plain, and with what CSV quotes.
@@ -245,6 +250,15 @@ fn case() -> impl Strategy<Value = Case> {
                 1 => proptest::sample::select(&[1e6, 1e7][..]),
             ],
         ),
+        (
+            proptest::bool::weighted(0.3),
+            number(-20.0, 1.0, &[1e300, f64::NAN, 0.0, 1e10]),
+            number(-0.5, 0.5, &[0.0, 1.5, 2.0, f64::NAN]),
+            number(1e2, 1e7, &[0.0, -1.0, 1e15, 1e16, f64::INFINITY]),
+            number(0.0, 1e3, &[0.0, -1.0, 1e13, f64::NAN]),
+            number(0.0, 1.0, &[0.0, -0.5, 101.0, f64::NAN]),
+            number(1e-4, 1.0, &[0.0, -1.0, 1e7, 1e-300]),
+        ),
     )
         .prop_map(
             |(
@@ -254,6 +268,7 @@ fn case() -> impl Strategy<Value = Case> {
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
                 (acc, amp, jerk, freq, jerk_time, release, moving, taper, profiled),
                 (name, same_out, angle_big, rod_ratio),
+                (floored, height, angle, stiffness, floor_damping, friction, slip_speed),
             )| Case {
                 command,
                 length,
@@ -289,6 +304,15 @@ fn case() -> impl Strategy<Value = Case> {
                 same_out,
                 angle_big,
                 rod_ratio,
+                floor: [
+                    height,
+                    angle,
+                    stiffness,
+                    floor_damping,
+                    friction,
+                    slip_speed,
+                ],
+                floored,
             },
         )
 }
@@ -397,6 +421,11 @@ impl Case {
         writeln!(t, "h_min = {}", toml_f(self.h_min)).unwrap();
         writeln!(t, "rho_inf = {}", toml_f(self.rho_inf)).unwrap();
         writeln!(t, "[model]\nreport = {}", self.report).unwrap();
+        if self.floored {
+            let [h, a, k, c, mu, vs] = self.floor.map(toml_f);
+            writeln!(t, "[floor]\nheight = {h}\nangle = {a}\nstiffness = {k}").unwrap();
+            writeln!(t, "damping = {c}\nfriction = {mu}\nslip_speed = {vs}").unwrap();
+        }
         t
     }
 
@@ -784,6 +813,8 @@ fn the_fuzzer_draws_every_scene_key() {
             same_out: false,
             angle_big: 0.0,
             rod_ratio: 1.0,
+            floor: [-10.0, 0.0, 1e4, 0.0, 0.0, 0.01],
+            floored: true,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

@@ -5,6 +5,7 @@ use std::fmt;
 
 use fc_methods::InvalidParameter;
 
+use crate::floor::Floor;
 use crate::pivot::Pivot;
 use crate::profile::{Profile, Rods};
 
@@ -60,6 +61,10 @@ pub struct ChainParams {
     /// other term (tip mass, bending, a moving or released pivot) on rigid
     /// and on elastic links.
     pub profile: Profile,
+    /// A floor the chain falls onto ([`Floor`], the `[floor]` keys), or
+    /// `None` (the default: no floor). It needs elastic links
+    /// (`axial_stiffness`) and a pivot that does not move on a path.
+    pub floor: Option<Floor>,
 }
 
 impl Default for ChainParams {
@@ -77,6 +82,7 @@ impl Default for ChainParams {
             tip_mass: 0.0,
             pivot: Pivot::default(),
             profile: Profile::default(),
+            floor: None,
         }
     }
 }
@@ -126,6 +132,18 @@ fn got_text(text: String) -> String {
         Ok(x) if x.is_finite() && (text.len() > 17 || text.contains('.')) => number_text(x),
         _ => text,
     }
+}
+
+/// How many times the chain's weight its axial stiffness `EA` is when a
+/// rigid chain is put on a floor: its own weight stretches it by at most
+/// `1 / RIGID_FLOOR_EA_PER_WEIGHT` of its length.
+pub const RIGID_FLOOR_EA_PER_WEIGHT: f64 = 1e4;
+
+/// The axial stiffness a rigid chain on a floor runs with:
+/// `EA = 1e4 n m g` (`g = 0`: `1e4 n m` in the scene's units).
+pub fn rigid_floor_stiffness(p: &ChainParams) -> f64 {
+    let g = if p.gravity > 0.0 { p.gravity } else { 1.0 };
+    RIGID_FLOOR_EA_PER_WEIGHT * p.links as f64 * p.mass * g
 }
 
 /// The accepted range of `chain.links`, in words.
@@ -194,6 +212,16 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
     )?;
     p.pivot.validate()?;
     p.profile.validate(p.links)?;
+    if let Some(floor) = &p.floor {
+        floor.validate()?;
+        check(
+            !p.pivot.is_driven(),
+            "floor.height",
+            "a floor with a pivot that stays put until any pivot.release (pivot.acceleration, \
+             pivot.amplitude and pivot.jerk zero)",
+            "a floor with a moving pivot",
+        )?;
+    }
     // A profile takes every other term, on rigid and on elastic links
     // (`dynamics_profile.rs`, `elastic.rs`).
     Ok(())
@@ -204,6 +232,12 @@ impl Chain {
     /// of range. This is the one place a chain is validated.
     pub fn new(params: ChainParams) -> Result<Self, InvalidParameter> {
         validate(&params)?;
+        let mut params = params;
+        if params.floor.is_some() && params.axial_stiffness.is_none() {
+            // A rigid chain on a floor is the elastic chain at a stiffness
+            // where the two agree (docs/model.md, "The floor").
+            params.axial_stiffness = Some(rigid_floor_stiffness(&params));
+        }
         let rods = params.profile.rods(params.links).map(std::sync::Arc::new);
         Ok(Self { params, rods })
     }
@@ -270,6 +304,11 @@ impl Chain {
     /// How the pivot moves ([`Pivot`]; fixed by default).
     pub fn pivot(&self) -> &Pivot {
         &self.params.pivot
+    }
+
+    /// The floor, if the chain has one.
+    pub fn floor(&self) -> Option<&Floor> {
+        self.params.floor.as_ref()
     }
 
     /// The rods' masses and lengths in mean-rod units for a profiled chain
@@ -507,6 +546,14 @@ mod tests {
             tip_mass: 0.0,
             pivot: Pivot::default(),
             profile: Profile::default(),
+            floor: Some(crate::floor::Floor {
+                height: Some(-3.0),
+                angle: 0.1,
+                stiffness: 1e5,
+                damping: 10.0,
+                friction: 0.4,
+                slip_speed: 0.02,
+            }),
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -523,7 +570,11 @@ mod tests {
             tip_mass,
             pivot,
             profile,
+            floor,
         } = refined.params().clone();
+        // The floor is a place and a law per contact point: carried (its
+        // stiffness is per rod end, so a default `1e4 m g / l` stays).
+        assert_eq!(floor, given.floor);
         // Equal rods stay equal rods (a taper is carried: profile.rs).
         assert_eq!(profile, given.profile);
         // The pivot's motion: carried.

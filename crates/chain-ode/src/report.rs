@@ -137,6 +137,12 @@ impl ReportModel {
     /// [`REPORT_MAX_LINKS`] rods. The error names the scene key.
     pub fn validate(self, chain: &Chain) -> Result<(), InvalidParameter> {
         const WHY: &str = "absent with model.report = true (the report's model has rigid links)";
+        check(
+            chain.floor().is_none(),
+            "floor.height",
+            "no [floor] with model.report = true (the report's model has no floor)",
+            "a floor",
+        )?;
         if let Some(ea) = chain.axial_stiffness() {
             check(false, "chain.axial_stiffness", WHY, ea)?;
         }

@@ -4,6 +4,7 @@
 
 use crate::chain::Chain;
 use crate::dae::ChainDae;
+use crate::dae_frame::RodFrameDae;
 use crate::dynamics::{accelerations, accelerations_with, Base, Reactions, Workspace};
 use crate::kinematics::dissipation_rate;
 use crate::scalar::Dual;
@@ -178,9 +179,13 @@ impl Problem for ChainSystem {
         let mut full = vec![0.0; dae.dim()];
         full[..dae.differential_dim()].copy_from_slice(y0);
         dae.make_consistent_at(t0, &mut full, &mut Workspace::new(self.chain.links()));
+        // In the rods' frames: a kept Newton matrix does not go stale as the
+        // chain swings (`dae_frame`).
+        let dae = RodFrameDae::new(dae);
+        let y0 = dae.from_world(&full);
         Some(BandedDae {
             dae: Box::new(dae),
-            y0: full,
+            y0,
         })
     }
 }

@@ -436,6 +436,8 @@ impl Run {
             // Unequal rods: their lengths and densities.
             profile,
             source: None,
+            // Python's run does not keep the model's floor (yet).
+            floor: None,
         };
         for k in (0..samples).filter(|&k| keeps(k, samples, stride)) {
             if let (Some(p), Some(all)) = (run.pivot.as_mut(), &self.joints) {

@@ -29,8 +29,8 @@ use std::str::FromStr;
 
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, Chain, ChainParams, Method, ModelKind, Pivot, Profile, ReportChain, SolveOptions, Start,
-    State, Trajectory,
+    solve, Chain, ChainParams, Floor, Method, ModelKind, Pivot, Profile, ReportChain, SolveOptions,
+    Start, State, Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -51,6 +51,53 @@ struct SceneFile {
     start: StartSection,
     run: RunSection,
     model: ModelSection,
+    /// Absent from most scenes: every `[floor]` key is optional.
+    #[serde(default)]
+    floor: FloorSection,
+}
+
+/// `[floor]`: a floor the chain falls onto ([`chain_ode::Floor`]); any key
+/// given makes one, the others take their defaults.
+#[derive(Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FloorSection {
+    height: Option<f64>,
+    angle: Option<f64>,
+    stiffness: Option<f64>,
+    damping: Option<f64>,
+    friction: Option<f64>,
+    slip_speed: Option<f64>,
+}
+
+impl FloorSection {
+    /// The floor, if any key is given, with the defaults of the schema for
+    /// the chain `c` (its `m`, `g`, `l = L / n`, `L`).
+    fn floor(&self, c: &ChainParams) -> Option<Floor> {
+        let FloorSection {
+            height,
+            angle,
+            stiffness,
+            damping,
+            friction,
+            slip_speed,
+        } = *self;
+        let any = [height, angle, stiffness, damping, friction, slip_speed]
+            .iter()
+            .any(Option::is_some);
+        if !any {
+            return None;
+        }
+        let l = c.length / c.links.max(1) as f64;
+        let g = if c.gravity > 0.0 { c.gravity } else { 1.0 };
+        Some(Floor {
+            height,
+            angle: angle.unwrap_or(0.0),
+            stiffness: stiffness.unwrap_or(1e4 * c.mass * g / l),
+            damping: damping.unwrap_or(0.0),
+            friction: friction.unwrap_or(0.0),
+            slip_speed: slip_speed.unwrap_or(1e-3 * (g * c.length).sqrt()),
+        })
+    }
 }
 
 /// `[model]`: which equations a scene runs.
@@ -230,6 +277,7 @@ impl Scene {
             start,
             run,
             model,
+            floor,
         } = SceneFile::read(&tree)?;
         // Exhaustive both ways: a field of `ChainParams` without its key
         // here, or a key without its field, does not compile.
@@ -255,7 +303,7 @@ impl Scene {
             jerk_time,
             release,
         } = pivot;
-        let chain = ChainParams {
+        let mut chain = ChainParams {
             length,
             links,
             mass,
@@ -278,7 +326,9 @@ impl Scene {
                 masses: rod_masses,
                 lengths: rod_lengths,
             },
+            floor: None,
         };
+        chain.floor = floor.floor(&chain);
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
         let start = match (start.kind, start.p1, start.angles) {
@@ -386,6 +436,8 @@ impl Scene {
             tip_mass,
             pivot,
             profile,
+            // The `[floor]` keys are the scene's own: kept as they are.
+            floor: _,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;

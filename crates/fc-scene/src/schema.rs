@@ -212,7 +212,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Computed("absent: rigid links (the pinned chain)"),
         kinds: Kinds::Any,
-        doc: "axial stiffness `EA` (force), finite and > 0: each joint, the pivot included, a spring `K = EA / l` (the elastic model, `docs/model.md`)",
+        doc: "axial stiffness `EA` (force), finite and > 0: each joint a spring `K = EA / l`, the pivot's `2 EA / l` (it carries half a rod; the elastic model, `docs/model.md`)",
         example: "1e4",
         out_of_range: Some("-1e4"),
     },
@@ -221,7 +221,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(0.0)),
         kinds: Kinds::Any,
-        doc: "axial viscosity `eta` (force x time), finite and >= 0: a dashpot `eta / l` beside each joint spring; acts only with `chain.axial_stiffness`",
+        doc: "axial viscosity `eta` (force x time), finite and >= 0: a dashpot `eta / l` beside each joint spring (`2 eta / l` at the pivot); acts only with `chain.axial_stiffness`",
         example: "0.5",
         out_of_range: Some("-1"),
     },
@@ -467,6 +467,60 @@ pub static KEYS: &[Key] = &[
         doc: "`true`: the report's own model, as a control (its equations, clock and stepper as its code has them, `docs/model.md`); rigid links only, at most 200 rods, `run.method` one of `rk4` (the report's stepper), `dopri5`, `dop853`; times and speeds in its clock's unit",
         example: "true",
         out_of_range: None,
+    },
+    Key {
+        path: "floor.height",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: touching the start's lowest rod end (any `[floor]` key makes a floor)"),
+        kinds: Kinds::Any,
+        doc: "height `h` of the floor line at `x = 0` (length), in -1e9..=1e9, at or below the start (within `n m g / k`); a floor needs elastic links and takes `chain.axial_stiffness = 1e4 n m g` when it is absent (`docs/model.md`, \"The floor\"); not with a moving pivot",
+        example: "-7",
+        out_of_range: Some("1e300"),
+    },
+    Key {
+        path: "floor.angle",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: 0 (level)"),
+        kinds: Kinds::Any,
+        doc: "the floor's slope `a` from the horizontal (rad, rising to +x), in -1.5..=1.5",
+        example: "0.2",
+        out_of_range: Some("2"),
+    },
+    Key {
+        path: "floor.stiffness",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: `1e4 m g / l`"),
+        kinds: Kinds::Any,
+        doc: "normal stiffness `k` of each contact point, a rod's two ends (force / length), in (0, 1e15]",
+        example: "1e5",
+        out_of_range: Some("0"),
+    },
+    Key {
+        path: "floor.damping",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: 0"),
+        kinds: Kinds::Any,
+        doc: "Hunt-Crossley damping `c` (time / length): normal force `max(0, k delta (1 + c delta'))`; `c v >> 1` at an impact speed `v` is plastic; in 0..=1e12",
+        example: "100",
+        out_of_range: Some("-1"),
+    },
+    Key {
+        path: "floor.friction",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: 0"),
+        kinds: Kinds::Any,
+        doc: "Coulomb friction coefficient `mu`, regularised as `-mu N tanh(v_t / v_s)`, in 0..=100",
+        example: "0.5",
+        out_of_range: Some("-0.5"),
+    },
+    Key {
+        path: "floor.slip_speed",
+        ty: Type::Number,
+        default: DefaultValue::Computed("absent: `1e-3 sqrt(g L)` (`sqrt(L)` at `g = 0`)"),
+        kinds: Kinds::Any,
+        doc: "the friction's regularisation speed `v_s` (length / time), in (0, 1e6]",
+        example: "0.01",
+        out_of_range: Some("0"),
     },
 ];
 
@@ -908,7 +962,8 @@ mod tests {
                 "pivot",
                 "start",
                 "run",
-                "model"
+                "model",
+                "floor"
             ]
         );
         // Every kind takes `kind` and `p0` first; every [start] row is
@@ -963,7 +1018,7 @@ mod tests {
         for (path, hint) in [
             (
                 "colour",
-                "a scene has the keys name, description, chain, pivot, start, run, model",
+                "a scene has the keys name, description, chain, pivot, start, run, model, floor",
             ),
             ("chain.lenght", chain_hint.as_str()),
             ("name.x", "'name' is not a table"),

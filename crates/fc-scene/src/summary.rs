@@ -84,6 +84,38 @@ pub struct RunSummary {
     pub t_tip_speed_max: f64,
     /// Which method ran over which span.
     pub segments: Vec<SegmentSummary>,
+    /// The floor's largest total normal force over the output samples
+    /// (force; what a scale under the chain reads), `None` without a floor
+    /// (and then absent from the JSON). Not in the CSV row.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub floor_force_max: Option<f64>,
+    /// When it happened.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_floor_force_max: Option<f64>,
+    /// At that sample, the force over the weight of what has landed (the
+    /// contact points the floor pushes, half a rod each): 1 at rest, 3 in
+    /// Cayley's ideal scale.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub floor_force_over_landed_weight: Option<f64>,
+}
+
+/// The floor's peak over the samples of `traj`: `(F_max, t, F / landed weight)`
+/// along the floor's normal, `None` without a floor.
+fn floor_peak(traj: &Trajectory) -> Option<(f64, f64, f64)> {
+    use chain_ode::Model as _;
+    let (_, angle) = traj.model.floor_line()?;
+    let (s, c) = angle.sin_cos();
+    let mut best: Option<(f64, f64, f64)> = None;
+    for k in 0..traj.len() {
+        let f = traj.floor_force(k)?;
+        let normal = -s * f[0] + c * f[1];
+        if best.is_none_or(|b| normal > b.0) {
+            let landed = traj.floor_landed_weight(k)?;
+            let ratio = if landed > 0.0 { normal / landed } else { 0.0 };
+            best = Some((normal, traj.times[k], ratio));
+        }
+    }
+    best
 }
 
 /// Columns of [`RunSummary::csv_row`], in order.
@@ -193,6 +225,7 @@ impl RunSummary {
     pub fn from_trajectory(name: &str, traj: &Trajectory) -> Self {
         let s = &traj.summary;
         let st = &traj.stats;
+        let floor = floor_peak(traj);
         Self {
             name: name.to_string(),
             status: traj.status.as_str().to_string(),
@@ -231,6 +264,9 @@ impl RunSummary {
                     t_end: g.t_end,
                 })
                 .collect(),
+            floor_force_max: floor.map(|f| f.0),
+            t_floor_force_max: floor.map(|f| f.1),
+            floor_force_over_landed_weight: floor.map(|f| f.2),
         }
     }
 
@@ -352,6 +388,17 @@ impl fmt::Display for RunSummary {
             f,
             "  max tip speed     {:.6} at t = {:.6}",
             self.tip_speed_max, self.t_tip_speed_max
-        )
+        )?;
+        if let (Some(fm), Some(t), Some(r)) = (
+            self.floor_force_max,
+            self.t_floor_force_max,
+            self.floor_force_over_landed_weight,
+        ) {
+            write!(
+                f,
+                "\n  max floor force   {fm:.6} at t = {t:.6} ({r:.4} x the weight landed)"
+            )?;
+        }
+        Ok(())
     }
 }

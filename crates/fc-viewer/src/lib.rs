@@ -141,6 +141,10 @@ pub struct ViewRun {
     pub profile: Option<RodProfile>,
     /// The file a run was read from (`--from`), shown on the page.
     pub source: Option<String>,
+    /// The floor `[height at x = 0, angle]` (scene coordinates, rad) of a
+    /// run with a `[floor]`, drawn as a line; `None`: no floor (and no
+    /// `floor` in the page's JSON).
+    pub floor: Option<[f64; 2]>,
 }
 
 /// The bytes of one kept frame of `links` rods with forces of
@@ -304,6 +308,10 @@ impl ViewRun {
             pivot: (!traj.chain().pivot().is_fixed()).then(|| Vec::with_capacity(2 * kept)),
             profile,
             source: None,
+            floor: {
+                use chain_ode::Model as _;
+                traj.model.floor_line().map(|(h, a)| [h, a])
+            },
         };
         let (mut tension, mut shear) = (Vec::new(), Vec::new());
         for (k, s) in traj.samples().enumerate() {
@@ -394,6 +402,10 @@ impl ViewRun {
             "stride": self.stride,
             "source": self.source,
         });
+        let mut head = head;
+        if let Some(f) = self.floor {
+            head["floor"] = json!(f);
+        }
         let head = head.to_string();
         // The object without its closing brace, then the arrays.
         out.push_str(&head[..head.len() - 1]);
@@ -585,6 +597,7 @@ mod tests {
             pivot: None,
             profile: None,
             source: None,
+            floor: None,
         }
     }
 

@@ -138,6 +138,8 @@ pub fn read_run_csv(path: &Path, budget: usize) -> Result<ViewRun, Error> {
             path.file_name()
                 .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
         ),
+        // A CSV does not hold the floor.
+        floor: None,
     };
     let (mut num, mut den) = (0.0f64, 0.0f64);
     let mut k = 0usize;

@@ -9,6 +9,7 @@
   const COLORS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd",
     "#ff7f0e", "#8c564b", "#e377c2", "#17becf"];
   const RED = "#d00000";
+  const FLOOR = "#808080";
 
   // Joint positions of every kept frame: x, y of joints 0..n per frame.
   function prepare(r, i) {
@@ -106,12 +107,26 @@
   const drawnTip = runs.map(() => null);
   const drawnFrame = runs.map(() => -1);
   const drawnPivot = runs.map(() => null);
+  const drawnFloor = runs.map(() => undefined);
 
   function drawChain(t) {
     cx.clearRect(0, 0, chain.width, chain.height);
     cx.fillStyle = "#fff";
     cx.fillRect(0, 0, chain.width, chain.height);
     const range = forceKind ? forceRange(forceKind) : null;
+    // The floor of each run that has one: the line y = h + x tan(a)
+    // across the drawing (grey, under the chains).
+    runs.forEach((r, i) => {
+      if (!r.floor) return;
+      const [h, a] = r.floor, [xmin, xmax] = r.bounds, pad = 0.5 * (xmax - xmin) + 1;
+      const x0 = xmin - pad, x1 = xmax + pad, k = Math.tan(a);
+      drawnFloor[i] = [x0, h + x0 * k, x1, h + x1 * k];
+      cx.strokeStyle = FLOOR; cx.lineWidth = 3;
+      cx.beginPath();
+      cx.moveTo(view.px(x0), view.py(h + x0 * k));
+      cx.lineTo(view.px(x1), view.py(h + x1 * k));
+      cx.stroke();
+    });
     runs.forEach((r, i) => {
       const f = frameAt(r, t);
       if (f < 0) return;
@@ -394,6 +409,8 @@
     playing: () => playing,
     drawnTip: (i) => drawnTip[i],
     drawnPivot: (i) => drawnPivot[i],
+    // The floor line of run i as drawn, [x0, y0, x1, y1], or undefined.
+    drawnFloor: (i) => drawnFloor[i],
     // The line width (px) of rod j of run i, as drawn without forces.
     rodWidth: (i, j) => (runs[i].widths ? runs[i].widths[j] : 2),
     // Joint j (0 = P0) of run i as drawn now.

@@ -170,4 +170,10 @@ impl Model for ModelKind {
     fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
         each!(self, m => m.momentum(t, y))
     }
+    fn floor_forces(&self, t: f64, y: &[f64]) -> Option<Vec<Vec2>> {
+        each!(self, m => m.floor_forces(t, y))
+    }
+    fn floor_line(&self) -> Option<(f64, f64)> {
+        each!(self, m => m.floor_line())
+    }
 }

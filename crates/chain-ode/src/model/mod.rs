@@ -215,6 +215,19 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq {
     fn momentum(&self, _t: f64, _y: &[f64]) -> Vec2 {
         [0.0, 0.0]
     }
+
+    /// The floor's force on each contact point at `t` (physical units; the
+    /// elastic chain's: rod 0's start, rod 0's end, rod 1's start, ...), or
+    /// `None` for a model without a floor.
+    fn floor_forces(&self, _t: f64, _y: &[f64]) -> Option<Vec<Vec2>> {
+        None
+    }
+
+    /// The floor as placed for the run, `(height at x = 0, angle)` in scene
+    /// coordinates, or `None` without a floor.
+    fn floor_line(&self) -> Option<(f64, f64)> {
+        None
+    }
 }
 
 /// A start for `chain` must give one angle and one rate per rod.

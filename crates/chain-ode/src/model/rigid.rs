@@ -140,6 +140,8 @@ impl Model for RigidModel {
         AutoPlan {
             explicit: rigid_auto_start(&self.chain, rtol),
             hand_over_above: f64::INFINITY,
+            implicit: Method::Bdf,
+            implicit_tolerance: 1.0,
         }
     }
 

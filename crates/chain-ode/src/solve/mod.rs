@@ -479,6 +479,39 @@ impl<M: Model> Trajectory<M> {
     pub fn momentum(&self, k: usize) -> Vec2 {
         self.model.momentum(self.times[k], self.state(k))
     }
+
+    /// The floor's force on each contact point at sample `k`
+    /// ([`Model::floor_forces`]), `None` without a floor.
+    pub fn floor_forces(&self, k: usize) -> Option<Vec<Vec2>> {
+        self.model.floor_forces(self.times[k], self.state(k))
+    }
+
+    /// The floor's total force on the chain at sample `k` (what a scale
+    /// under it reads, upward positive), `None` without a floor.
+    pub fn floor_force(&self, k: usize) -> Option<Vec2> {
+        let f = self.floor_forces(k)?;
+        Some(f.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]))
+    }
+
+    /// The weight of what has landed at sample `k`: `g m_i / 2` for each
+    /// contact point the floor pushes (each end of rod `i` stands for half
+    /// of it; the tip's point also for the tip mass), `None` without a floor.
+    pub fn floor_landed_weight(&self, k: usize) -> Option<f64> {
+        let f = self.floor_forces(k)?;
+        let chain = self.model.chain()?;
+        let g = chain.gravity();
+        let last = f.len().saturating_sub(1);
+        Some(
+            f.iter()
+                .enumerate()
+                .filter(|(_, p)| p[0] != 0.0 || p[1] != 0.0)
+                .map(|(j, _)| {
+                    let tip = if j == last { chain.tip_mass() } else { 0.0 };
+                    g * (0.5 * crate::elastic::rod_mass(chain, j / 2) + tip)
+                })
+                .sum(),
+        )
+    }
 }
 
 impl Trajectory<ModelKind> {

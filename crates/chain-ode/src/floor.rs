@@ -1,0 +1,318 @@
+//! The floor: a straight line the elastic chain falls onto, with penalty
+//! contact at every rod's two ends (`docs/model.md`, "The floor").
+//!
+//! The floor is the line through `(0, h)` (scene coordinates) at the angle
+//! `a` from the horizontal, with unit tangent `t = (cos a, sin a)` and unit
+//! normal `n = (-sin a, cos a)` pointing out of it. A point `p` is inside
+//! by the penetration `delta = n . ((0, h) - p)` (length; > 0 inside), at
+//! the rate `delta' = -n . p'`. Each contact point (the two ends
+//! `c_i -+ h_i u_i` of every rod: a straight rod's penetration is affine
+//! along it, so its deepest point is an end) feels, while `delta > 0`,
+//!
+//! ```text
+//! N = max(0, k delta (1 + c delta'))           normal force (never pulls)
+//! T = -mu N tanh(v_t / v_s),  v_t = t . p'     friction (regularised Coulomb)
+//! ```
+//!
+//! (`k` force/length, `c` time/length, `mu` dimensionless, `v_s` a speed):
+//! the Hunt–Crossley law with exponent 1, zero at touch-down. Its stored
+//! energy `U = k delta^2 / 2` is part of the energy `E`; the rest of its
+//! power goes to the work `W`:
+//! `W' = N delta' - k delta delta' + mu N tanh(v_t / v_s) v_t >= 0`
+//! (the first two `k c delta delta'^2` unless `N` is clamped at 0).
+//!
+//! The force on rod `i` depends on rod `i`'s coordinates alone, so the
+//! elastic chain's Jacobian keeps its band. Positions in the state are
+//! relative to the pivot's anchor `P0`; a [`FloorTerm`] holds the floor in
+//! that frame.
+
+use fc_methods::InvalidParameter;
+
+use crate::chain::{check, number_text};
+use crate::kinematics::Vec2;
+use crate::scalar::Scalar;
+
+/// The largest floor angle `|a|` (rad).
+pub const MAX_FLOOR_ANGLE: f64 = 1.5;
+
+/// A floor as the scene gives it (the `[floor]` keys), in the scene's units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Floor {
+    /// Height `h` of the floor line at `x = 0` (length, scene coordinates),
+    /// or `None`: the floor touches the start's lowest rod end (placed by
+    /// the model from the start, [`FloorTerm::touching`]).
+    pub height: Option<f64>,
+    /// Its angle `a` from the horizontal (rad; positive rises to +x).
+    pub angle: f64,
+    /// Normal stiffness `k` of each contact point (force / length).
+    pub stiffness: f64,
+    /// Hunt–Crossley damping `c` (time / length): the normal force is
+    /// `k delta (1 + c delta')`; `c v >> 1` at an impact speed `v` makes the
+    /// impact plastic.
+    pub damping: f64,
+    /// Coulomb friction coefficient `mu` (>= 0).
+    pub friction: f64,
+    /// The regularisation speed `v_s` of the friction (> 0): below it the
+    /// friction grows linearly with the slip speed.
+    pub slip_speed: f64,
+}
+
+impl Floor {
+    /// Checks every field; the error names the first key out of range.
+    pub fn validate(&self) -> Result<(), InvalidParameter> {
+        let fin = |x: f64| x.is_finite();
+        if let Some(h) = self.height {
+            check(
+                fin(h) && h.abs() <= 1e9,
+                "floor.height",
+                "a number in -1e9..=1e9",
+                h,
+            )?;
+        }
+        check(
+            fin(self.angle) && self.angle.abs() <= MAX_FLOOR_ANGLE,
+            "floor.angle",
+            "a number in -1.5..=1.5 (rad)",
+            self.angle,
+        )?;
+        check(
+            fin(self.stiffness) && self.stiffness > 0.0 && self.stiffness <= 1e15,
+            "floor.stiffness",
+            "a finite number in (0, 1e15]",
+            self.stiffness,
+        )?;
+        check(
+            fin(self.damping) && (0.0..=1e12).contains(&self.damping),
+            "floor.damping",
+            "a finite number in 0..=1e12",
+            self.damping,
+        )?;
+        check(
+            fin(self.friction) && (0.0..=100.0).contains(&self.friction),
+            "floor.friction",
+            "a finite number in 0..=100",
+            self.friction,
+        )?;
+        check(
+            fin(self.slip_speed) && self.slip_speed > 0.0 && self.slip_speed <= 1e6,
+            "floor.slip_speed",
+            "a finite number in (0, 1e6]",
+            self.slip_speed,
+        )
+    }
+
+    /// The floor at the height `height` in the frame of the anchor `P0`
+    /// (state positions are relative to it).
+    pub fn term(&self, height: f64, anchor: Vec2) -> FloorTerm {
+        let (s, c) = self.angle.sin_cos();
+        let n = [-s, c];
+        FloorTerm {
+            t: [c, s],
+            n,
+            level: n[0] * (0.0 - anchor[0]) + n[1] * (height - anchor[1]),
+            k: self.stiffness,
+            c: self.damping,
+            mu: self.friction,
+            inv_vs: 1.0 / self.slip_speed,
+        }
+    }
+}
+
+/// The floor as the right-hand side reads it (positions relative to `P0`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FloorTerm {
+    /// Unit tangent `t`.
+    pub t: Vec2,
+    /// Unit normal `n` (out of the floor).
+    pub n: Vec2,
+    /// `n . ((0, h) - P0)`: a point `p` (relative to `P0`) is inside by
+    /// `delta = level - n . p`.
+    pub level: f64,
+    /// `k`.
+    pub k: f64,
+    /// `c`.
+    pub c: f64,
+    /// `mu`.
+    pub mu: f64,
+    /// `1 / v_s`.
+    pub inv_vs: f64,
+}
+
+/// What one contact point receives: its force, and the power it loses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact<T> {
+    /// Force on the point (x, y).
+    pub force: [T; 2],
+    /// Power dissipated, `W'` (>= 0).
+    pub dissipation: T,
+}
+
+impl FloorTerm {
+    /// This floor moved along its normal to touch the lowest of the points
+    /// `points` (relative to `P0`): `level = min n . p`.
+    pub fn touching(mut self, points: impl Iterator<Item = Vec2>) -> Self {
+        self.level = points
+            .map(|p| self.n[0] * p[0] + self.n[1] * p[1])
+            .fold(f64::INFINITY, f64::min);
+        self
+    }
+
+    /// The height `h` of this floor at `x = 0` in scene coordinates, for
+    /// the anchor `P0`: `n . ((0, h) - P0) = level`.
+    pub fn height(&self, anchor: Vec2) -> f64 {
+        (self.level + self.n[0] * anchor[0] + self.n[1] * anchor[1]) / self.n[1]
+    }
+
+    /// The penetration `delta` of the point `p` (relative to `P0`).
+    #[inline(always)]
+    pub fn penetration(&self, p: Vec2) -> f64 {
+        self.level - (self.n[0] * p[0] + self.n[1] * p[1])
+    }
+
+    /// The contact at the point `p` moving at `v` (relative to `P0`); zero
+    /// when the point is out of the floor.
+    #[inline(always)]
+    pub fn contact<T: Scalar>(&self, p: [T; 2], v: [T; 2]) -> Contact<T> {
+        let zero = T::cst(0.0);
+        let delta = T::cst(self.level) - (p[0] * self.n[0] + p[1] * self.n[1]);
+        if delta.value() <= 0.0 {
+            return Contact {
+                force: [zero, zero],
+                dissipation: zero,
+            };
+        }
+        let rate = -(v[0] * self.n[0] + v[1] * self.n[1]);
+        let spring = delta * self.k;
+        let push = spring + spring * rate * self.c;
+        if push.value() <= 0.0 {
+            // Clamped: the floor does not pull. The spring's energy leaves.
+            return Contact {
+                force: [zero, zero],
+                dissipation: -(spring * rate),
+            };
+        }
+        let slip = v[0] * self.t[0] + v[1] * self.t[1];
+        let x = slip.value() * self.inv_vs;
+        let th = x.tanh();
+        let tanh = (slip * self.inv_vs).chain_rule(th, 1.0 - th * th);
+        let tangential = -(push * tanh * self.mu);
+        Contact {
+            force: [
+                push * self.n[0] + tangential * self.t[0],
+                push * self.n[1] + tangential * self.t[1],
+            ],
+            dissipation: push * rate - spring * rate - tangential * slip,
+        }
+    }
+
+    /// Its stored energy at the point `p`: `k delta^2 / 2` inside, else 0.
+    #[inline(always)]
+    pub fn energy(&self, p: Vec2) -> f64 {
+        let d = self.penetration(p);
+        if d > 0.0 {
+            0.5 * self.k * d * d
+        } else {
+            0.0
+        }
+    }
+
+    /// The floor's force and torque on a rod of centre `c`, velocity `vc`,
+    /// angle `(sin, cos) = sc`, rate `w`, half length `h`, from its two ends
+    /// (`c -+ h u`): `[F_x, F_y, torque about c, W']`.
+    #[inline(always)]
+    pub fn on_rod<T: Scalar>(&self, c: [T; 2], vc: [T; 2], sc: (T, T), w: T, h: f64) -> [T; 4] {
+        let (s, co) = sc;
+        let (hc, hs) = (co * h, s * h);
+        let (hsw, hcw) = (hs * w, hc * w);
+        let a = self.contact([c[0] - hc, c[1] - hs], [vc[0] + hsw, vc[1] - hcw]);
+        let b = self.contact([c[0] + hc, c[1] + hs], [vc[0] - hsw, vc[1] + hcw]);
+        let fx = a.force[0] + b.force[0];
+        let fy = a.force[1] + b.force[1];
+        // r x F with r = -+ h u.
+        let torque = (hc * (b.force[1] - a.force[1])) - (hs * (b.force[0] - a.force[0]));
+        [fx, fy, torque, a.dissipation + b.dissipation]
+    }
+}
+
+/// The floor's line in scene coordinates, for a drawing: the two points
+/// `(x0, h + x0 tan a)` and `(x1, h + x1 tan a)`.
+/// `height` is the floor's at `x = 0` ([`FloorTerm::height`]).
+pub fn line(floor: &Floor, height: f64, x0: f64, x1: f64) -> [Vec2; 2] {
+    let slope = floor.angle.tan();
+    [[x0, height + x0 * slope], [x1, height + x1 * slope]]
+}
+
+/// The deepest a start may lie inside the floor: the static deflection of
+/// one point carrying the whole chain, `M g / k`.
+pub fn start_tolerance(floor: &Floor, weight: f64) -> f64 {
+    weight / floor.stiffness
+}
+
+/// The one-line reason a start is refused: point `p` of rod `rod` lies
+/// `depth` inside the floor.
+pub(crate) fn inside_error(rod: usize, depth: f64, tolerance: f64) -> InvalidParameter {
+    InvalidParameter {
+        field: "floor.height",
+        accepted: format!(
+            "a floor below the chain's start (it may touch it, within the static deflection \
+             {} of the whole weight on one point)",
+            number_text(tolerance)
+        )
+        .into(),
+        got: format!(
+            "the start inside the floor by {} at rod {}",
+            number_text(depth),
+            rod + 1
+        ),
+    }
+}
+
+/// The contact points of the elastic state `y` (relative to `P0`), in
+/// order: rod 0's start, rod 0's end, rod 1's start, ..., with their
+/// velocities; `2 n` of them.
+pub fn points(chain: &crate::Chain, y: &[f64]) -> Vec<[Vec2; 2]> {
+    let n = chain.links();
+    let (ox, oy, ovx, ovy) = (2 * n + 1, 3 * n + 1, 4 * n + 1, 5 * n + 1);
+    let mut out = Vec::with_capacity(2 * n);
+    for i in 0..n {
+        let h = crate::elastic::rod_half_length(chain, i);
+        let (s, c) = crate::scalar::sin_cos(y[i]);
+        let w = y[n + i];
+        let (cx, cy, vx, vy) = (y[ox + i], y[oy + i], y[ovx + i], y[ovy + i]);
+        out.push([[cx - h * c, cy - h * s], [vx + h * s * w, vy - h * c * w]]);
+        out.push([[cx + h * c, cy + h * s], [vx - h * s * w, vy + h * c * w]]);
+    }
+    out
+}
+
+/// The floor's force on each contact point of [`points`] (physical units).
+pub fn point_forces(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Vec<Vec2> {
+    points(chain, y)
+        .into_iter()
+        .map(|[p, v]| term.contact(p, v).force)
+        .collect()
+}
+
+/// The floor's total force on the chain, the sum of [`point_forces`]: what
+/// a scale under the chain reads (with the opposite sign).
+pub fn total_force(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Vec2 {
+    point_forces(chain, term, y)
+        .iter()
+        .fold([0.0, 0.0], |a, f| [a[0] + f[0], a[1] + f[1]])
+}
+
+/// The floor's stored energy `sum k delta^2 / 2` in the elastic state `y`.
+pub fn stored_energy(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> f64 {
+    points(chain, y).iter().map(|[p, _]| term.energy(*p)).sum()
+}
+
+/// The deepest contact point of the start `y` and its rod, if any is
+/// inside the floor: `(rod, depth)`.
+pub fn deepest(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Option<(usize, f64)> {
+    points(chain, y)
+        .iter()
+        .enumerate()
+        .map(|(j, [p, _])| (j / 2, term.penetration(*p)))
+        .filter(|&(_, d)| d > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+}
