@@ -398,6 +398,43 @@ pub static FIGURES: &[Figure] = &[
         make: &study::elastic_rigid_order::RigidOrder,
     },
     Figure {
+        id: "elastic-layout-order",
+        report: None,
+        what: "the elastic chain against the continuum rope as n grows (a rope of unit length, \
+               mass and gravity, EA = 1e4): the lowest three axial frequencies and the \
+               self-weight stretch (without and with a tip mass M_t = M), n = 5 .. 320, the \
+               fitted orders, and the layout before as its closed forms",
+        data: &[
+            "elastic-layout-order.csv",
+            "elastic-layout-order-stretch.csv",
+            "elastic-layout-order-fit.csv",
+        ],
+        timing: Timing::None,
+        make: &study::elastic_layout_order::LayoutOrder,
+    },
+    Figure {
+        id: "snap-precision",
+        report: None,
+        what: "work-precision of the folded elastic snap (n = 20, 5% damping, t = 3.2) at EA = \
+               1e4 .. 1e8: DOPRI5, DOP853, BDF, gen-alpha and auto against DOP853 at rtol 1e-10; \
+               error against wall time at EA = 1e8 and each method's least time to an error of \
+               1e-4 against EA (timing only: run with --timings)",
+        data: &["snap-precision-timing.csv", "snap-precision-best-timing.csv"],
+        timing: Timing::Only,
+        make: &study::elastic_snap_precision::BY_STIFFNESS,
+    },
+    Figure {
+        id: "snap-damping",
+        report: None,
+        what: "work-precision of the folded elastic snap (n = 20, EA = 1e7, t = 3.2) at axial \
+               damping ratios 0.05 .. 1: error against wall time at zeta = 1 and the speed-up \
+               of gen-alpha and BDF over the explicit pairs at an error of 1e-4 (timing only: \
+               run with --timings)",
+        data: &["snap-damping-timing.csv", "snap-damping-best-timing.csv"],
+        timing: Timing::Only,
+        make: &study::elastic_snap_precision::BY_DAMPING,
+    },
+    Figure {
         id: "span-friction",
         report: None,
         what: "sensitivity of the maximum tip speed to the joint friction r for the span \
@@ -550,11 +587,11 @@ mod tests {
     fn the_registry_keeps_the_catalogue_conventions() {
         assert_eq!(paper::catalogue::check(&entries()), Ok(()));
         assert_eq!(FIGURES.iter().filter(|f| f.report.is_some()).count(), 21);
-        assert_eq!(FIGURES.len(), 60);
+        assert_eq!(FIGURES.len(), 63);
     }
 
     /// The panels of the registry's line plots and pairs.
-    const PANELS: usize = 49;
+    const PANELS: usize = 55;
 
     /// Every figure drawn from the committed data (into a scratch folder)
     /// whose drawing reports its layout (the line plots and pairs): its

@@ -11,11 +11,15 @@
 //!
 //! ```text
 //! d_k = (c_k - h u_k) - (c_{k-1} + h u_{k-1})        (d_0 = c_0 - h u_0)
-//! F_k = -K d_k - C d_k'                              force of joint k on rod k
+//! F_k = -K_k d_k - C_k d_k'                          force of joint k on rod k
 //! ```
 //!
-//! with `K = EA / l` and `C = eta / l` (`eta = chain.axial_damping`), and rod
-//! `k - 1` gets `-F_k`. The tip (joint `n`) is free: `F_n = 0`. The equations
+//! with `K_k = EA / l` and `C_k = eta / l` (`eta = chain.axial_damping`)
+//! between two rods and `K_0 = 2 EA / l`, `C_0 = 2 eta / l` at the pivot:
+//! each joint carries the rope from centre to centre, the pivot the half rod
+//! to rod 0's centre, so that the axial frequencies and the self-weight
+//! stretch converge to the rope's at second order in `1/n`
+//! (`docs/model.md`, "Where the compliance sits"). Rod `k - 1` gets `-F_k`. The tip (joint `n`) is free: `F_n = 0`. The equations
 //! of motion, each rod coupled only to its two neighbours, are
 //!
 //! ```text
@@ -26,17 +30,18 @@
 //! (`a x b = a_x b_y - a_y b_x`; `D_i` the neighbours' stencil of the rigid
 //! model: friction `r` and bending `EI` act between neighbouring rods only).
 //! The energy `E = T + V + U_el + U_b` with `T = sum m |c_i'|^2 / 2 + J w_i^2 / 2`,
-//! `V = m g sum c_i.y`, `U_el = (K / 2) sum |d_k|^2`,
+//! `V = m g sum c_i.y`, `U_el = sum (K_k / 2) |d_k|^2`,
 //! `U_b = (EI / 2l) sum (theta_{i+1} - theta_i)^2` balances the work
-//! `W' = 2R = C sum |d_k'|^2 + r sum (w_{i+1} - w_i)^2`. As `EA -> inf` at
+//! `W' = 2R = sum C_k |d_k'|^2 + r sum (w_{i+1} - w_i)^2`. As `EA -> inf` at
 //! fixed `n` the gaps close and this is the rigid pinned chain.
 //!
 //! Every key of issue 18 works here too (`docs/model.md`, "Elastic links
 //! with a rod profile, a tip mass and a moving or released pivot"):
 //!
 //! * a rod profile: rod `i` has `m_i`, `J_i = m_i l_i^2 / 12`, `h_i = l_i / 2`;
-//!   joint `k` carries rod `k`'s compliance, `K_k = EA / l_k`, `C_k = eta / l_k`
-//!   (in series, `L / EA`), and its bending spring is `EI / ((l_{k-1} + l_k) / 2)`;
+//!   joint `k` carries its share `s_k = (l_{k-1} + l_k) / 2` of the rope
+//!   (`s_0 = l_0 / 2`), `K_k = EA / s_k`, `C_k = eta / s_k`, and its bending
+//!   spring is `EI / s_k`;
 //! * a tip mass `M`: the last rod and `M` are one rigid body (`tip_body`);
 //! * a driven pivot: positions and velocities are relative to `P0(t)`, every
 //!   rod feels `-m_i P0''(t)`, and `W' = 2R - F_0 . P0'` counts the support's
@@ -56,6 +61,7 @@ use std::cell::RefCell;
 use crate::chain::Chain;
 use crate::dae::ChainDae;
 use crate::dynamics::{damping_stencil, Workspace};
+use crate::floor::FloorTerm;
 use crate::kinematics::Vec2;
 use crate::pivot::Pivot;
 use crate::scalar::{sin_cos, Dual, Scalar};
@@ -73,10 +79,10 @@ struct PerRod {
     inv_m: Vec<f64>,
     /// `1 / J_i`, `J_i = m_i l_i^2 / 12`.
     inv_j: Vec<f64>,
-    /// Joint `k`'s spring `K_k = EA / l_k` (the joint at the start of rod `k`
-    /// carries rod `k`'s compliance `l_k / EA`).
+    /// Joint `k`'s spring `K_k = EA / s_k`, `s_k = (l_{k-1} + l_k) / 2`
+    /// (centre to centre) and `s_0 = l_0 / 2` (pivot to rod 0's centre).
     k: Vec<f64>,
-    /// Joint `k`'s dashpot `C_k = eta / l_k`.
+    /// Joint `k`'s dashpot `C_k = eta / s_k`.
     c: Vec<f64>,
     /// Joint `k`'s bending spring `EI / ((l_{k-1} + l_k) / 2)` (`k >= 1`;
     /// entry 0 unused: the pivot has none).
@@ -98,6 +104,11 @@ struct Springs {
     k: f64,
     /// Joint dashpot `C = eta / l` (equal rods).
     c: f64,
+    /// The pivot joint's spring `K_0 = 2 EA / l` (equal rods): it carries
+    /// half a rod of the rope, from the pivot to rod 0's centre.
+    k0: f64,
+    /// The pivot joint's dashpot `C_0 = 2 eta / l` (equal rods).
+    c0: f64,
     /// Joint friction `r`.
     r: f64,
     /// Bending spring `EI / l` (equal rods).
@@ -116,6 +127,9 @@ struct Springs {
     driven: bool,
     /// True once the pivot is let go: joint 0 has no spring.
     released: bool,
+    /// The floor in the anchor's frame (`None`: no floor, and not one
+    /// operation more on the path without it).
+    floor: Option<FloorTerm>,
 }
 
 impl Springs {
@@ -128,12 +142,18 @@ impl Springs {
             let n = r.length.len();
             let li = |i: usize| l * r.length[i];
             let mi = |i: usize| m * r.mass[i];
+            // Joint k's share of the rope: centre to centre, half a rod at
+            // the pivot.
+            let share = |k: usize| match k {
+                0 => 0.5 * li(0),
+                _ => 0.5 * (li(k - 1) + li(k)),
+            };
             std::sync::Arc::new(PerRod {
                 h: (0..n).map(|i| 0.5 * li(i)).collect(),
                 inv_m: (0..n).map(|i| 1.0 / mi(i)).collect(),
                 inv_j: (0..n).map(|i| 12.0 / (mi(i) * li(i) * li(i))).collect(),
-                k: (0..n).map(|i| ea / li(i)).collect(),
-                c: (0..n).map(|i| eta / li(i)).collect(),
+                k: (0..n).map(|k| ea / share(k)).collect(),
+                c: (0..n).map(|k| eta / share(k)).collect(),
                 kb: (0..n)
                     .map(|k| match k {
                         0 => 0.0,
@@ -153,6 +173,8 @@ impl Springs {
             // and no caller builds one (see `ElasticSystem::new`).
             k: chain.joint_stiffness().unwrap_or(0.0),
             c: chain.joint_damping(),
+            k0: 2.0 * chain.joint_stiffness().unwrap_or(0.0),
+            c0: 2.0 * chain.joint_damping(),
             r: chain.damping(),
             kb: chain.bending_spring(),
             rods,
@@ -163,6 +185,9 @@ impl Springs {
             // Let go at t = 0: no joint-0 spring from the start (a later
             // release is `ElasticSystem::set_released`'s, in `solve`).
             released: chain.pivot().release == Some(0.0),
+            floor: chain
+                .floor()
+                .and_then(|f| f.height.map(|h| f.term(h, [0.0, 0.0]))),
         }
     }
 
@@ -180,11 +205,19 @@ impl Springs {
     }
     #[inline(always)]
     fn k(&self, i: usize) -> f64 {
-        self.rods.as_ref().map_or(self.k, |r| r.k[i])
+        match &self.rods {
+            None if i == 0 => self.k0,
+            None => self.k,
+            Some(r) => r.k[i],
+        }
     }
     #[inline(always)]
     fn c(&self, i: usize) -> f64 {
-        self.rods.as_ref().map_or(self.c, |r| r.c[i])
+        match &self.rods {
+            None if i == 0 => self.c0,
+            None => self.c,
+            Some(r) => r.c[i],
+        }
     }
 
     /// The bending springs' torque on rod `i`: `(EI / l) D_i(theta)` for
@@ -224,22 +257,26 @@ pub fn rod_half_length(chain: &Chain, i: usize) -> f64 {
     }
 }
 
-/// Joint `k`'s spring and dashpot `(K_k, C_k) = (EA, eta) / l_k`: the joint
-/// at the start of rod `k` carries that rod's compliance (`K = EA / l` for
-/// equal rods; 0 for rigid links).
+/// Joint `k`'s spring and dashpot `(K_k, C_k) = (EA, eta) / s_k`: joint
+/// `k >= 1` carries the rope between the centres of rods `k - 1` and `k`,
+/// `s_k = (l_{k-1} + l_k) / 2`, and the pivot joint the half rod from the
+/// pivot to rod 0's centre, `s_0 = l_0 / 2` (`docs/model.md`, "Where the
+/// compliance sits"). Equal rods: `K = EA / l`, `K_0 = 2 K`; 0 for rigid
+/// links.
 pub fn joint_spring(chain: &Chain, k: usize) -> (f64, f64) {
-    match chain.rods() {
-        None => (
-            chain.joint_stiffness().unwrap_or(0.0),
-            chain.joint_damping(),
-        ),
+    let share = match chain.rods() {
+        None => (if k == 0 { 0.5 } else { 1.0 }) * chain.rod_length(),
         Some(r) => {
-            let lk = chain.rod_length() * r.length[k];
-            (
-                chain.axial_stiffness().unwrap_or(0.0) / lk,
-                chain.axial_damping() / lk,
-            )
+            let li = |i: usize| chain.rod_length() * r.length[i];
+            match k {
+                0 => 0.5 * li(0),
+                _ => 0.5 * (li(k - 1) + li(k)),
+            }
         }
+    };
+    match chain.axial_stiffness() {
+        None => (0.0, chain.joint_damping()),
+        Some(ea) => (ea / share, chain.axial_damping() / share),
     }
 }
 
@@ -304,8 +341,17 @@ fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [
             let i = k - 1;
             let (s, c) = sc[i];
             let (sx, sy) = (fpx + fx, fpy + fy);
-            let torque =
+            let mut torque =
                 -((c * sy - s * sx) * p.h(i)) + damping_stencil(w, i) * p.r + p.bending(theta, i);
+            // The floor's force on rod i joins the force at its start.
+            let (mut fpx, mut fpy) = (fpx, fpy);
+            if let Some(floor) = &p.floor {
+                let (cx, cy, vx, vy) = (y[ox + i], y[oy + i], y[ovx + i], y[ovy + i]);
+                let [gx, gy, gt, gw] = floor.on_rod([cx, cy], [vx, vy], (s, c), w[i], p.h(i));
+                (fpx, fpy) = (fpx + gx, fpy + gy);
+                torque += gt;
+                dissipated += gw;
+            }
             dy[i] = w[i];
             dy[ox + i] = y[ovx + i];
             dy[oy + i] = y[ovy + i];
@@ -420,6 +466,12 @@ impl ElasticSystem {
         self.springs.released = released;
     }
 
+    /// Sets the floor, placed in the anchor's frame (`crate::floor`;
+    /// state positions are relative to `P0`).
+    pub fn set_floor(&mut self, floor: Option<FloorTerm>) {
+        self.springs.floor = floor;
+    }
+
     /// `dy = f(y)` at `t` (`t` read only for a driven pivot): O(n),
     /// allocation-free.
     pub fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
@@ -465,7 +517,11 @@ impl OdeSystem for ElasticSystem {
 impl Problem for ElasticSystem {
     fn banded_dae(&self, _t0: f64, y0: &[f64]) -> Option<BandedDae> {
         Some(BandedDae {
-            dae: Box::new(ElasticDae::new(&self.chain).released(self.springs.released)),
+            dae: Box::new(
+                ElasticDae::new(&self.chain)
+                    .released(self.springs.released)
+                    .floor(self.springs.floor),
+            ),
             y0: y0.to_vec(),
         })
     }
@@ -510,6 +566,12 @@ impl ElasticDae {
     /// This DAE with the pivot let go (`true`: no joint-0 spring) or held.
     pub fn released(mut self, released: bool) -> Self {
         self.springs.released = released;
+        self
+    }
+
+    /// This DAE with the floor `floor` (in the anchor's frame).
+    pub fn floor(mut self, floor: Option<FloorTerm>) -> Self {
+        self.springs.floor = floor;
         self
     }
 }
@@ -883,7 +945,7 @@ pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
     let p = Springs::of(chain);
     let m = chain.mass();
     let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
-    let (mut t, mut v, mut u) = (0.0, 0.0, 0.0);
+    let (mut t, mut v, mut u, mut u0) = (0.0, 0.0, 0.0, 0.0);
     let (mut ex, mut ey) = (0.0, 0.0);
     for i in 0..n {
         let (s, c) = sin_cos(y[i]);
@@ -892,11 +954,15 @@ pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
         t += m * (vx * vx + vy * vy) + w * w / p.inv_j;
         v += yy;
         let (dx, dyy) = (x - p.h * c - ex, yy - p.h * s - ey);
-        u += dx * dx + dyy * dyy;
+        if i == 0 {
+            u0 = dx * dx + dyy * dyy;
+        } else {
+            u += dx * dx + dyy * dyy;
+        }
         (ex, ey) = (x + p.h * c, yy + p.h * s);
     }
     let bend: f64 = y[..n].windows(2).map(|q| (q[1] - q[0]).powi(2)).sum();
-    0.5 * t + m * p.g * v + 0.5 * p.k * u + 0.5 * p.kb * bend
+    0.5 * t + m * p.g * v + 0.5 * (p.k0 * u0 + p.k * u) + 0.5 * p.kb * bend
 }
 
 /// [`energy`] at `t`: joint 0's spring energy is left out once the pivot

@@ -46,10 +46,12 @@ pub mod analysis;
 pub mod beam;
 mod chain;
 pub mod dae;
+pub mod dae_frame;
 pub mod dense;
 pub mod dynamics;
 mod dynamics_profile;
 pub mod elastic;
+pub mod floor;
 pub mod kinematics;
 #[cfg(test)]
 mod methods_on_chains;
@@ -73,6 +75,7 @@ pub use fc_methods::{
     Accuracy, AutoPlan, BandedDae, Cancel, Integrator, Interpolant, InvalidParameter, Method,
     OdeSystem, Problem, Segment, SemiExplicitDae, Stats, Status, StepView,
 };
+pub use floor::Floor;
 pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
@@ -81,7 +84,10 @@ pub use model::{
 };
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
-pub use solve::auto_elastic::{joint_damping_ratio, AUTO_ELASTIC_ZETA};
+pub use solve::auto_elastic::{
+    axial_stiffness_ratio, joint_damping_ratio, AUTO_ELASTIC_ZETA, AUTO_GEN_ALPHA_RTOL,
+    AUTO_GEN_ALPHA_STIFFNESS, AUTO_GEN_ALPHA_TOLERANCE,
+};
 pub use solve::{
     solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,
     BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES,

@@ -20,6 +20,11 @@ pub trait Scalar:
     fn cst(x: f64) -> Self;
     /// `(sin x, cos x)`.
     fn sin_cos(self) -> (Self, Self);
+    /// The value (the real part of a dual number): for a branch on it.
+    fn value(self) -> f64;
+    /// `f(x)` from its value `fx = f(x.value())` and slope `dfx = f'(x.value())`
+    /// (the chain rule for a dual number).
+    fn chain_rule(self, fx: f64, dfx: f64) -> Self;
     /// `out[i] = xs[i].sin_cos()` for a whole slice (may be vectorised).
     fn sin_cos_all(xs: &[Self], out: &mut [(Self, Self)]) {
         for (o, x) in out.iter_mut().zip(xs) {
@@ -36,6 +41,14 @@ impl Scalar for f64 {
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
         sin_cos(self)
+    }
+    #[inline(always)]
+    fn value(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn chain_rule(self, fx: f64, _dfx: f64) -> Self {
+        fx
     }
     fn sin_cos_all(xs: &[Self], out: &mut [(Self, Self)]) {
         let mut in_range = true;
@@ -196,6 +209,14 @@ impl Scalar for Dual {
     fn sin_cos(self) -> (Self, Self) {
         let (s, c) = sin_cos(self.v);
         (Self::new(s, c * self.d), Self::new(c, -s * self.d))
+    }
+    #[inline(always)]
+    fn value(self) -> f64 {
+        self.v
+    }
+    #[inline(always)]
+    fn chain_rule(self, fx: f64, dfx: f64) -> Self {
+        Self::new(fx, dfx * self.d)
     }
 }
 

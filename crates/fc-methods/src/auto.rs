@@ -1,14 +1,16 @@
 //! `auto`: a policy over the registered methods, run by the problem's
-//! [`AutoPlan`]: BDF from the start, or the plan's explicit method until
-//! its stiffness detector fires with `|lambda|` past the plan's threshold,
-//! then BDF from that state ([`hands_over`]). The plans are the run
+//! [`AutoPlan`]: its implicit method (BDF, or gen-alpha) from the start, or
+//! the plan's explicit method until its stiffness detector fires with
+//! `|lambda|` past the plan's threshold, then the implicit method from that
+//! state ([`hands_over`]).  The implicit method runs at the plan's
+//! tolerance factor times the asked `rtol` and `atol` (1 for BDF). The plans are the run
 //! layer's, from its models (chain-ode's: BDF from the start past the
 //! chain's measured crossover damping rate, else DOPRI5 (DOP853 at tight
 //! tolerances) to the end for a rigid chain, never handed over mid-run;
 //! elastic links handed over only when their axial modes are damped); a
 //! problem without a plan runs DOP853 to the end ([`AutoPlan::generic`]).
 
-use super::integrator::{Integrator, Run, Span};
+use super::integrator::{Integrator, Run, Settings, Span};
 use super::{registry, Method};
 use crate::ode::{Observer, Problem, Status, StepView};
 
@@ -20,11 +22,18 @@ pub const AUTO_DOP853_RTOL: f64 = 1e-8;
 /// [`Problem::auto_plan`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AutoPlan {
-    /// The explicit method to start with; `None`: BDF from the start.
+    /// The explicit method to start with; `None`: the implicit method from
+    /// the start.
     pub explicit: Option<Method>,
-    /// Hand over to BDF at the first stiffness detection with `|lambda|`
-    /// above this (`0`: at the first detection; infinite: never).
+    /// Hand over to the implicit method at the first stiffness detection
+    /// with `|lambda|` above this (`0`: at the first detection; infinite:
+    /// never).
     pub hand_over_above: f64,
+    /// The implicit method: [`Method::Bdf`] or [`Method::GenAlpha`].
+    pub implicit: Method,
+    /// The implicit method runs at this times the asked `rtol` and `atol`
+    /// (in (0, 1]; 1 for BDF, whose error follows its tolerance).
+    pub implicit_tolerance: f64,
 }
 
 impl AutoPlan {
@@ -40,6 +49,8 @@ impl AutoPlan {
         Self {
             explicit: Some(Method::Dop853),
             hand_over_above: f64::INFINITY,
+            implicit: Method::Bdf,
+            implicit_tolerance: 1.0,
         }
     }
 }
@@ -84,13 +95,31 @@ pub(crate) const AUTO: Integrator = Integrator {
     run,
 };
 
-/// The explicit method until the watcher hands over, then BDF from there.
+/// The explicit method until the watcher hands over, then the implicit
+/// method from there.
 fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Run {
     let plan = problem
         .auto_plan()
         .unwrap_or_else(|| AutoPlan::generic(span.settings.rtol));
+    // The implicit method's settings (unchanged at a factor of 1).
+    let tightened = |s: &Settings| {
+        if plan.implicit_tolerance == 1.0 {
+            *s
+        } else {
+            Settings {
+                rtol: s.rtol * plan.implicit_tolerance,
+                atol: s.atol * plan.implicit_tolerance,
+                ..*s
+            }
+        }
+    };
     let Some(explicit) = plan.explicit else {
-        return registry::run(Method::Bdf, problem, span, obs);
+        let settings = tightened(span.settings);
+        let whole = Span {
+            settings: &settings,
+            ..*span
+        };
+        return registry::run(plan.implicit, problem, &whole, obs);
     };
     let mut watch = Watch {
         inner: obs,
@@ -106,14 +135,14 @@ fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Ru
         return first;
     };
     let done = first.outcome.stats;
-    let settings = span.settings.after(&done);
+    let settings = tightened(&span.settings.after(&done));
     let rest = Span {
         t0: t_switch,
         y0: &first.outcome.y_end,
         t_end: span.t_end,
         settings: &settings,
     };
-    let mut second = registry::run(Method::Bdf, problem, &rest, obs);
+    let mut second = registry::run(plan.implicit, problem, &rest, obs);
     second.outcome.stats += done;
     second.segments.splice(0..0, first.segments);
     second

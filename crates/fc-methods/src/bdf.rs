@@ -52,6 +52,15 @@ type Vf = FaerVec<f64>;
 /// never weigh in the error norm (their values are below 1e8 in every scene).
 pub(crate) const ALGEBRAIC_ATOL: f64 = 1e10;
 
+/// diffsol's Newton tolerance (its `nonlinear_solver_tolerance`, default
+/// 0.2) on a DAE with algebraic unknowns. The Newton iteration stops when
+/// `eta |dy| < tol`, `|dy|` over the differential unknowns only (the
+/// algebraic ones are out of the norm, [`ALGEBRAIC_ATOL`]); at 0.2 it left
+/// unconverged steps on the chain, whose energy balance at rtol 1e-8 was 15
+/// times the world-frame DAE's, and its stale iterates cost Newton
+/// failures later (docs/model.md, "The Newton matrix in the rods' frames").
+pub(crate) const ALGEBRAIC_NEWTON_TOLERANCE: f64 = 0.01;
+
 thread_local! {
     /// Set by [`with_general_sparse_lu`]: every run on this thread uses the
     /// general sparse LU.
@@ -400,9 +409,12 @@ pub fn integrate_dae<D: SemiExplicitDae>(
     }
     // Building only fails on a programming error (a shape mismatch):
     // reported as a failure at the start.
-    let Ok(problem) = builder.build_from_eqn(eqn) else {
+    let Ok(mut problem) = builder.build_from_eqn(eqn) else {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     };
+    if dim > d {
+        problem.ode_options.nonlinear_solver_tolerance = ALGEBRAIC_NEWTON_TOLERANCE;
+    }
     let log = Rc::new(LuLog::default());
     let lu = NewtonLu::choose(blocks, &problem.eqn.jacobian_pattern, log.clone());
     let setup = <BdfState<Vf> as OdeSolverState<Vf>>::new(&problem, 1)

@@ -8,9 +8,11 @@
 //! Timed runs run alone, never beside another timed run, and only with
 //! `--timings`; untimed runs run in parallel on [`crate::ctx::Ctx::pool`].
 
+pub mod elastic_layout_order;
 pub mod elastic_rigid_limit;
 pub mod elastic_rigid_order;
 pub mod elastic_snap_force;
+pub mod elastic_snap_precision;
 pub mod elastic_snap_tension;
 pub mod precision_beam;
 pub mod precision_cost;

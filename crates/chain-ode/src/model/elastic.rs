@@ -10,6 +10,7 @@
 use super::{Layout, Model, Observed};
 use crate::chain::{check, Chain};
 use crate::elastic::{self, ElasticSystem};
+use crate::floor::{self, FloorTerm};
 use crate::kinematics::Vec2;
 use crate::pivot::PivotPath;
 use crate::solve::auto_elastic;
@@ -25,6 +26,8 @@ pub struct ElasticModel {
     chain: Chain,
     path: PivotPath,
     released: bool,
+    /// The floor in the frame of the start's anchor (`None`: no floor).
+    floor: Option<FloorTerm>,
 }
 
 impl ElasticModel {
@@ -35,6 +38,7 @@ impl ElasticModel {
             chain: chain.clone(),
             path: PivotPath::new(chain, [0.0, 0.0]),
             released: chain.pivot().release == Some(0.0),
+            floor: None,
         }
     }
 }
@@ -43,6 +47,17 @@ impl ElasticModel {
     /// The chain.
     pub fn chain_ref(&self) -> &Chain {
         &self.chain
+    }
+
+    /// The floor as placed for the start (in the anchor's frame), once
+    /// [`Model::initial_state`] has run; `None` without a floor.
+    pub fn floor(&self) -> Option<&FloorTerm> {
+        self.floor.as_ref()
+    }
+
+    /// The start's anchor `P0`.
+    pub fn anchor(&self) -> Vec2 {
+        self.path.anchor
     }
 }
 
@@ -83,13 +98,32 @@ impl Model for ElasticModel {
     fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
         super::check_start(&self.chain, start)?;
         self.path = PivotPath::new(&self.chain, start.anchor);
-        Ok(elastic::start_state(&self.chain, start))
+        let y = elastic::start_state(&self.chain, start);
+        if let Some(f) = self.chain.floor() {
+            let term = match f.height {
+                Some(h) => f.term(h, start.anchor),
+                None => f
+                    .term(0.0, start.anchor)
+                    .touching(floor::points(&self.chain, &y).into_iter().map(|[p, _]| p)),
+            };
+            let tolerance = floor::start_tolerance(f, self.chain.weight());
+            if let Some((rod, depth)) = floor::deepest(&self.chain, &term, &y) {
+                if depth > tolerance {
+                    return Err(floor::inside_error(rod, depth, tolerance));
+                }
+            }
+            self.floor = Some(term);
+        }
+        Ok(y)
     }
 
     fn problem(&self) -> Box<dyn Problem + '_> {
         let mut sys = ElasticSystem::new(&self.chain);
         if self.released {
             sys.set_released(true);
+        }
+        if self.floor.is_some() {
+            sys.set_floor(self.floor);
         }
         Box::new(sys)
     }
@@ -122,6 +156,14 @@ impl Model for ElasticModel {
 
     fn observe(&self, t: f64, y: &[f64], f: &[f64], _trig: &mut Vec<(f64, f64)>) -> Observed {
         let chain = &self.chain;
+        if let Some(term) = &self.floor {
+            // A floor's pivot is fixed until a release: no frame terms.
+            return Observed {
+                energy: elastic::energy_at(chain, t, y) + floor::stored_energy(chain, term, y),
+                tip_velocity: elastic::tip_velocity(chain, y),
+                tip_acceleration: elastic::tip_acceleration(chain, y, f),
+            };
+        }
         if self.path.is_fixed() {
             return Observed {
                 energy: elastic::energy(chain, y),
@@ -146,6 +188,9 @@ impl Model for ElasticModel {
     /// frame's terms of a driven pivot ([`elastic::frame_energy`]).
     fn energy(&self, t: f64, y: &[f64]) -> f64 {
         let e = elastic::energy_at(&self.chain, t, y);
+        if let Some(term) = &self.floor {
+            return e + floor::stored_energy(&self.chain, term, y);
+        }
         if !self.chain.pivot().is_driven() {
             return e;
         }
@@ -191,6 +236,16 @@ impl Model for ElasticModel {
 
     fn momentum(&self, _t: f64, y: &[f64]) -> Vec2 {
         elastic::momentum(&self.chain, y)
+    }
+
+    fn floor_forces(&self, _t: f64, y: &[f64]) -> Option<Vec<Vec2>> {
+        let term = self.floor.as_ref()?;
+        Some(floor::point_forces(&self.chain, term, y))
+    }
+
+    fn floor_line(&self) -> Option<(f64, f64)> {
+        let (term, f) = (self.floor.as_ref()?, self.chain.floor()?);
+        Some((term.height(self.path.anchor), f.angle))
     }
 }
 

@@ -14,7 +14,10 @@
 //! in wall time: 5.5 times slower at a joint damping ratio `zeta = 0.05`,
 //! 1.6 times slower at `0.3`, 6.3 times faster at `1`. The rule: hand over
 //! at the first detection only at `zeta >=` [`AUTO_ELASTIC_ZETA`]; below
-//! it, stay explicit throughout.
+//! it, stay explicit throughout. A lightly damped chain whose axial modes
+//! are far faster than the fall (`omega_axial sqrt(L/g) >= 1e5`) runs
+//! gen-alpha from the start at loose tolerances (`rtol >= 1e-3`), where it
+//! was measured to win (docs/model.md, "auto and gen-alpha").
 
 use crate::chain::Chain;
 use fc_methods::{AutoPlan, Method, AUTO_DOP853_RTOL};
@@ -32,11 +35,42 @@ pub fn joint_damping_ratio(chain: &Chain) -> Option<f64> {
     Some(chain.joint_damping() / (2.0 * (k * chain.mass()).sqrt()))
 }
 
+/// The loosest `rtol` at which `auto` runs gen-alpha: at tighter
+/// tolerances the explicit method's stability-held step already gives an
+/// error far below the request, which gen-alpha (second order) can only
+/// match in more time (docs/model.md, "auto and gen-alpha").
+pub const AUTO_GEN_ALPHA_RTOL: f64 = 1e-3;
+
+/// The axial stiffness, `omega_axial sqrt(L / g)` with
+/// `omega_axial = 2 sqrt(K / m)` a joint's fastest axial frequency, from
+/// which `auto` runs gen-alpha on a lightly damped elastic chain at
+/// `rtol >=` [`AUTO_GEN_ALPHA_RTOL`] (measured: at `n = 20` gen-alpha won
+/// at `EA = 1e8`, 2.0e5, not at `1e7`, 6.3e4; docs/model.md).
+pub const AUTO_GEN_ALPHA_STIFFNESS: f64 = 1e5;
+
+/// gen-alpha's tolerance under `auto`, as a factor of the asked one: its
+/// global error on the folded snap at `rtol = 1e-6` was 115 to 560 times
+/// that `rtol` (measured at `n = 20, 50`, `EA = 1e7, 1e8`), so that at a
+/// thousandth of the request it lands below it.
+pub const AUTO_GEN_ALPHA_TOLERANCE: f64 = 1e-3;
+
+/// `omega_axial sqrt(L / g)`, `omega_axial = 2 sqrt(K / m)` (a joint's
+/// spring `K = EA / l` and a rod's mass `m`); `None` for rigid links or
+/// without gravity (no slow time scale to compare with).
+pub fn axial_stiffness_ratio(chain: &Chain) -> Option<f64> {
+    let k = chain.joint_stiffness()?;
+    let g = chain.gravity();
+    (g > 0.0).then(|| 2.0 * (k / chain.mass()).sqrt() * (chain.length() / g).sqrt())
+}
+
 /// `auto`'s plan for an elastic `chain` at `rtol`: the explicit method it
 /// starts with (DOPRI5, or DOP853 at `rtol <= 1e-8`, as for a problem that
 /// names no chain) and the `|lambda|` past which it hands over to BDF: the
 /// first stiffness detection (0) for joints damped at least
-/// [`AUTO_ELASTIC_ZETA`], never (infinity) below it.
+/// [`AUTO_ELASTIC_ZETA`], never (infinity) below it; except that a lightly
+/// damped chain whose axial modes are past [`AUTO_GEN_ALPHA_STIFFNESS`]
+/// runs gen-alpha from the start (at [`AUTO_GEN_ALPHA_TOLERANCE`] times
+/// the tolerance) when `rtol >=` [`AUTO_GEN_ALPHA_RTOL`].
 pub(crate) fn plan(chain: &Chain, rtol: f64) -> AutoPlan {
     let explicit = if rtol <= AUTO_DOP853_RTOL {
         Method::Dop853
@@ -44,8 +78,19 @@ pub(crate) fn plan(chain: &Chain, rtol: f64) -> AutoPlan {
         Method::Dopri5
     };
     let damped = joint_damping_ratio(chain).is_some_and(|z| z >= AUTO_ELASTIC_ZETA);
+    let unresolved = axial_stiffness_ratio(chain).is_some_and(|s| s >= AUTO_GEN_ALPHA_STIFFNESS);
+    if !damped && unresolved && rtol >= AUTO_GEN_ALPHA_RTOL {
+        return AutoPlan {
+            explicit: None,
+            hand_over_above: f64::INFINITY,
+            implicit: Method::GenAlpha,
+            implicit_tolerance: AUTO_GEN_ALPHA_TOLERANCE,
+        };
+    }
     AutoPlan {
         explicit: Some(explicit),
         hand_over_above: if damped { 0.0 } else { f64::INFINITY },
+        implicit: Method::Bdf,
+        implicit_tolerance: 1.0,
     }
 }

@@ -162,10 +162,12 @@ fn the_jvp_and_the_band_hold_with_profiles_a_tip_mass_and_a_moving_pivot() {
 }
 
 /// A hanging rope of unequal rods with a tip mass, its support
-/// accelerating upward: each rod of length `l_k` stretches as a rope
-/// segment does, `T_k l_k / EA` under the tension at its top,
+/// accelerating upward: joint `k` carries the rope from the centre of rod
+/// `k - 1` to that of rod `k`, `s_k = (l_{k-1} + l_k) / 2` (the pivot the
+/// half rod `s_0 = l_0 / 2`), and stretches as that segment does,
+/// `T_k s_k / EA` under the tension it carries,
 /// `T_k = (g + a) (M_t + sum_{j >= k} m_j)` (the test's own sums), so the
-/// tip hangs `L + sum T_k l_k / EA` below the pivot; and that start is the
+/// tip hangs `L + sum T_k s_k / EA` below the pivot; and that start is the
 /// chain's equilibrium in the accelerating frame (every acceleration zero
 /// to rounding). A joint spring on the wrong rod's length, or a tip mass
 /// left out of the statics, moves the tip or leaves a force.
@@ -192,7 +194,11 @@ fn a_hanging_profiled_rope_with_a_tip_mass_stretches_as_a_rope() {
         let mut drop = 0.0;
         for k in 0..n {
             let t_k = g * (mt + masses[k..].iter().sum::<f64>());
-            drop += lengths[k] + t_k * lengths[k] / ea;
+            let share = match k {
+                0 => 0.5 * lengths[0],
+                _ => 0.5 * (lengths[k - 1] + lengths[k]),
+            };
+            drop += lengths[k] + t_k * share / ea;
         }
         let tip = elastic::tip(&chain, [0.0, 0.0], &y);
         assert!(tip[0].abs() < 1e-13, "n = {n}: {tip:?}");
@@ -211,7 +217,8 @@ fn a_hanging_profiled_rope_with_a_tip_mass_stretches_as_a_rope() {
 }
 
 /// Linearised about the hanging equilibrium, the rods' vertical motion is a
-/// chain of masses `m_i` and springs `K_k = EA / l_k`, fixed at the top and
+/// chain of masses `m_i` and springs `K_k = EA / s_k` (`s_k` joint `k`'s
+/// share of the rope, centre to centre, half a rod at the pivot), fixed at the top and
 /// free at the bottom, the tip mass riding on the last rod: the block of the
 /// exact Jacobian is `-M^-1 K` with the tridiagonal `K` and the diagonal `M`
 /// assembled here from the test's own numbers.
@@ -235,7 +242,10 @@ fn the_axial_block_of_a_profiled_rope_is_its_spring_chain() {
         e[oy + j] = 1.0;
         sys.jvp(0.0, &y, &e, &mut jv);
         for i in 0..n {
-            let k = |q: usize| ea / lengths[q];
+            let k = |q: usize| match q {
+                0 => 2.0 * ea / lengths[0],
+                _ => 2.0 * ea / (lengths[q - 1] + lengths[q]),
+            };
             let stiff = match i {
                 _ if i == j => k(i) + if i + 1 < n { k(i + 1) } else { 0.0 },
                 _ if i + 1 == j => -k(j),

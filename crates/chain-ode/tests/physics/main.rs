@@ -18,6 +18,7 @@ mod dynamics;
 mod elastic;
 mod elastic_scenes;
 mod failures;
+mod floor;
 mod methods;
 mod modes;
 mod observed_rhs;

@@ -264,3 +264,246 @@ pub fn rigid_limit(read: Reader, stem: &Path) -> Result<Output, String> {
     let title = "When the rigid model will do: elastic against rigid links (report scenes)";
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
 }
+
+/// `elastic-layout-order`: the relative errors of the lowest axial
+/// frequencies (left) and of the self-weight stretch (right) against `n`,
+/// log-log, from `crate::layout_order`'s tables, with the layout before
+/// (every joint carrying a whole rod) as its closed forms, dashed, and a
+/// `1/n^2` guide.
+pub fn layout_order(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("")?;
+    let (links, mode, rel) = (t.nums("links")?, t.nums("mode")?, t.nums("relative_error")?);
+    let s = read("-stretch")?;
+    let (s_links, ratio, s_rel) = (
+        s.nums("links")?,
+        s.nums("tip_mass_over_M")?,
+        s.nums("relative_error")?,
+    );
+    let f = read("-fit")?;
+    let (quantity, order) = (f.strs("quantity")?, f.strs("order")?);
+    let mut left = LinePlot::new(
+        "axial frequencies against the rope's",
+        "n",
+        "|relative error|",
+    );
+    let mut right = LinePlot::new(
+        "self-weight stretch against the rope's",
+        "n",
+        "|relative error|",
+    );
+    for p in [&mut left, &mut right] {
+        p.log_x = true;
+        p.log_y = true;
+    }
+    let ns: Vec<f64> = {
+        let mut v = links.clone();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
+    let (first, last) = (
+        ns.first().copied().unwrap_or(1.0),
+        ns.last().copied().unwrap_or(1.0),
+    );
+    let modes: Vec<f64> = {
+        let mut m = mode.clone();
+        m.sort_by(f64::total_cmp);
+        m.dedup();
+        m
+    };
+    let mut at_first = f64::INFINITY;
+    for (k, &j) in modes.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = (0..t.len())
+            .filter(|&r| mode[r] == j && rel[r] != 0.0)
+            .map(|r| (links[r], rel[r].abs()))
+            .collect();
+        at_first = at_first.min(pts.first().map_or(f64::INFINITY, |p| p.1));
+        left.series
+            .push(Series::new(format!("mode {j}"), pts, Style::LinePoints).with_color(palette(k)));
+    }
+    // The layout before, mode 1: (4n / pi) sin(pi / (4n + 2)) - 1.
+    let before: Vec<(f64, f64)> = ns
+        .iter()
+        .map(|&n| {
+            let x = std::f64::consts::PI / (4.0 * n + 2.0);
+            (n, (4.0 * n / std::f64::consts::PI * x.sin() - 1.0).abs())
+        })
+        .collect();
+    left.series.push(
+        Series::new("mode 1, a rod per joint (before)", before, Style::Dashed)
+            .with_color(RGBColor(0, 0, 0)),
+    );
+    // A 1/n^2 guide a factor 3 below mode 1's first point.
+    let guide = |n: f64| at_first / 3.0 * (first / n).powi(2);
+    left.series.push(
+        Series::new(
+            "∝ 1/n²",
+            vec![(first, guide(first)), (last, guide(last))],
+            Style::Line,
+        )
+        .with_color(RGBColor(120, 120, 120)),
+    );
+    for (k, (r, label)) in [(0.0, "uniform"), (1.0, "tip mass M_t = M")]
+        .into_iter()
+        .enumerate()
+    {
+        let pts: Vec<(f64, f64)> = (0..s.len())
+            .filter(|&q| ratio[q] == r && s_rel[q].abs() > crate::layout_order::ROUNDING)
+            .map(|q| (s_links[q], s_rel[q].abs()))
+            .collect();
+        if !pts.is_empty() {
+            right
+                .series
+                .push(Series::new(label, pts, Style::LinePoints).with_color(palette(k + 3)));
+        }
+    }
+    right.series.push(
+        Series::new(
+            "uniform, a rod per joint (before): 1/n",
+            ns.iter().map(|&n| (n, 1.0 / n)).collect(),
+            Style::Dashed,
+        )
+        .with_color(RGBColor(0, 0, 0)),
+    );
+    let mut notes = vec!["fitted order in 1/n:".to_string()];
+    for (q, o) in quantity.iter().zip(&order) {
+        let o = match o.parse::<f64>() {
+            Ok(o) => format!("{o:.3}"),
+            Err(_) => "exact".to_string(),
+        };
+        notes.push(format!("{q}: {o}"));
+    }
+    notes.push(format!(
+        "uniform stretch: the rope's to {:.0e}",
+        crate::layout_order::ROUNDING
+    ));
+    right.annotations = notes;
+    let title = "The elastic chain against the continuum rope, EA = 1e4 M g";
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
+
+/// What `snap_work` draws against: the axial stiffness (`snap-precision`)
+/// or the damping ratio (`snap-damping`).
+#[derive(Clone, Copy, PartialEq)]
+pub enum SnapAxis {
+    Stiffness,
+    Damping,
+}
+
+/// `snap-precision` and `snap-damping`: from `crate::snap_precision`'s
+/// tables (`-timing`, `-best-timing`), the error against the wall time in
+/// the hardest case (the stiffest `EA`, the most damped `zeta`; left, a
+/// line per method along its tolerances) and, against `EA` or `zeta`, the
+/// speed-up of the implicit methods over the faster explicit pair at
+/// matched error, from the least wall time to each error level (right;
+/// above 1: the implicit method is faster). Against `EA`: gen-alpha at each
+/// level; against `zeta`: gen-alpha and BDF at `1e-4`.
+pub fn snap_work(read: Reader, stem: &Path, axis: SnapAxis) -> Result<Output, String> {
+    let t = read("-timing")?;
+    let x_col = match axis {
+        SnapAxis::Stiffness => "axial_stiffness",
+        SnapAxis::Damping => "zeta",
+    };
+    let (x, method) = (t.nums(x_col)?, t.strs("method")?);
+    let (error, wall) = (t.nums("error")?, t.nums("wall_seconds")?);
+    let b = read("-best-timing")?;
+    let (level, b_method, b_x, b_wall) = (
+        b.nums("error_level")?,
+        b.strs("method")?,
+        b.nums(x_col)?,
+        b.nums("wall_seconds")?,
+    );
+    let hardest = x.iter().copied().fold(0.0, f64::max);
+    let left_title = match axis {
+        SnapAxis::Stiffness => format!("EA = {hardest:.0e}: error against wall time"),
+        SnapAxis::Damping => format!("zeta = {hardest}: error against wall time"),
+    };
+    let mut left = LinePlot::new(&left_title, "wall time (s)", "error");
+    let (right_title, x_label) = match axis {
+        SnapAxis::Stiffness => ("speed-up of gen-alpha over DOPRI5/DOP853", "EA"),
+        SnapAxis::Damping => ("speed-up over DOPRI5/DOP853 at error 1e-4", "zeta"),
+    };
+    let mut right = LinePlot::new(right_title, x_label, "explicit time / implicit time");
+    for p in [&mut left, &mut right] {
+        p.log_x = true;
+        p.log_y = true;
+    }
+    const STYLES: [(Style, Marker, bool); 5] = [
+        (Style::LinePoints, Marker::Circle, false),
+        (Style::DashedPoints, Marker::Square, true),
+        (Style::LinePoints, Marker::Triangle, false),
+        (Style::LinePoints, Marker::Diamond, true),
+        (Style::DashedPoints, Marker::Circle, true),
+    ];
+    let styled = |s: Series, k: usize| {
+        let (style, marker, hollow) = STYLES[k % STYLES.len()];
+        let s = Series { style, ..s }
+            .with_color(palette(k))
+            .with_marker(marker);
+        if hollow {
+            s.hollow()
+        } else {
+            s
+        }
+    };
+    for (k, m) in distinct(&method).into_iter().enumerate() {
+        let pts: Vec<(f64, f64)> = (0..t.len())
+            .filter(|&j| {
+                method[j] == m && x[j] == hardest && error[j].is_finite() && error[j] > 0.0
+            })
+            .map(|j| (wall[j], error[j]))
+            .collect();
+        left.series
+            .push(styled(Series::new(m, pts, Style::Line), k));
+    }
+    let best = |lv: f64, m: &str, at: f64| {
+        (0..b.len())
+            .find(|&j| level[j] == lv && b_method[j] == m && b_x[j] == at)
+            .map(|j| b_wall[j])
+    };
+    let explicit = |lv: f64, at: f64| match (best(lv, "dopri5", at), best(lv, "dop853", at)) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (Some(a), None) | (None, Some(a)) => Some(a),
+        _ => None,
+    };
+    let mut xs = b_x.clone();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    let speed_up = |lv: f64, m: &str| -> Vec<(f64, f64)> {
+        xs.iter()
+            .filter_map(|&at| Some((at, explicit(lv, at)? / best(lv, m, at)?)))
+            .collect()
+    };
+    match axis {
+        SnapAxis::Stiffness => {
+            let mut levels = level.clone();
+            levels.sort_by(f64::total_cmp);
+            levels.dedup();
+            for (k, &lv) in levels.iter().rev().enumerate() {
+                let label = format!("gen-alpha, error {lv:.0e}");
+                right.series.push(styled(
+                    Series::new(label, speed_up(lv, "gen-alpha"), Style::Line),
+                    k,
+                ));
+            }
+        }
+        SnapAxis::Damping => {
+            for (k, m) in ["gen-alpha", "bdf"].into_iter().enumerate() {
+                right
+                    .series
+                    .push(styled(Series::new(m, speed_up(1e-4, m), Style::Line), k));
+            }
+        }
+    }
+    if let (Some(&a), Some(&z)) = (xs.first(), xs.last()) {
+        right.series.push(
+            Series::new("equal times", vec![(a, 1.0), (z, 1.0)], Style::Dashed)
+                .with_color(RGBColor(0, 0, 0)),
+        );
+    }
+    let title = match axis {
+        SnapAxis::Stiffness => "The folded elastic snap (n = 20, 5% damping, t = 3.2)",
+        SnapAxis::Damping => "The folded elastic snap (n = 20, EA = 1e7, t = 3.2)",
+    };
+    figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
