@@ -103,6 +103,13 @@ class Run:
         the rod after the joint (tension > 0 pulls it back toward the
         pivot; shear along its normal). Force units."""
     @property
+    def floor_forces(self) -> Optional[_Float]:
+        """The floor's force at each joint, shape (samples, n + 1, 2), each
+        [fx, fy] in the scene's axes (fy > 0 pushes up; force units): joint
+        j gathers the contacts at rod j's start and rod j - 1's end; summed
+        over the joints, what a scale under the chain reads (``simulate
+        --forces``'s columns floor_x_k, floor_y_k). None without a floor."""
+    @property
     def dissipated(self) -> _Float:
         """``W`` of the energy balance ``E + W = E(0)`` since t = 0, shape
         (samples,) (the summary's ``dissipated``): with a fixed pivot, the

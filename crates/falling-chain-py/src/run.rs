@@ -69,6 +69,9 @@ struct Series {
     /// chain and a moving pivot only (a rigid chain's on a fixed pivot
     /// follow from its angles, as always).
     joints: Option<Vec<f64>>,
+    /// The floor's force at each joint, `n + 1` points per sample, for a
+    /// scene with a floor only.
+    floor_forces: Option<Vec<f64>>,
 }
 
 impl Series {
@@ -91,6 +94,10 @@ impl Series {
             // follow from the angles and the anchor.
             joints: (traj.model.layout().positions.is_some() || !traj.chain().pivot().is_fixed())
                 .then(|| Vec::with_capacity(samples * 2 * (n + 1))),
+            floor_forces: traj
+                .model
+                .floor_line()
+                .map(|_| Vec::with_capacity(samples * 2 * (n + 1))),
         };
         for (k, sample) in traj.samples().enumerate() {
             s.t.push(sample.t);
@@ -103,6 +110,9 @@ impl Series {
             s.forces.extend(traj.joint_forces(k).into_iter().flatten());
             if let Some(j) = s.joints.as_mut() {
                 j.extend(traj.joints(k).into_iter().flatten());
+            }
+            if let (Some(f), Some(joints)) = (s.floor_forces.as_mut(), traj.floor_joint_forces(k)) {
+                f.extend(joints.into_iter().flatten());
             }
         }
         s
@@ -168,6 +178,8 @@ pub struct Run {
     forces: Py<PyArray3<f64>>,
     /// An elastic chain's joints, `n + 1` points per sample (`None`: rigid).
     joints: Option<Vec<f64>>,
+    /// The floor's force at each joint (`None`: no floor).
+    floor_forces: Option<Py<PyArray3<f64>>>,
 }
 
 #[pymethods]
@@ -222,6 +234,17 @@ impl Run {
     #[getter]
     fn forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
         bound(py, &self.forces)
+    }
+
+    /// The floor's force at each joint at every sample, shape
+    /// (samples, n + 1, 2), `[fx, fy]` in the scene's axes (force units,
+    /// `fy > 0` pushing up): joint j gathers the contacts at rod j's start
+    /// and rod j − 1's end; summed over the joints, what a scale under the
+    /// chain reads (the columns `floor_x_k`, `floor_y_k` of
+    /// `simulate --forces`). `None` for a scene without a floor.
+    #[getter]
+    fn floor_forces<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray3<f64>>> {
+        self.floor_forces.as_ref().map(|f| bound(py, f))
     }
 
     /// `W` of the energy balance `E + W = E(0)` since t = 0, shape
@@ -525,6 +548,10 @@ pub fn simulate(
         support_work: array1(py, series.support_work)?,
         forces: array3(py, series.forces, (s, n + 1, 2))?,
         joints: series.joints,
+        floor_forces: series
+            .floor_forces
+            .map(|f| array3(py, f, (s, n + 1, 2)))
+            .transpose()?,
         head,
         scene,
     })

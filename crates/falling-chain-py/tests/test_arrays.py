@@ -127,6 +127,41 @@ def test_forces_are_the_csv_of_forces(span, tmp_path, elastic):
     assert (run.forces[:, -1, :] == 0.0).all()
 
 
+def test_floor_forces_are_the_csv_of_forces(tmp_path):
+    scene = fc.Scene.load(scene_path("cayley-scale")).set("chain.links", 8).set(
+        "chain.mass", 0.125
+    )
+    angles = [-1.550796326795 if i % 2 == 0 else -1.590796326795 for i in range(8)]
+    scene = scene.set("start.angles", angles)
+    run = fc.simulate(scene, method="bdf", t_end=1.2, output_dt=0.1)
+    n = run.links
+    f = run.floor_forces
+    assert f.shape == (len(run), n + 1, 2) and f.dtype == np.float64
+    assert not f.flags.writeable and run.floor_forces is f
+    out = tmp_path / "forces.csv"
+    args = ["--set", "chain.links=8", "--set", "chain.mass=0.125", "--set"]
+    args += ["start.angles=[" + ",".join(str(a) for a in angles) + "]"]
+    cli("simulate", scene_path("cayley-scale"), *args, "--method", "bdf", "--t-end", "1.2",
+        "--set", "run.output_dt=0.1", "--forces", out, check=0)
+    with open(out, newline="") as fh:
+        rows = list(csv.reader(fh))
+    header, cells = rows[0], np.array([[float(x) for x in r] for r in rows[1:]])
+    assert len(header) == 1 + 4 * (n + 1) + 2
+    assert header[-2:] == ["floor_x", "floor_y"] and header[1 + 2 * (n + 1)] == "floor_x_0"
+    np.testing.assert_array_equal(run.t, cells[:, 0])
+    joints = cells[:, 1 + 2 * (n + 1) : -2]
+    np.testing.assert_array_equal(f.reshape(len(run), -1), joints)
+    np.testing.assert_allclose(f.sum(axis=1), cells[:, -2:], rtol=1e-12, atol=1e-12)
+    # The floor pushes, never pulls, and the summary's peak is a sample's total.
+    assert (f[:, :, 1] >= 0.0).all()
+    s = run.summary
+    assert s["floor_force_max"] == pytest.approx(f[:, :, 1].sum(axis=1).max(), rel=1e-12)
+
+
+def test_a_run_without_a_floor_has_no_floor_forces(span):
+    assert fc.simulate(span, method="dopri5", t_end=0.2).floor_forces is None
+
+
 def test_an_elastic_run_has_its_own_joints_tip_and_energy(span):
     scene = span
     for key, value in ELASTIC.items():

@@ -325,7 +325,9 @@ struct SimulateArgs {
     /// Write the joint forces at every sample as CSV: t, then for each
     /// joint k = 0 (the pivot) .. n (the free tip) its tension_k and
     /// shear_k in the frame of the rod after it (tension > 0 pulls that rod
-    /// back toward the pivot; force units).
+    /// back toward the pivot; force units). With a floor, then the floor's
+    /// force at each joint, floor_x_k and floor_y_k (scene axes), and its
+    /// total floor_x, floor_y (what a scale under the chain reads).
     #[arg(long, value_name = "FILE.csv")]
     forces: Option<PathBuf>,
     /// Print one JSON object instead of a readable summary.

@@ -57,20 +57,50 @@ pub fn forces_header(links: usize) -> String {
     h
 }
 
+/// The header of a joint-force CSV for `links` rods on a floor: the
+/// columns of [`forces_header`], then the floor's force at each joint,
+/// `floor_x_0,floor_y_0,...,floor_x_n,floor_y_n` (scene axes, force units,
+/// `floor_y > 0` pushing up), then its total `floor_x,floor_y` (what a
+/// scale under the chain reads).
+pub fn forces_header_with_floor(links: usize) -> String {
+    let mut h = forces_header(links);
+    for k in 0..=links {
+        h.push_str(&format!(",floor_x_{k},floor_y_{k}"));
+    }
+    h.push_str(",floor_x,floor_y");
+    h
+}
+
 /// Writes the header and one row per sample of `traj`: its time and the
 /// joint forces ([`Trajectory::joint_forces`]: the rigid chain's from its
-/// banded DAE, the elastic chain's from its springs).
+/// banded DAE, the elastic chain's from its springs), and for a scene with
+/// a floor the floor's force per joint and in total
+/// ([`forces_header_with_floor`]; [`Trajectory::floor_joint_forces`]).
 pub fn write_forces<M: Model, W: Write + ?Sized>(
     w: &mut W,
     traj: &Trajectory<M>,
 ) -> io::Result<()> {
-    writeln!(w, "{}", forces_header(traj.links()))?;
+    let floor = !traj.is_empty() && traj.floor_forces(0).is_some();
+    let header = if floor {
+        forces_header_with_floor(traj.links())
+    } else {
+        forces_header(traj.links())
+    };
+    writeln!(w, "{header}")?;
     let mut line = String::new();
     for k in 0..traj.len() {
         line.clear();
         line.push_str(&traj.times[k].to_string());
         for [tension, shear] in traj.joint_forces(k) {
             line.push_str(&format!(",{tension},{shear}"));
+        }
+        if let Some(joints) = floor.then(|| traj.floor_joint_forces(k)).flatten() {
+            let mut total = [0.0, 0.0];
+            for [fx, fy] in joints {
+                line.push_str(&format!(",{fx},{fy}"));
+                total = [total[0] + fx, total[1] + fy];
+            }
+            line.push_str(&format!(",{},{}", total[0], total[1]));
         }
         writeln!(w, "{line}")?;
     }

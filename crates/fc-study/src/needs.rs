@@ -31,29 +31,44 @@ use fc_scene::error::Error;
 use fc_scene::scene::Scene;
 
 /// An optional physical term of the model: its name, the scene key that
-/// switches it, whether the scene has it on, and the scene with it off.
+/// switches it, whether the scene has it on, and the scene to compare with:
+/// the term off or, for a penalty parameter such as the floor's stiffness,
+/// the term made stiffer (`change` says which).
 pub struct Term {
     pub name: &'static str,
     /// The scene key that sets it.
     pub key: &'static str,
+    /// What the comparison run changes: `"off"` (the term switched off) or
+    /// `"10x stiffer"` (a penalty made ten times stiffer: the term is then
+    /// "needed" when the scene's value is too soft for the tolerance).
+    pub change: &'static str,
     pub is_on: fn(&Scene) -> bool,
     pub off: fn(&Scene) -> Result<Scene, Error>,
 }
 
+/// The ratio of the floor-stiffness term's comparison run.
+pub const FLOOR_STIFFENING: f64 = 10.0;
+
 /// The optional terms, one entry each: the joint friction, the elastic
 /// links (off: rigid links, `chain.axial_stiffness` absent, so its
-/// `chain.axial_damping` no longer acts) and the bending stiffness (off:
-/// `chain.bending_stiffness = 0`).
+/// `chain.axial_damping` no longer acts), the bending stiffness (off:
+/// `chain.bending_stiffness = 0`), the floor's friction (off:
+/// `floor.friction = 0`) and the floor's stiffness (compared with a floor
+/// [`FLOOR_STIFFENING`] times stiffer: whether the scene's contact is stiff
+/// enough for the tolerance; the default stiffness `1e4 m g / l = 1e4 M g / L`
+/// does not change as the ladder refines `n`, nor does a given one).
 pub const TERMS: &[Term] = &[
     Term {
         name: "joint friction",
         key: "chain.damping",
+        change: "off",
         is_on: |s| s.chain_params().damping > 0.0,
         off: |s| s.with_value("chain.damping", toml::Value::Float(0.0)),
     },
     Term {
         name: "elastic links",
         key: "chain.axial_stiffness",
+        change: "off",
         is_on: |s| s.chain_params().axial_stiffness.is_some(),
         off: |s| {
             let mut params = s.chain_params().clone();
@@ -64,8 +79,29 @@ pub const TERMS: &[Term] = &[
     Term {
         name: "bending stiffness",
         key: "chain.bending_stiffness",
+        change: "off",
         is_on: |s| s.chain_params().bending_stiffness > 0.0,
         off: |s| s.with_value("chain.bending_stiffness", toml::Value::Float(0.0)),
+    },
+    Term {
+        name: "floor friction",
+        key: "floor.friction",
+        change: "off",
+        is_on: |s| s.chain_params().floor.is_some_and(|f| f.friction > 0.0),
+        off: |s| s.with_value("floor.friction", toml::Value::Float(0.0)),
+    },
+    Term {
+        name: "floor stiffness",
+        key: "floor.stiffness",
+        change: "10x stiffer",
+        is_on: |s| s.chain_params().floor.is_some(),
+        off: |s| {
+            let k = s.chain_params().floor.map_or(0.0, |f| f.stiffness);
+            // Held at floor.stiffness's bound, 1e15 (a floor already there
+            // compares with itself and is judged stiff enough).
+            let stiffer = (FLOOR_STIFFENING * k).min(1e15);
+            s.with_value("floor.stiffness", toml::Value::Float(stiffer))
+        },
     },
 ];
 
@@ -100,6 +136,7 @@ pub fn judge_term_until(
     let mut need = TermNeed {
         term: term.name,
         key: term.key,
+        change: term.change,
         on,
         tip_path: None,
         tip_speed_max: None,
@@ -147,13 +184,18 @@ pub fn default_methods() -> Vec<Method> {
 pub struct TermNeed {
     pub term: &'static str,
     pub key: &'static str,
+    /// What the comparison run changed ([`Term::change`]).
+    pub change: &'static str,
     /// Whether the scene turns it on (terms it leaves off are not run).
     pub on: bool,
-    /// `max_t |tip - tip_on| / L` with the term off.
+    /// `max_t |tip - tip_on| / L` with the term off (or changed).
     pub tip_path: Option<f64>,
-    /// The relative change of the maximum tip speed with the term off.
+    /// The relative change of the maximum tip speed with the term off (or
+    /// changed).
     pub tip_speed_max: Option<f64>,
-    /// Whether switching it off moves either by more than `tol`.
+    /// Whether switching it off (or the change) moves either by more than
+    /// `tol`: for the floor's stiffness, whether the scene's floor is too
+    /// soft for `tol`.
     pub needed: Option<bool>,
 }
 
@@ -655,6 +697,16 @@ impl std::fmt::Display for Needs {
             write!(f, "\n    {} ({}): ", t.term, t.key)?;
             match (t.on, t.needed, t.tip_path, t.tip_speed_max) {
                 (false, ..) => write!(f, "off in this scene")?,
+                (true, Some(needed), Some(p), Some(v)) if t.change != "off" => write!(
+                    f,
+                    "{} ({}: d(path) {p:.2e}, d(vmax) {v:.2e})",
+                    if needed {
+                        "too soft for the tolerance: stiffen it"
+                    } else {
+                        "stiff enough: a stiffer one changes less than the tolerance"
+                    },
+                    t.change
+                )?,
                 (true, Some(needed), Some(p), Some(v)) => write!(
                     f,
                     "{} (off: d(path) {p:.2e}, d(vmax) {v:.2e})",
@@ -711,15 +763,71 @@ mod tests {
         let s = folded(
             "damping = 0.01\naxial_stiffness = 1e4\naxial_damping = 0.5\nbending_stiffness = 0.1",
         );
-        assert_eq!(TERMS.len(), 3);
-        for t in TERMS {
+        assert_eq!(TERMS.len(), 5);
+        let chain_terms = || TERMS.iter().filter(|t| t.key.starts_with("chain."));
+        assert_eq!(chain_terms().count(), 3);
+        for t in chain_terms() {
+            assert_eq!(t.change, "off");
             assert!((t.is_on)(&s), "{}", t.key);
             let off = (t.off)(&s).unwrap();
             assert!(!(t.is_on)(&off), "{}", t.key);
-            for u in TERMS.iter().filter(|u| u.key != t.key) {
+            for u in chain_terms().filter(|u| u.key != t.key) {
                 assert!((u.is_on)(&off), "{} lost {}", t.key, u.key);
             }
         }
+        // Without a floor, neither floor term is on.
+        assert!(!(term("floor.friction").is_on)(&s) && !(term("floor.stiffness").is_on)(&s));
+    }
+
+    /// The floor's friction switches off and leaves the floor; its
+    /// stiffness's comparison is the same floor ten times stiffer (the
+    /// default `1e4 m g / l` made explicit), held at the key's bound.
+    #[test]
+    fn the_floor_terms_switch_friction_off_and_stiffen_the_floor() {
+        let s = floor_scene("friction = 0.5");
+        let k = s.chain_params().floor.unwrap().stiffness;
+        assert_eq!(k, 1e4 * 0.2 * s.chain_params().gravity / 0.6);
+        let off = (term("floor.friction").off)(&s).unwrap();
+        let f = off.chain_params().floor.unwrap();
+        assert_eq!((f.friction, f.stiffness), (0.0, k));
+        assert!(!(term("floor.friction").is_on)(&off));
+        let stiffer = (term("floor.stiffness").off)(&s).unwrap();
+        let f = stiffer.chain_params().floor.unwrap();
+        assert_eq!((f.friction, f.stiffness), (0.5, 10.0 * k));
+        assert_eq!(term("floor.stiffness").change, "10x stiffer");
+        let top = (term("floor.stiffness").off)(&floor_scene("stiffness = 1e15")).unwrap();
+        assert_eq!(top.chain_params().floor.unwrap().stiffness, 1e15);
+    }
+
+    /// The folded chain of [`folded`] over a floor at `y = -3.2`, which its
+    /// fold (at `y = -3` at the start) reaches at about `t = 0.9` (`g = 1`),
+    /// for 2 time units, with `extra` floor keys.
+    fn floor_scene(extra: &str) -> Scene {
+        let text = format!(
+            "[chain]\nlength = 6.0\nlinks = 10\nmass = 0.2\n\
+             [start]\nkind = \"folded\"\ndown = 5\n[run]\nt_end = 2.0\noutput_dt = 0.05\n\
+             [floor]\nheight = -3.2\n{extra}\n"
+        );
+        Scene::from_toml_str(&text).unwrap()
+    }
+
+    /// A soft floor (`k = 5`: a rod end resting on it with half its rod's
+    /// weight sinks by 0.02, a third of a rod, and further as it lands) is
+    /// too soft for `1e-3`; a floor the chain never reaches
+    /// (`y = -100`) is stiff enough, whatever its stiffness. A judgement
+    /// that ignored the floor fails the first, an inverted one both.
+    #[test]
+    fn the_floor_stiffness_is_judged_by_a_stiffer_floor() {
+        let soft = judge("floor.stiffness", &floor_scene("stiffness = 5.0"));
+        assert_eq!(soft.needed, Some(true), "{soft:?}");
+        let far = judge(
+            "floor.stiffness",
+            &floor_scene("stiffness = 5.0")
+                .with_value("floor.height", toml::Value::Float(-100.0))
+                .unwrap(),
+        );
+        assert_eq!(far.needed, Some(false), "{far:?}");
+        assert_eq!(far.tip_path, Some(0.0), "{far:?}");
     }
 
     /// Soft links (EA = 10 stretch a chain of weight 2 by about 20%) are

@@ -486,6 +486,23 @@ impl<M: Model> Trajectory<M> {
         self.model.floor_forces(self.times[k], self.state(k))
     }
 
+    /// The floor's force gathered at each joint at sample `k`, `n + 1` of
+    /// them (joint 0 the pivot, joint `n` the tip): joint `j` carries the
+    /// contact at rod `j − 1`'s end and at rod `j`'s start, which the
+    /// rigid chain's joint would be (physical units; `None` without a
+    /// floor). They sum to [`Trajectory::floor_force`].
+    pub fn floor_joint_forces(&self, k: usize) -> Option<Vec<Vec2>> {
+        let f = self.floor_forces(k)?;
+        let mut joints = vec![[0.0, 0.0]; f.len() / 2 + 1];
+        for (j, p) in f.iter().enumerate() {
+            // Point 2i is rod i's start (joint i), 2i + 1 its end (i + 1).
+            let joint = &mut joints[j.div_ceil(2)];
+            joint[0] += p[0];
+            joint[1] += p[1];
+        }
+        Some(joints)
+    }
+
     /// The floor's total force on the chain at sample `k` (what a scale
     /// under it reads, upward positive), `None` without a floor.
     pub fn floor_force(&self, k: usize) -> Option<Vec2> {
