@@ -1,7 +1,9 @@
-//! Cayley's scale, one run: `cargo run --release -p chain-ode --example cayley -- N K C METHOD RTOL [EPS]`.
+//! Cayley's scale, one run: `cargo run --release -p chain-ode --example cayley -- N K C METHOD RTOL [EPS [R [MU]]]`.
 //! A chain of `N` rods (`L = 1`, mass per length 1, `g = 1`) hangs straight
 //! down, its rods zigzagging by `EPS` rad (default 0.02), its lower end
-//! touching a floor of stiffness `K` and damping `C`; the top is let go at
+//! touching a floor of stiffness `K`, damping `C` and friction `MU`
+//! (default 0, regularised at 1e-3), the joints' friction `R` (default 0,
+//! `ChainParams::damping`); the top is let go at
 //! `t = 0`. Prints the scale's reading over `3 mu g x` (`x = g t^2 / 2`,
 //! the ideal free fall) at `t = 0.5, 0.75, 1 (mid-fall), 1.25`, the fall
 //! of the top against free fall at those times, the steps and wall time.
@@ -24,6 +26,8 @@ fn main() {
     let method: Method = a[3].parse().unwrap();
     let rtol: f64 = a[4].parse().unwrap();
     let eps: f64 = a.get(5).map_or(0.02, |s| s.parse().unwrap());
+    let r: f64 = a.get(6).map_or(0.0, |s| s.parse().unwrap());
+    let mu: f64 = a.get(7).map_or(0.0, |s| s.parse().unwrap());
     let chain = Chain::new(ChainParams {
         length: 1.0,
         links: n,
@@ -38,9 +42,10 @@ fn main() {
             angle: 0.0,
             stiffness: k,
             damping: c,
-            friction: 0.0,
-            slip_speed: 1.0,
+            friction: mu,
+            slip_speed: 1e-3,
         }),
+        damping: r,
         ..ChainParams::default()
     })
     .unwrap();
