@@ -62,3 +62,91 @@ fn bad_floor_input_is_one_line_naming_its_key() {
     ]);
     refused(&o, "floor.height");
 }
+
+/// `simulate --out` of a scene with a floor ends each row with the floor's
+/// total force and the weight resting on it: a chain laid on the floor
+/// (the horizontal start, both ends let go, a floor damped to rest) has
+/// the floor carrying its whole weight `n m g = 25 x 0.2 = 5`, straight up,
+/// once it has settled; a scene without a floor keeps its columns.
+#[test]
+fn out_ends_each_row_with_the_floor_force_and_the_landed_weight() {
+    let dir = scratch("floor-out");
+    let csv = dir.join("rest.csv");
+    let o = run(&[
+        "simulate",
+        &scene("horizontal-undamped"),
+        "--set",
+        "pivot.release=0",
+        "--set",
+        "floor.stiffness=1e4",
+        "--set",
+        "floor.damping=1e3",
+        "--set",
+        "run.t_end=2",
+        "--set",
+        "run.rtol=1e-10",
+        "--set",
+        "run.atol=1e-12",
+        "--set",
+        "run.output_dt=0.5",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    let head = &rows[0];
+    assert_eq!(head.len(), 7 + 25 + 3, "{head:?}");
+    assert_eq!(head[32..], ["floor_x", "floor_y", "landed_weight"]);
+    let last: Vec<f64> = rows[rows.len() - 1]
+        .iter()
+        .map(|c| c.parse().unwrap())
+        .collect();
+    let (fx, fy, landed) = (last[32], last[33], last[34]);
+    // Measured 1e-15 of the weight (dopri5, rtol 1e-10).
+    assert!((fy / 5.0 - 1.0).abs() < 1e-6, "floor_y {fy}");
+    assert!(fx.abs() < 1e-9, "floor_x {fx}");
+    assert!((landed / 5.0 - 1.0).abs() < 1e-12, "landed_weight {landed}");
+
+    let plain = dir.join("plain.csv");
+    let o = run(&[
+        "simulate",
+        &scene("horizontal-undamped"),
+        "--set",
+        "run.t_end=0.2",
+        "--out",
+        plain.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let head = std::fs::read_to_string(&plain).unwrap();
+    let head = head.lines().next().unwrap();
+    assert!(head.ends_with(",phi_25"), "{head}");
+}
+
+/// `view --from` refuses a floor run's CSV with one line naming `--from`
+/// and saying why (a floor runs the elastic model, whose stretched rods a
+/// CSV does not hold) and what to do instead, rather than a misfit of its
+/// tip against equal rods.
+#[test]
+fn view_refuses_a_floor_runs_csv_and_says_to_view_its_scene() {
+    let dir = scratch("floor-view-from");
+    let csv = dir.join("floor.csv");
+    let o = run(&[
+        "simulate",
+        &scene("span-d3-floor"),
+        "--set",
+        "run.t_end=0.2",
+        "--set",
+        "run.output_dt=0.02",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (page, o) = crate::view::view(&dir, "from.html", &["--from", csv.to_str().unwrap()]);
+    let line = refused(&o, "--from");
+    assert!(
+        line.contains("floor_x") && line.contains("view SCENE.toml"),
+        "{line}"
+    );
+    assert!(!page.exists(), "no page is written for a refused run");
+}

@@ -499,6 +499,17 @@ pub static FIGURES: &[Figure] = &[
         make: &study::whip_taper::WhipTaper,
     },
     Figure {
+        id: "cayley-scale",
+        report: None,
+        what: "Cayley's scale as an ensemble: a chain hanging onto a plastic floor, let go at the \
+               top, 16 starts perturbed by up to 1e-3 rad each; the mean reading over 3 mu g x \
+               against time for n = 10, 20, 40, 80, and at mid-fall against n with the other \
+               floors, tilts and a smaller perturbation at n = 40",
+        data: &["cayley-scale.csv", "cayley-scale-midfall.csv"],
+        timing: Timing::None,
+        make: &study::cayley_scale::CayleyScale,
+    },
+    Figure {
         id: "viewer-peak",
         report: None,
         what: "`falling-chain view`'s page for the folded chain (n = 50, r = 0.001) at its peak \

@@ -193,7 +193,9 @@ struct ViewArgs {
     method: Option<String>,
     /// A run already written by simulate --out, shown without running it
     /// again (repeatable). It may carry joint forces as extra columns
-    /// tension_0..tension_n and shear_0..shear_n.
+    /// tension_0..tension_n and shear_0..shear_n. A run on a floor (its CSV
+    /// has floor_x, floor_y, landed_weight) is refused: its rods stretch,
+    /// which a CSV does not hold; view its scene instead.
     #[arg(long, value_name = "RUN.csv")]
     from: Vec<PathBuf>,
     /// Carry each run's joint forces (tension and shear at the n + 1 joints,
@@ -319,7 +321,9 @@ struct SimulateArgs {
     #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
     t_end: Option<f64>,
     /// Write every sample as CSV: t, tip_x, tip_y, tip_vx, tip_vy, energy,
-    /// dissipated, phi_1..phi_n.
+    /// dissipated, phi_1..phi_n; with a floor, then its total force
+    /// floor_x, floor_y (what a scale under the chain reads) and
+    /// landed_weight (the weight resting on it).
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
     /// Write the joint forces at every sample as CSV: t, then for each

@@ -4,7 +4,7 @@
 //! (`figures/data/*.csv`: the accuracy of the methods, BEAM's
 //! work-precision, the convergence in n, the folded chain, friction, the
 //! report's scenes and model, the stiffness crossovers, the timing tables,
-//! the tip mass, the tapered whip, the viewer's peak, ...), with the
+//! the tip mass, the tapered whip, Cayley's scale, the viewer's peak, ...), with the
 //! drawings of those tables in [`plot`].
 //!
 //! It builds on the studies of any scene (fc-study, with its drawings),
@@ -13,6 +13,7 @@
 
 pub mod accuracy;
 pub mod beam;
+pub mod cayley;
 pub mod convergence;
 pub mod divergence;
 pub mod folded;

@@ -18,15 +18,41 @@ pub fn trajectory_header(links: usize) -> String {
     h
 }
 
+/// The columns a trajectory CSV adds after `phi_n` for a scene with a
+/// floor: the floor's total force on the chain `floor_x,floor_y` (scene
+/// axes, force units, `floor_y > 0` pushing up: what a scale under the
+/// chain reads) and `landed_weight`, the weight of what rests on it
+/// ([`Trajectory::floor_landed_weight`]).
+pub const FLOOR_COLUMNS: [&str; 3] = ["floor_x", "floor_y", "landed_weight"];
+
+/// The header of a trajectory CSV for `links` rods on a floor: the
+/// columns of [`trajectory_header`], then [`FLOOR_COLUMNS`].
+pub fn trajectory_header_with_floor(links: usize) -> String {
+    let mut h = trajectory_header(links);
+    for c in FLOOR_COLUMNS {
+        h.push(',');
+        h.push_str(c);
+    }
+    h
+}
+
 /// Writes the header and one row per sample of `traj`. Numbers are written
 /// with `{}`, which round-trips every `f64`. Tip position, tip velocity and
 /// energy are computed exactly from each sample's state, for either model
-/// (the trajectory's accessors); `phi_i` are the rods' angles.
+/// (the trajectory's accessors); `phi_i` are the rods' angles. A scene
+/// with a floor adds [`FLOOR_COLUMNS`] (a scene without one writes the
+/// columns it always did).
 pub fn write_trajectory<M: Model, W: Write + ?Sized>(
     w: &mut W,
     traj: &Trajectory<M>,
 ) -> io::Result<()> {
-    writeln!(w, "{}", trajectory_header(traj.links()))?;
+    let floor = !traj.is_empty() && traj.floor_forces(0).is_some();
+    let header = if floor {
+        trajectory_header_with_floor(traj.links())
+    } else {
+        trajectory_header(traj.links())
+    };
+    writeln!(w, "{header}")?;
     let mut line = String::new();
     for (k, s) in traj.samples().enumerate() {
         let p = traj.tip(k);
@@ -40,6 +66,11 @@ pub fn write_trajectory<M: Model, W: Write + ?Sized>(
         for a in s.angles {
             line.push(',');
             line.push_str(&a.to_string());
+        }
+        if floor {
+            let f = traj.floor_force(k).unwrap_or([0.0, 0.0]);
+            let landed = traj.floor_landed_weight(k).unwrap_or(0.0);
+            line.push_str(&format!(",{},{},{landed}", f[0], f[1]));
         }
         writeln!(w, "{line}")?;
     }
@@ -117,6 +148,10 @@ mod tests {
         assert_eq!(
             h,
             "t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,phi_2,phi_3"
+        );
+        assert_eq!(
+            trajectory_header_with_floor(2),
+            "t,tip_x,tip_y,tip_vx,tip_vy,energy,dissipated,phi_1,phi_2,floor_x,floor_y,landed_weight"
         );
     }
 }

@@ -19,6 +19,7 @@ use std::path::Path;
 use serde_json::json;
 
 use crate::{check_links, keeps, stride_for, JointForces, ViewRun, MAX_VIEW_LINKS};
+use fc_scene::csv::FLOOR_COLUMNS;
 use fc_scene::error::echo_path;
 use fc_scene::Error;
 
@@ -362,6 +363,14 @@ fn parse_header(names: &[&str]) -> Result<Columns, String> {
         return Err(format!("the header must be {expected}"));
     }
     let mut at = links;
+    if rest.get(at).copied() == Some(FLOOR_COLUMNS[0]) {
+        return Err(format!(
+            "columns {} are a floor's, and a floor runs the elastic model, whose stretched rods \
+             a CSV does not hold: view the scene itself (falling-chain view SCENE.toml draws \
+             the chain and its floor)",
+            FLOOR_COLUMNS.join(", ")
+        ));
+    }
     let mut take = |prefix: &str| -> Result<bool, String> {
         if rest.get(at).copied() != Some(format!("{prefix}_0").as_str()) {
             return Ok(false);

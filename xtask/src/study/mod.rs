@@ -8,6 +8,7 @@
 //! Timed runs run alone, never beside another timed run, and only with
 //! `--timings`; untimed runs run in parallel on [`crate::ctx::Ctx::pool`].
 
+pub mod cayley_scale;
 pub mod elastic_layout_order;
 pub mod elastic_rigid_limit;
 pub mod elastic_rigid_order;

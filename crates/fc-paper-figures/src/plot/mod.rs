@@ -6,6 +6,7 @@
 
 pub mod accuracy;
 pub mod beam;
+pub mod cayley;
 pub mod convergence;
 pub mod elastic;
 pub mod folded;
