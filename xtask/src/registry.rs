@@ -510,6 +510,16 @@ pub static FIGURES: &[Figure] = &[
         make: &study::cayley_scale::CayleyScale,
     },
     Figure {
+        id: "cayley-top",
+        report: None,
+        what: "faster than g? The top of Cayley's falling chain over free fall against time, \
+               ensembles of 16 perturbed starts: n = 10 .. 80 on a plastic floor, and at \
+               n = 40 an elastic floor, joint friction and floor friction",
+        data: &["cayley-top.csv"],
+        timing: Timing::None,
+        make: &study::cayley_scale::CayleyTop,
+    },
+    Figure {
         id: "viewer-peak",
         report: None,
         what: "`falling-chain view`'s page for the folded chain (n = 50, r = 0.001) at its peak \

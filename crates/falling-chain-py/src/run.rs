@@ -34,6 +34,8 @@ struct Head {
     status: Status,
     t_reached: f64,
     samples: usize,
+    /// The floor `[height at x = 0, angle]` of a run with a `[floor]`.
+    floor: Option<[f64; 2]>,
 }
 
 impl Head {
@@ -45,6 +47,7 @@ impl Head {
             status: traj.status,
             t_reached: traj.t_reached,
             samples: traj.len(),
+            floor: traj.model.floor_line().map(|(h, a)| [h, a]),
         }
     }
 }
@@ -459,8 +462,7 @@ impl Run {
             // Unequal rods: their lengths and densities.
             profile,
             source: None,
-            // Python's run does not keep the model's floor (yet).
-            floor: None,
+            floor: self.head.floor,
         };
         for k in (0..samples).filter(|&k| keeps(k, samples, stride)) {
             if let (Some(p), Some(all)) = (run.pivot.as_mut(), &self.joints) {

@@ -89,3 +89,20 @@ def test_bad_input_raises_naming_the_argument_and_writes_nothing(tmp_path):
         message = str(e.value)
         assert message.startswith(field) and says in message and "\n" not in message, message
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_floor_runs_page_draws_its_floor_as_the_clis_does(tmp_path):
+    # scenes/span-d3-floor.toml: the floor at y = -3, level; the CLI's page of
+    # the same scene holds the same floor line, and a run without a floor
+    # has none on its page.
+    scene = fc.Scene.load(scene_path("span-d3-floor")).set("run.t_end", 0.2)
+    ours = page_data(fc.view(fc.simulate(scene), tmp_path / "py.html").read_text())
+    cli("view", scene_path("span-d3-floor"), "--set", "run.t_end=0.2",
+        "-o", tmp_path / "cli.html", check=0)
+    theirs = page_data((tmp_path / "cli.html").read_text())
+    assert ours["runs"][0]["floor"] == theirs["runs"][0]["floor"]
+    height, angle = ours["runs"][0]["floor"]
+    assert height == pytest.approx(-3.0, abs=1e-12) and angle == 0.0
+    plain = page_data(fc.view(fc.simulate(span_d3().set("run.t_end", 0.2)),
+                              tmp_path / "plain.html").read_text())
+    assert "floor" not in plain["runs"][0]

@@ -1,7 +1,8 @@
 //! Cayley's scale as one ensemble, for measurements beyond the figure's:
 //! `cargo run --release -p fc-paper-figures --example cayley_ensemble --
-//! SCENE N K C TILT SPREAD MEMBERS METHOD RTOL`, where `SCENE` is
-//! `scenes/cayley-scale.toml` (its total mass and length are kept). Prints
+//! SCENE N K C TILT SPREAD MEMBERS METHOD RTOL [MU_F [R]]`, where `SCENE` is
+//! `scenes/cayley-scale.toml` (its total mass and length are kept), `MU_F`
+//! the floor's friction and `R` the joints' (both 0 by default). Prints
 //! the ensemble's mid-fall readings (mean, standard deviation and error
 //! over the members; `fc_paper_figures::cayley`) and its cost: steps,
 //! right-hand sides and the members' wall time summed, and the wall time
@@ -21,14 +22,16 @@ use fc_scene::scene::Scene;
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     assert!(
-        a.len() == 9,
-        "usage: SCENE N K C TILT SPREAD MEMBERS METHOD RTOL"
+        (9..=11).contains(&a.len()),
+        "usage: SCENE N K C TILT SPREAD MEMBERS METHOD RTOL [MU_F [R]]"
     );
     let base = Scene::load(&a[0]).unwrap();
     let case = Case {
         links: a[1].parse().unwrap(),
         stiffness: a[2].parse().unwrap(),
         damping: a[3].parse().unwrap(),
+        friction: a.get(9).map_or(0.0, |s| s.parse().unwrap()),
+        joint_friction: a.get(10).map_or(0.0, |s| s.parse().unwrap()),
         tilt: a[4].parse().unwrap(),
         spread: a[5].parse().unwrap(),
         members: a[6].parse().unwrap(),

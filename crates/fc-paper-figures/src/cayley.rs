@@ -16,7 +16,9 @@
 //! dissipated over the ideal plastic landings' `mu g³ t⁴ / 8`, and the top's
 //! fall over the free fall's `g t² / 2` (`x = g t² / 2`, the landed length).
 //!
-//! The figure `cayley-scale` draws [`series_csv`] and [`midfall_csv`].
+//! The figures `cayley-scale` (the reading) and `cayley-top` (the top's
+//! fall against free fall) draw [`series_csv`], [`midfall_csv`] and
+//! [`top_csv`].
 
 use std::fmt::Write as _;
 
@@ -54,6 +56,10 @@ pub struct Case {
     pub stiffness: f64,
     /// `floor.damping` (force per speed).
     pub damping: f64,
+    /// `floor.friction`, the floor's Coulomb coefficient `mu_f`.
+    pub friction: f64,
+    /// `chain.damping`, the joints' friction `r`.
+    pub joint_friction: f64,
     /// The rods start at `∓tilt` rad from the vertical, alternately.
     pub tilt: f64,
     /// Each start angle is moved by a number drawn uniformly from
@@ -190,11 +196,13 @@ pub fn member_scene(base: &Scene, case: &Case, member: usize) -> Result<Scene, S
         .into_iter()
         .map(toml::Value::Float)
         .collect();
-    let sets: [(&str, toml::Value); 10] = [
+    let sets: [(&str, toml::Value); 12] = [
         ("chain.links", toml::Value::Integer(case.links as i64)),
         ("chain.mass", toml::Value::Float(total / case.links as f64)),
+        ("chain.damping", toml::Value::Float(case.joint_friction)),
         ("floor.stiffness", toml::Value::Float(case.stiffness)),
         ("floor.damping", toml::Value::Float(case.damping)),
+        ("floor.friction", toml::Value::Float(case.friction)),
         ("start.angles", toml::Value::Array(angles)),
         ("run.method", toml::Value::String(case.method.to_string())),
         ("run.rtol", toml::Value::Float(case.rtol)),
@@ -333,14 +341,17 @@ pub fn run(base: &Scene, case: &Case) -> Result<Ensemble, String> {
 }
 
 /// The columns of a case in the CSVs.
-const CASE_HEAD: &str = "links,stiffness,damping,tilt,spread,members,method,rtol";
+const CASE_HEAD: &str =
+    "links,stiffness,damping,friction,joint_friction,tilt,spread,members,method,rtol";
 
 fn case_cells(c: &Case) -> String {
     format!(
-        "{},{},{},{},{},{},{},{}",
+        "{},{},{},{},{},{},{},{},{},{}",
         c.links,
         exp(c.stiffness),
         num(c.damping),
+        num(c.friction),
+        exp(c.joint_friction),
         num(c.tilt),
         exp(c.spread),
         c.members,
@@ -375,6 +386,24 @@ pub fn series_csv(ensembles: &[Ensemble]) -> String {
                 stat_cells(&p.reading),
                 wide_cells(p.reading_wide.as_ref()),
                 stat_cells(&p.momentum)
+            );
+        }
+    }
+    s
+}
+
+/// Every ensemble's top: its fall over the free fall's at every sample
+/// time, one row per ensemble and time.
+pub fn top_csv(ensembles: &[Ensemble]) -> String {
+    let mut s = format!("{CASE_HEAD},t,top_mean,top_sd,top_sem\n");
+    for e in ensembles {
+        for p in &e.points {
+            let _ = writeln!(
+                s,
+                "{},{},{}",
+                case_cells(&e.case),
+                num(p.t),
+                stat_cells(&p.top)
             );
         }
     }
@@ -422,6 +451,8 @@ mod tests {
             links,
             stiffness: 1e5,
             damping: 100.0,
+            friction: 0.0,
+            joint_friction: 0.0,
             tilt: 0.2,
             spread,
             members,
@@ -439,7 +470,8 @@ mod tests {
         assert_eq!(p.chain.links(), 10);
         assert!((p.chain.mass() * 10.0 - 1.0).abs() < 1e-12);
         let f = p.chain.floor().unwrap();
-        assert_eq!((f.stiffness, f.damping), (1e5, 100.0));
+        assert_eq!((f.stiffness, f.damping, f.friction), (1e5, 100.0, 0.0));
+        assert_eq!(p.chain.damping(), 0.0);
         assert_eq!(
             (p.method, p.options.rtol, p.options.t_end),
             (Method::Dop853, 1e-6, T_END)
