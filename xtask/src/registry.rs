@@ -499,6 +499,27 @@ pub static FIGURES: &[Figure] = &[
         make: &study::whip_taper::WhipTaper,
     },
     Figure {
+        id: "floor-checks",
+        report: None,
+        what: "the floor against its closed forms: one rod's plastic impact (the far end's \
+               speed against 6 v cos^2 th / (1 + 3 cos^2 th)) over the contact stiffness at \
+               three angles, and a chain laid on a level floor and on slopes below and above \
+               the friction angle (creep and slide)",
+        data: &["floor-checks.csv", "floor-checks-slope.csv"],
+        timing: Timing::None,
+        make: &study::floor_checks::FloorChecks,
+    },
+    Figure {
+        id: "floor-span-d3",
+        report: None,
+        what: "the report's U (span d = 3, n = 50) released over a floor at y = -3: the chain \
+               at t = 0 .. 4.157 over the floor, and the released end's speed beside the same \
+               U without a floor (the whip does not form)",
+        data: &["floor-span-d3.csv", "floor-span-d3-series.csv"],
+        timing: Timing::None,
+        make: &study::floor_span_d3::FloorSpanD3,
+    },
+    Figure {
         id: "cayley-scale",
         report: None,
         what: "Cayley's scale as an ensemble: a chain hanging onto a plastic floor, let go at the \

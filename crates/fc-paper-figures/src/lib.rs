@@ -16,6 +16,8 @@ pub mod beam;
 pub mod cayley;
 pub mod convergence;
 pub mod divergence;
+pub mod floor_checks;
+pub mod floor_u;
 pub mod folded;
 pub mod friction;
 pub mod layout_order;

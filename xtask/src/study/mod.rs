@@ -15,6 +15,8 @@ pub mod elastic_rigid_order;
 pub mod elastic_snap_force;
 pub mod elastic_snap_precision;
 pub mod elastic_snap_tension;
+pub mod floor_checks;
+pub mod floor_span_d3;
 pub mod precision_beam;
 pub mod precision_cost;
 pub mod precision_map;

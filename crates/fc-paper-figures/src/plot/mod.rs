@@ -9,6 +9,7 @@ pub mod beam;
 pub mod cayley;
 pub mod convergence;
 pub mod elastic;
+pub mod floor;
 pub mod folded;
 pub mod friction;
 pub mod report;

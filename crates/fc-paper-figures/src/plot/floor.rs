@@ -1,0 +1,170 @@
+//! The drawings of the floor's figures: the U onto a floor
+//! (`crate::floor_u`: the chain at a few times over the floor's line, and
+//! the released end's speed with and without the floor) and the floor's
+//! closed forms (`crate::floor_checks`: one rod's impact against the
+//! contact stiffness, a chain on a slope against the friction angle).
+
+use std::path::Path;
+
+use figures::{cool, palette, LinePlot, Marker, Output, Series, Style};
+
+use super::Reader;
+
+pub fn floor_span_d3(read: Reader, stem: &Path) -> Result<Output, String> {
+    let snaps = read("")?;
+    let (t, x, y) = (snaps.nums("t")?, snaps.nums("x")?, snaps.nums("y")?);
+    let mut left = LinePlot::new("the chain at t = 0 .. 4.157 over the floor", "x", "y");
+    left.equal_aspect = true;
+    let mut times: Vec<f64> = t.iter().copied().filter(|&s| s >= 0.0).collect();
+    times.dedup();
+    let last = times.last().copied().unwrap_or(1.0);
+    for (i, &s) in times.iter().enumerate() {
+        let pts = (0..snaps.len())
+            .filter(|&j| t[j] == s)
+            .map(|j| (x[j], y[j]))
+            .collect();
+        let label = if i == 0 || i + 1 == times.len() {
+            format!("t = {s}")
+        } else {
+            String::new()
+        };
+        left.series
+            .push(Series::new(label, pts, Style::Line).with_color(cool(s / last)));
+    }
+    let floor = (0..snaps.len())
+        .filter(|&j| t[j] < 0.0)
+        .map(|j| (x[j], y[j]))
+        .collect();
+    left.series
+        .push(Series::new("floor", floor, Style::Dashed).with_color(palette(7)));
+
+    let series = read("-series")?;
+    let (scene, st, v) = (
+        series.strs("scene")?,
+        series.nums("t")?,
+        series.nums("tip_speed")?,
+    );
+    let mut right = LinePlot::new("the released end's speed", "t", "tip speed |v|");
+    for (i, (name, label)) in [
+        ("span-d3", "no floor (the whip)"),
+        ("span-d3-floor", "floor at y = -3"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let pts = (0..series.len())
+            .filter(|&j| scene[j] == name)
+            .map(|j| (st[j], v[j]))
+            .collect();
+        right
+            .series
+            .push(Series::new(label, pts, Style::Line).with_color(palette(i)));
+    }
+    figures::line_plot_pair(
+        &left,
+        &right,
+        "The report's U (span d = 3, n = 50) onto a floor: the whip does not form",
+        stem,
+    )
+    .map_err(|e| e.to_string())
+}
+
+pub fn floor_checks(read: Reader, stem: &Path) -> Result<Output, String> {
+    let rod = read("")?;
+    let (theta, k, err) = (
+        rod.nums("theta")?,
+        rod.nums("stiffness")?,
+        rod.nums("relative_error")?,
+    );
+    let mut left = LinePlot::new(
+        "one rod's plastic impact: far end against the closed form",
+        "contact stiffness k (m g / l units)",
+        "|v_far / (6 v cos^2 th / (1 + 3 cos^2 th)) - 1|",
+    );
+    let mut thetas = theta.clone();
+    thetas.dedup();
+    let markers = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Diamond,
+    ];
+    for (i, &th) in thetas.iter().enumerate() {
+        let pts = (0..rod.len())
+            .filter(|&j| theta[j] == th)
+            .map(|j| (k[j], err[j]))
+            .collect();
+        left.series.push(
+            Series::new(format!("theta = {th} rad"), pts, Style::LinePoints)
+                .with_color(palette(i))
+                .with_marker(markers[i % markers.len()]),
+        );
+    }
+    left.log_x = true;
+    left.log_y = true;
+
+    let sl = read("-slope")?;
+    let (a, mu, t, v, law) = (
+        sl.nums("slope")?,
+        sl.nums("friction")?,
+        sl.nums("t")?,
+        sl.nums("speed")?,
+        sl.nums("closed_form")?,
+    );
+    let normal = sl.nums("normal_over_weight")?;
+    let mut right = LinePlot::new(
+        "a chain laid on a slope a, friction mu = 0.5",
+        "t",
+        "|speed of the centre of mass along the slope|",
+    );
+    right.log_y = true;
+    let mut cases: Vec<(f64, f64)> = (0..sl.len()).map(|j| (a[j], mu[j])).collect();
+    cases.dedup();
+    for (i, &(s, m)) in cases.iter().enumerate() {
+        let rows: Vec<usize> = (0..sl.len())
+            .filter(|&j| a[j] == s && mu[j] == m && t[j] > 0.0)
+            .collect();
+        if s == 0.0 {
+            // At rest: far below the others' scale, so said in numbers.
+            let fastest = rows.iter().map(|&j| v[j].abs()).fold(0.0, f64::max);
+            // Once it has sunk to its static deflection.
+            let carried = rows
+                .iter()
+                .filter(|&&j| t[j] >= 0.5)
+                .map(|&j| (normal[j] - 1.0).abs())
+                .fold(0.0, f64::max);
+            right.annotations = vec![
+                format!("level floor: |speed| <= {fastest:.0e};"),
+                format!("from t = 0.5 the floor carries its weight to {carried:.0e}"),
+            ];
+            continue;
+        }
+        let side = if s.tan() < m {
+            "below the friction angle"
+        } else {
+            "above it"
+        };
+        right.series.push(
+            Series::new(
+                format!("a = {s} ({side})"),
+                rows.iter().map(|&j| (t[j], v[j].abs())).collect(),
+                Style::Line,
+            )
+            .with_color(palette(i)),
+        );
+        right.series.push(
+            Series::new(
+                "",
+                rows.iter().map(|&j| (t[j], law[j].abs())).collect(),
+                Style::Dashed,
+            )
+            .with_color(palette(i)),
+        );
+    }
+    right.series.push(
+        Series::legend_only("dashed: closed forms (creep, slide)", Style::Dashed)
+            .with_color(palette(7)),
+    );
+    figures::line_plot_pair(&left, &right, "The floor against its closed forms", stem)
+        .map_err(|e| e.to_string())
+}
