@@ -251,7 +251,10 @@ mod tests {
         for theta in [0.05, 0.5, 1.0] {
             let got = impact(1e6, 1e3, theta, 0.5).unwrap();
             let want = far_end_speed(1.0, theta);
-            assert!((got / want - 1.0).abs() < 1e-3, "theta {theta}: {got} vs {want}");
+            assert!(
+                (got / want - 1.0).abs() < 1e-3,
+                "theta {theta}: {got} vs {want}"
+            );
         }
         assert!((far_end_speed(1.0, 0.0) - 1.5).abs() < 1e-15);
         let level = slope(0.0, 0.5, 1.0).unwrap();
