@@ -269,6 +269,27 @@ def needs(
     ``method_runs`` (per method: ``points``, ``ran``, ``budget``). Releases
     the GIL; Ctrl-C raises KeyboardInterrupt."""
 
+def ensemble(
+    scene: Scene,
+    *,
+    members: int = 16,
+    spread: float = 1e-3,
+    seed: int = 0,
+    budget: Optional[float] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, Any]:
+    """``scene`` run from ``members`` starts whose rod angles are each moved
+    by a number drawn uniformly from ``[-spread, spread]`` rad (``seed``
+    chooses the draws, the same on every machine): ``falling-chain ensemble
+    --json`` as a dict: ``members``, ``spread``, ``seed``, ``ok`` (members
+    that ended ok), ``stats`` (per quantity: ``mean``, ``sd``, ``sem``,
+    ``min``, ``max``, ``count``, over the members that ended ok; the
+    quantities ``tip_speed_max``, ``t_tip_speed_max``, ``tip_end_x``,
+    ``tip_end_y``, ``energy_end``, ``dissipated``, ``floor_force_max`` with a
+    floor, ``steps``) and ``failures``. ``members`` in 2..=4096, ``spread``
+    in [0, 0.1] (ValueError naming it otherwise). Releases the GIL; Ctrl-C
+    raises KeyboardInterrupt."""
+
 def merge(paths: Sequence[Union[str, "os.PathLike[str]"]]) -> Dict[str, np.ndarray]:
     """Joins the ``--out`` tables of a sharded sweep, precision or stability
     into the whole table, as numpy columns; ValueError (``merge: ...``) for

@@ -171,7 +171,7 @@ const NAMES: [&str; 7] = [
     "",
 ];
 
-const COMMANDS: [&str; 11] = [
+const COMMANDS: [&str; 12] = [
     "simulate",
     "sweep",
     "converge",
@@ -181,6 +181,7 @@ const COMMANDS: [&str; 11] = [
     "precision",
     "stability",
     "needs",
+    "ensemble",
     "merge",
     "view",
 ];
@@ -561,6 +562,24 @@ impl Case {
                 if command == "stability" && self.extra % 2 == 0 {
                     let top = toml_f(self.damping.abs());
                     a.extend(["--vary".into(), format!("chain.damping=0:{top}:2")]);
+                }
+            }
+            "ensemble" => {
+                // Members and spread drawn in and out of their ranges.
+                a.extend([
+                    scene,
+                    "--set".into(),
+                    budget,
+                    format!("--members={}", self.extra),
+                    format!("--spread={}", toml_f(self.damping)),
+                    "--budget".into(),
+                    "1".into(),
+                    "--jobs".into(),
+                    "2".into(),
+                    "--quiet".into(),
+                ]);
+                if self.with_out {
+                    a.extend(["--out".into(), out("e.csv")]);
                 }
             }
             "view" => {

@@ -16,6 +16,7 @@ mod catenary;
 mod cluster;
 mod common;
 mod converge;
+mod ensemble;
 mod floor;
 mod fuzz;
 mod gen_alpha;

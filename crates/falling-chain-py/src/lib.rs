@@ -49,6 +49,7 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::precision, m)?)?;
     m.add_function(wrap_pyfunction!(study::stability, m)?)?;
     m.add_function(wrap_pyfunction!(study::needs, m)?)?;
+    m.add_function(wrap_pyfunction!(study::ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(study::merge, m)?)?;
     m.add_function(wrap_pyfunction!(methods, m)?)?;
     m.add_function(wrap_pyfunction!(view::view, m)?)?;
@@ -64,6 +65,7 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
             "precision",
             "stability",
             "needs",
+            "ensemble",
             "merge",
             "view",
         ],

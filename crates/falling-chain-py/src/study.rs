@@ -1,4 +1,4 @@
-//! `falling_chain.precision`, `stability`, `needs` and `merge`: the CLI's
+//! `falling_chain.precision`, `stability`, `needs`, `ensemble` and `merge`: the CLI's
 //! commands of the same names, returning the tables of their `--out` as
 //! dicts of numpy columns (`needs`: its `--json` object as a dict).
 
@@ -7,7 +7,9 @@ use ::fc_batch::shard;
 use ::fc_csv::{column_type, Column};
 use ::fc_scene::Error;
 use ::fc_study::stability as core_stability;
-use ::fc_study::{self as study, needs as core_needs, precision as core_precision};
+use ::fc_study::{
+    self as study, ensemble as core_ensemble, needs as core_needs, precision as core_precision,
+};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -247,6 +249,42 @@ pub fn needs<'py>(
     })?
     .map_err(value_error)?;
     json_to_dict(py, &answer.to_json())
+}
+
+/// `scene` run from `members` starts whose rod angles are each moved by a
+/// number drawn uniformly from `[-spread, spread]` rad (`seed` chooses the
+/// draws, the same on every machine): `falling-chain ensemble --json` as a
+/// dict (`members`, `spread`, `seed`, `ok`, `stats` by quantity with
+/// `mean`, `sd`, `sem`, `min`, `max`, `count`, and `failures`). `members`
+/// in 2..=4096, `spread` in [0, 0.1]; `budget` and `jobs` as in
+/// `precision`. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scene, *, members=16, spread=1e-3, seed=0, budget=None, jobs=None))]
+pub fn ensemble<'py>(
+    py: Python<'py>,
+    scene: &Bound<'_, PyScene>,
+    members: usize,
+    spread: f64,
+    seed: u32,
+    budget: Option<f64>,
+    jobs: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene.get().inner.clone();
+    let options = core_ensemble::EnsembleOptions {
+        members,
+        spread,
+        seed,
+        jobs: jobs_of(jobs, members)?,
+    };
+    options.validate().map_err(value_error)?;
+    let budget = budget_of(budget)?;
+    let result = run_interruptible(py, |cancel| {
+        ::fc_batch::budget::Budget::run(budget, Some(cancel), |b| {
+            core_ensemble::run(&scene, &options, b, &|_, _| {})
+        })
+    })?
+    .map_err(value_error)?;
+    json_to_dict(py, &result.to_json().to_string())
 }
 
 /// Joins the tables of a sharded sweep, precision or stability (files

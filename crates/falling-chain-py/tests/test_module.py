@@ -7,7 +7,10 @@ from pathlib import Path
 
 import falling_chain as fc
 
-CONTRACT = ["Scene", "Run", "simulate", "sweep", "catenary", "precision", "stability", "needs", "merge", "view"]
+CONTRACT = [
+    "Scene", "Run", "simulate", "sweep", "catenary", "precision", "stability", "needs", "ensemble",
+    "merge", "view",
+]
 
 
 def stub():

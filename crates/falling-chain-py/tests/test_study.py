@@ -75,6 +75,17 @@ def test_needs_is_the_cli_json():
     assert [t["needed"] for t in got["terms"]] == [t["needed"] for t in want["terms"]]
 
 
+def test_ensemble_is_the_cli_json():
+    args = ("--members", "4", "--spread", "1e-4", "--seed", "3", "--json", "--quiet")
+    want = cli_json("ensemble", scene_path("span-d3"), *SMALL, *args, check=0)
+    got = fc.ensemble(small(), members=4, spread=1e-4, seed=3)
+    assert got == want and got["ok"] == 4 and got["failures"] == []
+    # Members of one start (spread 0) are one run: no spread at all.
+    still = fc.ensemble(small(), members=2, spread=0.0)
+    assert all(s["sd"] == 0.0 for s in still["stats"].values())
+    assert still["stats"]["tip_speed_max"]["mean"] == fc.simulate(small()).summary["tip_speed_max"]
+
+
 def test_merge_joins_cli_shards_and_refuses_what_the_cli_refuses(tmp_path):
     for i in range(2):
         cli("stability", scene_path("span-d3"), *SMALL, "--methods", "rk4", "--quiet",
@@ -101,6 +112,8 @@ def test_merge_joins_cli_shards_and_refuses_what_the_cli_refuses(tmp_path):
         (lambda s: fc.stability(s, vary={"chain.damping": [0.0], "chain.mass": [1.0]}), "vary"),
         (lambda s: fc.needs(s, 2.0), "tol"),
         (lambda s: fc.needs(s, 0.1, links=[7]), "links"),
+        (lambda s: fc.ensemble(s, members=1), "members"),
+        (lambda s: fc.ensemble(s, spread=0.5), "spread"),
     ],
 )
 def test_bad_input_is_a_value_error_naming_the_argument(call, field):

@@ -95,6 +95,18 @@ enum Command {
     /// more than --tol. Exit 1 if no n or no method meets --tol, or if
     /// --budget stopped the phase that would find it (the line says which).
     Needs(study_commands::NeedsArgs),
+    /// The scene run from perturbed starts, and its summary's statistics.
+    ///
+    /// Each of --members starts moves every rod angle by a number drawn
+    /// uniformly from [-S, S] rad (--spread; the same draws on every
+    /// machine, chosen by --seed): past a whip or a landing on a floor a
+    /// single run is not reproducible, its ensemble's mean and standard
+    /// error are. Prints the mean, standard deviation and error, minimum
+    /// and maximum of the tip's largest speed and its time, the tip's end,
+    /// the energy, the dissipated work, the floor's peak force and the
+    /// steps over the members that ended ok. Exit 1 if a member failed or
+    /// --budget stopped it.
+    Ensemble(study_commands::EnsembleArgs),
     /// Join the tables of a sharded sweep, precision or stability.
     ///
     /// The --out tables of --shard I/N runs become the table of the whole
@@ -931,6 +943,7 @@ fn main() -> ExitCode {
         Command::Precision(args) => study_commands::precision(args),
         Command::Stability(args) => study_commands::stability(args),
         Command::Needs(args) => study_commands::needs(args),
+        Command::Ensemble(args) => study_commands::ensemble(args),
         Command::Merge(args) => study_commands::merge(args),
     };
     result.unwrap_or_else(|e| {

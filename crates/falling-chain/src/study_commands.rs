@@ -1,4 +1,4 @@
-//! The study's commands: `precision`, `stability`, `needs` and `merge`
+//! The study's commands: `precision`, `stability`, `needs`, `ensemble` and `merge`
 //! (the computations are the fc-study crate's).
 
 use std::path::{Path, PathBuf};
@@ -12,7 +12,7 @@ use fc_csv::format::exp;
 use fc_scene::atomic::{begin, check_distinct, check_writable};
 use fc_scene::error::echo_path;
 use fc_scene::Error;
-use fc_study::{self as study, needs, plot, precision, stability};
+use fc_study::{self as study, ensemble, needs, plot, precision, stability};
 
 use crate::{JobsArgs, SceneArgs};
 
@@ -98,6 +98,40 @@ pub struct NeedsArgs {
     /// Stop after this many seconds of wall time, in (0, 2592000] (30
     /// days): every phase (the ladder of n, the reference and its checks,
     /// the methods, the terms) runs within it; what it stopped is listed.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    budget: Option<f64>,
+    #[command(flatten)]
+    jobs: JobsArgs,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Args)]
+pub struct EnsembleArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Members: starts run, in 2..=4096.
+    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true)]
+    members: usize,
+    /// Each start angle is moved by a number drawn uniformly from
+    /// [-S, S] rad, S in [0, 0.1].
+    #[arg(long, value_name = "S", default_value_t = ensemble::DEFAULT_SPREAD, allow_negative_numbers = true)]
+    spread: f64,
+    /// Which perturbations (member j draws from stream j + 2^32 SEED).
+    #[arg(long, value_name = "SEED", default_value_t = 0)]
+    seed: u32,
+    /// Write one row per member as CSV: member, status, and the quantities
+    /// (tip_speed_max, t_tip_speed_max, tip_end_x, tip_end_y, energy_end,
+    /// dissipated, floor_force_max, steps).
+    #[arg(long, value_name = "FILE.csv")]
+    out: Option<PathBuf>,
+    /// Stop after this many seconds of wall time, in (0, 2592000] (30
+    /// days): members that cannot start within it are not run, runs still
+    /// going are stopped, and all are listed.
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     budget: Option<f64>,
     #[command(flatten)]
@@ -359,6 +393,41 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
         println!("{answer}");
     }
     Ok(report_failures(&answer.failures()))
+}
+
+pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
+    let options = ensemble::EnsembleOptions {
+        members: args.members,
+        spread: args.spread,
+        seed: args.seed,
+        jobs: args.jobs.threads()?,
+    };
+    options.validate()?;
+    let budget = budget_of("--budget", args.budget)?;
+    if let Some(out) = &args.out {
+        check_writable("--out", out)?;
+    }
+    let scene = args.scene.load()?;
+    let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
+    let bar = progress_bar(args.quiet, options.members);
+    let result = Budget::run(budget, None, |b| {
+        ensemble::run(&scene, &options, b, &|done, _| {
+            bar.set_position(done as u64)
+        })
+    })?;
+    bar.finish_and_clear();
+    if let Some(out) = out {
+        let shown = echo_path(out.path());
+        let text = result.csv();
+        out.write(|w| w.write_all(text.as_bytes()))?;
+        eprintln!("wrote {} rows to {shown}", result.members.len());
+    }
+    if args.json {
+        println!("{}", result.to_json());
+    } else {
+        print!("{result}");
+    }
+    Ok(report_failures(&result.failures()))
 }
 
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {

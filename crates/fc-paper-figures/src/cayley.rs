@@ -27,6 +27,9 @@ use rayon::prelude::*;
 use chain_ode::{Method, Trajectory};
 use fc_csv::format::{exp, num};
 use fc_scene::scene::Scene;
+// The perturbations are the `ensemble` study's draws, member `j` on stream
+// `j` (seed 0), so that `falling-chain ensemble` with seed 0 draws the same.
+use fc_study::ensemble::uniform;
 
 /// Half the window the reading is averaged over (units of `sqrt(L / g)`).
 pub const WINDOW: f64 = 0.05;
@@ -162,18 +165,6 @@ pub fn sample_times() -> Vec<f64> {
     let per = (WINDOW / SAMPLE_DT).round() as usize;
     let last = (T_END / SAMPLE_DT).round() as usize - per;
     (per..=last).map(|k| k as f64 * SAMPLE_DT).collect()
-}
-
-/// A deterministic uniform number in `[−1, 1]` for `(seed, i)`
-/// (SplitMix64's finaliser on the pair, 53 bits of it).
-fn uniform(seed: u64, i: u64) -> f64 {
-    let mut z = seed
-        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        .wrapping_add(i.wrapping_add(1).wrapping_mul(0xBF58_476D_1CE4_E5B9));
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^= z >> 31;
-    2.0 * ((z >> 11) as f64 / (1u64 << 53) as f64) - 1.0
 }
 
 /// The start angles of member `member`: rod `i` at `−pi/2 ± tilt` (`+` for
@@ -555,21 +546,6 @@ mod tests {
             "one member has no spread"
         );
         assert!(still.failed.is_empty() && moved.failed.is_empty());
-    }
-
-    #[test]
-    fn the_perturbations_are_uniform_on_the_interval() {
-        // Mean 0 and variance 1/3 of U(-1, 1), to a few standard errors
-        // of 20000 draws; a generator stuck on one half fails.
-        let xs: Vec<f64> = (0..20_000).map(|i| uniform(7, i)).collect();
-        let s = Stat::of(&xs);
-        assert!(xs.iter().all(|x| (-1.0..=1.0).contains(x)));
-        assert!(
-            s.mean.abs() < 4.0 * (1.0 / 3.0 / 20_000.0_f64).sqrt(),
-            "{s:?}"
-        );
-        assert!((s.sd * s.sd - 1.0 / 3.0).abs() < 0.01, "{s:?}");
-        assert_ne!(uniform(1, 0), uniform(2, 0));
     }
 
     #[test]

@@ -11,10 +11,11 @@
 //! nothing of figure files or of the paper. The drawings of its tables
 //! ([`plot`], and a run's snapshots, [`render`]) are behind the `plot`
 //! feature, so that Python builds without plotters. The CLI's `precision`,
-//! `stability`, `needs`, `converge` and `merge`, Python's functions of the
+//! `stability`, `needs`, `ensemble`, `converge` and `merge`, Python's functions of the
 //! same names and fc-paper-figures (the paper's figures) call these.
 
 pub mod converge;
+pub mod ensemble;
 pub mod needs;
 #[cfg(feature = "plot")]
 pub mod plot;
