@@ -46,8 +46,8 @@ pub const SAMPLE_DT: f64 = 0.025;
 pub const T_END: f64 = 1.4;
 /// Mid-fall: the ideal's landed length is `L / 2` (units of `sqrt(L / g)`).
 pub const T_MID: f64 = 1.0;
-/// The most members an ensemble may have.
-pub const MAX_MEMBERS: usize = 4096;
+/// The most members an ensemble may have (the `ensemble` study's bound).
+pub use fc_study::ensemble::MAX_MEMBERS;
 
 /// One ensemble: the chain, its floor, the start's zigzag and how it is
 /// run.
@@ -105,16 +105,11 @@ pub struct Stat {
 }
 
 impl Stat {
-    /// The statistics of `xs` (at least two values).
+    /// The statistics of `xs` (at least two values;
+    /// [`fc_study::ensemble::moments`]).
     pub fn of(xs: &[f64]) -> Stat {
-        let m = xs.len() as f64;
-        let mean = xs.iter().sum::<f64>() / m;
-        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (m - 1.0);
-        Stat {
-            mean,
-            sd: var.sqrt(),
-            sem: (var / m).sqrt(),
-        }
+        let (mean, sd, sem) = fc_study::ensemble::moments(xs).unwrap_or((f64::NAN, 0.0, 0.0));
+        Stat { mean, sd, sem }
     }
 }
 

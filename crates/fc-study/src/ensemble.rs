@@ -125,23 +125,30 @@ pub struct Stat {
     pub count: usize,
 }
 
+/// `(mean, sample standard deviation, standard error)` of `xs` (the
+/// deviation 0 for one value; `None` for none).
+pub fn moments(xs: &[f64]) -> Option<(f64, f64, f64)> {
+    if xs.is_empty() {
+        return None;
+    }
+    let m = xs.len() as f64;
+    let mean = xs.iter().sum::<f64>() / m;
+    let var = if xs.len() > 1 {
+        xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (m - 1.0)
+    } else {
+        0.0
+    };
+    Some((mean, var.sqrt(), (var / m).sqrt()))
+}
+
 impl Stat {
     fn of(name: &'static str, xs: &[f64]) -> Option<Stat> {
-        if xs.is_empty() {
-            return None;
-        }
-        let m = xs.len() as f64;
-        let mean = xs.iter().sum::<f64>() / m;
-        let var = if xs.len() > 1 {
-            xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (m - 1.0)
-        } else {
-            0.0
-        };
+        let (mean, sd, sem) = moments(xs)?;
         Some(Stat {
             name,
             mean,
-            sd: var.sqrt(),
-            sem: (var / m).sqrt(),
+            sd,
+            sem,
             min: xs.iter().copied().fold(f64::INFINITY, f64::min),
             max: xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             count: xs.len(),
