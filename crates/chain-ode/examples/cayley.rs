@@ -16,7 +16,7 @@
 )]
 use std::f64::consts::FRAC_PI_2;
 
-use chain_ode::{solve, Chain, ChainParams, Floor, Method, Pivot, SolveOptions, Start};
+use chain_ode::{solve, Chain, ChainParams, Floor, FloorLaw, Method, Pivot, SolveOptions, Start};
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
@@ -44,6 +44,8 @@ fn main() {
             damping: c,
             friction: mu,
             slip_speed: 1e-3,
+            law: FloorLaw::Penalty,
+            restitution: 0.0,
         }),
         damping: r,
         ..ChainParams::default()

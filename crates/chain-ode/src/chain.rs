@@ -5,7 +5,7 @@ use std::fmt;
 
 use fc_methods::InvalidParameter;
 
-use crate::floor::Floor;
+use crate::floor::{Floor, FloorLaw};
 use crate::pivot::Pivot;
 use crate::profile::{Profile, Rods};
 
@@ -221,6 +221,23 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
              pivot.amplitude and pivot.jerk zero)",
             "a floor with a moving pivot",
         )?;
+        if floor.law == FloorLaw::Constraint {
+            // The constraint floor is the rigid chain's (docs/model.md,
+            // "The floor as a constraint").
+            check(
+                p.axial_stiffness.is_none(),
+                "floor.law",
+                "\"penalty\" with chain.axial_stiffness (\"constraint\" holds rigid rods on a \
+                 rigid floor)",
+                "constraint",
+            )?;
+            check(
+                p.tip_mass == 0.0,
+                "floor.law",
+                "\"penalty\" with chain.tip_mass (\"constraint\" has no tip mass yet)",
+                "constraint",
+            )?;
+        }
     }
     // A profile takes every other term, on rigid and on elastic links
     // (`dynamics_profile.rs`, `elastic.rs`).
@@ -233,9 +250,11 @@ impl Chain {
     pub fn new(params: ChainParams) -> Result<Self, InvalidParameter> {
         validate(&params)?;
         let mut params = params;
-        if params.floor.is_some() && params.axial_stiffness.is_none() {
-            // A rigid chain on a floor is the elastic chain at a stiffness
-            // where the two agree (docs/model.md, "The floor").
+        if params.floor.is_some_and(|f| f.law == FloorLaw::Penalty)
+            && params.axial_stiffness.is_none()
+        {
+            // A rigid chain on a penalty floor is the elastic chain at a
+            // stiffness where the two agree (docs/model.md, "The floor").
             params.axial_stiffness = Some(rigid_floor_stiffness(&params));
         }
         let rods = params.profile.rods(params.links).map(std::sync::Arc::new);
@@ -553,6 +572,8 @@ mod tests {
                 damping: 10.0,
                 friction: 0.4,
                 slip_speed: 0.02,
+                law: crate::floor::FloorLaw::Penalty,
+                restitution: 0.0,
             }),
         };
         assert_ne!(given, ChainParams::default());

@@ -35,6 +35,29 @@ use crate::scalar::Scalar;
 /// The largest floor angle `|a|` (rad).
 pub const MAX_FLOOR_ANGLE: f64 = 1.5;
 
+/// How the floor pushes (`floor.law`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FloorLaw {
+    /// A stiff spring-damper at each rod end (Hunt–Crossley, this module)
+    /// on the elastic chain: the floor of issue 36.
+    Penalty,
+    /// A unilateral constraint at each joint of the rigid chain, with
+    /// Newton's restitution and Coulomb's friction, stepped over by
+    /// `moreau-jean` (`crate::contact`; `docs/model.md`, "The floor as a
+    /// constraint").
+    Constraint,
+}
+
+impl FloorLaw {
+    /// The name in scenes: `"penalty"`, `"constraint"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Penalty => "penalty",
+            Self::Constraint => "constraint",
+        }
+    }
+}
+
 /// A floor as the scene gives it (the `[floor]` keys), in the scene's units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Floor {
@@ -55,6 +78,13 @@ pub struct Floor {
     /// The regularisation speed `v_s` of the friction (> 0): below it the
     /// friction grows linearly with the slip speed.
     pub slip_speed: f64,
+    /// How the floor pushes ([`FloorLaw`]): `stiffness`, `damping` and
+    /// `slip_speed` are the penalty's, `restitution` the constraint's.
+    pub law: FloorLaw,
+    /// The constraint's coefficient of restitution `e` in `[0, 1]` (0:
+    /// plastic): Newton's law on a contact's normal velocity,
+    /// `u⁺ = −e u⁻` at an impact.
+    pub restitution: f64,
 }
 
 impl Floor {
@@ -98,6 +128,19 @@ impl Floor {
             "floor.slip_speed",
             "a finite number in (0, 1e6]",
             self.slip_speed,
+        )?;
+        check(
+            fin(self.restitution) && (0.0..=1.0).contains(&self.restitution),
+            "floor.restitution",
+            "a number in [0, 1]",
+            self.restitution,
+        )?;
+        check(
+            self.law == FloorLaw::Constraint || self.restitution == 0.0,
+            "floor.restitution",
+            "0 with floor.law = \"penalty\" (its impacts' restitution is set by floor.damping); \
+             another value with floor.law = \"constraint\"",
+            self.restitution,
         )
     }
 

@@ -45,6 +45,7 @@
 pub mod analysis;
 pub mod beam;
 mod chain;
+pub mod contact;
 pub mod dae;
 pub mod dae_frame;
 pub mod dense;
@@ -73,14 +74,15 @@ pub use elastic::ElasticSystem;
 pub use fc_methods::with_general_sparse_lu;
 pub use fc_methods::{
     Accuracy, AutoPlan, BandedDae, Cancel, Integrator, Interpolant, InvalidParameter, Method,
-    OdeSystem, Problem, Segment, SemiExplicitDae, Stats, Status, StepView,
+    Nonsmooth, OdeSystem, Problem, Row, RowKind, Segment, SemiExplicitDae, Stats, Status,
+    StepRecord, StepView,
 };
-pub use floor::Floor;
+pub use floor::{Floor, FloorLaw};
 pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
-    bdf_crossover_gamma, BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed,
-    ReportChain, RigidModel,
+    bdf_crossover_gamma, BeamModel, ContactModel, ElasticModel, IntoModel, Layout, Model,
+    ModelKind, Observed, ReportChain, RigidModel,
 };
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};

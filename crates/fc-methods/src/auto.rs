@@ -92,6 +92,7 @@ impl Observer for Watch<'_> {
 pub(crate) const AUTO: Integrator = Integrator {
     name: "auto",
     adaptive: true,
+    nonsmooth: false,
     run,
 };
 

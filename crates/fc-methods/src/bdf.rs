@@ -446,6 +446,7 @@ pub fn integrate_dae<D: SemiExplicitDae>(
 pub(crate) const BDF: Integrator = Integrator {
     name: "bdf",
     adaptive: true,
+    nonsmooth: false,
     run: |p, s, obs| integrate(p, s, obs).into(),
 };
 

@@ -103,6 +103,7 @@ fn run<S: OdeSystem>(sys: &mut Counted<S>, s: &Span<'_>, obs: &mut dyn Observer)
 pub(crate) const BDF_DENSE: Integrator = Integrator {
     name: "bdf-dense",
     adaptive: true,
+    nonsmooth: false,
     run: |p, s, obs| integrate(p, s, obs).into(),
 };
 

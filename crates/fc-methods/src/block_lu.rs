@@ -861,6 +861,68 @@ impl Factors {
     }
 }
 
+/// A block-tridiagonal matrix of dense `S x S` blocks assembled by its
+/// caller (the contact solve of `moreau-jean`, `complementarity.rs`), and
+/// its factors: the same block Thomas algorithm and sweeps as diffsol's
+/// Newton matrices get ([`factorise_blocks`], [`solve_condensed`] with no
+/// local unknowns), without a sparse pattern in between.
+pub(crate) struct DenseTridiagonal {
+    size: usize,
+    /// `[L_k | D_k | U_k]` per block row (`S x S` each, row-major); the
+    /// caller writes it, and `L_0`, `U_{K-1}` must stay zero.
+    pub assembled: Vec<f64>,
+    forward: Vec<f64>,
+    back: Vec<f64>,
+    piv: [usize; MAX_BLOCK],
+    /// The identity order and the empty coupling of the sweeps.
+    order: Vec<usize>,
+    coupling: Vec<f64>,
+    work: Vec<f64>,
+}
+
+impl DenseTridiagonal {
+    /// `blocks` block rows of `size x size` blocks (`size` in
+    /// `1..=MAX_BLOCK`), all zero.
+    pub fn new(size: usize, blocks: usize) -> Self {
+        let ss = size * size;
+        Self {
+            size,
+            assembled: vec![0.0; 3 * ss * blocks],
+            forward: vec![0.0; 2 * ss * blocks],
+            back: vec![0.0; ss * blocks],
+            piv: [0; MAX_BLOCK],
+            order: (0..size * blocks).collect(),
+            coupling: vec![0.0; blocks],
+            work: vec![0.0; size * blocks],
+        }
+    }
+
+    /// Factorises [`DenseTridiagonal::assembled`]; `false` on a zero or
+    /// non-finite pivot (or a non-finite entry).
+    pub fn factorise(&mut self) -> bool {
+        if !self.assembled.iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        let (forward, back, piv) = (&mut self.forward, &mut self.back, &mut self.piv);
+        sized!(
+            self.size,
+            factorise_blocks(&self.assembled, forward, back, piv)
+        )
+    }
+
+    /// `x = A^-1 x` with the last factors; `false` if the result is not
+    /// finite.
+    pub fn solve(&mut self, x: &mut [f64]) -> bool {
+        let (coupling, forward, back) = (&self.coupling, &self.forward, &self.back);
+        let (order, work) = (&self.order, &mut self.work);
+        shaped!(
+            self.size,
+            0,
+            solve_condensed(&[], coupling, forward, back, order, x, work)
+        )
+    }
+}
+
 /// Block-tridiagonal LU with fallible factorisation; see the module doc.
 /// Built by [`BlockLu::new`] with the block of every unknown; its pattern
 /// comes from diffsol (`set_sparsity`), and a pattern that is not block

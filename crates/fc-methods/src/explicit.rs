@@ -170,6 +170,7 @@ pub(crate) const fn integrator<P: Pair>(name: &'static str) -> Integrator {
     Integrator {
         name,
         adaptive: true,
+        nonsmooth: false,
         run: run_span::<P>,
     }
 }

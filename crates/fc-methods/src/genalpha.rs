@@ -497,6 +497,7 @@ fn run<S: OdeSystem>(
 pub(crate) const GEN_ALPHA: Integrator = Integrator {
     name: "gen-alpha",
     adaptive: true,
+    nonsmooth: false,
     run: |p, s, obs| integrate(p, s, obs).into(),
 };
 

@@ -36,6 +36,10 @@ pub struct Integrator {
     pub name: &'static str,
     /// True if the step adapts to `rtol`/`atol`.
     pub adaptive: bool,
+    /// True if it runs only a problem that states itself as a mechanical
+    /// system with constraints ([`Problem::nonsmooth`]: `moreau-jean`);
+    /// false if it runs any [`OdeSystem`](crate::OdeSystem).
+    pub nonsmooth: bool,
     /// Integrates a problem over a span, showing the observer every
     /// accepted step. Never panics and never returns a NaN: a failure is a
     /// status with the last finite state. Leaves `segments` empty unless

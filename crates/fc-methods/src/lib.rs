@@ -26,6 +26,7 @@ mod auto;
 mod bdf;
 mod bdf_dense;
 mod block_lu;
+mod complementarity;
 mod diffsol_driver;
 mod dop853;
 mod dop853_tableau;
@@ -37,7 +38,9 @@ mod integrator;
 #[cfg(test)]
 mod known_solutions;
 mod method;
+mod moreau_jean;
 mod newton_matrix;
+mod nonsmooth;
 mod ode;
 #[doc(hidden)]
 pub mod registry;
@@ -56,6 +59,7 @@ pub use error::InvalidParameter;
 pub use genalpha::{DEFAULT_RHO_INF, RHO_INF_RANGE};
 pub use integrator::{Accuracy, Integrator, TimeScales};
 pub use method::{Method, Segment};
+pub use nonsmooth::{Nonsmooth, Row, RowKind, StepRecord, MAX_BODY, MAX_ROWS};
 pub use ode::{
     all_finite, BandedDae, Cancel, Counted, Interpolant, Observer, OdeSystem, Outcome, Problem,
     SemiExplicitDae, Stats, Status, StepView,

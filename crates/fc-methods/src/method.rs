@@ -41,6 +41,13 @@ pub enum Method {
     /// damping the modes its step does not resolve by `run.rho_inf` per
     /// step instead of following them (`rtol`, `atol`).
     GenAlpha,
+    /// Moreau–Jean time stepping (`dt`): a mechanical problem with
+    /// joints, contacts and friction as constraints, its impacts stepped
+    /// over by impulses at a fixed step far longer than any contact time;
+    /// it runs only a problem that states itself as
+    /// [`Nonsmooth`](crate::Nonsmooth) (chain-ode's chain on a
+    /// `floor.law = "constraint"` floor).
+    MoreauJean,
 }
 
 impl Method {
@@ -55,6 +62,12 @@ impl Method {
     /// True if the method adapts its step to `rtol`/`atol`.
     pub fn adaptive(self) -> bool {
         registry::integrator(self).adaptive
+    }
+
+    /// True if the method runs only problems that state themselves as
+    /// mechanical systems with constraints ([`crate::Problem::nonsmooth`]).
+    pub fn is_nonsmooth(self) -> bool {
+        registry::integrator(self).nonsmooth
     }
 
     /// The parameter that sets the method's accuracy.

@@ -12,6 +12,7 @@
 use std::ops::Range;
 
 use crate::auto::AutoPlan;
+use crate::nonsmooth::Nonsmooth;
 
 /// `y' = f(t, y)` on `R^dim`.
 pub trait OdeSystem {
@@ -128,6 +129,14 @@ pub trait Problem: OdeSystem {
     /// default): every unknown.
     fn configuration(&self) -> Vec<Range<usize>> {
         Vec::new()
+    }
+
+    /// The problem as a mechanical system with constraints in maximal
+    /// coordinates ([`Nonsmooth`]), for a method that steps over impacts
+    /// (`moreau-jean`). `None` (the default): it has no such form, and
+    /// `moreau-jean` ends at the start with `diverged`.
+    fn nonsmooth(&mut self) -> Option<&mut dyn Nonsmooth> {
+        None
     }
 }
 
@@ -358,7 +367,7 @@ impl PartialEq for Cancel {
 }
 
 /// Work counters of a run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Stats {
     /// Accepted steps.
     pub steps: u64,
@@ -382,8 +391,20 @@ pub struct Stats {
     /// did not converge (or its linear solve failed).
     pub newton_failures: u64,
     /// Implicit methods: Newton iterations over the run, rejected
-    /// attempts included.
+    /// attempts included (`moreau-jean`: those of its contact solves and
+    /// projections, one factorisation each).
     pub newton_iterations: u64,
+    /// `moreau-jean`: the most contacts active in one step (0 for the
+    /// other methods).
+    pub contacts_max: u64,
+    /// `moreau-jean`: the largest residual of a contact solve's laws at
+    /// its end over the run (velocity units for the velocity solves,
+    /// length for the projections): how far from exact the impulses are.
+    pub complementarity_residual: f64,
+    /// `moreau-jean`: the largest violation of a bilateral row (a joint)
+    /// at a step's end before its projection (length): the drift one step
+    /// makes, which the projection takes out.
+    pub constraint_drift: f64,
 }
 
 impl std::ops::AddAssign for Stats {
@@ -397,6 +418,19 @@ impl std::ops::AddAssign for Stats {
         self.error_test_failures += o.error_test_failures;
         self.newton_failures += o.newton_failures;
         self.newton_iterations += o.newton_iterations;
+        self.contacts_max = self.contacts_max.max(o.contacts_max);
+        self.complementarity_residual =
+            max_nan(self.complementarity_residual, o.complementarity_residual);
+        self.constraint_drift = max_nan(self.constraint_drift, o.constraint_drift);
+    }
+}
+
+/// The larger of two values, NaN if either is.
+fn max_nan(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
     }
 }
 

@@ -5,7 +5,7 @@
 use std::sync::OnceLock;
 
 use super::integrator::{Integrator, Run, Span};
-use super::{auto, bdf, bdf_dense, dop853, dopri5, genalpha, rk4, Method, Segment};
+use super::{auto, bdf, bdf_dense, dop853, dopri5, genalpha, moreau_jean, rk4, Method, Segment};
 use crate::ode::{Observer, Problem};
 
 /// Every method, in the order figures list them. Adding a method: its file,
@@ -19,6 +19,7 @@ pub(crate) const REGISTRY: &[Method] = &[
     Method::BdfDense,
     Method::Auto,
     Method::GenAlpha,
+    Method::MoreauJean,
 ];
 
 /// The registered methods, in registry order (`Method::ALL`).
@@ -43,6 +44,7 @@ pub(crate) fn integrator(method: Method) -> &'static Integrator {
         Method::BdfDense => &bdf_dense::BDF_DENSE,
         Method::Auto => &auto::AUTO,
         Method::GenAlpha => &genalpha::GEN_ALPHA,
+        Method::MoreauJean => &moreau_jean::MOREAU_JEAN,
     }
 }
 
@@ -110,15 +112,16 @@ mod tests {
         }
         assert_eq!(
             accepted_names(),
-            "one of rk4, dopri5, dop853, bdf, bdf-dense, auto, gen-alpha"
+            "one of rk4, dopri5, dop853, bdf, bdf-dense, auto, gen-alpha, moreau-jean"
         );
     }
 
     #[test]
-    fn only_rk4_is_set_by_its_step() {
+    fn only_rk4_and_moreau_jean_are_set_by_their_step() {
         for m in Method::ALL {
-            assert_eq!(m.adaptive(), m != Method::Rk4, "{m}");
-            let name = if m == Method::Rk4 { "dt" } else { "rtol" };
+            let fixed = matches!(m, Method::Rk4 | Method::MoreauJean);
+            assert_eq!(m.adaptive(), !fixed, "{m}");
+            let name = if fixed { "dt" } else { "rtol" };
             assert_eq!(m.accuracy_name(), name, "{m}");
         }
     }

@@ -155,6 +155,7 @@ fn steps<M: FixedStep, S: OdeSystem>(
 pub(crate) const RK4: Integrator = Integrator {
     name: "rk4",
     adaptive: false,
+    nonsmooth: false,
     run: |p, s, obs| integrate::<Classic, _>(p, s, obs).into(),
 };
 

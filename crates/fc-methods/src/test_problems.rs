@@ -6,6 +6,7 @@
 
 use super::integrator::{Settings, Span, TimeScales};
 use super::{registry, Method};
+use crate::nonsmooth::{Nonsmooth, Row, StepRecord};
 use crate::ode::{
     BandedDae, Observer, OdeSystem, Outcome, Problem, SemiExplicitDae, Status, StepView,
 };
@@ -21,6 +22,9 @@ pub(crate) struct Toy {
     j: Option<Jvp>,
     /// The same problem as an index-1 DAE, for the sparse BDF.
     dae: Option<KnownDae>,
+    /// `y = [x, x']` of `x'' = a(t, x, x')`: a body of one coordinate and
+    /// unit mass, for `moreau-jean` (no constraints).
+    mechanical: bool,
     pub rhs_calls: u64,
     pub jvp_calls: u64,
 }
@@ -41,6 +45,48 @@ impl Problem for Toy {
             dae: Box::new(dae),
             y0: full,
         })
+    }
+
+    fn nonsmooth(&mut self) -> Option<&mut dyn Nonsmooth> {
+        if self.mechanical {
+            Some(self)
+        } else {
+            None
+        }
+    }
+}
+
+/// A mechanical toy (`Toy::with_mechanics`): one body of one coordinate
+/// and unit mass, its force the toy's own acceleration (each a counted
+/// right-hand side), no constraint rows.
+impl Nonsmooth for Toy {
+    fn bodies(&self) -> usize {
+        1
+    }
+    fn body_dim(&self) -> usize {
+        1
+    }
+    fn block_rows(&self) -> usize {
+        1
+    }
+    fn inverse_mass(&self, out: &mut [f64]) {
+        out.fill(1.0);
+    }
+    fn coordinates(&self, y: &[f64], q: &mut [f64], v: &mut [f64]) {
+        q[0] = y[0];
+        v[0] = y[1];
+    }
+    fn forces(&mut self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+        let mut dy = [0.0; 2];
+        self.rhs(t, &[q[0], v[0]], &mut dy);
+        f[0] = dy[1];
+    }
+    fn rows(&mut self, _t: f64, _q: &[f64], rows: &mut [Row]) {
+        rows.fill(Row::OFF);
+    }
+    fn state(&mut self, step: &StepRecord<'_>, y: &mut [f64]) {
+        y[0] = step.q[0];
+        y[1] = step.v[0];
     }
 }
 
@@ -66,6 +112,7 @@ pub(crate) fn toy(dim: usize, f: impl Fn(f64, &[f64], &mut [f64]) + 'static) -> 
         f: Box::new(f),
         j: None,
         dae: None,
+        mechanical: false,
         rhs_calls: 0,
         jvp_calls: 0,
     }
@@ -81,6 +128,13 @@ impl Toy {
     /// The same system, stating itself as `dae` for the sparse BDF.
     pub fn with_dae(mut self, dae: KnownDae) -> Self {
         self.dae = Some(dae);
+        self
+    }
+
+    /// The same system (`y = [x, x']`), stating itself as a body of unit
+    /// mass for `moreau-jean`.
+    pub fn with_mechanics(mut self) -> Self {
+        self.mechanical = true;
         self
     }
 }
@@ -105,6 +159,7 @@ pub(crate) const OSCILLATOR: Known = Known {
             jv[1] = -v[0];
         })
         .with_dae(OSCILLATOR_DAE)
+        .with_mechanics()
     },
     exact: |t| vec![t.cos(), -t.sin()],
 };
@@ -134,6 +189,7 @@ pub(crate) const FORCED: Known = Known {
             jv[1] = -v[0];
         })
         .with_dae(FORCED_DAE)
+        .with_mechanics()
     },
     exact: |t| {
         vec![

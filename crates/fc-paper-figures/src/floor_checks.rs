@@ -17,7 +17,8 @@ use std::fmt::Write as _;
 use rayon::prelude::*;
 
 use chain_ode::{
-    solve, Chain, ChainParams, Floor, Method, Model as _, Pivot, SolveOptions, Start, Trajectory,
+    solve, Chain, ChainParams, Floor, FloorLaw, Method, Model as _, Pivot, SolveOptions, Start,
+    Trajectory,
 };
 use fc_csv::format::{exp, num};
 
@@ -85,6 +86,8 @@ pub fn impact(k: f64, c: f64, theta: f64, drop: f64) -> Result<f64, String> {
         damping: c,
         friction: 0.0,
         slip_speed: 1.0,
+        law: FloorLaw::Penalty,
+        restitution: 0.0,
     };
     let ch = chain(1, 1.0, 1.0, 1.0, floor)?;
     let s = Start::Angles {
@@ -172,6 +175,8 @@ pub fn slope(a: f64, mu: f64, t_end: f64) -> Result<Vec<(f64, f64, f64)>, String
         damping: 1e3,
         friction: mu,
         slip_speed: 1e-3,
+        law: FloorLaw::Penalty,
+        restitution: 0.0,
     };
     let ch = chain(n, 0.2, len, 1e3, floor)?;
     let s = Start::Stretched {

@@ -29,8 +29,8 @@ use std::str::FromStr;
 
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, Chain, ChainParams, Floor, Method, ModelKind, Pivot, Profile, ReportChain, SolveOptions,
-    Start, State, Trajectory,
+    solve, Chain, ChainParams, Floor, FloorLaw, Method, ModelKind, Pivot, Profile, ReportChain,
+    SolveOptions, Start, State, Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -67,11 +67,15 @@ struct FloorSection {
     damping: Option<f64>,
     friction: Option<f64>,
     slip_speed: Option<f64>,
+    law: Option<String>,
+    restitution: Option<f64>,
 }
 
 impl FloorSection {
     /// The floor, if any key is given, with the defaults of the schema for
-    /// the chain `c` (its `m`, `g`, `l = L / n`, `L`).
+    /// the chain `c` (its `m`, `g`, `l = L / n`, `L`, and whether it has
+    /// elastic links): the law `penalty` when the scene gives one of the
+    /// penalty's keys or elastic links, else `constraint`.
     fn floor(&self, c: &ChainParams) -> Option<Floor> {
         let FloorSection {
             height,
@@ -80,13 +84,31 @@ impl FloorSection {
             damping,
             friction,
             slip_speed,
+            ref law,
+            restitution,
         } = *self;
-        let any = [height, angle, stiffness, damping, friction, slip_speed]
-            .iter()
-            .any(Option::is_some);
+        let any = [
+            height,
+            angle,
+            stiffness,
+            damping,
+            friction,
+            slip_speed,
+            restitution,
+        ]
+        .iter()
+        .any(Option::is_some)
+            || law.is_some();
         if !any {
             return None;
         }
+        let penalty_keys = stiffness.is_some() || damping.is_some() || slip_speed.is_some();
+        let law = match law.as_deref() {
+            Some("penalty") => FloorLaw::Penalty,
+            Some(_) => FloorLaw::Constraint,
+            None if penalty_keys || c.axial_stiffness.is_some() => FloorLaw::Penalty,
+            None => FloorLaw::Constraint,
+        };
         let l = c.length / c.links.max(1) as f64;
         let g = if c.gravity > 0.0 { c.gravity } else { 1.0 };
         Some(Floor {
@@ -96,6 +118,8 @@ impl FloorSection {
             damping: damping.unwrap_or(0.0),
             friction: friction.unwrap_or(0.0),
             slip_speed: slip_speed.unwrap_or(1e-3 * (g * c.length).sqrt()),
+            law,
+            restitution: restitution.unwrap_or(0.0),
         })
     }
 }

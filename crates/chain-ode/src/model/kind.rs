@@ -1,8 +1,9 @@
 //! The crate's models as one type, and the one decision of which model a
 //! chain is.
 
-use super::{ElasticModel, Layout, Model, Observed, ReportChain, RigidModel};
+use super::{ContactModel, ElasticModel, Layout, Model, Observed, ReportChain, RigidModel};
 use crate::chain::Chain;
+use crate::floor::FloorLaw;
 use crate::kinematics::Vec2;
 use crate::solve::SolveOptions;
 use crate::state::State;
@@ -20,15 +21,20 @@ pub enum ModelKind {
     Rigid(RigidModel),
     /// Elastic links.
     Elastic(ElasticModel),
+    /// Rigid rods on a constraint floor.
+    Contact(ContactModel),
     /// The report's equations.
     Report(ReportChain),
 }
 
 impl ModelKind {
-    /// The model of `chain`: elastic links when it has an axial stiffness,
-    /// rigid rods otherwise. This is the one place that asks.
+    /// The model of `chain`: rigid rods on a constraint floor when its
+    /// floor's law is `constraint`, elastic links when it has an axial
+    /// stiffness, rigid rods otherwise. This is the one place that asks.
     pub fn of(chain: &Chain) -> Self {
-        if chain.is_elastic() {
+        if chain.floor().is_some_and(|f| f.law == FloorLaw::Constraint) {
+            Self::Contact(ContactModel::new(chain))
+        } else if chain.is_elastic() {
             Self::Elastic(ElasticModel::new(chain))
         } else {
             Self::Rigid(RigidModel::new(chain))
@@ -40,6 +46,7 @@ impl ModelKind {
         match self {
             Self::Rigid(m) => m.chain_ref(),
             Self::Elastic(m) => m.chain_ref(),
+            Self::Contact(m) => m.chain_ref(),
             Self::Report(m) => m.chain_ref(),
         }
     }
@@ -80,6 +87,12 @@ impl From<ElasticModel> for ModelKind {
     }
 }
 
+impl From<ContactModel> for ModelKind {
+    fn from(m: ContactModel) -> Self {
+        Self::Contact(m)
+    }
+}
+
 impl From<ReportChain> for ModelKind {
     fn from(m: ReportChain) -> Self {
         Self::Report(m)
@@ -92,6 +105,7 @@ macro_rules! each {
         match $self {
             ModelKind::Rigid($m) => $e,
             ModelKind::Elastic($m) => $e,
+            ModelKind::Contact($m) => $e,
             ModelKind::Report($m) => $e,
         }
     };

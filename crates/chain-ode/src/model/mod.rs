@@ -13,6 +13,9 @@
 //! The models of the crate:
 //! * [`RigidModel`]: the chain of rigid rods (`[phi, w, W]`, `2 n + 1`);
 //! * [`ElasticModel`]: elastic links (`[phi, w, W, x, y, vx, vy]`, `6 n + 1`);
+//! * [`ContactModel`]: rigid rods on a constraint floor, in maximal
+//!   coordinates (`[phi, w, W, x, y, vx, vy]` and the forces of the last
+//!   step, `10 n + 5`), run by `moreau-jean`;
 //! * [`ReportModel`](crate::report::ReportModel)'s chain, [`ReportChain`]: the
 //!   student report's equations, as a control;
 //! * [`BeamModel`]: the BEAM benchmark of Hairer & Wanner (`[z, z']`, `2 n`).
@@ -21,6 +24,7 @@
 //! [`solve`](crate::solve) (ARCHITECTURE.md, "How to add a model").
 
 pub mod beam;
+mod contact;
 mod elastic;
 mod kind;
 mod report;
@@ -29,6 +33,7 @@ mod rigid;
 use std::ops::Range;
 
 pub use beam::BeamModel;
+pub use contact::{ContactModel, START_TOLERANCE as CONTACT_START_TOLERANCE};
 pub use elastic::ElasticModel;
 pub use kind::{IntoModel, ModelKind};
 pub use report::ReportChain;

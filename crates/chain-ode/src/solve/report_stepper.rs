@@ -72,6 +72,7 @@ impl FixedStep for ReportStepper {
 pub const REPORT_RK4: Integrator = Integrator {
     name: "rk4",
     adaptive: false,
+    nonsmooth: false,
     run: |p, s, obs| rk4::integrate::<ReportStepper, _>(p, s, obs).into(),
 };
 

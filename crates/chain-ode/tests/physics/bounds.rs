@@ -64,7 +64,7 @@ fn tolerances_are_bounded_to_where_the_methods_mean_something_boundaries_include
         atol,
         ..Default::default()
     };
-    for m in Method::ALL {
+    for m in crate::smooth_methods() {
         for (r, a) in [(rlo, alo), (rhi, ahi), (1e-13, 1e-15), (1e-2, 1e-4)] {
             accepted(&chain, m, &with(r, a));
         }
@@ -179,7 +179,7 @@ fn the_samples_must_fit_in_the_memory_cap_boundary_included() {
             output_dt: Some(output_dt),
             ..Default::default()
         };
-        for m in Method::ALL {
+        for m in crate::smooth_methods() {
             if m == Method::BdfDense && n > BDF_DENSE_MAX_LINKS {
                 continue;
             }
@@ -204,7 +204,7 @@ fn the_samples_must_fit_in_the_memory_cap_boundary_included() {
 #[test]
 fn a_run_records_no_more_samples_than_its_grid_and_its_end() {
     let (chain, s) = span3(3, 5e-4);
-    for m in Method::ALL {
+    for m in crate::smooth_methods() {
         let o = SolveOptions {
             t_end: 1.0,
             output_dt: Some(0.3),
@@ -230,7 +230,7 @@ fn bdf_dense_is_capped_where_its_dense_matrices_stop_being_sensible() {
         text.contains("at most 500") && text.contains("\"bdf\""),
         "{text}"
     );
-    for m in Method::ALL.into_iter().filter(|&m| m != Method::BdfDense) {
+    for m in crate::smooth_methods().filter(|&m| m != Method::BdfDense) {
         accepted(&past, m, &o);
     }
 }
@@ -281,7 +281,7 @@ fn one_step_far_too_large_is_inaccurate_not_ok() {
 
 #[test]
 fn a_cancelled_run_ends_interrupted_with_a_finite_state_for_every_method() {
-    for m in Method::ALL {
+    for m in crate::smooth_methods() {
         let (chain, s) = span3(10, 5e-4);
         // Long enough that only the flag can end it within the bound.
         let o = SolveOptions {
@@ -314,7 +314,7 @@ fn a_cancelled_run_ends_interrupted_with_a_finite_state_for_every_method() {
 #[test]
 fn a_flag_set_before_the_run_stops_it_at_the_start_and_an_unset_one_changes_nothing() {
     let (chain, s) = span3(6, 5e-4);
-    for m in Method::ALL {
+    for m in crate::smooth_methods() {
         let cancel = Cancel::new();
         let plain = SolveOptions {
             t_end: 2.0,

@@ -2,7 +2,9 @@
 //! balance and the rigid-body impact of a rod: each a closed form or a
 //! conservation law that a wrong contact law fails.
 
-use chain_ode::{solve, Chain, ChainParams, Floor, Method, Pivot, SolveOptions, Start, Status};
+use chain_ode::{
+    solve, Chain, ChainParams, Floor, FloorLaw, Method, Pivot, SolveOptions, Start, Status,
+};
 
 /// A floor of stiffness `k`, damping `c`, friction `mu`, slip speed `vs`
 /// through `(0, height)` (or touching the start) at the angle `angle`.
@@ -14,6 +16,8 @@ fn floor(height: Option<f64>, angle: f64, k: f64, c: f64, mu: f64, vs: f64) -> F
         damping: c,
         friction: mu,
         slip_speed: vs,
+        law: FloorLaw::Penalty,
+        restitution: 0.0,
     }
 }
 

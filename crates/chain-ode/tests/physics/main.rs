@@ -12,6 +12,7 @@
 
 mod bdf;
 mod bounds;
+mod contact;
 mod dae;
 mod dopri5;
 mod dynamics;
@@ -37,6 +38,12 @@ use chain_ode::{
     Vec2,
 };
 use proptest::prelude::*;
+
+/// Every method of smooth problems: all but `moreau-jean`, which runs a
+/// chain on a constraint floor only (its checks: `contact.rs`).
+pub fn smooth_methods() -> impl Iterator<Item = Method> {
+    Method::ALL.into_iter().filter(|m| !m.is_nonsmooth())
+}
 
 /// The report's chain (`L = 6`, `m = 0.2` per rod, `g = 1`) of `n` rods
 /// with joint friction `damping`, started from `start`.
