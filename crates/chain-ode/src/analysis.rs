@@ -170,3 +170,68 @@ pub mod folded_law {
         (2.0 + 2.0 * xi - 3.0 * xi * xi) / (4.0 * (1.0 - xi))
     }
 }
+
+/// Cayley's scale read over windows (issue 50): the floor's force on a
+/// chain let go at the top with its lower end on the floor, averaged over
+/// each window `[t_j − half, t_j + half]`, over the ideal's average there,
+/// `3 mu g (g/2)(t_j² + half²/3)` (`mu = M / L`: the force `3 mu g x` of
+/// the landed length `x = g t²/2`; `docs/model.md`, "The floor"). The
+/// average comes from the momentum, `F = dP_y/dt + M g`, exact while the
+/// floor and gravity are the only forces on the chain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScaleReading {
+    /// `(t_j, reading_j)`.
+    pub windows: Vec<(f64, f64)>,
+    /// The readings' mean.
+    pub mean: f64,
+    /// Their sample standard deviation: the window scatter.
+    pub scatter: f64,
+}
+
+/// The window centres of issue 50's reading: `t = 0.3, 0.35, .., 1.2`
+/// (19 windows of half width [`SCALE_HALF_WINDOW`], units of
+/// `sqrt(L / g)`), before the ideal chain's last rod lands at `sqrt(2)`.
+pub fn scale_windows() -> Vec<f64> {
+    (0..19).map(|j| 0.3 + 0.05 * j as f64).collect()
+}
+
+/// Half a window of [`scale_windows`]: the windows tile `[0.275, 1.225]`.
+pub const SCALE_HALF_WINDOW: f64 = 0.025;
+
+/// The scale's reading of `traj` over the windows centred at `centres`
+/// (units of `sqrt(L / g)`) of half width `half`, from its samples at the
+/// windows' edges (which must be samples of the run); an error names the
+/// first edge that is not.
+pub fn scale_reading<M: Model>(
+    traj: &Trajectory<M>,
+    centres: &[f64],
+    half: f64,
+) -> Result<ScaleReading, String> {
+    let chain = traj.model.chain().ok_or("a chain's run")?;
+    let (l, g) = (chain.length(), chain.gravity());
+    let mass = chain.total_mass() + chain.tip_mass();
+    let mu = mass / l;
+    let scale = (l / g).sqrt();
+    let at = |t: f64| {
+        traj.times
+            .iter()
+            .position(|&s| (s - t).abs() <= 1e-9 * t.abs().max(1.0))
+            .ok_or_else(|| format!("no sample at t = {t}"))
+    };
+    let mut windows = Vec::with_capacity(centres.len());
+    for &c in centres {
+        let (tc, d) = (c * scale, half * scale);
+        let (lo, hi) = (at(tc - d)?, at(tc + d)?);
+        let force = (traj.momentum(hi)[1] - traj.momentum(lo)[1]) / (2.0 * d) + mass * g;
+        let ideal = 3.0 * mu * g * 0.5 * g * (tc * tc + d * d / 3.0);
+        windows.push((c, force / ideal));
+    }
+    let k = windows.len() as f64;
+    let mean = windows.iter().map(|w| w.1).sum::<f64>() / k;
+    let var = windows.iter().map(|w| (w.1 - mean).powi(2)).sum::<f64>() / (k - 1.0).max(1.0);
+    Ok(ScaleReading {
+        windows,
+        mean,
+        scatter: var.sqrt(),
+    })
+}

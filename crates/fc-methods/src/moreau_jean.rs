@@ -11,12 +11,14 @@
 //! v̂    = v + h M⁻¹ f(t + h/2, q_m, v)            the free motion
 //! v⁺   = v̂ + M⁻¹ J(q_m)ᵀ P                       the impulses P of the rows at q_m:
 //!         bilateral  J v⁺ = 0
-//!         contact    0 <= P_N ⊥ u_N⁺ + e min(u_N⁻, 0) >= 0   (active when g(q_m) <= 0)
+//!         contact    0 <= P_N ⊥ u_N⁺ + e min(û_N, 0) >= 0
+//!                    (active when g(q_m) + h/2 û_N <= 0)
 //!         friction   |P_T| <= mu P_N, Coulomb on u_T⁺
 //! q⁺   = q_m + h/2 v⁺
 //! ```
 //!
-//! (`u = J v`, `u⁻` from the step's start velocity), the impulses from
+//! (`u = J v`, `û = J v̂` the free motion's, which the impulses act on),
+//! the impulses from
 //! [`Complementarity`], O(n) per Newton iteration. With a constant force
 //! the free motion is exact (uniform acceleration), and with the contacts
 //! the velocity jump is the impulse law's exactly: a plastic impact of a
@@ -27,7 +29,8 @@
 //! the same complementarity problem, with the gaps for `b` and no
 //! friction. It moves positions, not velocities. The step's record
 //! ([`StepRecord`]) carries the impulses and the work the contacts took
-//! (`−Σ P (u⁺ + u⁻)/2`, exactly the kinetic energy they removed), from
+//! (`−Σ P (u⁺ + û)/2`, exactly the kinetic energy they removed from the
+//! free motion, Kelvin's theorem), from
 //! which the problem keeps its forces and its dissipated work.
 //!
 //! A step whose contact solve does not converge is tried again at half
@@ -263,12 +266,12 @@ impl<'p> Stepper<'p> {
         // A contact takes part when the free motion would close its gap by
         // the step's end, `g(q_m) + h/2 J v̂ <= 0`; its friction with it.
         self.velocity
-            .velocities(&self.rows, &self.v1, &mut self.bias);
+            .velocities(&self.rows, &self.v1, &mut self.before);
         let mut active = 0u64;
         for g in 0..self.rows.len() {
             let row = &self.rows[g];
             self.kinds[g] = match row.kind {
-                RowKind::Normal { .. } if row.gap + half * self.bias[g] > 0.0 => RowKind::Off,
+                RowKind::Normal { .. } if row.gap + half * self.before[g] > 0.0 => RowKind::Off,
                 RowKind::Normal { .. } => {
                     active += 1;
                     row.kind
@@ -284,9 +287,10 @@ impl<'p> Stepper<'p> {
         self.stats.contacts_max = self.stats.contacts_max.max(active);
         self.velocity.delassus(&self.rows);
         self.stats.jacobian_evals += 1;
-        self.velocity
-            .velocities(&self.rows, &self.v, &mut self.before);
+        // Newton's law on the velocity the impulse acts on, the free
+        // motion's at the step's end `û = J v̂`: `u⁺ + e min(û, 0) >= 0`.
         for ((b, kind), u0) in self.bias.iter_mut().zip(&self.kinds).zip(&self.before) {
+            *b = *u0;
             if let RowKind::Normal { restitution } = kind {
                 *b += restitution * u0.min(0.0);
             }
@@ -303,7 +307,8 @@ impl<'p> Stepper<'p> {
         self.velocity
             .add_impulses(&self.rows, &self.velocity.impulses, &mut self.v1);
         // The contacts' work, from their impulses and the velocities
-        // either side.
+        // either side of them (Kelvin's theorem: the kinetic energy the
+        // impulses took from the free motion).
         self.velocity
             .velocities(&self.rows, &self.v1, &mut self.after);
         let mut work = 0.0;

@@ -37,9 +37,10 @@ pub enum RowKind {
     /// and projected to at the position level after it.
     Bilateral,
     /// `g(q) >= 0` (the gap; length): a unilateral contact, active in a
-    /// step when its gap at the step's midpoint is at most zero. Newton's
-    /// impact law on its normal velocity `u = J v`:
-    /// `0 <= P ⊥ u⁺ + e min(u⁻, 0) >= 0` with `e` in `[0, 1]`.
+    /// step when the free motion would close its gap by the step's end.
+    /// Newton's impact law on its normal velocity `u = J v`:
+    /// `0 <= P ⊥ u⁺ + e min(û, 0) >= 0` with `e` in `[0, 1]` (`û` the
+    /// free motion's velocity at the step's end, which the impulse acts on).
     Normal {
         /// The coefficient of restitution `e` (0: plastic).
         restitution: f64,
@@ -95,9 +96,10 @@ pub struct StepRecord<'a> {
     /// averaged over the step is `impulse / h`.
     pub impulses: &'a [f64],
     /// The work the contact impulses (normal and tangential rows) took out
-    /// of the motion over the step, `−Σ P (u⁺ + u⁻) / 2` (`u = J v`):
-    /// exactly the kinetic energy they removed (Kelvin's theorem, which the
-    /// midpoint step keeps).
+    /// of the motion, `−Σ P (u⁺ + û) / 2` (`u = J v`, `û` the free
+    /// motion's at the step's end, which the impulses act on): exactly the
+    /// kinetic energy they removed from it (Kelvin's theorem), `>= 0` for
+    /// every impact and slip (0 for an elastic impact).
     pub contact_work: f64,
 }
 

@@ -14,6 +14,7 @@
 pub mod accuracy;
 pub mod beam;
 pub mod cayley;
+pub mod cayley_single;
 pub mod convergence;
 pub mod divergence;
 pub mod floor_checks;
