@@ -43,6 +43,13 @@ use super::integrator::{Integrator, Run, Span};
 use crate::nonsmooth::{Nonsmooth, Row, RowKind, StepRecord, MAX_BODY, MAX_ROWS};
 use crate::ode::{all_finite, Interpolant, Observer, Outcome, Problem, Stats, Status, StepView};
 
+/// The most Newton passes of a step's projection.
+pub const MAX_PROJECTIONS: usize = 6;
+
+/// The violation of the rows at which a projection stops, relative to the
+/// largest coordinate (and at least 1): far below any step's accuracy.
+pub const PROJECTION_TOLERANCE: f64 = 1e-10;
+
 /// `moreau-jean`: fixed step `dt`; runs a problem that states itself as
 /// [`Nonsmooth`] ([`Problem::nonsmooth`]), and ends any other at its start
 /// with `diverged`.
@@ -342,46 +349,53 @@ impl<'p> Stepper<'p> {
 
     /// Moves `q1` to the nearest coordinates (metric `M`) where the joints
     /// hold and no contact of the step (or closed at `q1`) is inside its
-    /// gap, linearised at `q1`: `false` when that problem was not solved.
+    /// gap: Newton's iteration on that projection, each pass linearised at
+    /// the last `q1` (a complementarity problem on the same band), until
+    /// the rows hold to rounding or [`MAX_PROJECTIONS`] passes. `false`
+    /// when a pass was not solved.
     fn project(&mut self, t1: f64) -> bool {
-        self.sys.rows(t1, &self.q1, &mut self.projected);
-        let mut drift = 0.0f64;
-        let mut any = false;
-        for (g, row) in self.projected.iter().enumerate() {
-            let (kind, b) = match row.kind {
-                RowKind::Bilateral => {
-                    drift = drift.max(row.gap.abs());
-                    any |= row.gap != 0.0;
-                    (RowKind::Bilateral, row.gap)
+        let scale = self.q1.iter().fold(1.0f64, |a, q| a.max(q.abs()));
+        let tolerance = PROJECTION_TOLERANCE * scale;
+        for pass in 0..=MAX_PROJECTIONS {
+            self.sys.rows(t1, &self.q1, &mut self.projected);
+            let mut violation = 0.0f64;
+            let mut drift = 0.0f64;
+            for (g, row) in self.projected.iter().enumerate() {
+                let (kind, b) = match row.kind {
+                    RowKind::Bilateral => {
+                        drift = drift.max(row.gap.abs());
+                        (RowKind::Bilateral, row.gap)
+                    }
+                    RowKind::Normal { .. }
+                        if row.gap < 0.0 || matches!(self.kinds[g], RowKind::Normal { .. }) =>
+                    {
+                        violation = violation.max(-row.gap);
+                        (RowKind::Normal { restitution: 0.0 }, row.gap)
+                    }
+                    _ => (RowKind::Off, 0.0),
+                };
+                self.projected_kinds[g] = kind;
+                self.projected_gaps[g] = b;
+            }
+            violation = violation.max(drift);
+            if violation <= tolerance || pass == MAX_PROJECTIONS || violation.is_nan() {
+                if drift > self.stats.constraint_drift || drift.is_nan() {
+                    self.stats.constraint_drift = drift;
                 }
-                RowKind::Normal { .. }
-                    if row.gap < 0.0 || matches!(self.kinds[g], RowKind::Normal { .. }) =>
-                {
-                    any |= row.gap < 0.0;
-                    (RowKind::Normal { restitution: 0.0 }, row.gap)
-                }
-                _ => (RowKind::Off, 0.0),
-            };
-            self.projected_kinds[g] = kind;
-            self.projected_gaps[g] = b;
+                return violation.is_finite();
+            }
+            self.position.delassus(&self.projected);
+            self.stats.jacobian_evals += 1;
+            let solved = self
+                .position
+                .solve(&self.projected_kinds, &self.projected_gaps);
+            self.note(solved);
+            if !solved.converged {
+                return false;
+            }
+            self.position
+                .add_impulses(&self.projected, &self.position.impulses, &mut self.q1);
         }
-        if drift > self.stats.constraint_drift || drift.is_nan() {
-            self.stats.constraint_drift = drift;
-        }
-        if !any {
-            return true;
-        }
-        self.position.delassus(&self.projected);
-        self.stats.jacobian_evals += 1;
-        let solved = self
-            .position
-            .solve(&self.projected_kinds, &self.projected_gaps);
-        self.note(solved);
-        if !solved.converged {
-            return false;
-        }
-        self.position
-            .add_impulses(&self.projected, &self.position.impulses, &mut self.q1);
         true
     }
 

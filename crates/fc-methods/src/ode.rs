@@ -402,8 +402,9 @@ pub struct Stats {
     /// length for the projections): how far from exact the impulses are.
     pub complementarity_residual: f64,
     /// `moreau-jean`: the largest violation of a bilateral row (a joint)
-    /// at a step's end before its projection (length): the drift one step
-    /// makes, which the projection takes out.
+    /// left at a step's end after its projection (length): what the
+    /// states carry (the drift one step makes is taken out by the
+    /// projection's Newton passes).
     pub constraint_drift: f64,
 }
 

@@ -56,6 +56,18 @@ pub struct RunSummary {
     pub newton_failures: u64,
     #[serde(default)]
     pub newton_iterations: u64,
+    /// `moreau-jean`'s contact statistics (`chain_ode::Stats`), `None`
+    /// for the other methods (and then absent from the JSON; not in the
+    /// CSV row): the most contacts active in one step, the largest
+    /// residual of a contact solve's laws (velocity units; length for the
+    /// projections) and the largest joint drift one step made before its
+    /// projection (length).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contacts_max: Option<u64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub complementarity_residual: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub constraint_drift: Option<f64>,
     /// Wall time of the integration (s).
     pub wall_seconds: f64,
     /// `E(0)`.
@@ -226,6 +238,7 @@ impl RunSummary {
         let s = &traj.summary;
         let st = &traj.stats;
         let floor = floor_peak(traj);
+        let nonsmooth = traj.segments.iter().any(|g| g.method.is_nonsmooth());
         Self {
             name: name.to_string(),
             status: traj.status.as_str().to_string(),
@@ -243,6 +256,9 @@ impl RunSummary {
             error_test_failures: st.error_test_failures,
             newton_failures: st.newton_failures,
             newton_iterations: st.newton_iterations,
+            contacts_max: nonsmooth.then_some(st.contacts_max),
+            complementarity_residual: nonsmooth.then_some(st.complementarity_residual),
+            constraint_drift: nonsmooth.then_some(st.constraint_drift),
             wall_seconds: s.wall_seconds,
             energy_start: s.energy_start,
             energy_end: s.energy_end,
@@ -366,6 +382,18 @@ impl fmt::Display for RunSummary {
             self.jacobian_evals,
             self.lu_factorizations
         )?;
+        if let (Some(c), Some(r), Some(d)) = (
+            self.contacts_max,
+            self.complementarity_residual,
+            self.constraint_drift,
+        ) {
+            writeln!(
+                f,
+                "  contacts          at most {c} at once, {} Newton iterations, residual \
+                 {r:.3e}, joint drift per step {d:.3e}",
+                self.newton_iterations
+            )?;
+        }
         writeln!(f, "  wall time         {:.3e} s", self.wall_seconds)?;
         writeln!(
             f,
