@@ -36,19 +36,56 @@ fn a_floor_scene_reports_its_floor_force_and_a_scene_without_one_none() {
 }
 
 /// A floor above the start, a key out of its range, and a floor under the
-/// report's model: exit 2, one line naming the key.
+/// report's model: exit 2, one line naming the key, on either law (a
+/// floor without penalty keys is a constraint; `auto` runs both); a law
+/// that is neither, restitution out of [0, 1] or on a penalty floor, a
+/// constraint under elastic links, and a method that cannot run the
+/// scene's floor (or `moreau-jean` without one) likewise.
 #[test]
 fn bad_floor_input_is_one_line_naming_its_key() {
     let span = scene("span-d3");
-    for (set, key) in [
-        ("floor.height=1", "floor.height"),
-        ("floor.stiffness=0", "floor.stiffness"),
-        ("floor.friction=-0.5", "floor.friction"),
-        ("floor.angle=2", "floor.angle"),
+    for law in ["penalty", "constraint"] {
+        for (set, key) in [
+            ("floor.height=1", "floor.height"),
+            ("floor.friction=-0.5", "floor.friction"),
+            ("floor.angle=2", "floor.angle"),
+        ] {
+            let o = run(&[
+                "simulate",
+                &span,
+                "--set",
+                &format!("floor.law={law}"),
+                "--set",
+                "run.method=auto",
+                "--set",
+                set,
+            ]);
+            let line = refused(&o, key);
+            assert!(!line.is_empty(), "{law}");
+        }
+    }
+    for sets in [
+        &["floor.stiffness=0"][..],
+        &["floor.law=soft"],
+        &["floor.restitution=1.5"],
+        &["floor.restitution=-0.1"],
+        &["floor.restitution=0.5", "floor.stiffness=1e4"],
+        &["floor.law=constraint", "chain.axial_stiffness=1e5"],
+        &["floor.height=-5", "run.method=dopri5"],
+        &["run.method=moreau-jean"],
     ] {
-        let o = run(&["simulate", &span, "--set", set]);
-        let line = refused(&o, key);
-        assert!(!line.is_empty());
+        let mut args = vec!["simulate".to_string(), span.clone()];
+        for s in sets {
+            args.extend(["--set".to_string(), s.to_string()]);
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = run(&args);
+        let key = match sets[0] {
+            "floor.height=-5" | "run.method=moreau-jean" => "run.method",
+            "floor.law=constraint" => "floor.law",
+            s => s.split('=').next().unwrap(),
+        };
+        refused(&o, key);
     }
     let o = run(&[
         "simulate",

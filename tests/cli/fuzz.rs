@@ -158,6 +158,11 @@ struct Case {
     /// and out of its range (a floor above the start is refused by name).
     floor: [f64; 6],
     floored: bool,
+    /// `floor.law`: 0 `penalty` (with its keys above), 1 `constraint`
+    /// (height, angle, friction and `floor.restitution`, which is drawn in
+    /// and out of [0, 1]), 2 a bogus name (refused by name).
+    floor_law: usize,
+    restitution: f64,
 }
 
 /// Scene names the fuzzer draws: plain, and with what CSV quotes.
@@ -259,6 +264,8 @@ fn case() -> impl Strategy<Value = Case> {
             number(0.0, 1e3, &[0.0, -1.0, 1e13, f64::NAN]),
             number(0.0, 1.0, &[0.0, -0.5, 101.0, f64::NAN]),
             number(1e-4, 1.0, &[0.0, -1.0, 1e7, 1e-300]),
+            prop_oneof![4 => Just(0usize), 4 => Just(1usize), 1 => Just(2usize)],
+            number(0.0, 1.0, &[0.0, 1.0, 1.5, -0.5, f64::NAN]),
         ),
     )
         .prop_map(
@@ -269,7 +276,17 @@ fn case() -> impl Strategy<Value = Case> {
                 (axial_stiffness, axial_damping, bending_stiffness, elastic, tip_mass, report),
                 (acc, amp, jerk, freq, jerk_time, release, moving, taper, profiled),
                 (name, same_out, angle_big, rod_ratio),
-                (floored, height, angle, stiffness, floor_damping, friction, slip_speed),
+                (
+                    floored,
+                    height,
+                    angle,
+                    stiffness,
+                    floor_damping,
+                    friction,
+                    slip_speed,
+                    floor_law,
+                    restitution,
+                ),
             )| Case {
                 command,
                 length,
@@ -314,6 +331,8 @@ fn case() -> impl Strategy<Value = Case> {
                     slip_speed,
                 ],
                 floored,
+                floor_law,
+                restitution,
             },
         )
 }
@@ -424,8 +443,17 @@ impl Case {
         writeln!(t, "[model]\nreport = {}", self.report).unwrap();
         if self.floored {
             let [h, a, k, c, mu, vs] = self.floor.map(toml_f);
-            writeln!(t, "[floor]\nheight = {h}\nangle = {a}\nstiffness = {k}").unwrap();
-            writeln!(t, "damping = {c}\nfriction = {mu}\nslip_speed = {vs}").unwrap();
+            writeln!(t, "[floor]\nheight = {h}\nangle = {a}\nfriction = {mu}").unwrap();
+            match self.floor_law {
+                0 => {
+                    writeln!(t, "stiffness = {k}\ndamping = {c}\nslip_speed = {vs}").unwrap();
+                }
+                1 => {
+                    let e = toml_f(self.restitution);
+                    writeln!(t, "law = \"constraint\"\nrestitution = {e}").unwrap();
+                }
+                _ => writeln!(t, "law = \"springy\"").unwrap(),
+            }
         }
         t
     }
@@ -834,6 +862,8 @@ fn the_fuzzer_draws_every_scene_key() {
             rod_ratio: 1.0,
             floor: [-10.0, 0.0, 1e4, 0.0, 0.0, 0.01],
             floored: true,
+            floor_law: kind % 3,
+            restitution: 0.0,
         };
         let tree: toml::Table = case.scene_text().parse().unwrap();
         for (top, value) in &tree {

@@ -310,7 +310,7 @@ fn a_rod_in_the_wind_swings_about_the_tilted_vertical_with_the_fields_period() {
         rates: vec![0.0],
     };
     let expected = 2.0 * std::f64::consts::PI * (2.0 / (3.0 * 1.0f64.hypot(a))).sqrt();
-    for method in Method::ALL {
+    for method in Method::ALL.into_iter().filter(|m| !m.is_nonsmooth()) {
         let traj = solve(
             model.clone(),
             &start,
@@ -389,7 +389,7 @@ fn every_method_runs_the_wind_model_and_meets_a_tight_reference() {
     )
     .unwrap();
     let tip = reference.summary.tip_end;
-    for method in Method::ALL {
+    for method in Method::ALL.into_iter().filter(|m| !m.is_nonsmooth()) {
         let traj = solve(model.clone(), &start, method, &options(method, 1.5, None)).unwrap();
         assert_eq!(traj.status, Status::Ok, "{method}");
         let p = traj.summary.tip_end;

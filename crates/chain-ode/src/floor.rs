@@ -49,6 +49,9 @@ pub enum FloorLaw {
 }
 
 impl FloorLaw {
+    /// Both laws, as scenes name them.
+    pub const ALL: [FloorLaw; 2] = [FloorLaw::Penalty, FloorLaw::Constraint];
+
     /// The name in scenes: `"penalty"`, `"constraint"`.
     pub fn as_str(self) -> &'static str {
         match self {

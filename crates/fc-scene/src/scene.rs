@@ -76,7 +76,7 @@ impl FloorSection {
     /// the chain `c` (its `m`, `g`, `l = L / n`, `L`, and whether it has
     /// elastic links): the law `penalty` when the scene gives one of the
     /// penalty's keys or elastic links, else `constraint`.
-    fn floor(&self, c: &ChainParams) -> Option<Floor> {
+    fn floor(&self, c: &ChainParams) -> Result<Option<Floor>, Error> {
         let FloorSection {
             height,
             angle,
@@ -100,18 +100,24 @@ impl FloorSection {
         .any(Option::is_some)
             || law.is_some();
         if !any {
-            return None;
+            return Ok(None);
         }
         let penalty_keys = stiffness.is_some() || damping.is_some() || slip_speed.is_some();
         let law = match law.as_deref() {
-            Some("penalty") => FloorLaw::Penalty,
-            Some(_) => FloorLaw::Constraint,
+            Some(name) => FloorLaw::ALL
+                .into_iter()
+                .find(|l| l.as_str() == name)
+                .ok_or_else(|| chain_ode::InvalidParameter {
+                    field: "floor.law",
+                    accepted: "one of penalty, constraint".into(),
+                    got: name.to_string(),
+                })?,
             None if penalty_keys || c.axial_stiffness.is_some() => FloorLaw::Penalty,
             None => FloorLaw::Constraint,
         };
         let l = c.length / c.links.max(1) as f64;
         let g = if c.gravity > 0.0 { c.gravity } else { 1.0 };
-        Some(Floor {
+        Ok(Some(Floor {
             height,
             angle: angle.unwrap_or(0.0),
             stiffness: stiffness.unwrap_or(1e4 * c.mass * g / l),
@@ -120,7 +126,7 @@ impl FloorSection {
             slip_speed: slip_speed.unwrap_or(1e-3 * (g * c.length).sqrt()),
             law,
             restitution: restitution.unwrap_or(0.0),
-        })
+        }))
     }
 }
 
@@ -352,7 +358,7 @@ impl Scene {
             },
             floor: None,
         };
-        chain.floor = floor.floor(&chain);
+        chain.floor = floor.floor(&chain)?;
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
         let start = match (start.kind, start.p1, start.angles) {
@@ -846,6 +852,18 @@ t_end = 4
         Ok((s.name().to_string(), s.description().to_string(), prepared))
     }
 
+    /// [`valid_base`] for the key at `path`: a `[floor]` key's scene runs
+    /// `auto`, which runs either floor law (its example may make a
+    /// constraint floor, which the default `rk4` does not run).
+    fn base_for(path: &str, kind: StartKind) -> toml::Table {
+        let base = valid_base(kind);
+        if path.starts_with("floor.") {
+            set(base, "run.method", "auto")
+        } else {
+            base
+        }
+    }
+
     /// `base` with `path` set to the `--set` text `text`.
     fn set(mut base: toml::Table, path: &str, text: &str) -> toml::Table {
         overrides::apply(&mut base, &[format!("{path}={text}")])
@@ -879,8 +897,9 @@ t_end = 4
             }
             let mut accepted = 0;
             for kind in kinds_taking(k) {
-                let before = model(valid_base(kind)).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
-                let Ok(after) = model(set(valid_base(kind), k.path, k.example)) else {
+                let before =
+                    model(base_for(k.path, kind)).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+                let Ok(after) = model(set(base_for(k.path, kind), k.path, k.example)) else {
                     continue;
                 };
                 accepted += 1;
@@ -921,10 +940,10 @@ t_end = 4
                 }
             }
             for kind in kinds_taking(k) {
-                if model(set(valid_base(kind), k.path, k.example)).is_err() {
+                if model(set(base_for(k.path, kind), k.path, k.example)).is_err() {
                     continue;
                 }
-                match model(set(valid_base(kind), k.path, bad)) {
+                match model(set(base_for(k.path, kind), k.path, bad)) {
                     Ok(_) => panic!("{}={bad} ({kind:?}) is accepted: no range check", k.path),
                     Err(e) => assert_eq!(e.subject(), k.path, "{}={bad}: {e}", k.path),
                 }

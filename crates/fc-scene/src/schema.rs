@@ -479,10 +479,10 @@ pub static KEYS: &[Key] = &[
     },
     Key {
         path: "floor.law",
-        ty: Type::OneOf(&["penalty", "constraint"]),
+        ty: Type::Text,
         default: DefaultValue::Computed("absent: `penalty` when the scene gives `floor.stiffness`, `floor.damping`, `floor.slip_speed` or `chain.axial_stiffness`, else `constraint`"),
         kinds: Kinds::Any,
-        doc: "how the floor pushes: `penalty`, a stiff spring-damper at each rod end of the elastic chain (issue 36); `constraint`, a unilateral constraint at each joint of the rigid chain with Newton's restitution and Coulomb's friction, run by `run.method = \"moreau-jean\"` (or `auto`) at the step `run.dt` (`docs/model.md`, \"The floor as a constraint\"); each law reads only its own keys",
+        doc: "how the floor pushes, one of `penalty`, `constraint`: `penalty`, a stiff spring-damper at each rod end of the elastic chain (issue 36); `constraint`, a unilateral constraint at each joint of the rigid chain with Newton's restitution and Coulomb's friction, run by `run.method = \"moreau-jean\"` (or `auto`) at the step `run.dt` (`docs/model.md`, \"The floor as a constraint\"); each law reads only its own keys",
         example: "constraint",
         out_of_range: Some("soft"),
     },

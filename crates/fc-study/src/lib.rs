@@ -44,12 +44,17 @@ pub fn median(xs: &[f64]) -> f64 {
 }
 
 /// Parses `--methods rk4,dop853`: method names (each at most once, in
-/// `Method::ALL` order); `None` (the flag not given): every method. An
+/// `Method::ALL` order); `None` (the flag not given): every method of
+/// smooth problems (all but `moreau-jean`, which runs a chain on a
+/// constraint floor alone: name it to study one). An
 /// empty list (`--methods ""`, Python's `methods=[]`) is refused: it names
 /// no method to run.
 pub fn parse_methods(what: &str, text: Option<&str>) -> Result<Vec<Method>, Error> {
     let Some(text) = text else {
-        return Ok(Method::ALL.to_vec());
+        return Ok(Method::ALL
+            .into_iter()
+            .filter(|m| !m.is_nonsmooth())
+            .collect());
     };
     let names: Vec<&str> = Method::ALL.iter().map(|m| m.as_str()).collect();
     if text.trim().is_empty() {

@@ -170,12 +170,13 @@ pub fn ladder_rtol(tol: f64) -> f64 {
     (tol * 1e-3).clamp(1e-10, 1e-6)
 }
 
-/// The methods `needs` tries by default: every method but `bdf-dense`,
-/// the O(n^3) reference, which is never the fastest past a few rods.
+/// The methods `needs` tries by default: every method of smooth problems
+/// but `bdf-dense`, the O(n^3) reference, which is never the fastest past
+/// a few rods.
 pub fn default_methods() -> Vec<Method> {
     Method::ALL
         .into_iter()
-        .filter(|&m| m != Method::BdfDense)
+        .filter(|&m| m != Method::BdfDense && !m.is_nonsmooth())
         .collect()
 }
 
