@@ -498,3 +498,46 @@ fn the_floor_is_drawn_at_its_height() {
     };
     assert!(b.eval("fallingChain.drawnFloor(0)").unwrap().is_null());
 }
+
+/// A run on a constraint floor (`scenes/span-d3-floor.toml` with
+/// `floor.law = "constraint"`, `moreau-jean`) draws its floor at its height
+/// and, at its last frame, its tip at `simulate --json`'s `tip_end` (the
+/// rods drawn from the pivot end and the angles: rigid, the joints held by
+/// the projection).
+#[test]
+fn a_constraint_floor_run_is_drawn_with_its_floor_and_its_tip() {
+    let dir = scratch("browser-constraint-floor");
+    let sets = [
+        "--set",
+        "floor.law=constraint",
+        "--set",
+        "run.method=moreau-jean",
+        "--set",
+        "run.dt=0.005",
+    ];
+    let floor = scene("span-d3-floor");
+    let mut args = vec![floor.as_str()];
+    args.extend(sets);
+    let page = page(&dir, "constraint.html", &args, 0);
+    let Some(mut b) = open(&page, &dir) else {
+        return;
+    };
+    b.eval("fallingChain.seek(0); 0").unwrap();
+    let line = b.eval("fallingChain.drawnFloor(0)").unwrap();
+    let v: Vec<f64> = (0..4).map(|k| line[k].as_f64().unwrap()).collect();
+    assert_eq!((v[1], v[3]), (-3.0, -3.0), "{v:?}");
+    let mut sim = vec!["simulate", floor.as_str(), "--json"];
+    sim.extend(sets);
+    let sim = json(&run(&sim));
+    b.eval("fallingChain.seek(fallingChain.frames - 1); 0")
+        .unwrap();
+    let tip = b.eval("fallingChain.drawnTip(0)").unwrap();
+    let tip = [tip[0].as_f64().unwrap(), tip[1].as_f64().unwrap()];
+    let end = pair(&sim, "tip_end");
+    // The page's angles carry 6 decimals: n l 5e-7 = 3e-6 at most.
+    assert!(
+        (tip[0] - end[0]).hypot(tip[1] - end[1]) < 3e-6,
+        "{tip:?} vs {end:?}"
+    );
+    no_errors(&mut b);
+}

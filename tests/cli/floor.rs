@@ -160,6 +160,55 @@ fn out_ends_each_row_with_the_floor_force_and_the_landed_weight() {
     assert!(head.ends_with(",phi_25"), "{head}");
 }
 
+/// The same on a constraint floor: `simulate --out`'s floor columns are
+/// the floor's force averaged over the step that ends at each sample (an
+/// impulse over the step's length), exactly the chain's weight once it
+/// lies on the floor (it lies there from the start, the floor touching
+/// it), with the landed weight beside it; and `--json` carries the
+/// contact statistics of `moreau-jean`.
+#[test]
+fn a_constraint_floors_columns_are_its_impulses_over_the_step() {
+    let dir = scratch("floor-out-constraint");
+    let csv = dir.join("rest.csv");
+    let sets = [
+        "pivot.release=0",
+        "floor.law=constraint",
+        "run.method=moreau-jean",
+        "run.dt=0.01",
+        "run.t_end=1",
+        "run.output_dt=0.25",
+    ];
+    let mut args = vec!["simulate".to_string(), scene("horizontal-undamped")];
+    for s in sets {
+        args.extend(["--set".to_string(), s.to_string()]);
+    }
+    args.extend(["--out".to_string(), csv.to_str().unwrap().to_string()]);
+    args.push("--json".to_string());
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = json(&o);
+    assert_eq!(v["status"], "ok");
+    assert_eq!(num(&v, "contacts_max"), 26.0, "{v}");
+    assert!(num(&v, "complementarity_residual") < 1e-12, "{v}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 5);
+    // Before the first step there was no impulse; from then on the floor
+    // carries the weight n m g = 25 x 0.2 = 5, straight up, to rounding.
+    assert_eq!(rows[0][32..], [0.0, 0.0, 0.0]);
+    for r in &rows[1..] {
+        let (fx, fy, landed) = (r[32], r[33], r[34]);
+        assert!((fy / 5.0 - 1.0).abs() < 1e-13, "floor_y {fy}");
+        assert!(fx.abs() < 1e-13, "floor_x {fx}");
+        assert!((landed / 5.0 - 1.0).abs() < 1e-13, "landed_weight {landed}");
+    }
+}
+
 /// `view --from` refuses a floor run's CSV with one line naming `--from`
 /// and saying why (a floor runs the elastic model, whose stretched rods a
 /// CSV does not hold) and what to do instead, rather than a misfit of its

@@ -365,9 +365,10 @@ fn parse_header(names: &[&str]) -> Result<Columns, String> {
     let mut at = links;
     if rest.get(at).copied() == Some(FLOOR_COLUMNS[0]) {
         return Err(format!(
-            "columns {} are a floor's, and a floor runs the elastic model, whose stretched rods \
-             a CSV does not hold: view the scene itself (falling-chain view SCENE.toml draws \
-             the chain and its floor)",
+            "columns {} are a floor's, and a CSV holds neither the floor's line nor the penalty \
+             floor's stretched rods (nor the constraint floor's pile, whose pivot end moves \
+             freely): view the scene itself (falling-chain view SCENE.toml draws the chain and \
+             its floor)",
             FLOOR_COLUMNS.join(", ")
         ));
     }
