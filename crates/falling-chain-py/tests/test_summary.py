@@ -19,6 +19,10 @@ CASES = [
     ("horizontal-damped", {}, {"method": "auto", "rtol": 1e-6}),
     ("stiff-rope", {}, {"method": "bdf", "t_end": 0.5}),
     ("catenary-fall", {"chain.links": 12}, {"method": "bdf-dense", "t_end": 1.0}),
+    # The constraint floor, stepped over by moreau-jean (its contact
+    # statistics in the summary) and by auto, which runs it.
+    ("span-d3-floor", {"floor.law": "constraint"}, {"method": "moreau-jean", "dt": 0.005}),
+    ("span-d3-floor", {"floor.law": "constraint"}, {"method": "auto", "dt": 0.01, "t_end": 2.0}),
     # Diverges (RK4 far beyond its stability limit): exit 1, status diverged.
     ("span-d3", {"chain.damping": 0.1}, {"dt": 0.01, "t_end": 20.0}),
     # Runs out of its step budget: status max_steps.
