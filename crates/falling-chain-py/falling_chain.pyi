@@ -12,7 +12,7 @@ they raise KeyboardInterrupt within a fraction of a second.
 """
 
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -39,11 +39,20 @@ class Scene:
     def from_toml(text: str) -> Scene:
         """Parses a scene from TOML text (at most 1 MiB, as a scene file). A
         scene without ``name`` is named "scene"."""
-    def set(self, key: str, value: _Value) -> Scene:
+    @overload
+    def set(self, key: str, value: _Value) -> Scene: ...
+    @overload
+    def set(self, key: Mapping[str, _Value]) -> Scene: ...
+    def set(self, key: Union[str, Mapping[str, _Value]], value: Optional[_Value] = None) -> Scene:
         """A new scene with the value at the dotted ``key`` replaced, as
-        ``--set KEY=VALUE`` does. A ``str`` value is read as the text after
-        ``=`` in ``--set``; numbers, bools, sequences (iterators too) and
-        dicts are taken as they are.
+        ``--set KEY=VALUE`` does; or, given one dict, several values at once,
+        applied in order and checked together
+        (``scene.set({"start.kind": "angles", "start.angles": phi})``).
+        A ``str`` value is read as the text after ``=`` in ``--set``;
+        numbers, bools, sequences (iterators too) and dicts are taken as they
+        are. Setting ``start.kind`` removes the ``[start]`` keys the new kind
+        does not take, so a start changes kind with its own keys in one call.
+        A dict holds at most 1000 keys.
 
         The value is bounded before it is read whole: a list, iterator or
         dict holds at most 1000000 items (``start.angles`` at
@@ -51,6 +60,17 @@ class Scene:
         most 8 deep, and a ``str`` is at most 32 MiB. Past a bound (an
         endless iterator such as ``itertools.count()``, a list that contains
         itself) it raises ValueError naming the key."""
+    def unset(self, key: str) -> Scene:
+        """A new scene without the value at the dotted ``key``, which takes
+        its default again; ValueError naming the key for an unknown key, an
+        element or a key that must be given (``chain.links``)."""
+    def refine(self, n: int) -> Scene:
+        """The same continuous chain cut into ``n`` rods (1..=1000000), as
+        ``converge`` and ``--refine N`` refine: total mass, length, the
+        bending viscosity ``eta = r l``, EA, EI and the tip mass kept, so the
+        per-rod ``chain.mass`` and ``chain.damping`` change (``set("chain.links",
+        n)`` keeps them, which is not a refinement). A folded start's
+        ``start.down`` scales with n; an ``angles`` start raises ValueError."""
     def to_toml(self) -> str:
         """The scene as TOML text (with every ``set`` applied; defaults left out)."""
     def to_dict(self) -> Dict[str, Any]:

@@ -128,12 +128,41 @@ pub(crate) struct SceneArgs {
     /// sweep's --vary, converge's refinement).
     #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
     set: Vec<String>,
+    #[command(flatten)]
+    refine: RefineArgs,
 }
 
 impl SceneArgs {
-    /// The scene file with the overrides applied.
+    /// The scene file with the overrides applied, then refined.
     pub(crate) fn load(&self) -> Result<Scene, Error> {
-        Scene::load(&self.scene)?.with_overrides(&self.set)
+        self.refine
+            .apply(Scene::load(&self.scene)?.with_overrides(&self.set)?)
+    }
+}
+
+/// `--refine N`: the scene cut into N rods at fixed continuum.
+#[derive(Args)]
+pub(crate) struct RefineArgs {
+    /// Cut the chain into N rods (1..=1000000) at fixed continuum, after
+    /// every --set: total mass, length, the bending viscosity r l, EA, EI
+    /// and the tip mass kept (so chain.mass and chain.damping, which are
+    /// per rod, change), as converge refines. chain.links=N alone is not a
+    /// refinement: it keeps the per-rod mass and friction. Not for an
+    /// angles start.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_rods)]
+    refine: Option<usize>,
+}
+
+impl RefineArgs {
+    /// `scene` refined to `--refine` rods, or as it is.
+    pub(crate) fn apply(&self, scene: Scene) -> Result<Scene, Error> {
+        match self.refine {
+            None => Ok(scene),
+            Some(n) => {
+                fc_scene::refine::check_links("--refine", n)?;
+                scene.refined(n)
+            }
+        }
     }
 }
 
@@ -199,6 +228,8 @@ struct ViewArgs {
     /// Set any scene key of every scene by its dotted path (as simulate).
     #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
     set: Vec<String>,
+    #[command(flatten)]
+    refine: RefineArgs,
     /// Run every scene with each of these methods, M1,M2,... (overrides
     /// run.method), e.g. to overlay rk4 and dopri5.
     #[arg(long, value_name = "M1,M2,...")]
@@ -754,7 +785,9 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     // Every scene is checked, and every CSV read, before any run starts.
     let mut prepared = Vec::new();
     for path in &args.scenes {
-        let base = Scene::load(path)?.with_overrides(&args.set)?;
+        let base = args
+            .refine
+            .apply(Scene::load(path)?.with_overrides(&args.set)?)?;
         for method in &methods {
             let scene = match method {
                 Some(m) => base.with_value("run.method", toml::Value::String((*m).to_string()))?,
