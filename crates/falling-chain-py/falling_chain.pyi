@@ -130,6 +130,32 @@ class Run:
         over the joints, what a scale under the chain reads (``simulate
         --forces``'s columns floor_x_k, floor_y_k). None without a floor."""
     @property
+    def floor_force(self) -> Optional[_Float]:
+        """The floor's total force on the chain, shape (samples, 2), [fx, fy]
+        in the scene's axes (fy > 0 pushes up): what a scale under the chain
+        reads (``simulate --out``'s floor_x, floor_y), read at the samples
+        (a stiff floor's contacts are impulses far shorter than
+        ``output_dt``). None without a floor."""
+    @property
+    def landed_weight(self) -> Optional[_Float]:
+        """The weight of what the floor pushes, shape (samples,): g m_i / 2
+        per contact point with a force (``simulate --out``'s
+        landed_weight). None without a floor."""
+    @property
+    def landed_length(self) -> Optional[_Float]:
+        """The length of chain that has landed, shape (samples,): l_i / 2 per
+        end of rod i at most one rod length above the floor line (or in it),
+        read off the rods' ends, not the contact forces; on Cayley's chain it
+        follows the free fall's g t^2 / 2 to two rods up to half the chain
+        landed; rods thrown higher than a rod are not counted. None without a
+        floor."""
+    @property
+    def pivot_force(self) -> _Float:
+        """The support's force on the first rod, shape (samples, 2), [fx, fy]
+        in the scene's axes ([0, M g] for a chain hanging at rest); zero once
+        the pivot is let go. ``forces[:, 0, :]`` is the same force in the
+        rod's frame."""
+    @property
     def dissipated(self) -> _Float:
         """``W`` of the energy balance ``E + W = E(0)`` since t = 0, shape
         (samples,) (the summary's ``dissipated``): with a fixed pivot, the
@@ -309,6 +335,28 @@ def ensemble(
     floor, ``steps``) and ``failures``. ``members`` in 2..=4096, ``spread``
     in [0, 0.1] (ValueError naming it otherwise). Releases the GIL; Ctrl-C
     raises KeyboardInterrupt."""
+
+def ensemble_series(
+    scene: Scene,
+    *,
+    members: int = 16,
+    spread: float = 1e-3,
+    seed: int = 0,
+    budget: Optional[float] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, Any]:
+    """``scene`` run as ``ensemble`` runs it, and the statistics over the
+    members that ended ok of every output at each output time (the members
+    share them): ``falling-chain ensemble --out-series`` as a dict. ``t``
+    (times,); ``members`` (how many are in the statistics); ``series``, by
+    output (``tip_x``, ``tip_y``, ``tip_vx``, ``tip_vy``, ``tip_speed``,
+    ``energy``, ``dissipated``, ``pivot_x``, ``pivot_y``, and with a floor
+    ``floor_x``, ``floor_y``, ``landed_weight``, ``landed_length``), a dict
+    of arrays ``mean``, ``sem``, ``sd``, ``min``, ``max``, each (times,); and
+    ``ensemble``, what ``ensemble`` returns for the same arguments. The same
+    on any number of ``jobs``, bit for bit. ValueError as ``ensemble``, and
+    naming ``members`` when the series would take more than 1 GiB. Releases
+    the GIL; Ctrl-C raises KeyboardInterrupt."""
 
 def merge(paths: Sequence[Union[str, "os.PathLike[str]"]]) -> Dict[str, np.ndarray]:
     """Joins the ``--out`` tables of a sharded sweep, precision or stability

@@ -12,6 +12,7 @@
 
 mod browser;
 mod browser_profile;
+mod browser_runs;
 mod catenary;
 mod cluster;
 mod common;

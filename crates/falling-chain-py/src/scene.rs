@@ -83,15 +83,12 @@ impl PyScene {
     /// value of the wrong type; a dict holds at most 1000 keys.
     #[pyo3(signature = (key, value=None))]
     fn set(&self, key: &Bound<'_, PyAny>, value: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
-        let values = match (key.downcast::<PyDict>(), value) {
+        let values = match (key.cast::<PyDict>(), value) {
             (Ok(dict), None) => {
                 if dict.len() > MAX_SET_KEYS {
                     return Err(value_error(Error::field(
                         "set",
-                        format!(
-                            "at most {MAX_SET_KEYS} keys at once (got {})",
-                            dict.len()
-                        ),
+                        format!("at most {MAX_SET_KEYS} keys at once (got {})", dict.len()),
                     )));
                 }
                 let mut values = Vec::with_capacity(dict.len());
@@ -122,8 +119,10 @@ impl PyScene {
                 ))
             }
         };
-        let values: Vec<(&str, toml::Value)> =
-            values.iter().map(|(k, v)| (k.as_str(), v.clone())).collect();
+        let values: Vec<(&str, toml::Value)> = values
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.clone()))
+            .collect();
         self.inner
             .with_values(&values)
             .map(Self::new)
@@ -136,10 +135,7 @@ impl PyScene {
     /// unknown key, an element (`start.p1.0`) or a key that must be given
     /// (`chain.links`, a start's own required keys).
     fn unset(&self, key: &str) -> PyResult<Self> {
-        self.inner
-            .without(key)
-            .map(Self::new)
-            .map_err(value_error)
+        self.inner.without(key).map(Self::new).map_err(value_error)
     }
 
     /// A new scene: the same continuous chain cut into `n` rods, by the

@@ -248,6 +248,11 @@ struct ViewArgs {
     /// (7027 at 4), else refused before any run.
     #[arg(long)]
     forces: bool,
+    /// Open the page at time T (the sample nearest it), in [0, the runs'
+    /// last time]; a `#t=T` at the end of the page's URL does the same,
+    /// and the page keeps the time shown there as it is scrubbed.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    at: Option<f64>,
     /// The page, FILE.html (ending in `.html` exactly: not `.htm`, not
     /// `.HTML`).
     #[arg(short = 'o', long = "out", value_name = "FILE.html")]
@@ -820,6 +825,15 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         .iter()
         .map(|p| fc_viewer::run_csv::read_run_csv(p, budget))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(at) = args.at {
+        // The longest run's last time: its t_end, or a CSV's last row.
+        let last = prepared
+            .iter()
+            .map(|(_, _, run)| run.options.t_end)
+            .chain(from.iter().filter_map(|r| r.t.last().copied()))
+            .fold(0.0, f64::max);
+        viewer::check_at("--at", at, last)?;
+    }
     let out = begin("--out", &args.out)?;
     let mut runs = Vec::with_capacity(count);
     let mut failed = 0;
@@ -849,7 +863,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         .join(" vs ");
     // The data within the page's cap: halved where the estimate was short,
     // refused (no file) where the first and last frames alone exceed it.
-    let page = viewer::fitted_page("--out", &title, &mut runs)?;
+    let page = viewer::fitted_page_at("--out", &title, &mut runs, args.at)?;
     let shown = echo_path(out.path());
     out.write(|w| w.write_all(page.as_bytes()))?;
     let thinned = runs.iter().filter(|r| r.stride > 1).count();

@@ -231,12 +231,24 @@ mod tests {
         set_path(&mut t, "start.kind", toml::Value::String("folded".into())).unwrap();
         assert_eq!(t["start"].as_table().unwrap().len(), 1, "{t:?}");
         let mut t = tree();
-        apply(&mut t, &["start.angles=[0, 0, 0, 0, 0]", "start.kind=angles"]).unwrap();
+        apply(
+            &mut t,
+            &["start.angles=[0, 0, 0, 0, 0]", "start.kind=angles"],
+        )
+        .unwrap();
         let start = t["start"].as_table().unwrap();
-        assert!(start.contains_key("angles") && !start.contains_key("p1"), "{t:?}");
+        assert!(
+            start.contains_key("angles") && !start.contains_key("p1"),
+            "{t:?}"
+        );
         // Catenary to stretched: p1 is taken by both and stays.
         let mut t = tree();
-        set_path(&mut t, "start.kind", toml::Value::String("stretched".into())).unwrap();
+        set_path(
+            &mut t,
+            "start.kind",
+            toml::Value::String("stretched".into()),
+        )
+        .unwrap();
         assert!(t["start"].as_table().unwrap().contains_key("p1"));
         // An unknown kind removes nothing.
         let mut t = tree();

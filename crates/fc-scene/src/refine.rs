@@ -101,7 +101,10 @@ mod tests {
             let s = base.refined(n).unwrap();
             assert_eq!(s.chain().unwrap().links(), n);
             for (a, b) in continuum(&s).iter().zip(before) {
-                assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "n = {n}: {a} vs {b}");
+                assert!(
+                    (a - b).abs() <= 1e-13 * b.abs().max(1.0),
+                    "n = {n}: {a} vs {b}"
+                );
             }
             // Per rod: m = M / n and r = eta n / L.
             let c = s.chain().unwrap();
@@ -109,7 +112,9 @@ mod tests {
             assert!((c.damping() - 0.0008 * n as f64 / 4.0).abs() < 1e-15 * c.damping().max(1.0));
         }
         // Setting chain.links is not refining: the mass grows with n.
-        let set = base.with_value("chain.links", toml::Value::Integer(40)).unwrap();
+        let set = base
+            .with_value("chain.links", toml::Value::Integer(40))
+            .unwrap();
         assert!((set.chain().unwrap().total_mass() - 12.0).abs() < 1e-12);
     }
 
@@ -123,7 +128,10 @@ mod tests {
         assert_eq!(back.chain().unwrap().mass(), base.chain().unwrap().mass());
         for bad in [0, MAX_LINKS + 1] {
             let e = base.refined(bad).unwrap_err().to_string();
-            assert!(e.starts_with("chain.links: must be an integer in 1..=1000000"), "{e}");
+            assert!(
+                e.starts_with("chain.links: must be an integer in 1..=1000000"),
+                "{e}"
+            );
             let e = check_links("--refine", bad).unwrap_err().to_string();
             assert!(e.starts_with("--refine: "), "{e}");
         }
