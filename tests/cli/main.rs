@@ -29,6 +29,7 @@ mod newton_counters;
 mod pivot;
 mod plot;
 mod progress;
+mod readme;
 mod report;
 mod scenes;
 mod simulate;
