@@ -154,6 +154,8 @@ def cell(q, s, ref, method):
         if spent > LADDER_BUDGET:
             break
     last = tried[-1] if tried else "nothing ran"
+    if spent > LADDER_BUDGET and knob != knobs[-1]:
+        return f"not reached in its {LADDER_BUDGET:.0f} s ladder ({last})", tried
     return f"not reached ({last})", tried
 
 
