@@ -33,10 +33,7 @@ pub fn block_after(text: &str, heading: &str) -> String {
         .split_once(&format!("\n{heading}\n"))
         .unwrap_or_else(|| panic!("README.md has no '{heading}'"))
         .1;
-    let mut lines = after
-        .lines()
-        .skip_while(|l| !l.starts_with("```"))
-        .skip(1);
+    let mut lines = after.lines().skip_while(|l| !l.starts_with("```")).skip(1);
     let mut code = String::new();
     for line in lines.by_ref() {
         if line.starts_with("```") {
@@ -63,7 +60,9 @@ fn the_readme_keeps_its_two_set_up_commands_word_for_word() {
         "README.md's set-up commands changed"
     );
     let ci = fs::read_to_string(root().join(".ci/run")).unwrap();
-    assert!(ci.lines().any(|l| l.trim() == "cargo test --workspace --release"));
+    assert!(ci
+        .lines()
+        .any(|l| l.trim() == "cargo test --workspace --release"));
     // Python and the methods' table within its first screens.
     let line_of = |what: &str| text.lines().position(|l| l.starts_with(what)).unwrap();
     assert!(line_of("## Python") < 80 && line_of("| `gen-alpha` |") < 120);
@@ -95,10 +94,9 @@ fn every_command_of_the_readme_runs_in_order_on_a_fresh_copy() {
     fresh_copy(&dir);
     assert!(dir.join("scenes/span-d3.toml").is_file());
     let bin = Path::new(BIN);
-    let path = std::env::join_paths(
-        std::iter::once(bin.parent().unwrap().to_path_buf())
-            .chain(std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())),
-    )
+    let path = std::env::join_paths(std::iter::once(bin.parent().unwrap().to_path_buf()).chain(
+        std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default()),
+    ))
     .unwrap();
     let block = block_after(&readme(), "## 30 seconds");
     let commands: Vec<&str> = block

@@ -163,7 +163,10 @@ fn submit(
 
 #[test]
 fn the_readme_job_array_runs_on_a_real_slurm_and_merges_to_the_whole_run() {
-    if skip("the Slurm test of docs/cluster.md's job array", slurm::missing()) {
+    if skip(
+        "the Slurm test of docs/cluster.md's job array",
+        slurm::missing(),
+    ) {
         return;
     }
     let dir = scratch("slurm");
