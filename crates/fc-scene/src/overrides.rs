@@ -127,7 +127,7 @@ fn drop_keys_of_other_kinds(tree: &mut toml::Table) {
         return;
     };
     let keep = kind.keys();
-    start.retain(|name, _| name == "kind" || keep.iter().any(|k| *k == name));
+    start.retain(|name, _| name == "kind" || keep.contains(&name));
 }
 
 /// Removes the key at the dotted `path` from `tree`, so that it takes its

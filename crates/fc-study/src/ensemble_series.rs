@@ -225,17 +225,21 @@ impl EnsembleSeries {
     }
 }
 
+/// One member's output times and outputs (row by row), or `None` when it
+/// did not end ok.
+type Member = Option<(Vec<f64>, Vec<f64>)>;
+
 /// The members' series folded in member order: a member's waits in
 /// `pending` until every member before it has ended (`None`: it did not
 /// end ok, and is skipped).
 struct Fold {
     next: usize,
-    pending: BTreeMap<usize, Option<(Vec<f64>, Vec<f64>)>>,
+    pending: BTreeMap<usize, Member>,
     series: EnsembleSeries,
 }
 
 impl Fold {
-    fn push(&mut self, j: usize, member: Option<(Vec<f64>, Vec<f64>)>) -> Result<(), Error> {
+    fn push(&mut self, j: usize, member: Member) -> Result<(), Error> {
         self.pending.insert(j, member);
         while let Some(m) = self.pending.remove(&self.next) {
             if let Some((t, v)) = m {
