@@ -12,6 +12,7 @@
 
 mod browser;
 mod browser_profile;
+mod browser_runs;
 mod catenary;
 mod cluster;
 mod common;
@@ -28,6 +29,7 @@ mod newton_counters;
 mod pivot;
 mod plot;
 mod progress;
+mod readme;
 mod report;
 mod scenes;
 mod simulate;

@@ -128,12 +128,41 @@ pub(crate) struct SceneArgs {
     /// sweep's --vary, converge's refinement).
     #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
     set: Vec<String>,
+    #[command(flatten)]
+    refine: RefineArgs,
 }
 
 impl SceneArgs {
-    /// The scene file with the overrides applied.
+    /// The scene file with the overrides applied, then refined.
     pub(crate) fn load(&self) -> Result<Scene, Error> {
-        Scene::load(&self.scene)?.with_overrides(&self.set)
+        self.refine
+            .apply(Scene::load(&self.scene)?.with_overrides(&self.set)?)
+    }
+}
+
+/// `--refine N`: the scene cut into N rods at fixed continuum.
+#[derive(Args)]
+pub(crate) struct RefineArgs {
+    /// Cut the chain into N rods (1..=1000000) at fixed continuum, after
+    /// every --set: total mass, length, the bending viscosity r l, EA, EI
+    /// and the tip mass kept (so chain.mass and chain.damping, which are
+    /// per rod, change), as converge refines. chain.links=N alone is not a
+    /// refinement: it keeps the per-rod mass and friction. Not for an
+    /// angles start.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_rods)]
+    refine: Option<usize>,
+}
+
+impl RefineArgs {
+    /// `scene` refined to `--refine` rods, or as it is.
+    pub(crate) fn apply(&self, scene: Scene) -> Result<Scene, Error> {
+        match self.refine {
+            None => Ok(scene),
+            Some(n) => {
+                fc_scene::refine::check_links("--refine", n)?;
+                scene.refined(n)
+            }
+        }
     }
 }
 
@@ -199,6 +228,8 @@ struct ViewArgs {
     /// Set any scene key of every scene by its dotted path (as simulate).
     #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
     set: Vec<String>,
+    #[command(flatten)]
+    refine: RefineArgs,
     /// Run every scene with each of these methods, M1,M2,... (overrides
     /// run.method), e.g. to overlay rk4 and dopri5.
     #[arg(long, value_name = "M1,M2,...")]
@@ -217,6 +248,11 @@ struct ViewArgs {
     /// (7027 at 4), else refused before any run.
     #[arg(long)]
     forces: bool,
+    /// Open the page at time T (the sample nearest it), in [0, the runs'
+    /// last time]; a `#t=T` at the end of the page's URL does the same,
+    /// and the page keeps the time shown there as it is scrubbed.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    at: Option<f64>,
     /// The page, FILE.html (ending in `.html` exactly: not `.htm`, not
     /// `.HTML`).
     #[arg(short = 'o', long = "out", value_name = "FILE.html")]
@@ -754,7 +790,9 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     // Every scene is checked, and every CSV read, before any run starts.
     let mut prepared = Vec::new();
     for path in &args.scenes {
-        let base = Scene::load(path)?.with_overrides(&args.set)?;
+        let base = args
+            .refine
+            .apply(Scene::load(path)?.with_overrides(&args.set)?)?;
         for method in &methods {
             let scene = match method {
                 Some(m) => base.with_value("run.method", toml::Value::String((*m).to_string()))?,
@@ -787,6 +825,15 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         .iter()
         .map(|p| fc_viewer::run_csv::read_run_csv(p, budget))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(at) = args.at {
+        // The longest run's last time: its t_end, or a CSV's last row.
+        let last = prepared
+            .iter()
+            .map(|(_, _, run)| run.options.t_end)
+            .chain(from.iter().filter_map(|r| r.t.last().copied()))
+            .fold(0.0, f64::max);
+        viewer::check_at("--at", at, last)?;
+    }
     let out = begin("--out", &args.out)?;
     let mut runs = Vec::with_capacity(count);
     let mut failed = 0;
@@ -816,7 +863,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         .join(" vs ");
     // The data within the page's cap: halved where the estimate was short,
     // refused (no file) where the first and last frames alone exceed it.
-    let page = viewer::fitted_page("--out", &title, &mut runs)?;
+    let page = viewer::fitted_page_at("--out", &title, &mut runs, args.at)?;
     let shown = echo_path(out.path());
     out.write(|w| w.write_all(page.as_bytes()))?;
     let thinned = runs.iter().filter(|r| r.stride > 1).count();

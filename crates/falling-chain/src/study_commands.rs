@@ -129,6 +129,13 @@ pub struct EnsembleArgs {
     /// dissipated, floor_force_max, steps).
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
+    /// Write the time series as CSV: one row per output time (the members
+    /// share them), t, members (those that ended ok), then for each output
+    /// (tip_x, tip_y, tip_vx, tip_vy, tip_speed, energy, dissipated,
+    /// pivot_x, pivot_y, and with a floor floor_x, floor_y, landed_weight,
+    /// landed_length) its _mean, _sem, _sd, _min and _max over them.
+    #[arg(long = "out-series", value_name = "FILE.csv")]
+    out_series: Option<PathBuf>,
     /// Stop after this many seconds of wall time, in (0, 2592000] (30
     /// days): members that cannot start within it are not run, runs still
     /// going are stopped, and all are listed.
@@ -408,14 +415,28 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         check_writable("--out", out)?;
     }
     let scene = args.scene.load()?;
+    let series_out = series_output(args, &scene, &options)?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);
-    let result = Budget::run(budget, None, |b| {
-        ensemble::run(&scene, &options, b, &|done, _| {
-            bar.set_position(done as u64)
-        })
+    let (result, series) = Budget::run(budget, None, |b| {
+        let progress = |done, _| bar.set_position(done as u64);
+        match series_out {
+            None => ensemble::run(&scene, &options, b, &progress).map(|r| (r, None)),
+            Some(_) => study::ensemble_series::run(&scene, &options, b, &progress)
+                .map(|(r, s)| (r, Some(s))),
+        }
     })?;
     bar.finish_and_clear();
+    if let (Some(out), Some(series)) = (series_out, series) {
+        let shown = echo_path(out.path());
+        let text = series.csv();
+        out.write(|w| w.write_all(text.as_bytes()))?;
+        eprintln!(
+            "wrote {} times of {} members to {shown}",
+            series.t.len(),
+            series.count
+        );
+    }
     if let Some(out) = out {
         let shown = echo_path(out.path());
         let text = result.csv();
@@ -428,6 +449,22 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         print!("{result}");
     }
     Ok(report_failures(&result.failures()))
+}
+
+/// `ensemble --out-series`: checked (distinct from `--out`, writable, the
+/// series' memory) and begun before any run.
+fn series_output(
+    args: &EnsembleArgs,
+    scene: &fc_scene::Scene,
+    options: &ensemble::EnsembleOptions,
+) -> Result<Option<fc_scene::atomic::PendingOutput>, Error> {
+    let Some(path) = args.out_series.as_deref() else {
+        return Ok(None);
+    };
+    check_distinct(&[("--out", args.out.as_deref()), ("--out-series", Some(path))])?;
+    check_writable("--out-series", path)?;
+    study::ensemble_series::check_size("--out-series", scene, options)?;
+    begin("--out-series", path).map(Some)
 }
 
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {

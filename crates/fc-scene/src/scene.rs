@@ -388,6 +388,26 @@ impl Scene {
         Self::from_tree(tree)
     }
 
+    /// This scene with several values replaced at once, in order, checked
+    /// together: how a start's kind changes with its own keys
+    /// (`[("start.kind", "angles"), ("start.angles", [...])]`), which one
+    /// value at a time cannot do.
+    pub fn with_values(&self, values: &[(&str, toml::Value)]) -> Result<Self, Error> {
+        let mut tree = self.tree.clone();
+        for (path, value) in values {
+            overrides::set_path(&mut tree, path, value.clone())?;
+        }
+        Self::from_tree(tree)
+    }
+
+    /// This scene without the key at `path`, which takes its default again
+    /// ([`overrides::unset_path`]; a required key is refused).
+    pub fn without(&self, path: &str) -> Result<Self, Error> {
+        let mut tree = self.tree.clone();
+        overrides::unset_path(&mut tree, path)?;
+        Self::from_tree(tree)
+    }
+
     /// The scene's name.
     pub fn name(&self) -> &str {
         &self.name

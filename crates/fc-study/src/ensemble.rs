@@ -268,6 +268,22 @@ pub fn run(
     budget: &Budget,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Ensemble, Error> {
+    run_watching(scene, options, budget, progress, &|_, _| Ok(()))
+}
+
+/// What [`run_watching`] calls with each member's number and run, on the
+/// thread that ran it, before the run is dropped.
+pub type Watcher<'a> = dyn Fn(usize, &chain_ode::Trajectory) -> Result<(), Error> + Sync + 'a;
+
+/// [`run`], showing each member's run to `each` as it ends: how
+/// `ensemble_series` reads the members' samples without keeping them.
+pub fn run_watching(
+    scene: &Scene,
+    options: &EnsembleOptions,
+    budget: &Budget,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    each: &Watcher<'_>,
+) -> Result<Ensemble, Error> {
     options.validate()?;
     let jobs = fc_batch::sweep::check_jobs("--jobs", options.jobs)?;
     let prepared = scene.prepare()?;
@@ -290,6 +306,7 @@ pub fn run(
                 }
                 p.options.cancel = Some(budget.cancel().clone());
                 let traj = p.solve()?;
+                each(j, &traj)?;
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, options.members);
                 Ok(Some(RunSummary::from_trajectory(scene.name(), &traj)))
             })
