@@ -16,8 +16,10 @@ use fc_scene::atomic::{begin, check_distinct, check_writable};
 use fc_scene::error::{echo, echo_path, escape, number};
 use fc_scene::summary::stiffness_hint_for_model;
 use fc_scene::{csv, CatenaryReport, Error, RunSummary, Scene};
+use stdout::{say, say_raw};
 
 mod progress;
+mod stdout;
 mod study_commands;
 
 #[derive(Parser)]
@@ -430,9 +432,9 @@ fn catenary(args: &CatenaryArgs) -> Result<ExitCode, Error> {
         &CatenaryReport::CLI_NAMES,
     )?;
     if args.json {
-        println!("{}", report.to_json());
+        say!("{}", report.to_json());
     } else {
-        println!("{report}");
+        say!("{report}");
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -507,9 +509,9 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     };
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
-        println!("{}", summary.to_json());
+        say!("{}", summary.to_json());
     } else {
-        println!("{summary}");
+        say!("{summary}");
     }
     if let Some(hint) = stiffness_hint_for_model([&summary], run.report.is_some()) {
         eprintln!("{hint}");
@@ -590,9 +592,9 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
                 serde_json::json!({ "run": r.run, "values": values, "summary": r.summary })
             })
             .collect();
-        println!("{}", serde_json::Value::Array(objects));
+        say!("{}", serde_json::Value::Array(objects));
     } else if args.out.is_none() {
-        print!("{}", csv_text());
+        say_raw!("{}", csv_text());
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -860,9 +862,9 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
         &|done, total| eprintln!("converge: {done} of {total} runs done"),
     )?;
     if args.json {
-        println!("{}", report.to_json());
+        say!("{}", report.to_json());
     } else {
-        println!("{report}");
+        say!("{report}");
     }
     if let Some(hint) = &report.stiffness_hint {
         eprintln!("{hint}");

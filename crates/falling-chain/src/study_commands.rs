@@ -14,6 +14,7 @@ use fc_scene::error::echo_path;
 use fc_scene::Error;
 use fc_study::{self as study, ensemble, needs, plot, precision, stability};
 
+use crate::stdout::{say, say_raw};
 use crate::{JobsArgs, SceneArgs};
 
 /// The flags the study's table commands share.
@@ -226,9 +227,10 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let s = precision::study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let (a_rk4, a_bdf) = precision::agreement(&s.rows);
-    println!(
+    say!(
         "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
-        s.name, s.t_eval
+        s.name,
+        s.t_eval
     );
     let reference = &s.rows[0];
     if reference.ok() {
@@ -240,7 +242,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
                 "- (the check did not finish)".to_string()
             }
         };
-        println!(
+        say!(
             "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {} and with BDF rtol {} to {}",
             exp(precision::REF_RTOL),
             exp(args.check_dt),
@@ -250,7 +252,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
             agree(a_bdf)
         );
     } else {
-        println!(
+        say!(
             "  reference: DOPRI5 rtol {} ended {}{}: no error is measured, no point ran",
             exp(precision::REF_RTOL),
             reference.status,
@@ -264,9 +266,11 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
     let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
     let by_work = precision::fastest(&s.rows, &levels, |pt| pt.rhs_equiv() as f64);
-    println!(
+    say!(
         "  {:>7}  {:<26} {:<26}",
-        "error", "fastest (wall time)", "least work (RHS + JVP)"
+        "error",
+        "fastest (wall time)",
+        "least work (RHS + JVP)"
     );
     for ((level, w), (_, k)) in by_wall.iter().zip(&by_work) {
         let show = |pt: &Option<&precision::Point>, cost: String| match pt {
@@ -276,7 +280,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         if w.is_none() && k.is_none() {
             continue;
         }
-        println!(
+        say!(
             "  {:>7}  {:<26} {:<26}",
             exp(*level),
             show(
@@ -288,7 +292,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
-        println!("  not run for --budget: {}", skipped.join(", "));
+        say!("  not run for --budget: {}", skipped.join(", "));
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -337,18 +341,18 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     bar.set_message("cells");
     let s = stability::run_study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    println!(
+    say!(
         "{}: where each method fails (step budget {}, energy limit {} of M g L)",
         s.name,
         exp(stability::MAX_STEPS as f64),
         stability::ENERGY_LIMIT
     );
     for (m, verdict) in stability::verdicts(&s.cells, &options.methods) {
-        println!("  {:>9}: {verdict}", m.as_str());
+        say!("  {:>9}: {verdict}", m.as_str());
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
-        println!("  not run for --budget: {}", skipped.join(", "));
+        say!("  not run for --budget: {}", skipped.join(", "));
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -388,9 +392,9 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     })?;
     bar.finish_and_clear();
     if args.json {
-        println!("{}", answer.to_json());
+        say!("{}", answer.to_json());
     } else {
-        println!("{answer}");
+        say!("{answer}");
     }
     Ok(report_failures(&answer.failures()))
 }
@@ -423,9 +427,9 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         eprintln!("wrote {} rows to {shown}", result.members.len());
     }
     if args.json {
-        println!("{}", result.to_json());
+        say!("{}", result.to_json());
     } else {
-        print!("{result}");
+        say_raw!("{result}");
     }
     Ok(report_failures(&result.failures()))
 }
