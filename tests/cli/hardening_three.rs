@@ -94,3 +94,343 @@ fn a_closed_standard_output_is_an_ordinary_end_for_every_command() {
         );
     }
 }
+
+/// F1: an output onto the command's own input is refused (exit 2, one
+/// line naming the flag) and the input is left as it was: the scene file
+/// under every command that reads one, also through `./`, a symbolic link
+/// and a hard link; a shard under `merge`; a run under `view --from`.
+#[test]
+fn an_output_onto_an_input_is_refused_and_the_input_kept() {
+    let dir = scratch("output-onto-input");
+    let scene_text = std::fs::read_to_string(scene("span-d3")).unwrap();
+    let input = dir.join("in.toml");
+    std::fs::write(&input, &scene_text).unwrap();
+    let link = dir.join("link.csv");
+    std::os::unix::fs::symlink(&input, &link).unwrap();
+    let hard = dir.join("hard.csv");
+    std::fs::hard_link(&input, &hard).unwrap();
+    let dotted = dir.join(".").join("in.toml");
+    let (i, l, h, d) = (
+        input.to_str().unwrap(),
+        link.to_str().unwrap(),
+        hard.to_str().unwrap(),
+        dotted.to_str().unwrap(),
+    );
+    let short = ["--set", "chain.links=4", "--set", "run.t_end=0.1"];
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["simulate", i, "--out", i], "--out"),
+        (vec!["simulate", i, "--out", d], "--out"),
+        (vec!["simulate", i, "--forces", l], "--forces"),
+        (vec!["simulate", i, "--out", h], "--out"),
+        (
+            vec!["sweep", i, "--vary", "chain.damping=0,1", "--out", i],
+            "--out",
+        ),
+        (vec!["ensemble", i, "--members", "2", "--out", i], "--out"),
+        (vec!["precision", i, "--out", l], "--out"),
+        (vec!["stability", i, "--out", i], "--out"),
+    ];
+    for (args, flag) in cases {
+        let all = [&args[..], &short].concat();
+        let o = run_quick(&all);
+        let err = refused(&o, flag);
+        assert!(err.contains("own input"), "{all:?}: {err}");
+        assert_eq!(
+            std::fs::read_to_string(&input).unwrap(),
+            scene_text,
+            "{all:?}"
+        );
+    }
+    // The drawing commands check their output's extension first: a scene
+    // file named as their output.
+    for (command, name) in [("plot", "in.svg"), ("animate", "in.gif"), ("view", "in.html")] {
+        let named = dir.join(name);
+        std::fs::write(&named, &scene_text).unwrap();
+        let n = named.to_str().unwrap();
+        let o = run_quick(&[&[command, n, "--out", n][..], &short].concat());
+        let err = refused(&o, "--out");
+        assert!(err.contains("own input"), "{command}: {err}");
+        assert_eq!(std::fs::read_to_string(&named).unwrap(), scene_text, "{command}");
+    }
+    // A shard merged onto itself.
+    let shard = dir.join("s.csv");
+    let s = shard.to_str().unwrap();
+    let o = run(&[
+        &[
+            "sweep",
+            i,
+            "--vary",
+            "chain.damping=0,1",
+            "--quiet",
+            "--out",
+            s,
+        ][..],
+        &short,
+    ]
+    .concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = std::fs::read_to_string(&shard).unwrap();
+    refused(&run_quick(&["merge", s, "--out", s]), "--out");
+    assert_eq!(std::fs::read_to_string(&shard).unwrap(), before);
+}
+
+/// U3: the ensemble's whole-number flags refuse what is not one of their
+/// integers with their range (clap's own "invalid digit" named none, and
+/// `--seed -1` was taken for a positional).
+#[test]
+fn the_ensembles_integer_flags_say_their_range() {
+    let span = scene("span-d3");
+    for (flag, value, range) in [
+        ("--members", "-1", "2..=4096"),
+        ("--members", "1e3", "2..=4096"),
+        ("--members", "4097", "2..=4096"),
+        ("--seed", "-1", "0..=4294967295"),
+        ("--seed", "4294967296", "0..=4294967295"),
+        ("--seed", "1.5", "0..=4294967295"),
+    ] {
+        let o = run_quick(&["ensemble", &span, flag, value]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{flag} {value}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.contains(flag) && err.contains(range),
+            "{flag} {value}: {err}"
+        );
+    }
+}
+
+/// U1: a scene whose start `simulate` accepts (the floor 2e-4 below the
+/// touching height's tolerance) with a spread that moves some member's
+/// start into the floor: refused before any run, naming `--spread` and
+/// the member, not `floor.height`.
+#[test]
+fn a_spread_that_moves_a_start_into_the_floor_is_named() {
+    let floor = scene("span-d3-floor");
+    let sets = ["--set", "floor.height=-2.3901", "--set", "run.t_end=0.02"];
+    let o = run(&[&["simulate", &floor, "--json"][..], &sets].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run_quick(
+        &[
+            &["ensemble", &floor, "--spread", "0.01", "--members", "16"][..],
+            &sets,
+        ]
+        .concat(),
+    );
+    let err = refused(&o, "--spread");
+    assert!(err.contains("member ") && err.contains("floor"), "{err}");
+}
+
+/// U4: 4096 members stopped or not run by a short budget: the failures
+/// are a few grouped lines, each naming at most 8 members and counting
+/// the rest, and the members the budget stopped are said to be so (not
+/// `interrupted`).
+#[test]
+fn ensemble_failures_are_grouped_and_capped() {
+    let floor = scene("span-d3-floor");
+    let o = run_within(
+        &[
+            "ensemble",
+            &floor,
+            "--members",
+            "4096",
+            "--jobs",
+            "8",
+            "--spread",
+            "0.1",
+            "--budget",
+            "1",
+            "--json",
+            "--quiet",
+        ],
+        std::time::Duration::from_secs(60),
+    )
+    .expect("the budget ends it");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.len() < 1200, "{} characters: {err}", err.len());
+    assert!(!err.contains("interrupted"), "{err}");
+    assert!(
+        err.contains("not run within --budget") && err.contains("more"),
+        "{err}"
+    );
+    let v = json(&o);
+    let failures = v["failures"].as_array().unwrap();
+    assert!(failures.len() <= 3, "{failures:?}");
+    let counted: u64 = failures
+        .iter()
+        .map(|f| {
+            f.as_str()
+                .unwrap()
+                .split(' ')
+                .next()
+                .unwrap()
+                .parse::<u64>()
+                .unwrap()
+        })
+        .sum();
+    assert_eq!(counted + v["ok"].as_u64().unwrap(), 4096, "{failures:?}");
+}
+
+/// W5: members whose quantities are near 1e-300 and differ (a run of
+/// t_end = 1e-300): the standard deviation is not 0 while min < max. Its
+/// value is checked against the members' own CSV, computed here in a form
+/// that cannot underflow (the deviations scaled by 1e300 first).
+#[test]
+fn the_spread_of_tiny_quantities_does_not_underflow() {
+    let dir = scratch("tiny-spread");
+    let out = dir.join("e.csv");
+    let o = run(&[
+        "ensemble",
+        &scene("span-d3"),
+        "--members",
+        "64",
+        "--set",
+        "run.t_end=1e-300",
+        "--set",
+        "chain.links=8",
+        "--json",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = json(&o);
+    let s = &v["stats"]["tip_speed_max"];
+    assert!(num(s, "min") < num(s, "max"), "{s}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let c = header.iter().position(|h| *h == "tip_speed_max").unwrap();
+    let xs: Vec<f64> = lines
+        .map(|l| l.split(',').nth(c).unwrap().parse::<f64>().unwrap() * 1e300)
+        .collect();
+    let m = xs.len() as f64;
+    let mean = xs.iter().sum::<f64>() / m;
+    let sd = (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (m - 1.0)).sqrt() * 1e-300;
+    assert!(sd > 0.0);
+    assert!(
+        (num(s, "sd") / sd - 1.0).abs() < 1e-9,
+        "{} against {sd}",
+        num(s, "sd")
+    );
+    assert!((num(s, "sem") / (sd / m.sqrt()) - 1.0).abs() < 1e-9, "{s}");
+}
+
+/// W3: a stability row whose start lies inside the floor (floor.height =
+/// 0, above the chain) is refused before any cell runs, with exit 2 and
+/// one line naming the key, as sweep, precision, needs, converge and
+/// ensemble refuse it.
+#[test]
+fn stability_refuses_a_row_whose_start_cannot_run() {
+    let floor = scene("span-d3-floor");
+    let o = run_quick(&[
+        "stability",
+        &floor,
+        "--vary",
+        "floor.height=-3,0",
+        "--set",
+        "run.t_end=0.1",
+        "--methods",
+        "bdf",
+        "--quiet",
+    ]);
+    refused(&o, "floor.height");
+    let o = run_quick(&[
+        "sweep",
+        &floor,
+        "--vary",
+        "floor.height=-3,0",
+        "--set",
+        "run.t_end=0.1",
+    ]);
+    refused(&o, "floor.height");
+}
+
+/// F3: a shard of more shards than runs holds no row; merging only such
+/// shards is refused (exit 2), not "0 rows" with exit 0, and no file is
+/// written.
+#[test]
+fn merging_shards_without_rows_is_refused() {
+    let dir = scratch("empty-shards");
+    let z5 = dir.join("z5.csv");
+    let all = dir.join("all.csv");
+    let o = run(&[
+        "sweep",
+        &scene("span-d3"),
+        "--vary",
+        "start.p1.0=1:5:3",
+        "--set",
+        "run.t_end=0.3",
+        "--shard",
+        "5/10",
+        "--quiet",
+        "--out",
+        z5.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run_quick(&[
+        "merge",
+        z5.to_str().unwrap(),
+        "--out",
+        all.to_str().unwrap(),
+    ]);
+    let err = refused(&o, "merge");
+    assert!(err.contains("no shard holds a row"), "{err}");
+    assert!(!all.exists());
+}
+
+/// The old U1: numbers at the ends of their range are echoed in their
+/// shortest form, in a message (`needs --tol 1e-300`) and in a CSV cell
+/// (stability varying `run.t_end` to 1e-300); each reads back exactly.
+#[test]
+fn extreme_numbers_are_written_in_their_shortest_form() {
+    let o = run_quick(&[
+        "needs",
+        &scene("span-d3"),
+        "--tol",
+        "1e-300",
+        "--links",
+        "4,8",
+    ]);
+    let err = refused(&o, "--tol");
+    assert!(err.contains("(got 1e-300)") && err.len() < 120, "{err}");
+    let dir = scratch("short-numbers");
+    let out = dir.join("x.csv");
+    let o = run(&[
+        "stability",
+        &scene("span-d3"),
+        "--vary",
+        "run.t_end=1e-300,1",
+        "--set",
+        "chain.links=4",
+        "--methods",
+        "rk4",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        o.status.code() == Some(0) || o.status.code() == Some(1),
+        "{}",
+        stderr(&o)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    for line in text.lines().skip(1) {
+        for (name, cell) in header.iter().zip(line.split(',')) {
+            if ["scene", "label", "t_end", "t_reached", "t_failed"].contains(name) {
+                assert!(cell.len() < 40, "a {}-character {name}: {cell}", cell.len());
+            }
+        }
+    }
+    let c = header.iter().position(|h| *h == "t_end").unwrap();
+    let t_ends: Vec<f64> = lines
+        .map(|l| l.split(',').nth(c).unwrap().parse().unwrap())
+        .collect();
+    assert!(
+        t_ends.contains(&1e-300) && t_ends.contains(&1.0),
+        "{t_ends:?}"
+    );
+}

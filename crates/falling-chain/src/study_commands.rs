@@ -9,7 +9,7 @@ use fc_batch::budget::{check_budget, Budget};
 use fc_batch::shard::{self, Shard};
 use fc_batch::sweep::Vary;
 use fc_csv::format::exp;
-use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::atomic::{begin, check_distinct, check_not_inputs, check_writable};
 use fc_scene::error::echo_path;
 use fc_scene::Error;
 use fc_study::{self as study, ensemble, needs, plot, precision, stability};
@@ -116,14 +116,15 @@ pub struct EnsembleArgs {
     #[command(flatten)]
     scene: SceneArgs,
     /// Members: starts run, in 2..=4096.
-    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true, value_parser = parse_members)]
     members: usize,
     /// Each start angle is moved by a number drawn uniformly from
     /// [-S, S] rad, S in [0, 0.1].
     #[arg(long, value_name = "S", default_value_t = ensemble::DEFAULT_SPREAD, allow_negative_numbers = true)]
     spread: f64,
-    /// Which perturbations (member j draws from stream j + 2^32 SEED).
-    #[arg(long, value_name = "SEED", default_value_t = 0)]
+    /// Which perturbations (member j draws from stream j + 2^32 SEED), an
+    /// integer in 0..=4294967295.
+    #[arg(long, value_name = "SEED", default_value_t = 0, allow_negative_numbers = true, value_parser = parse_seed)]
     seed: u32,
     /// Write one row per member as CSV: member, status, and the quantities
     /// (tip_speed_max, t_tip_speed_max, tip_end_x, tip_end_y, energy_end,
@@ -143,6 +144,16 @@ pub struct EnsembleArgs {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+fn parse_members(text: &str) -> Result<usize, String> {
+    crate::int_in(text, 2, ensemble::MAX_MEMBERS)
+}
+
+fn parse_seed(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .map_err(|_| format!("must be an integer in 0..={}", u32::MAX))
 }
 
 #[derive(Args)]
@@ -199,7 +210,9 @@ fn budget_of(what: &str, b: Option<f64>) -> Result<Option<f64>, Error> {
 
 pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
-    let scene = args.scene.load()?;
+    let scene = args
+        .scene
+        .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = precision::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
         checks: precision::Checks {
@@ -321,7 +334,9 @@ fn report_failures(failures: &[String]) -> ExitCode {
 
 pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
-    let scene = args.scene.load()?;
+    let scene = args
+        .scene
+        .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = stability::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
         vary: args.vary.as_deref().map(Vary::parse).transpose()?,
@@ -375,7 +390,7 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     };
     let budget = budget_of("--budget", args.budget)?;
     let jobs = args.jobs.threads()?;
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[])?;
     let bar = progress_bar(args.quiet, 0);
     let options = needs::NeedsOptions {
         tol: args.tol,
@@ -411,7 +426,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
     if let Some(out) = &args.out {
         check_writable("--out", out)?;
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", args.out.as_deref())])?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);
     let result = Budget::run(budget, None, |b| {
@@ -435,6 +450,12 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
 }
 
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
+    let inputs: Vec<(&str, &Path)> = args
+        .shards
+        .iter()
+        .map(|p| ("SHARD.csv", p.as_path()))
+        .collect();
+    check_not_inputs(&[("--out", Some(&args.out))], &inputs)?;
     let texts = shard::read(&args.shards)?;
     let out = begin("--out", &args.out)?;
     let merged = shard::merge(&texts)?;

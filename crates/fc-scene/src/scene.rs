@@ -215,6 +215,19 @@ impl Prepared {
         })
     }
 
+    /// Checks the start as the run would, without running: the start the
+    /// model builds (a floor's start overlap, the angles' bounds) is the
+    /// one [`Prepared::solve`] would refuse (O(n), no integrator).
+    pub fn check_start(&self) -> Result<(), Error> {
+        use chain_ode::Model as _;
+        let mut model = match self.report {
+            None => ModelKind::of(&self.chain),
+            Some(model) => ModelKind::Report(ReportChain::new(&self.chain, model)),
+        };
+        model.initial_state(&self.state)?;
+        Ok(())
+    }
+
     /// [`Prepared::solve`] with `cancel` in its options: the caller can stop
     /// the run, and read the time it has reached ([`Cancel::reached`]) from
     /// another thread.
