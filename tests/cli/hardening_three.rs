@@ -143,14 +143,22 @@ fn an_output_onto_an_input_is_refused_and_the_input_kept() {
     }
     // The drawing commands check their output's extension first: a scene
     // file named as their output.
-    for (command, name) in [("plot", "in.svg"), ("animate", "in.gif"), ("view", "in.html")] {
+    for (command, name) in [
+        ("plot", "in.svg"),
+        ("animate", "in.gif"),
+        ("view", "in.html"),
+    ] {
         let named = dir.join(name);
         std::fs::write(&named, &scene_text).unwrap();
         let n = named.to_str().unwrap();
         let o = run_quick(&[&[command, n, "--out", n][..], &short].concat());
         let err = refused(&o, "--out");
         assert!(err.contains("own input"), "{command}: {err}");
-        assert_eq!(std::fs::read_to_string(&named).unwrap(), scene_text, "{command}");
+        assert_eq!(
+            std::fs::read_to_string(&named).unwrap(),
+            scene_text,
+            "{command}"
+        );
     }
     // A shard merged onto itself.
     let shard = dir.join("s.csv");
@@ -433,4 +441,63 @@ fn extreme_numbers_are_written_in_their_shortest_form() {
         t_ends.contains(&1e-300) && t_ends.contains(&1.0),
         "{t_ends:?}"
     );
+}
+
+/// A very stiff start at rest (g = 1e16: the time scale sqrt(l / g) is
+/// 3e-9): every method used to stop at t = 0 with `step_size_too_small`,
+/// its first step below the rounding floor. The run is the g = 1 run
+/// rescaled (dynamical similarity, no friction: times by 1e-8, speeds by
+/// 1e8, positions unchanged), which each method now reproduces to its
+/// tolerance.
+#[test]
+fn a_very_stiff_start_at_rest_takes_its_first_step() {
+    let span = scene("span-d3");
+    let common = [
+        "--set",
+        "chain.links=10",
+        "--set",
+        "chain.damping=0",
+        "--json",
+    ];
+    for method in ["dopri5", "dop853", "bdf", "bdf-dense", "gen-alpha", "auto"] {
+        let mut slow = vec![
+            "simulate",
+            &span,
+            "--method",
+            method,
+            "--set",
+            "run.t_end=1",
+        ];
+        slow.extend(common);
+        let mut fast = vec![
+            "simulate",
+            &span,
+            "--method",
+            method,
+            "--set",
+            "run.t_end=1e-8",
+            "--set",
+            "chain.gravity=1e16",
+        ];
+        fast.extend(common);
+        let (a, b) = (run(&slow), run(&fast));
+        assert!(
+            a.status.success() && b.status.success(),
+            "{method}: {}",
+            stderr(&b)
+        );
+        let (a, b) = (json(&a), json(&b));
+        let rel = |x: f64, y: f64| (x / y - 1.0).abs();
+        assert!(
+            rel(num(&b, "tip_speed_max") * 1e-8, num(&a, "tip_speed_max")) < 1e-5,
+            "{method}: {} against {}",
+            num(&b, "tip_speed_max") * 1e-8,
+            num(&a, "tip_speed_max")
+        );
+        let (ta, tb) = (pair(&a, "tip_end"), pair(&b, "tip_end"));
+        assert!(
+            (ta[0] - tb[0]).abs().max((ta[1] - tb[1]).abs()) < 1e-5 * 6.0,
+            "{method}: {ta:?} against {tb:?}"
+        );
+    }
 }
