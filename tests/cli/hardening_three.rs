@@ -501,3 +501,135 @@ fn a_very_stiff_start_at_rest_takes_its_first_step() {
         );
     }
 }
+
+/// W1: the floor's peak force is a property of the run. One level rod (m
+/// = 1, g = 1) let go 0.5 above an undamped floor meets it at v = 1 on
+/// both ends (stiffness k = 1e6 each): a spring of 2k under gravity, whose
+/// largest force is `F = m g + sqrt((m g)^2 + 2 k m v^2)` = 1415.2139 and
+/// lasts `pi sqrt(m / 2k)` = 2.2e-3, far shorter than the samples 0.1
+/// apart (which saw nothing). Every method finds it to its tolerance, at
+/// output_dt 0.1 and 0.001 alike; the ratio to the landed weight is `F /
+/// m g` (both ends touch).
+#[test]
+fn a_contact_shorter_than_the_samples_has_its_peak_force() {
+    let dir = scratch("short-contact");
+    let path = dir.join("rod.toml");
+    std::fs::write(
+        &path,
+        "name = \"rod\"\n[chain]\nlength = 1.0\nlinks = 1\nmass = 1.0\ngravity = 1.0\n\
+         [pivot]\nrelease = 0.0\n[start]\nkind = \"angles\"\np0 = [0.0, 0.0]\nangles = [0.0]\n\
+         [floor]\nheight = -0.5\nstiffness = 1e6\n[run]\nt_end = 1.5\nrtol = 1e-9\natol = 1e-11\n",
+    )
+    .unwrap();
+    let p = path.to_str().unwrap();
+    let (m, g, k, v) = (1.0_f64, 1.0_f64, 1e6_f64, 1.0_f64);
+    let want = m * g + ((m * g).powi(2) + 2.0 * k * m * v * v).sqrt();
+    let contact = std::f64::consts::PI * (m / (2.0 * k)).sqrt();
+    for method in ["dopri5", "dop853", "bdf"] {
+        let mut peaks = vec![];
+        for dt in ["0.1", "0.001"] {
+            let o = run(&[
+                "simulate",
+                p,
+                "--method",
+                method,
+                "--set",
+                &format!("run.output_dt={dt}"),
+                "--json",
+            ]);
+            assert!(o.status.success(), "{method}: {}", stderr(&o));
+            let j = json(&o);
+            let (f, t, r) = (
+                num(&j, "floor_force_max"),
+                num(&j, "t_floor_force_max"),
+                num(&j, "floor_force_over_landed_weight"),
+            );
+            assert!(
+                (f / want - 1.0).abs() < 1e-5,
+                "{method} at {dt}: {f} against {want}"
+            );
+            assert!(t > 1.0 && t < 1.0 + contact, "{method} at {dt}: t = {t}");
+            assert!((r - f / (m * g)).abs() < 1e-9 * r, "{method}: {r}");
+            peaks.push(f);
+        }
+        assert!(
+            (peaks[0] / peaks[1] - 1.0).abs() < 1e-8,
+            "{method}: {peaks:?}"
+        );
+    }
+}
+
+/// P1: a start inside the floor is bounded by its total overlap over
+/// every contact point, at most `n m g / k` and `L / 100`: a very soft
+/// floor 5e8 above the chain (where `n m g / k` is 1e9) is refused, and so
+/// is a chain laid flat 0.001 inside a floor at 20 points (each point
+/// within `n m g / k` = 0.01, their sum 0.02 not); 0.0004 at each (0.008
+/// in all) is a start.
+#[test]
+fn a_start_inside_the_floor_is_bounded_over_every_contact_point() {
+    let o = run_quick(&[
+        "simulate",
+        &scene("span-d3"),
+        "--set",
+        "floor.stiffness=1e-8",
+        "--set",
+        "floor.height=5e8",
+        "--set",
+        "pivot.release=0",
+    ]);
+    refused(&o, "floor.height");
+    let dir = scratch("flat-inside");
+    let path = dir.join("flat.toml");
+    std::fs::write(
+        &path,
+        "name = \"flat\"\n[chain]\nlength = 1.0\nlinks = 10\nmass = 0.1\ngravity = 1.0\n\
+         [pivot]\nrelease = 0.0\n[start]\nkind = \"angles\"\np0 = [0.0, 0.0]\n\
+         angles = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]\n\
+         [floor]\nstiffness = 100.0\ndamping = 1.0\n[run]\nt_end = 0.01\n",
+    )
+    .unwrap();
+    let p = path.to_str().unwrap();
+    let o = run_quick(&["simulate", p, "--set", "floor.height=0.001"]);
+    let err = refused(&o, "floor.height");
+    assert!(err.contains("20 points"), "{err}");
+    let o = run(&["simulate", p, "--set", "floor.height=0.0004", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+/// H2: a friction switch far narrower than the scene's speeds
+/// (`floor.slip_speed` 1e-12 against sqrt(g L) = 2.4, which bdf could not
+/// cross) is refused before the run naming the key and its bound; the
+/// bound itself is accepted. U2: a derived default out of range names
+/// the key as not set and the keys it comes from.
+#[test]
+fn slip_speeds_below_the_scenes_scale_and_derived_defaults_are_named() {
+    let floor = scene("span-d3-floor");
+    let o = run_quick(&["simulate", &floor, "--set", "floor.slip_speed=1e-12"]);
+    let err = refused(&o, "floor.slip_speed");
+    assert!(err.contains("sqrt(g L)"), "{err}");
+    let o = run(&[
+        "simulate",
+        &floor,
+        "--set",
+        "floor.slip_speed=2.45e-10",
+        "--set",
+        "run.t_end=0.01",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run_quick(&[
+        "simulate",
+        &scene("span-d3"),
+        "--set",
+        "floor.height=-3",
+        "--set",
+        "chain.mass=1e12",
+        "--set",
+        "run.t_end=0.01",
+    ]);
+    let err = refused(&o, "floor.stiffness");
+    assert!(
+        err.contains("not set") && err.contains("chain.mass"),
+        "{err}"
+    );
+}

@@ -80,7 +80,7 @@ pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
     bdf_crossover_gamma, BeamModel, ElasticModel, IntoModel, Layout, Model, ModelKind, Observed,
-    ReportChain, RigidModel,
+    Peak, PeakForce, PeakValue, ReportChain, RigidModel,
 };
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};

@@ -423,7 +423,39 @@ impl Scene {
 
     /// The chain, validated by chain-ode (the error names the field).
     pub fn chain(&self) -> Result<Chain, Error> {
-        Ok(Chain::new(self.chain.clone())?)
+        Chain::new(self.chain.clone()).map_err(|e| self.named_as_given(e))
+    }
+
+    /// `e`, where it is about a floor key the scene does not set: that
+    /// key's default is derived from the chain (`floor.stiffness = 1e4 m g
+    /// / l`, `floor.slip_speed = 1e-3 sqrt(g L)`), and the message says so
+    /// and names the keys it comes from, not a value the user never gave.
+    fn named_as_given(&self, e: chain_ode::InvalidParameter) -> Error {
+        let derived = match e.field {
+            "floor.stiffness" => {
+                "1e4 m g / l (chain.mass, chain.gravity, chain.length / chain.links)"
+            }
+            "floor.slip_speed" => "1e-3 sqrt(g L) (chain.gravity, chain.length)",
+            _ => return e.into(),
+        };
+        let key = e.field.trim_start_matches("floor.");
+        let given = match self.tree.get("floor") {
+            Some(toml::Value::Table(t)) => t.contains_key(key),
+            _ => false,
+        };
+        if given {
+            return e.into();
+        }
+        Error::field(
+            e.field,
+            format!(
+                "not set, and its default {derived} = {} is out of its range ({}): set {} or \
+                 change those keys",
+                crate::error::echo(&e.got),
+                e.accepted,
+                e.field
+            ),
+        )
     }
 
     /// The chain's parameters as read, before chain-ode's range checks.

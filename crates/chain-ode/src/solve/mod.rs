@@ -12,6 +12,7 @@
 //! hand.
 
 pub mod auto_elastic;
+pub(crate) mod peaks;
 mod recorder;
 mod report_stepper;
 mod tally;
@@ -334,6 +335,11 @@ pub struct Summary {
     /// `None` for rigid links (their pivot force is the DAE's, from the
     /// samples: `analysis::pivot_forces`).
     pub pivot_force_max: Option<(f64, f64)>,
+    /// The largest value of each force the model tracks
+    /// ([`Model::peak_forces`]: the floor's normal force), at the start,
+    /// every accepted step's end and inside the steps where it turns: a
+    /// property of the run, whatever its output samples.
+    pub peaks: Vec<crate::model::Peak>,
     /// Wall time of the integration (s).
     pub wall_seconds: f64,
 }
@@ -360,6 +366,10 @@ impl Summary {
         ]
         .iter()
         .all(|v| v.is_finite())
+            && self
+                .peaks
+                .iter()
+                .all(|p| p.value.is_finite() && p.t.is_finite() && p.reference.is_finite())
     }
 }
 
@@ -831,6 +841,7 @@ fn trajectory<M: Model>(
         pivot_force_max: model
             .tracks_support_force()
             .then_some((tally.support_force_max, tally.t_support_force_max)),
+        peaks: tally.peaks(),
         wall_seconds,
     };
     // A non-finite value in the summary (an energy that overflowed, a NaN

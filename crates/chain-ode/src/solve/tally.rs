@@ -3,6 +3,7 @@
 //! maximum of the tip speed and, where the model tracks it, of the
 //! support force. One [`Model::observe`] pass per step.
 
+use super::peaks::{Peak, PeakTrack};
 use super::recorder::{ContinuousMax, Recorder};
 use crate::model::Model;
 use fc_methods::StepView;
@@ -44,6 +45,9 @@ pub(crate) struct Tally {
     pub support_force_max: f64,
     /// Where it was.
     pub t_support_force_max: f64,
+    /// The model's force peaks ([`Model::peak_forces`]), tracked at every
+    /// accepted step and refined inside it.
+    peaks: Vec<PeakTrack>,
     /// The energy balance error above which a run is not a solution of the
     /// model: the model's energy scale.
     energy_scale: f64,
@@ -77,6 +81,7 @@ impl Tally {
             tip_speed: ContinuousMax::default(),
             support_force_max: 0.0,
             t_support_force_max: 0.0,
+            peaks: Vec::with_capacity(model.peak_forces().len()),
             energy_scale: model.energy_scale(),
             work_variation: 0.0,
             work_last: 0.0,
@@ -146,7 +151,17 @@ impl Tally {
         };
         self.tip_speed.start(t0, speed, slope);
         self.note_support_force(model, t0, y0);
+        self.peaks = model
+            .peak_forces()
+            .iter()
+            .map(|&f| PeakTrack::start(model, f, t0, y0))
+            .collect();
         rec.note_finite(t0, &[m.energy, self.tip_speed.value]);
+    }
+
+    /// The force peaks so far.
+    pub fn peaks(&self) -> Vec<Peak> {
+        self.peaks.iter().map(PeakTrack::peak).collect()
     }
 
     /// An accepted step.
@@ -183,6 +198,9 @@ impl Tally {
             v[0].hypot(v[1])
         });
         self.note_support_force(model, step.t1, step.y1);
+        for peak in &mut self.peaks {
+            peak.step(model, step, &mut self.buf);
+        }
         rec.note_finite(
             step.t1,
             &[
@@ -205,6 +223,11 @@ impl Tally {
         self.energy_end = self.energy_start;
         let v = model.tip_velocity(t, y);
         self.tip_speed.start(t, v[0].hypot(v[1]), 0.0);
+        self.peaks = model
+            .peak_forces()
+            .iter()
+            .map(|&f| PeakTrack::start(model, f, t, y))
+            .collect();
         rec.note_finite(t, &[self.energy_start, self.tip_speed.value]);
     }
 }
