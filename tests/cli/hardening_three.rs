@@ -633,3 +633,34 @@ fn slip_speeds_below_the_scenes_scale_and_derived_defaults_are_named() {
         "{err}"
     );
 }
+
+/// A1: an ensemble keeps summaries only, so its members record no
+/// samples: two members run at once, each of whose samples would take 1.06
+/// GB (6.5e5 samples of 204 numbers), fit in an address space of 1.5 GB,
+/// and their statistics are those of the default sampling (the samples
+/// never entered a summary).
+#[test]
+fn ensemble_members_hold_no_samples() {
+    let span = scene("span-d3");
+    let sets = [
+        "--set",
+        "run.t_end=1.3",
+        "--members",
+        "2",
+        "--jobs",
+        "2",
+        "--json",
+        "--quiet",
+    ];
+    let fine = [
+        &["prlimit", "--as=1500000000", BIN, "ensemble", &span][..],
+        &sets,
+        &["--set", "run.output_dt=2e-6"],
+    ]
+    .concat();
+    let o = Command::new(fine[0]).args(&fine[1..]).output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let coarse = run(&[&["ensemble", &span][..], &sets].concat());
+    assert!(coarse.status.success(), "{}", stderr(&coarse));
+    assert_eq!(json(&o)["stats"], json(&coarse)["stats"]);
+}

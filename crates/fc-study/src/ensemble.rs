@@ -364,9 +364,13 @@ pub fn run(
     })
 }
 
-/// Member `j`'s run: the scene's, its start angles moved.
+/// Member `j`'s run: the scene's, its start angles moved, recording no
+/// samples (an ensemble keeps summaries only, and every quantity of a
+/// summary, the floor's peak force included, is tracked at every step:
+/// memory O(n) per running member, whatever `run.output_dt`).
 fn member(prepared: &Prepared, options: &EnsembleOptions, j: usize) -> Prepared {
     let mut p = prepared.clone();
+    p.options.output_dt = None;
     let s = stream(options.seed, j);
     for (i, a) in p.state.angles.iter_mut().enumerate() {
         *a += options.spread * uniform(s, i as u64);
