@@ -90,8 +90,8 @@ pub use solve::auto_elastic::{
 };
 pub use solve::{
     solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,
-    BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS, DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES,
-    REPORT_METHODS, RTOL_RANGE,
+    BALANCE_PER_TOLERANCE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,
+    DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 #[doc(hidden)]
 pub use solve::{unit_costs, UnitCosts};

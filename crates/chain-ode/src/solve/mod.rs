@@ -34,7 +34,7 @@ use crate::state::State;
 use recorder::Recorder;
 pub use report_stepper::{REPORT_METHODS, REPORT_RK4};
 use tally::Tally;
-pub use tally::DRIVE_BALANCE_FRACTION;
+pub use tally::{BALANCE_PER_TOLERANCE, DRIVE_BALANCE_FRACTION};
 #[doc(hidden)]
 pub use unit_costs::{unit_costs, UnitCosts};
 
@@ -653,7 +653,7 @@ impl<'a, M: Model> Solve<'a, M> {
                 options.output_dt,
                 options.cancel.clone(),
             ),
-            tally: Tally::new(&model),
+            tally: Tally::new(&model, tally::run_tolerance(method, options)),
             watches: &mut watches,
         };
         let clock = Instant::now();
@@ -948,7 +948,7 @@ mod tests {
             model.initial_state(&start).unwrap();
             let mut parts = Parts {
                 rec: Recorder::new(y0.len(), 2.0, None, None),
-                tally: Tally::new(&model),
+                tally: Tally::new(&model, None),
                 watches: &mut watches,
             };
             let held = Span { t_end: 1.0, ..span };
@@ -968,7 +968,7 @@ mod tests {
             model.initial_state(&start).unwrap();
             let mut parts = Parts {
                 rec: Recorder::new(y0.len(), 2.0, None, None),
-                tally: Tally::new(&model),
+                tally: Tally::new(&model, None),
                 watches: &mut watches,
             };
             let cut = run_cut(&mut model, method, &span, 1.0, &mut parts).outcome;

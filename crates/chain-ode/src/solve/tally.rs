@@ -19,6 +19,42 @@ use fc_methods::StepView;
 /// pivot.jerk_time=1e-6`).
 pub const DRIVE_BALANCE_FRACTION: f64 = 0.01;
 
+/// How many times the run's tolerance, of the energy scale, the energy
+/// balance error of an adaptive run may reach and still be `ok`
+/// ([`Tally::balance_limit`]).
+///
+/// Why a multiple of the tolerance: each accepted step's error is at most
+/// the tolerance `tol = max(rtol, atol)` of the state (weighted RMS), the
+/// energy is a smooth function of the state of size `M g L` (its gradient
+/// times the state is of the energy scale), and a first integral's error
+/// accumulates rather than grows exponentially, so a run that meets its
+/// tolerance keeps `|E + W - E(0)| ~ C tol M g L` with `C` of order one
+/// (tolerance proportionality). Measured `C` on span-d3, bungee, folded,
+/// horizontal-undamped, tapered-whip, stiff-rope, catenary-fall and
+/// cayley-scale with dopri5, dop853, bdf and gen-alpha at rtol 1e-2 to
+/// 1e-6 (`simulate scenes/S.toml --method M --rtol R --json`): at most 6
+/// (gen-alpha), mostly below 1. 100 leaves a margin of 15 over that and
+/// flags bungee at EA = 1e8, rtol 1e-3 with DOPRI5, whose error 117.6 of
+/// 150 is `C` = 784, and that the old rule (the whole energy scale) let
+/// pass. The limit never exceeds the energy scale (the old rule) nor
+/// falls below [`BALANCE_ROUNDING`] of it.
+pub const BALANCE_PER_TOLERANCE: f64 = 100.0;
+
+/// The smallest balance limit, as a fraction of the energy scale: the
+/// rounding of the energy over a long run of many rods, below any
+/// tolerance's reach.
+pub const BALANCE_ROUNDING: f64 = 1e-8;
+
+/// The tolerance an adaptive `method` runs at with `options` (`None` for
+/// a fixed step: its balance is held to the energy scale alone).
+pub(crate) fn run_tolerance(
+    method: fc_methods::Method,
+    options: &super::SolveOptions,
+) -> Option<f64> {
+    matches!(method.accuracy(), fc_methods::Accuracy::Tolerance)
+        .then(|| options.rtol.max(options.atol))
+}
+
 /// NaN-propagating maximum: `f64::max` would drop a NaN and hide it.
 fn max_nan(a: f64, b: f64) -> f64 {
     if a.is_nan() || b.is_nan() {
@@ -59,6 +95,8 @@ pub(crate) struct Tally {
     /// `W` at the last step's end.
     work_last: f64,
     driven: bool,
+    /// The run's tolerance, for an adaptive method ([`run_tolerance`]).
+    tolerance: Option<f64>,
     /// Index of `W` in the state, if the model keeps it.
     work: Option<usize>,
     /// The first time the energy balance error exceeded the limit, if it
@@ -70,8 +108,9 @@ pub(crate) struct Tally {
 }
 
 impl Tally {
-    /// The tally of a run of `model`.
-    pub fn new<M: Model>(model: &M) -> Self {
+    /// The tally of a run of `model` at the tolerance `tolerance` (`None`:
+    /// a fixed step).
+    pub fn new<M: Model>(model: &M, tolerance: Option<f64>) -> Self {
         let layout = model.layout();
         Self {
             energy_start: 0.0,
@@ -86,6 +125,7 @@ impl Tally {
             work_variation: 0.0,
             work_last: 0.0,
             driven: model.is_driven(),
+            tolerance,
             work: layout.work,
             t_inaccurate: None,
             started: false,
@@ -100,15 +140,21 @@ impl Tally {
     }
 
     /// The balance error above which the run is `inaccurate`: the energy
-    /// scale; with a driven support, at most [`DRIVE_BALANCE_FRACTION`] of
-    /// the scale plus the work's total variation (never looser than the
-    /// scale).
+    /// scale, and for an adaptive run at most [`BALANCE_PER_TOLERANCE`]
+    /// times its tolerance of it (not below [`BALANCE_ROUNDING`] of it);
+    /// with a driven support instead [`DRIVE_BALANCE_FRACTION`] of the
+    /// scale plus the work's total variation (never looser than the scale).
     pub fn balance_limit(&self) -> f64 {
+        let scale = self.energy_scale;
+        let own = self.tolerance.map_or(scale, |tol| {
+            scale * (BALANCE_PER_TOLERANCE * tol).clamp(BALANCE_ROUNDING, 1.0)
+        });
         if self.driven {
-            let drive = DRIVE_BALANCE_FRACTION * (self.energy_scale + self.work_variation);
-            drive.min(self.energy_scale)
+            // The work done, not the tolerance, sets a driven run's scale.
+            let drive = DRIVE_BALANCE_FRACTION * (scale + self.work_variation);
+            drive.min(scale)
         } else {
-            self.energy_scale
+            own
         }
     }
 
