@@ -707,3 +707,62 @@ fn inaccurate_is_tied_to_the_runs_tolerance() {
         }
     }
 }
+
+/// H1: `auto` on a stiff, heavily damped contact (a chain hanging onto a
+/// floor of k = 1e8 and Hunt–Crossley c = 1e6: contact damping ratio 16)
+/// hands over to bdf at its first stiffness detection, where it ran
+/// DOPRI5 to the end before; H3: on a rope whose axial modes are far past
+/// what gen-alpha progressed on (bungee at EA = 1e12, no axial damping,
+/// rtol 1e-3) it starts explicit, not gen-alpha, and says so in the hint
+/// when it stays explicit on a stiff run.
+#[test]
+fn auto_hands_over_on_damped_contact_and_starts_no_gen_alpha_it_cannot_run() {
+    let o = run(&[
+        "simulate",
+        &scene("cayley-scale"),
+        "--method",
+        "auto",
+        "--set",
+        "floor.stiffness=1e8",
+        "--set",
+        "floor.damping=1e6",
+        "--set",
+        "run.t_end=0.05",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let methods: Vec<&str> = j["segments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g["method"].as_str().unwrap())
+        .collect();
+    assert!(methods.contains(&"bdf"), "{methods:?}");
+    let o = run(&[
+        "simulate",
+        &scene("bungee"),
+        "--method",
+        "auto",
+        "--set",
+        "chain.axial_stiffness=1e12",
+        "--set",
+        "chain.axial_damping=0",
+        "--rtol",
+        "1e-3",
+        "--set",
+        "run.t_end=2e-4",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let first = j["segments"][0]["method"].as_str().unwrap().to_string();
+    assert_ne!(first, "gen-alpha");
+    if num(&j, "stiffness_detections") >= 10.0 {
+        assert!(
+            stderr(&o).contains("auto stayed explicit"),
+            "{}",
+            stderr(&o)
+        );
+    }
+}

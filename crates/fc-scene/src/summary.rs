@@ -168,10 +168,18 @@ pub const STIFFNESS_HINT_DETECTIONS: u64 = 10;
 const EXPLICIT_WITH_DETECTOR: [&str; 2] = ["dopri5", "dop853"];
 
 /// Whether `summary` is an explicit method's run that detected stiffness at
-/// least [`STIFFNESS_HINT_DETECTIONS`] times.
+/// least [`STIFFNESS_HINT_DETECTIONS`] times: one named dopri5 or dop853,
+/// or an `auto` run that stayed explicit throughout (its plan did not hand
+/// over, every segment dopri5 or dop853).
 pub fn looks_stiff(summary: &RunSummary) -> bool {
-    EXPLICIT_WITH_DETECTOR.contains(&summary.method.as_str())
-        && summary.stiffness_detections >= STIFFNESS_HINT_DETECTIONS
+    let explicit = EXPLICIT_WITH_DETECTOR.contains(&summary.method.as_str())
+        || (summary.method == "auto"
+            && !summary.segments.is_empty()
+            && summary
+                .segments
+                .iter()
+                .all(|g| EXPLICIT_WITH_DETECTOR.contains(&g.method.as_str())));
+    explicit && summary.stiffness_detections >= STIFFNESS_HINT_DETECTIONS
 }
 
 /// The one-line hint for runs that [`looks_stiff`]: `stiff` of `total` runs
@@ -190,7 +198,10 @@ pub fn stiffness_hint(
     } else {
         format!("{stiff} of {total} runs detected stiffness (up to {detections} times, {method})")
     };
-    let advice = if report {
+    let advice = if method == "auto" {
+        "auto stayed explicit (its plan hands over only where the damping says an implicit \
+         method wins); --method bdf may need far fewer steps (the run goes on as asked)"
+    } else if report {
         "the report's model runs only rk4, dopri5 and dop853; with model.report = false, \
          --method bdf or auto may need far fewer steps (the run goes on as asked)"
     } else {
