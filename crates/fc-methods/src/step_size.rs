@@ -75,7 +75,11 @@ pub(crate) fn initial_step_with(
         0.01 * d0 / d1
     };
     h0 = h0.min(span);
-    let floor = o.floor_towards(t0, t0 + span);
+    // The rounding floor only: a user's h_min stays a bound the run's
+    // steps must meet, not a first step it is given.
+    let floor = o
+        .floor_towards(t0, t0 + span)
+        .min(1e-14 * t0.abs().max(1.0));
     let mut growths = 0;
     loop {
         for i in 0..y0.len() {

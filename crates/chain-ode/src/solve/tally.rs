@@ -42,6 +42,15 @@ pub const DRIVE_BALANCE_FRACTION: f64 = 0.01;
 /// falls below [`BALANCE_ROUNDING`] of it.
 pub const BALANCE_PER_TOLERANCE: f64 = 100.0;
 
+/// [`BALANCE_PER_TOLERANCE`] for a model with a floor: its contact law has
+/// kinks (touch-down, the clamp `N >= 0`, friction's switch) where a pair's
+/// error estimate does not see the error it makes, and the balance of a
+/// correct run is looser: chain-ode's floor energy-balance test (a chain
+/// swung onto a damped, rough floor, rtol 1e-9) holds every method to 1e-5
+/// of the scale, 1e4 tolerances, and DOP853 needs more than 100 there.
+/// Not measured further (issue 47's note).
+pub const BALANCE_PER_TOLERANCE_FLOOR: f64 = 1e4;
+
 /// The smallest balance limit, as a fraction of the energy scale: the
 /// rounding of the energy over a long run of many rods, below any
 /// tolerance's reach.
@@ -99,6 +108,8 @@ pub(crate) struct Tally {
     driven: bool,
     /// The run's tolerance, for an adaptive method ([`run_tolerance`]).
     tolerance: Option<f64>,
+    /// True for a model with a floor ([`BALANCE_PER_TOLERANCE_FLOOR`]).
+    floor: bool,
     /// Index of `W` in the state, if the model keeps it.
     work: Option<usize>,
     /// The first time the energy balance error exceeded the limit, if it
@@ -128,6 +139,7 @@ impl Tally {
             work_last: 0.0,
             driven: model.is_driven(),
             tolerance,
+            floor: model.floor_line().is_some(),
             work: layout.work,
             t_inaccurate: None,
             started: false,
@@ -148,8 +160,13 @@ impl Tally {
     /// scale plus the work's total variation (never looser than the scale).
     pub fn balance_limit(&self) -> f64 {
         let scale = self.energy_scale;
+        let per = if self.floor {
+            BALANCE_PER_TOLERANCE_FLOOR
+        } else {
+            BALANCE_PER_TOLERANCE
+        };
         let own = self.tolerance.map_or(scale, |tol| {
-            scale * (BALANCE_PER_TOLERANCE * tol).clamp(BALANCE_ROUNDING, 1.0)
+            scale * (per * tol).clamp(BALANCE_ROUNDING, 1.0)
         });
         if self.driven {
             // The work done, not the tolerance, sets a driven run's scale.
