@@ -21,6 +21,7 @@ mod ensemble;
 mod floor;
 mod fuzz;
 mod gen_alpha;
+mod hardening_three;
 mod hostile;
 mod hostile_files;
 mod hostile_model;

@@ -10,7 +10,7 @@ use ::fc_study::stability as core_stability;
 use ::fc_study::{
     self as study, ensemble as core_ensemble, needs as core_needs, precision as core_precision,
 };
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
@@ -220,12 +220,27 @@ pub fn needs<'py>(
             let text = if let Ok(s) = l.cast::<PyString>() {
                 s.to_cow()?.into_owned()
             } else {
+                // Read no more values than a ladder may hold (each distinct
+                // one a level), counting the rest: the error says how many.
+                let cap = ::fc_study::converge::MAX_LEVELS;
                 let v: Vec<String> = l
                     .try_iter()
-                    .and_then(|it| it.take(64).map(|x| Ok(x?.str()?.to_string())).collect())
+                    .and_then(|it| {
+                        it.take(cap + 1)
+                            .map(|x| Ok(x?.str()?.to_string()))
+                            .collect()
+                    })
                     .map_err(|_| {
                         PyTypeError::new_err(format!("links: expected ints (got {})", echo(l)))
                     })?;
+                if v.len() > cap {
+                    let count = l
+                        .len()
+                        .map_or(format!("more than {cap}"), |n| n.to_string());
+                    return Err(PyValueError::new_err(format!(
+                        "links: at most {cap} numbers of rods (got {count} values)"
+                    )));
+                }
                 v.join(",")
             };
             ::fc_study::converge::parse_links(&text).map_err(value_error)?
@@ -263,13 +278,16 @@ pub fn needs<'py>(
 pub fn ensemble<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
-    members: usize,
+    members: &Bound<'_, PyAny>,
     spread: f64,
-    seed: u32,
+    seed: &Bound<'_, PyAny>,
     budget: Option<f64>,
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
+    let max = core_ensemble::MAX_MEMBERS as u64;
+    let members = int_in("members", members, 2, max)? as usize;
+    let seed = int_in("seed", seed, 0, u64::from(u32::MAX))? as u32;
     let options = core_ensemble::EnsembleOptions {
         members,
         spread,
@@ -285,6 +303,28 @@ pub fn ensemble<'py>(
     })?
     .map_err(value_error)?;
     json_to_dict(py, &result.to_json().to_string())
+}
+
+/// The int `value` of the keyword argument `name` in `lo..=hi`: a
+/// TypeError for what is not an int (a bool, a float), a ValueError naming
+/// `name` and the range for an int outside it (`-1`, `10**30`), never
+/// Python's OverflowError.
+fn int_in(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: u64) -> PyResult<u64> {
+    if !value.is_instance_of::<pyo3::types::PyInt>()
+        || value.is_instance_of::<pyo3::types::PyBool>()
+    {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: must be an int in {lo}..={hi} (got '{}')",
+            value.get_type().name()?
+        )));
+    }
+    match value.extract::<u64>() {
+        Ok(n) if (lo..=hi).contains(&n) => Ok(n),
+        _ => Err(PyValueError::new_err(format!(
+            "{name}: must be an integer in {lo}..={hi} (got {})",
+            echo(value)
+        ))),
+    }
 }
 
 /// Joins the tables of a sharded sweep, precision or stability (files

@@ -12,12 +12,14 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
 use fc_batch::shard::Provenance;
-use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::atomic::{begin, check_distinct, check_not_inputs, check_writable};
 use fc_scene::error::{echo, echo_path, escape, number};
 use fc_scene::summary::stiffness_hint_for_model;
 use fc_scene::{csv, CatenaryReport, Error, RunSummary, Scene};
+use stdout::{say, say_raw};
 
 mod progress;
+mod stdout;
 mod study_commands;
 
 #[derive(Parser)]
@@ -133,8 +135,14 @@ pub(crate) struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// The scene file with the overrides applied, then refined.
-    pub(crate) fn load(&self) -> Result<Scene, Error> {
+    /// The scene file with the overrides applied, then refined, once the
+    /// command's `outputs` (`(flag, path)`, `None`: not asked for) are known
+    /// not to be the scene file itself.
+    pub(crate) fn load(
+        &self,
+        outputs: &[(&'static str, Option<&std::path::Path>)],
+    ) -> Result<Scene, Error> {
+        check_not_inputs(outputs, &[("SCENE.toml", &self.scene)])?;
         self.refine
             .apply(Scene::load(&self.scene)?.with_overrides(&self.set)?)
     }
@@ -466,15 +474,18 @@ fn catenary(args: &CatenaryArgs) -> Result<ExitCode, Error> {
         &CatenaryReport::CLI_NAMES,
     )?;
     if args.json {
-        println!("{}", report.to_json());
+        say!("{}", report.to_json());
     } else {
-        println!("{report}");
+        say!("{report}");
     }
     Ok(ExitCode::SUCCESS)
 }
 
 fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
-    let mut scene = args.scene.load()?;
+    let mut scene = args.scene.load(&[
+        ("--out", args.out.as_deref()),
+        ("--forces", args.forces.as_deref()),
+    ])?;
     let flags = [
         ("run.method", args.method.clone().map(toml::Value::String)),
         ("run.dt", args.dt.map(toml::Value::Float)),
@@ -543,9 +554,9 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     };
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
-        println!("{}", summary.to_json());
+        say!("{}", summary.to_json());
     } else {
-        println!("{summary}");
+        say!("{summary}");
     }
     if let Some(hint) = stiffness_hint_for_model([&summary], run.report.is_some()) {
         eprintln!("{hint}");
@@ -566,7 +577,7 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
 fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     use fc_batch::shard::Shard;
     use fc_batch::sweep::{self, Vary};
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", args.out.as_deref())])?;
     let vary = args
         .vary
         .iter()
@@ -626,9 +637,9 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
                 serde_json::json!({ "run": r.run, "values": values, "summary": r.summary })
             })
             .collect();
-        println!("{}", serde_json::Value::Array(objects));
+        say!("{}", serde_json::Value::Array(objects));
     } else if args.out.is_none() {
-        print!("{}", csv_text());
+        say_raw!("{}", csv_text());
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -700,7 +711,7 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
             ),
         ));
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", Some(&args.out))])?;
     check_drawn_points(&scene, args.snapshots, "--snapshots")?;
     check_writable("--out", &args.out)?;
     draw_scene(&scene, &args.out, args.snapshots, "snapshots", |fig| {
@@ -765,7 +776,7 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
             ),
         ));
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", Some(&args.out))])?;
     check_writable("--out", &args.out)?;
     let frames = ((args.seconds * f64::from(args.fps)).round() as usize).max(2);
     check_drawn_points(&scene, frames, "--seconds")?;
@@ -777,6 +788,11 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
 fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     use fc_viewer::{self as viewer, ViewRun, DATA_BUDGET_BYTES};
     viewer::check_page_path("--out", &args.out)?;
+    let inputs: Vec<(&str, &std::path::Path)> = (args.scenes.iter().map(|p| ("SCENE.toml", p)))
+        .chain(args.from.iter().map(|p| ("--from", p)))
+        .map(|(role, p)| (role, p.as_path()))
+        .collect();
+    check_not_inputs(&[("--out", Some(&args.out))], &inputs)?;
     let methods: Vec<Option<&str>> = match &args.method {
         None => vec![None],
         Some(list) => list.split(',').map(|m| Some(m.trim())).collect(),
@@ -896,7 +912,7 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
     }
     let links = converge::parse_links(&args.links)?;
     let jobs = args.jobs.threads()?;
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[])?;
     let report = converge::run(
         &scene,
         &links,
@@ -907,9 +923,9 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
         &|done, total| eprintln!("converge: {done} of {total} runs done"),
     )?;
     if args.json {
-        println!("{}", report.to_json());
+        say!("{}", report.to_json());
     } else {
-        println!("{report}");
+        say!("{report}");
     }
     if let Some(hint) = &report.stiffness_hint {
         eprintln!("{hint}");

@@ -9,11 +9,12 @@ use fc_batch::budget::{check_budget, Budget};
 use fc_batch::shard::{self, Shard};
 use fc_batch::sweep::Vary;
 use fc_csv::format::exp;
-use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::atomic::{begin, check_distinct, check_not_inputs, check_writable};
 use fc_scene::error::echo_path;
 use fc_scene::Error;
 use fc_study::{self as study, ensemble, needs, plot, precision, stability};
 
+use crate::stdout::{say, say_raw};
 use crate::{JobsArgs, SceneArgs};
 
 /// The flags the study's table commands share.
@@ -115,14 +116,15 @@ pub struct EnsembleArgs {
     #[command(flatten)]
     scene: SceneArgs,
     /// Members: starts run, in 2..=4096.
-    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true, value_parser = parse_members)]
     members: usize,
     /// Each start angle is moved by a number drawn uniformly from
     /// [-S, S] rad, S in [0, 0.1].
     #[arg(long, value_name = "S", default_value_t = ensemble::DEFAULT_SPREAD, allow_negative_numbers = true)]
     spread: f64,
-    /// Which perturbations (member j draws from stream j + 2^32 SEED).
-    #[arg(long, value_name = "SEED", default_value_t = 0)]
+    /// Which perturbations (member j draws from stream j + 2^32 SEED), an
+    /// integer in 0..=4294967295.
+    #[arg(long, value_name = "SEED", default_value_t = 0, allow_negative_numbers = true, value_parser = parse_seed)]
     seed: u32,
     /// Write one row per member as CSV: member, status, and the quantities
     /// (tip_speed_max, t_tip_speed_max, tip_end_x, tip_end_y, energy_end,
@@ -149,6 +151,16 @@ pub struct EnsembleArgs {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+fn parse_members(text: &str) -> Result<usize, String> {
+    crate::int_in(text, 2, ensemble::MAX_MEMBERS)
+}
+
+fn parse_seed(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .map_err(|_| format!("must be an integer in 0..={}", u32::MAX))
 }
 
 #[derive(Args)]
@@ -205,7 +217,9 @@ fn budget_of(what: &str, b: Option<f64>) -> Result<Option<f64>, Error> {
 
 pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
-    let scene = args.scene.load()?;
+    let scene = args
+        .scene
+        .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = precision::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
         checks: precision::Checks {
@@ -233,9 +247,10 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let s = precision::study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let (a_rk4, a_bdf) = precision::agreement(&s.rows);
-    println!(
+    say!(
         "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
-        s.name, s.t_eval
+        s.name,
+        s.t_eval
     );
     let reference = &s.rows[0];
     if reference.ok() {
@@ -247,7 +262,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
                 "- (the check did not finish)".to_string()
             }
         };
-        println!(
+        say!(
             "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {} and with BDF rtol {} to {}",
             exp(precision::REF_RTOL),
             exp(args.check_dt),
@@ -257,7 +272,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
             agree(a_bdf)
         );
     } else {
-        println!(
+        say!(
             "  reference: DOPRI5 rtol {} ended {}{}: no error is measured, no point ran",
             exp(precision::REF_RTOL),
             reference.status,
@@ -271,9 +286,11 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
     let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
     let by_work = precision::fastest(&s.rows, &levels, |pt| pt.rhs_equiv() as f64);
-    println!(
+    say!(
         "  {:>7}  {:<26} {:<26}",
-        "error", "fastest (wall time)", "least work (RHS + JVP)"
+        "error",
+        "fastest (wall time)",
+        "least work (RHS + JVP)"
     );
     for ((level, w), (_, k)) in by_wall.iter().zip(&by_work) {
         let show = |pt: &Option<&precision::Point>, cost: String| match pt {
@@ -283,7 +300,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         if w.is_none() && k.is_none() {
             continue;
         }
-        println!(
+        say!(
             "  {:>7}  {:<26} {:<26}",
             exp(*level),
             show(
@@ -295,7 +312,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
-        println!("  not run for --budget: {}", skipped.join(", "));
+        say!("  not run for --budget: {}", skipped.join(", "));
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -324,7 +341,9 @@ fn report_failures(failures: &[String]) -> ExitCode {
 
 pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
-    let scene = args.scene.load()?;
+    let scene = args
+        .scene
+        .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = stability::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
         vary: args.vary.as_deref().map(Vary::parse).transpose()?,
@@ -344,18 +363,18 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     bar.set_message("cells");
     let s = stability::run_study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    println!(
+    say!(
         "{}: where each method fails (step budget {}, energy limit {} of M g L)",
         s.name,
         exp(stability::MAX_STEPS as f64),
         stability::ENERGY_LIMIT
     );
     for (m, verdict) in stability::verdicts(&s.cells, &options.methods) {
-        println!("  {:>9}: {verdict}", m.as_str());
+        say!("  {:>9}: {verdict}", m.as_str());
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
-        println!("  not run for --budget: {}", skipped.join(", "));
+        say!("  not run for --budget: {}", skipped.join(", "));
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -378,7 +397,7 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     };
     let budget = budget_of("--budget", args.budget)?;
     let jobs = args.jobs.threads()?;
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[])?;
     let bar = progress_bar(args.quiet, 0);
     let options = needs::NeedsOptions {
         tol: args.tol,
@@ -395,9 +414,9 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     })?;
     bar.finish_and_clear();
     if args.json {
-        println!("{}", answer.to_json());
+        say!("{}", answer.to_json());
     } else {
-        println!("{answer}");
+        say!("{answer}");
     }
     Ok(report_failures(&answer.failures()))
 }
@@ -414,7 +433,10 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
     if let Some(out) = &args.out {
         check_writable("--out", out)?;
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[
+        ("--out", args.out.as_deref()),
+        ("--out-series", args.out_series.as_deref()),
+    ])?;
     let series_out = series_output(args, &scene, &options)?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);
@@ -444,9 +466,9 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         eprintln!("wrote {} rows to {shown}", result.members.len());
     }
     if args.json {
-        println!("{}", result.to_json());
+        say!("{}", result.to_json());
     } else {
-        print!("{result}");
+        say_raw!("{result}");
     }
     Ok(report_failures(&result.failures()))
 }
@@ -468,6 +490,12 @@ fn series_output(
 }
 
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
+    let inputs: Vec<(&str, &Path)> = args
+        .shards
+        .iter()
+        .map(|p| ("SHARD.csv", p.as_path()))
+        .collect();
+    check_not_inputs(&[("--out", Some(&args.out))], &inputs)?;
     let texts = shard::read(&args.shards)?;
     let out = begin("--out", &args.out)?;
     let merged = shard::merge(&texts)?;

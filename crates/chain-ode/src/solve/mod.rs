@@ -12,6 +12,7 @@
 //! hand.
 
 pub mod auto_elastic;
+pub(crate) mod peaks;
 mod recorder;
 mod report_stepper;
 mod tally;
@@ -33,7 +34,7 @@ use crate::state::State;
 use recorder::Recorder;
 pub use report_stepper::{REPORT_METHODS, REPORT_RK4};
 use tally::Tally;
-pub use tally::DRIVE_BALANCE_FRACTION;
+pub use tally::{BALANCE_PER_TOLERANCE, DRIVE_BALANCE_FRACTION};
 #[doc(hidden)]
 pub use unit_costs::{unit_costs, UnitCosts};
 
@@ -334,6 +335,11 @@ pub struct Summary {
     /// `None` for rigid links (their pivot force is the DAE's, from the
     /// samples: `analysis::pivot_forces`).
     pub pivot_force_max: Option<(f64, f64)>,
+    /// The largest value of each force the model tracks
+    /// ([`Model::peak_forces`]: the floor's normal force), at the start,
+    /// every accepted step's end and inside the steps where it turns: a
+    /// property of the run, whatever its output samples.
+    pub peaks: Vec<crate::model::Peak>,
     /// Wall time of the integration (s).
     pub wall_seconds: f64,
 }
@@ -360,6 +366,10 @@ impl Summary {
         ]
         .iter()
         .all(|v| v.is_finite())
+            && self
+                .peaks
+                .iter()
+                .all(|p| p.value.is_finite() && p.t.is_finite() && p.reference.is_finite())
     }
 }
 
@@ -684,7 +694,7 @@ impl<'a, M: Model> Solve<'a, M> {
                 options.output_dt,
                 options.cancel.clone(),
             ),
-            tally: Tally::new(&model),
+            tally: Tally::new(&model, tally::run_tolerance(method, options)),
             watches: &mut watches,
         };
         let clock = Instant::now();
@@ -872,6 +882,7 @@ fn trajectory<M: Model>(
         pivot_force_max: model
             .tracks_support_force()
             .then_some((tally.support_force_max, tally.t_support_force_max)),
+        peaks: tally.peaks(),
         wall_seconds,
     };
     // A non-finite value in the summary (an energy that overflowed, a NaN
@@ -978,7 +989,7 @@ mod tests {
             model.initial_state(&start).unwrap();
             let mut parts = Parts {
                 rec: Recorder::new(y0.len(), 2.0, None, None),
-                tally: Tally::new(&model),
+                tally: Tally::new(&model, None),
                 watches: &mut watches,
             };
             let held = Span { t_end: 1.0, ..span };
@@ -998,7 +1009,7 @@ mod tests {
             model.initial_state(&start).unwrap();
             let mut parts = Parts {
                 rec: Recorder::new(y0.len(), 2.0, None, None),
-                tally: Tally::new(&model),
+                tally: Tally::new(&model, None),
                 watches: &mut watches,
             };
             let cut = run_cut(&mut model, method, &span, 1.0, &mut parts).outcome;
