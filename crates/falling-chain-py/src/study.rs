@@ -271,23 +271,31 @@ pub fn needs<'py>(
 /// draws, the same on every machine): `falling-chain ensemble --json` as a
 /// dict (`members`, `spread`, `seed`, `ok`, `stats` by quantity with
 /// `mean`, `sd`, `sem`, `min`, `max`, `count`, and `failures`). `members`
-/// in 2..=4096, `spread` in [0, 0.1]; `budget` and `jobs` as in
+/// in 2..=4096 (default 16), `seed` in 0..=2^32-1 (default 0), `spread` in
+/// [0, 0.1]; `budget` and `jobs` as in
 /// `precision`. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scene, *, members=16, spread=1e-3, seed=0, budget=None, jobs=None))]
+#[pyo3(signature = (scene, *, members=None, spread=1e-3, seed=None, budget=None, jobs=None))]
 pub fn ensemble<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
-    members: &Bound<'_, PyAny>,
+    members: Option<&Bound<'_, PyAny>>,
     spread: f64,
-    seed: &Bound<'_, PyAny>,
+    seed: Option<&Bound<'_, PyAny>>,
     budget: Option<f64>,
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
     let max = core_ensemble::MAX_MEMBERS as u64;
-    let members = int_in("members", members, 2, max)? as usize;
-    let seed = int_in("seed", seed, 0, u64::from(u32::MAX))? as u32;
+    // Defaults as the CLI's: 16 members, seed 0.
+    let members = match members {
+        Some(m) => int_in("members", m, 2, max)? as usize,
+        None => core_ensemble::DEFAULT_MEMBERS,
+    };
+    let seed = match seed {
+        Some(s) => int_in("seed", s, 0, u64::from(u32::MAX))? as u32,
+        None => 0,
+    };
     let options = core_ensemble::EnsembleOptions {
         members,
         spread,

@@ -43,13 +43,13 @@ pub(crate) fn raise_first_step(
     state: &mut impl diffsol::OdeSolverState<FaerVec<f64>>,
     t_end: f64,
     opts: &Settings,
-    rhs: &mut dyn FnMut(f64, &[f64], &mut [f64]),
+    rhs: &mut crate::step_size::RhsFn<'_>,
 ) {
     let (t0, h) = (state.as_ref().t, state.as_ref().h);
     let span = t_end - t0;
     // The rounding floor only (a user's h_min is a bound, not a step).
     let floor = opts.floor_towards(t0, t_end).min(1e-14 * t0.abs().max(1.0));
-    if !(span > 0.0) || h >= floor {
+    if span.is_nan() || span <= 0.0 || h >= floor {
         return;
     }
     let y0 = slice(state.as_ref().y).to_vec();

@@ -55,11 +55,14 @@ pub(crate) fn initial_step<S: OdeSystem>(
 /// each: 10^40 in all).
 pub(crate) const GROWTHS: u32 = 20;
 
+/// A right-hand side as a closure `rhs(t, y, f)`: `f = y'(t, y)`.
+pub(crate) type RhsFn<'a> = dyn FnMut(f64, &[f64], &mut [f64]) + 'a;
+
 /// [`initial_step`] with the right-hand side as a closure `rhs(t, y, f)`
 /// (diffsol's BDF, whose own guess has the same flaw, calls it when that
 /// guess is below the floor).
 pub(crate) fn initial_step_with(
-    rhs: &mut dyn FnMut(f64, &[f64], &mut [f64]),
+    rhs: &mut RhsFn<'_>,
     (t0, y0, f0): (f64, &[f64], &[f64]),
     span: f64,
     o: &Settings,
