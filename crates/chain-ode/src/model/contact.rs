@@ -160,7 +160,7 @@ impl Model for ContactModel {
                 .max_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((rod, depth)) = deepest {
                 if depth > tolerance {
-                    return Err(floor::inside_error(rod, depth, tolerance));
+                    return Err(floor::constraint_inside_error(rod, depth, tolerance));
                 }
             }
             self.floor = Some(term);

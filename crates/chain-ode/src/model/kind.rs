@@ -1,7 +1,10 @@
 //! The crate's models as one type, and the one decision of which model a
 //! chain is.
 
-use super::{ContactModel, ElasticModel, Layout, Model, Observed, ReportChain, RigidModel};
+use super::{
+    ContactModel, ElasticModel, Layout, Model, Observed, PeakForce, PeakValue, ReportChain,
+    RigidModel,
+};
 use crate::chain::Chain;
 use crate::floor::FloorLaw;
 use crate::kinematics::Vec2;
@@ -189,5 +192,11 @@ impl Model for ModelKind {
     }
     fn floor_line(&self) -> Option<(f64, f64)> {
         each!(self, m => m.floor_line())
+    }
+    fn peak_forces(&self) -> &'static [PeakForce] {
+        each!(self, m => m.peak_forces())
+    }
+    fn peak_force(&self, force: PeakForce, t: f64, y: &[f64]) -> PeakValue {
+        each!(self, m => m.peak_force(force, t, y))
     }
 }
