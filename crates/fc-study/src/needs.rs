@@ -53,10 +53,16 @@ pub const FLOOR_STIFFENING: f64 = 10.0;
 /// links (off: rigid links, `chain.axial_stiffness` absent, so its
 /// `chain.axial_damping` no longer acts), the bending stiffness (off:
 /// `chain.bending_stiffness = 0`), the floor's friction (off:
-/// `floor.friction = 0`) and the floor's stiffness (compared with a floor
-/// [`FLOOR_STIFFENING`] times stiffer: whether the scene's contact is stiff
-/// enough for the tolerance; the default stiffness `1e4 m g / l = 1e4 M g / L`
-/// does not change as the ladder refines `n`, nor does a given one).
+/// `floor.friction = 0`), the penalty floor's stiffness (compared with a
+/// floor [`FLOOR_STIFFENING`] times stiffer: whether the scene's contact is
+/// stiff enough for the tolerance; the default stiffness `1e4 m g / l = 1e4
+/// M g / L` does not change as the ladder refines `n`, nor does a given
+/// one) and the penalty floor itself (compared with the constraint floor,
+/// its limit of rigid rods on a hard floor, run by `auto` as
+/// `moreau-jean` at the scene's `run.dt`: "needed" when the scene's
+/// springs move the tip by `tol` or more, so that the constraint floor
+/// would not do; a tip mass keeps the penalty floor, which the constraint
+/// floor does not hold yet). A constraint floor has no stiffness to judge.
 pub const TERMS: &[Term] = &[
     Term {
         name: "joint friction",
@@ -94,13 +100,35 @@ pub const TERMS: &[Term] = &[
         name: "floor stiffness",
         key: "floor.stiffness",
         change: "10x stiffer",
-        is_on: |s| s.chain_params().floor.is_some(),
+        is_on: |s| {
+            s.chain_params()
+                .floor
+                .is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty)
+        },
         off: |s| {
             let k = s.chain_params().floor.map_or(0.0, |f| f.stiffness);
             // Held at floor.stiffness's bound, 1e15 (a floor already there
             // compares with itself and is judged stiff enough).
             let stiffer = (FLOOR_STIFFENING * k).min(1e15);
             s.with_value("floor.stiffness", toml::Value::Float(stiffer))
+        },
+    },
+    Term {
+        name: "penalty floor",
+        key: "floor.law",
+        change: "constraint",
+        is_on: |s| {
+            let p = s.chain_params();
+            p.floor.is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty) && p.tip_mass == 0.0
+        },
+        off: |s| {
+            let mut params = s.chain_params().clone();
+            params.axial_stiffness = None;
+            if let Some(f) = params.floor.as_mut() {
+                f.law = chain_ode::FloorLaw::Constraint;
+            }
+            s.with_chain(&chain_ode::Chain::new(params)?)?
+                .with_value("floor.law", toml::Value::String("constraint".into()))
         },
     },
 ];
@@ -767,7 +795,7 @@ mod tests {
         let s = folded(
             "damping = 0.01\naxial_stiffness = 1e4\naxial_damping = 0.5\nbending_stiffness = 0.1",
         );
-        assert_eq!(TERMS.len(), 5);
+        assert_eq!(TERMS.len(), 6);
         let chain_terms = || TERMS.iter().filter(|t| t.key.starts_with("chain."));
         assert_eq!(chain_terms().count(), 3);
         for t in chain_terms() {
@@ -832,6 +860,32 @@ mod tests {
         );
         assert_eq!(far.needed, Some(false), "{far:?}");
         assert_eq!(far.tip_path, Some(0.0), "{far:?}");
+    }
+
+    /// A penalty floor's comparison is the constraint floor under the same
+    /// line and friction: the rigid chain (no `chain.axial_stiffness`), law
+    /// `constraint`, on which neither penalty term is on; a constraint
+    /// floor has no stiffness to judge. A soft penalty floor (`k = 5`, a
+    /// rod end sinking by a third of a rod) is judged needed: its springs
+    /// move the tip far from the hard floor's (measured: by 0.095 of `L`,
+    /// its largest speed by 13%, at `n = 10`, `tol = 1e-3`).
+    #[test]
+    fn the_penalty_floor_is_judged_against_the_constraint_floor() {
+        let law = term("floor.law");
+        assert_eq!(law.change, "constraint");
+        let soft = floor_scene("stiffness = 5.0\nfriction = 0.5");
+        assert!((law.is_on)(&soft) && (term("floor.stiffness").is_on)(&soft));
+        let hard = (law.off)(&soft).unwrap();
+        let p = hard.chain_params();
+        let f = p.floor.unwrap();
+        assert_eq!(f.law, chain_ode::FloorLaw::Constraint);
+        assert_eq!((p.axial_stiffness, f.friction, f.height), (None, 0.5, Some(-3.2)));
+        assert!(!(law.is_on)(&hard) && !(term("floor.stiffness").is_on)(&hard));
+        let constraint = floor_scene("law = \"constraint\"");
+        assert!(!(law.is_on)(&constraint) && !(term("floor.stiffness").is_on)(&constraint));
+        let judged = judge("floor.law", &soft);
+        assert_eq!(judged.needed, Some(true), "{judged:?}");
+        assert!(judged.tip_path.unwrap() > 0.05, "{judged:?}");
     }
 
     /// Soft links (EA = 10 stretch a chain of weight 2 by about 20%) are
