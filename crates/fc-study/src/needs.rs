@@ -119,7 +119,9 @@ pub const TERMS: &[Term] = &[
         change: "constraint",
         is_on: |s| {
             let p = s.chain_params();
-            p.floor.is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty) && p.tip_mass == 0.0
+            p.floor
+                .is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty)
+                && p.tip_mass == 0.0
         },
         off: |s| {
             let mut params = s.chain_params().clone();
@@ -879,7 +881,10 @@ mod tests {
         let p = hard.chain_params();
         let f = p.floor.unwrap();
         assert_eq!(f.law, chain_ode::FloorLaw::Constraint);
-        assert_eq!((p.axial_stiffness, f.friction, f.height), (None, 0.5, Some(-3.2)));
+        assert_eq!(
+            (p.axial_stiffness, f.friction, f.height),
+            (None, 0.5, Some(-3.2))
+        );
         assert!(!(law.is_on)(&hard) && !(term("floor.stiffness").is_on)(&hard));
         let constraint = floor_scene("law = \"constraint\"");
         assert!(!(law.is_on)(&constraint) && !(term("floor.stiffness").is_on)(&constraint));

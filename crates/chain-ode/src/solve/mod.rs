@@ -633,6 +633,21 @@ pub trait Watch<M> {
     }
 }
 
+/// The method whose accuracy a run of `method` has: `auto` on a model
+/// whose plan is a method of nonsmooth problems from the start (the
+/// constraint floor's `moreau-jean`) runs that method at its fixed step,
+/// and its energy balance is judged as that method's; any other method is
+/// itself.
+fn method_run<M: Model>(model: &M, method: Method, options: &SolveOptions) -> Method {
+    if method == Method::Auto {
+        let plan = model.auto_plan(options.rtol);
+        if plan.explicit.is_none() && plan.implicit.is_nonsmooth() {
+            return plan.implicit;
+        }
+    }
+    method
+}
+
 /// Runs `method` on `model` (a [`Model`], or a [`Chain`] whose model
 /// [`ModelKind::of`] chooses) from `start` over `[0, options.t_end]`.
 ///
@@ -722,7 +737,10 @@ impl<'a, M: Model> Solve<'a, M> {
                 options.output_dt,
                 options.cancel.clone(),
             ),
-            tally: Tally::new(&model, tally::run_tolerance(method, options)),
+            tally: Tally::new(
+                &model,
+                tally::run_tolerance(method_run(&model, method, options), options),
+            ),
             watches: &mut watches,
         };
         let clock = Instant::now();
