@@ -290,6 +290,32 @@ fn an_impact_restitutes_e_and_its_loss_is_in_the_work() {
     }
 }
 
+/// Cayley's chain (`scenes/cayley-scale.toml` at `n` rods: `L = 1`,
+/// `M = 1`, `g = 1`, its rods at `∓0.02` from the vertical, its lower end
+/// touching a level constraint floor, the pivot let go at the start) and
+/// its start.
+fn cayley(n: usize) -> (Chain, chain_ode::State) {
+    let c = chain(
+        n,
+        1.0 / n as f64,
+        1.0,
+        1.0,
+        true,
+        floor(None, 0.0, 0.0, 0.0),
+    );
+    let angles: Vec<f64> = (0..n)
+        .map(|i| -std::f64::consts::FRAC_PI_2 + if i % 2 == 0 { 0.02 } else { -0.02 })
+        .collect();
+    let start = Start::Angles {
+        p0: [0.0, 0.0],
+        angles,
+        rates: None,
+    }
+    .state(&c)
+    .unwrap();
+    (c, start)
+}
+
 /// Cayley's scale (`scenes/cayley-scale.toml`: `L = 1`, `M = 1`, `g = 1`,
 /// hanging with its rods at `∓0.02` from the vertical and its lower end on
 /// the floor, let go at the top), single runs at `dt = 2.5e-3`: the
@@ -304,24 +330,7 @@ fn an_impact_restitutes_e_and_its_loss_is_in_the_work() {
 fn cayleys_reading_converges_to_three_times_the_landed_weight() {
     let mut errors = vec![];
     for n in [40, 160, 640] {
-        let c = chain(
-            n,
-            1.0 / n as f64,
-            1.0,
-            1.0,
-            true,
-            floor(None, 0.0, 0.0, 0.0),
-        );
-        let angles: Vec<f64> = (0..n)
-            .map(|i| -std::f64::consts::FRAC_PI_2 + if i % 2 == 0 { 0.02 } else { -0.02 })
-            .collect();
-        let start = Start::Angles {
-            p0: [0.0, 0.0],
-            angles,
-            rates: None,
-        }
-        .state(&c)
-        .unwrap();
+        let (c, start) = cayley(n);
         let options = SolveOptions {
             t_end: 1.25,
             dt: 2.5e-3,
@@ -363,24 +372,7 @@ fn cayleys_reading_converges_to_three_times_the_landed_weight() {
 #[test]
 fn auto_on_a_constraint_floor_is_moreau_jean_at_its_step() {
     let n = 40;
-    let c = chain(
-        n,
-        1.0 / n as f64,
-        1.0,
-        1.0,
-        true,
-        floor(None, 0.0, 0.0, 0.0),
-    );
-    let angles: Vec<f64> = (0..n)
-        .map(|i| -std::f64::consts::FRAC_PI_2 + if i % 2 == 0 { 0.02 } else { -0.02 })
-        .collect();
-    let start = Start::Angles {
-        p0: [0.0, 0.0],
-        angles,
-        rates: None,
-    }
-    .state(&c)
-    .unwrap();
+    let (c, start) = cayley(n);
     let options = SolveOptions {
         t_end: 1.25,
         dt: 2.5e-3,
