@@ -458,7 +458,7 @@ impl Scene {
             "floor.slip_speed" => "1e-3 sqrt(g L) (chain.gravity, chain.length)",
             _ => return e.into(),
         };
-        let key = e.field.trim_start_matches("floor.");
+        let key = e.field.split_once('.').map_or(e.field, |(_, k)| k);
         let given = match self.tree.get("floor") {
             Some(toml::Value::Table(t)) => t.contains_key(key),
             _ => false,
