@@ -181,7 +181,7 @@ impl Problem for ChainSystem {
         dae.make_consistent_at(t0, &mut full, &mut Workspace::new(self.chain.links()));
         // In the rods' frames: a kept Newton matrix does not go stale as the
         // chain swings (`dae_frame`).
-        let dae = RodFrameDae::new(dae);
+        let dae = RodFrameDae::new(dae)?;
         let y0 = dae.from_world(&full);
         Some(BandedDae {
             dae: Box::new(dae),

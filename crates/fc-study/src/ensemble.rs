@@ -327,7 +327,7 @@ pub type Watcher<'a> = dyn Fn(usize, &chain_ode::Trajectory) -> Result<(), Error
 /// [`run`], showing each member's run to `each` as it ends: how
 /// `ensemble_series` reads the members' samples without keeping them. Its
 /// members record the scene's samples (`run.output_dt`), which [`run`]'s
-/// do not: the caller bounds their memory (`ensemble_series::check_size`).
+/// do not (`ensemble_series::check_size` bounds what they take).
 pub fn run_watching(
     scene: &Scene,
     options: &EnsembleOptions,
@@ -338,7 +338,7 @@ pub fn run_watching(
     run_members(scene, options, budget, progress, Some(each))
 }
 
-/// [`run`] (`each` absent: members without samples) or [`run_watching`].
+/// [`run`] and [`run_watching`]: the members sampled only when watched.
 fn run_members(
     scene: &Scene,
     options: &EnsembleOptions,
@@ -400,7 +400,8 @@ fn run_members(
 /// Member `j`'s run: the scene's, its start angles moved, recording no
 /// samples unless `samples` (an ensemble keeps summaries only, and every
 /// quantity of a summary, the floor's peak force included, is tracked at
-/// every step: memory O(n) per running member, whatever `run.output_dt`).
+/// every step: memory O(n) per running member, whatever `run.output_dt`;
+/// `ensemble_series` reads the samples, bounded by its own size check).
 fn member(prepared: &Prepared, options: &EnsembleOptions, j: usize, samples: bool) -> Prepared {
     let mut p = prepared.clone();
     if !samples {
