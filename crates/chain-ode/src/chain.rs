@@ -223,7 +223,7 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         )?;
     }
     // A profile takes every other term, on rigid and on elastic links
-    // (`dynamics_profile.rs`, `elastic.rs`).
+    // (`dynamics.rs`, `elastic.rs`).
     Ok(())
 }
 

@@ -338,7 +338,7 @@ impl ChainDae {
             if self.kappa != 0.0 {
                 moment[i] += self.kappa
                     * match self.chain.rods() {
-                        Some(r) => joint_stencil(phi, &r.joint, i),
+                        Some(r) => joint_stencil(phi, r, i),
                         None => damping_stencil(phi, i),
                     };
             }

@@ -5,15 +5,45 @@
 //! "articulated mass" `M_k` times the joint's acceleration, plus a bias.
 //! A backward sweep from the free tip (`M_n = mu I`, `beta_n = mu (0, g/l)`
 //! for a tip mass `mu = M_t / m`, zero without one) builds them; a
-//! forward sweep from the fixed pivot (`a_0 = 0`) then gives every angular
-//! acceleration. Both sweeps are O(n) and allocate nothing: all per-rod storage
-//! lives in a [`Workspace`]. The sweeps work in rod units (`m = l = 1`, gravity
-//! `g/l`, damping `r/(m l^2)`); the returned forces are converted back.
+//! forward sweep from the pivot (`a_0 = 0` when it is fixed) then gives
+//! every angular acceleration. Both sweeps are O(n) and allocate nothing:
+//! all per-rod storage lives in a [`Workspace`]. The sweeps work in rod
+//! units (`m = l = 1` for the mean rod, gravity `g/l`, damping
+//! `r/(m l^2)`); the returned forces are converted back.
+//!
+//! One recursion serves equal and unequal rods ([`RodShape`]). Rod `i`
+//! between joint accelerations `a_{i-1}` and `a_i`, with mass `mu_i` and
+//! length `lambda_i` in mean-rod units, `u = (c, s)`, `v = (-s, c)`, its
+//! reaction on the body beyond joint `i` `f_i = M_i a_i + beta_i`, its
+//! moment about joint `i - 1` gives
+//!
+//! ```text
+//! alpha_i = (E_i - H_i . a_{i-1}) / (lambda_i D_i),
+//! D_i = mu_i / 3 + v . M_i v,      H_i = (M_i + mu_i / 2) v,
+//! E_i = tau_i / lambda_i - mu_i (g/l) c / 2 + lambda_i w_i^2 v . M_i u - v . beta_i,
+//! ```
+//!
+//! (`tau_i`, the joint torques, in `m l^2` units) and the articulated body
+//! seen from joint `i - 1`,
+//!
+//! ```text
+//! M_{i-1} = M_i + mu_i I - H_i H_i^T / D_i,
+//! beta_{i-1} = beta_i + mu_i (0, g/l) - lambda_i w_i^2 (M_i + mu_i / 2) u + H_i E_i / D_i,
+//! a_i = a_{i-1} + lambda_i (alpha_i v - w_i^2 u).
+//! ```
+//!
+//! With `mu_i = lambda_i = 1` ([`EqualRods`]) these are the equal rods'
+//! sweeps, and the compiler folds the factors away: equal rods run the
+//! arithmetic they always ran. Bending adds the joint springs' torque to
+//! `tau_i`: `kappa (k_i (phi_{i-1} - phi_i) + k_{i+1} (phi_{i+1} - phi_i))`,
+//! each joint's spring `k_i = 2 / (lambda_{i-1} + lambda_i)` in units of the
+//! mean rod's `EI / l` ([`Rods::joint`]); it is not evaluated without `EI`.
 //!
 //! The result solves `A(phi) phi'' = b(phi, w)` of `docs/model.md` exactly (to
 //! rounding); [`crate::dense`] keeps the O(n^3) Cholesky solve as the reference.
 
 use crate::chain::Chain;
+use crate::profile::Rods;
 use crate::scalar::Scalar;
 
 /// Per-rod scratch of the recursion, sized once for `n` rods.
@@ -95,21 +125,81 @@ pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
     d
 }
 
-/// The bending springs' generalised force on rod `i` of unequal rods, over
-/// the mean rod's `EI / l`: `k_i (phi_{i-1} - phi_i) + k_{i+1} (phi_{i+1} - phi_i)`,
-/// `k` the joints' relative springs ([`crate::Rods::joint`], `k_0 = 0`: the
-/// pivot has none). Equal rods (`k = 1`) have [`damping_stencil`] of `phi`.
+/// The bending springs' generalised force on rod `i` over the mean rod's
+/// `EI / l`: `k_i (phi_{i-1} - phi_i) + k_{i+1} (phi_{i+1} - phi_i)`, `k`
+/// the joints' relative springs ([`RodShape::joint`]: 1 for equal rods,
+/// whose sum is then [`damping_stencil`] of `phi` to the bit; `k_0` is never
+/// read: the pivot has none).
 #[inline(always)]
-pub(crate) fn joint_stencil<T: Scalar>(phi: &[T], k: &[f64], i: usize) -> T {
+pub(crate) fn joint_stencil<T: Scalar, R: RodShape>(phi: &[T], rods: R, i: usize) -> T {
     let n = phi.len();
     let mut d = T::cst(0.0);
     if i > 0 {
-        d += (phi[i - 1] - phi[i]) * k[i];
+        d += (phi[i - 1] - phi[i]) * rods.joint(i);
     }
     if i + 1 < n {
-        d += (phi[i + 1] - phi[i]) * k[i + 1];
+        d += (phi[i + 1] - phi[i]) * rods.joint(i + 1);
     }
     d
+}
+
+/// The rods as the recursion reads them, in units of the mean rod: rod `i`'s
+/// mass `mu_i`, length `lambda_i` (and its inverse) and joint `i`'s relative
+/// bending spring. [`EqualRods`] is the constant 1 everywhere, so that the
+/// one recursion, monomorphised for it, folds to the equal rods' arithmetic
+/// (a product by the constant 1 is exact and the compiler drops it); a
+/// profile ([`Rods`]) reads its per-rod values.
+pub(crate) trait RodShape: Copy {
+    /// `mu_i`.
+    fn mass(self, i: usize) -> f64;
+    /// `lambda_i`.
+    fn length(self, i: usize) -> f64;
+    /// `1 / lambda_i`.
+    fn inv_length(self, i: usize) -> f64;
+    /// Joint `i`'s bending spring over the mean rod's, `2 / (lambda_{i-1} + lambda_i)`.
+    fn joint(self, i: usize) -> f64;
+}
+
+/// Equal rods: every factor is 1.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EqualRods;
+
+impl RodShape for EqualRods {
+    #[inline(always)]
+    fn mass(self, _: usize) -> f64 {
+        1.0
+    }
+    #[inline(always)]
+    fn length(self, _: usize) -> f64 {
+        1.0
+    }
+    #[inline(always)]
+    fn inv_length(self, _: usize) -> f64 {
+        1.0
+    }
+    #[inline(always)]
+    fn joint(self, _: usize) -> f64 {
+        1.0
+    }
+}
+
+impl RodShape for &Rods {
+    #[inline(always)]
+    fn mass(self, i: usize) -> f64 {
+        self.mass[i]
+    }
+    #[inline(always)]
+    fn length(self, i: usize) -> f64 {
+        self.length[i]
+    }
+    #[inline(always)]
+    fn inv_length(self, i: usize) -> f64 {
+        self.inv_length[i]
+    }
+    #[inline(always)]
+    fn joint(self, i: usize) -> f64 {
+        self.joint[i]
+    }
 }
 
 /// Angular accelerations `acc = phi''` for angles `phi` and rates `w`, in O(n)
@@ -144,9 +234,27 @@ pub fn accelerations_with<T: Scalar>(
 ) -> Reactions<T> {
     let n = chain.links();
     assert!(phi.len() == n && w.len() == n && acc.len() == n && ws.len() == n);
-    if let Some(rods) = chain.rods() {
-        return crate::dynamics_profile::accelerations(chain, rods, base, phi, w, acc, ws);
+    match chain.rods() {
+        None => sweep(chain, EqualRods, base, phi, w, acc, ws),
+        Some(rods) => sweep(chain, rods, base, phi, w, acc, ws),
     }
+}
+
+/// The recursion for rods of shape `rods` (see the module doc): the backward
+/// sweep from the tip, then [`forward_sweep`] from the pivot. One body for
+/// equal and unequal rods; with [`EqualRods`] it is the equal rods' own
+/// arithmetic, bit for bit.
+#[inline(always)]
+fn sweep<T: Scalar, R: RodShape>(
+    chain: &Chain,
+    rods: R,
+    base: Base,
+    phi: &[T],
+    w: &[T],
+    acc: &mut [T],
+    ws: &mut Workspace<T>,
+) -> Reactions<T> {
+    let n = chain.links();
     let g = chain.gravity_rate();
     let gamma = chain.damping_rate();
     // Bending: the generalised force `(EI / l) D_i(phi)` in rod units. Only
@@ -155,12 +263,12 @@ pub fn accelerations_with<T: Scalar>(
     let bend = kappa != 0.0;
     let zero = T::cst(0.0);
     let one = T::cst(1.0);
-    // The tip mass `mu = M_t / m` is the articulated body beyond the last
-    // rod: `M_n = mu I`, `beta_n = mu (0, g/l)` (zero without one, the
+    // The tip mass `mu_t = M_t / m` is the articulated body beyond the last
+    // rod: `M_n = mu_t I`, `beta_n = mu_t (0, g/l)` (zero without one, the
     // same arithmetic as before).
-    let mu = chain.tip_mass_ratio();
-    let (mut mxx, mut mxy, mut myy) = (T::cst(mu), zero, T::cst(mu));
-    let (mut bx, mut by) = (zero, T::cst(mu * g));
+    let mu_t = chain.tip_mass_ratio();
+    let (mut mxx, mut mxy, mut myy) = (T::cst(mu_t), zero, T::cst(mu_t));
+    let (mut bx, mut by) = (zero, T::cst(mu_t * g));
 
     // Independent per-rod work first, so that it overlaps freely.
     T::sin_cos_all(phi, &mut ws.sc);
@@ -170,43 +278,48 @@ pub fn accelerations_with<T: Scalar>(
     // depending on M or beta is computed off that chain.
     for i in (0..n).rev() {
         let (s, c) = ws.sc[i];
+        let (mu, lam, inv_lam) = (rods.mass(i), rods.length(i), rods.inv_length(i));
         let wi = w[i];
         let w2 = wi * wi;
+        let lw2 = w2 * lam;
         // Unit vectors along (u) and normal to (nv) the rod: u = (c, s), nv = (-s, c).
         let (nx, ny) = (-s, c);
         let (nxx, nxy2, nyy) = (nx * nx, (nx * ny) * 2.0, ny * ny);
-        let d = (mxx * nxx + T::cst(1.0 / 3.0)) + (mxy * nxy2 + myy * nyy);
-        let hx = mxx * nx + (mxy * ny + nx * 0.5);
-        let hy = mxy * nx + (myy * ny + ny * 0.5);
+        let d = (mxx * nxx + T::cst(mu * (1.0 / 3.0))) + (mxy * nxy2 + myy * nyy);
+        let hx = mxx * nx + (mxy * ny + nx * (0.5 * mu));
+        let hy = mxy * nx + (myy * ny + ny * (0.5 * mu));
         let mux = mxx * c + mxy * s;
         let muy = mxy * c + myy * s;
         let dinv = one / d;
-        let joint_torques = if bend {
-            damping_stencil(w, i) * gamma + damping_stencil(phi, i) * kappa
+        let torques = if bend {
+            damping_stencil(w, i) * (gamma * inv_lam)
+                + joint_stencil(phi, rods, i) * (kappa * inv_lam)
         } else {
-            damping_stencil(w, i) * gamma
+            damping_stencil(w, i) * (gamma * inv_lam)
         };
-        let e_fixed = joint_torques - c * (0.5 * g) + w2 * (nx * mux + ny * muy);
+        let e_fixed = torques - c * (0.5 * mu * g) + lw2 * (nx * mux + ny * muy);
         let e = e_fixed - (nx * bx + ny * by);
         let qi = e * dinv;
         let (gx, gy) = (hx * dinv, hy * dinv);
         // The articulated body seen from joint i-1 (rod i and all beyond it).
         let (hxx, hxy, hyy) = (hx * hx, hx * hy, hy * hy);
-        mxx = (mxx + one) - hxx * dinv;
+        mxx = (mxx + T::cst(mu)) - hxx * dinv;
         mxy -= hxy * dinv;
-        myy = (myy + one) - hyy * dinv;
-        bx = (bx - w2 * (c * 0.5 + mux)) + hx * qi;
-        by = (by + T::cst(g) - w2 * (s * 0.5 + muy)) + hy * qi;
-        ws.g[i] = [gx, gy];
-        ws.q[i] = qi;
-        // a_i = a_{i-1} + phi_i'' nv - w_i^2 u with phi_i'' = q_i - g_i . a_{i-1}.
+        myy = (myy + T::cst(mu)) - hyy * dinv;
+        bx = (bx - lw2 * (c * (0.5 * mu) + mux)) + hx * qi;
+        by = (by + T::cst(mu * g) - lw2 * (s * (0.5 * mu) + muy)) + hy * qi;
+        // alpha_i = q_i - g_i . a_{i-1}, both over lambda_i.
+        let (qa, gxa, gya) = (qi * inv_lam, gx * inv_lam, gy * inv_lam);
+        ws.g[i] = [gxa, gya];
+        ws.q[i] = qa;
+        // a_i = a_{i-1} + lambda_i (alpha_i v - w_i^2 u), alpha_i = qa - ga . a_{i-1}.
         ws.map[i] = [
-            one + s * gx,
-            s * gy,
-            -(c * gx),
-            one - c * gy,
-            -(s * qi) - w2 * c,
-            c * qi - w2 * s,
+            one + s * (gxa * lam),
+            s * (gya * lam),
+            -(c * (gxa * lam)),
+            one - c * (gya * lam),
+            -(s * qi) - lw2 * c,
+            c * qi - lw2 * s,
         ];
     }
 

@@ -49,7 +49,6 @@ pub mod dae;
 pub mod dae_frame;
 pub mod dense;
 pub mod dynamics;
-mod dynamics_profile;
 pub mod elastic;
 pub mod floor;
 pub mod kinematics;
