@@ -317,6 +317,11 @@ impl Chain {
         self.rods.as_deref()
     }
 
+    /// [`Chain::rods`], shared (for a load that keeps them).
+    pub(crate) fn rods_shared(&self) -> Option<std::sync::Arc<Rods>> {
+        self.rods.clone()
+    }
+
     /// The tip mass in rod masses, `mu = M_t / m`: the recursion's and the
     /// dense reference's unit.
     pub fn tip_mass_ratio(&self) -> f64 {

@@ -43,6 +43,7 @@
 //! rounding); [`crate::dense`] keeps the O(n^3) Cholesky solve as the reference.
 
 use crate::chain::Chain;
+use crate::load::{Kinematics, Loads, RodForce, Units};
 use crate::profile::Rods;
 use crate::scalar::Scalar;
 
@@ -58,6 +59,10 @@ pub struct Workspace<T> {
     /// The joint acceleration as an affine map of the previous one:
     /// `a_k = T_k a_{k-1} + c_k`, stored `[T11, T12, T21, T22, c1, c2]`.
     pub(crate) map: Vec<[T; 6]>,
+    /// The rods' centres and their velocities (rod units, inertial frame),
+    /// for the loads that read them; empty until one does.
+    pub(crate) centre: Vec<[T; 2]>,
+    pub(crate) centre_velocity: Vec<[T; 2]>,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -69,7 +74,18 @@ impl<T: Scalar> Workspace<T> {
             g: vec![[z, z]; n],
             q: vec![z; n],
             map: vec![[z; 6]; n],
+            centre: Vec::new(),
+            centre_velocity: Vec::new(),
         }
+    }
+
+    /// Sizes the centres' buffers (for loads that read them), once.
+    pub(crate) fn with_centres(mut self) -> Self {
+        let z = T::cst(0.0);
+        let n = self.len();
+        self.centre = vec![[z, z]; n];
+        self.centre_velocity = vec![[z, z]; n];
+        self
     }
 
     /// The number of rods this workspace serves.
@@ -94,6 +110,9 @@ pub struct Reactions<T> {
     /// pivot, the prescribed one for a driven pivot, and the free end's
     /// for a released one.
     pub pivot_acceleration: [T; 2],
+    /// The power the loads draw from the chain at its rods (physical
+    /// units; the joints' is [`Loads::joint_power`]'s).
+    pub load_power: T,
 }
 
 /// What holds joint 0 (the pivot) in the recursion's forward sweep.
@@ -125,27 +144,8 @@ pub(crate) fn damping_stencil<T: Scalar>(w: &[T], i: usize) -> T {
     d
 }
 
-/// The bending springs' generalised force on rod `i` over the mean rod's
-/// `EI / l`: `k_i (phi_{i-1} - phi_i) + k_{i+1} (phi_{i+1} - phi_i)`, `k`
-/// the joints' relative springs ([`RodShape::joint`]: 1 for equal rods,
-/// whose sum is then [`damping_stencil`] of `phi` to the bit; `k_0` is never
-/// read: the pivot has none).
-#[inline(always)]
-pub(crate) fn joint_stencil<T: Scalar, R: RodShape>(phi: &[T], rods: R, i: usize) -> T {
-    let n = phi.len();
-    let mut d = T::cst(0.0);
-    if i > 0 {
-        d += (phi[i - 1] - phi[i]) * rods.joint(i);
-    }
-    if i + 1 < n {
-        d += (phi[i + 1] - phi[i]) * rods.joint(i + 1);
-    }
-    d
-}
-
 /// The rods as the recursion reads them, in units of the mean rod: rod `i`'s
-/// mass `mu_i`, length `lambda_i` (and its inverse) and joint `i`'s relative
-/// bending spring. [`EqualRods`] is the constant 1 everywhere, so that the
+/// mass `mu_i` and length `lambda_i` (and its inverse). [`EqualRods`] is the constant 1 everywhere, so that the
 /// one recursion, monomorphised for it, folds to the equal rods' arithmetic
 /// (a product by the constant 1 is exact and the compiler drops it); a
 /// profile ([`Rods`]) reads its per-rod values.
@@ -156,8 +156,6 @@ pub(crate) trait RodShape: Copy {
     fn length(self, i: usize) -> f64;
     /// `1 / lambda_i`.
     fn inv_length(self, i: usize) -> f64;
-    /// Joint `i`'s bending spring over the mean rod's, `2 / (lambda_{i-1} + lambda_i)`.
-    fn joint(self, i: usize) -> f64;
 }
 
 /// Equal rods: every factor is 1.
@@ -177,10 +175,6 @@ impl RodShape for EqualRods {
     fn inv_length(self, _: usize) -> f64 {
         1.0
     }
-    #[inline(always)]
-    fn joint(self, _: usize) -> f64 {
-        1.0
-    }
 }
 
 impl RodShape for &Rods {
@@ -195,10 +189,6 @@ impl RodShape for &Rods {
     #[inline(always)]
     fn inv_length(self, i: usize) -> f64 {
         self.inv_length[i]
-    }
-    #[inline(always)]
-    fn joint(self, i: usize) -> f64 {
-        self.joint[i]
     }
 }
 
@@ -232,52 +222,186 @@ pub fn accelerations_with<T: Scalar>(
     acc: &mut [T],
     ws: &mut Workspace<T>,
 ) -> Reactions<T> {
-    let n = chain.links();
-    assert!(phi.len() == n && w.len() == n && acc.len() == n && ws.len() == n);
-    match chain.rods() {
-        None => sweep(chain, EqualRods, base, phi, w, acc, ws),
-        Some(rods) => sweep(chain, rods, base, phi, w, acc, ws),
-    }
+    let loads = Loads::of(chain, Units::Rod);
+    accelerations_under(chain, &loads, base, [0.0, 0.0], phi, w, acc, ws)
 }
 
-/// The recursion for rods of shape `rods` (see the module doc): the backward
-/// sweep from the tip, then [`forward_sweep`] from the pivot. One body for
-/// equal and unequal rods; with [`EqualRods`] it is the equal rods' own
-/// arithmetic, bit for bit.
-#[inline(always)]
-fn sweep<T: Scalar, R: RodShape>(
+/// [`accelerations_with`] under `loads` (the chain's, in rod units, built
+/// once by the caller), the pivot moving at `pivot_velocity` (physical
+/// units; read by loads that read the rods' centres).
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the recursion's inputs, each a slice or a value"
+)]
+pub(crate) fn accelerations_under<T: Scalar>(
     chain: &Chain,
-    rods: R,
+    loads: &Loads,
     base: Base,
+    pivot_velocity: [f64; 2],
     phi: &[T],
     w: &[T],
     acc: &mut [T],
     ws: &mut Workspace<T>,
 ) -> Reactions<T> {
     let n = chain.links();
-    let g = chain.gravity_rate();
-    let gamma = chain.damping_rate();
-    // Bending: the generalised force `(EI / l) D_i(phi)` in rod units. Only
-    // a chain with EI > 0 pays for it, and one without keeps its arithmetic.
-    let kappa = chain.bending_rate();
-    let bend = kappa != 0.0;
+    assert!(phi.len() == n && w.len() == n && acc.len() == n && ws.len() == n);
+    match chain.rods() {
+        None => sweep(
+            chain,
+            EqualRods,
+            loads,
+            base,
+            pivot_velocity,
+            phi,
+            w,
+            acc,
+            ws,
+        ),
+        Some(rods) => sweep(chain, rods, loads, base, pivot_velocity, phi, w, acc, ws),
+    }
+}
+
+/// The rigid chain's kinematics as the loads read them in the recursion
+/// (rod units: lengths in `l`, velocities in `l` per time unit).
+pub(crate) struct RodView<'a, T, R> {
+    pub phi: &'a [T],
+    pub w: &'a [T],
+    pub sc: &'a [(T, T)],
+    pub rods: R,
+    pub centre: &'a [[T; 2]],
+    pub centre_velocity: &'a [[T; 2]],
+}
+
+impl<T: Scalar, R: RodShape> Kinematics<T> for RodView<'_, T, R> {
+    #[inline(always)]
+    fn angles(&self) -> &[T] {
+        self.phi
+    }
+    #[inline(always)]
+    fn rates(&self) -> &[T] {
+        self.w
+    }
+    #[inline(always)]
+    fn sin_cos(&self, i: usize) -> (T, T) {
+        self.sc[i]
+    }
+    #[inline(always)]
+    fn half_length(&self, i: usize) -> f64 {
+        0.5 * self.rods.length(i)
+    }
+    #[inline(always)]
+    fn mass(&self, i: usize) -> f64 {
+        self.rods.mass(i)
+    }
+    #[inline(always)]
+    fn torque_unit(&self, i: usize) -> f64 {
+        self.rods.inv_length(i)
+    }
+    #[inline(always)]
+    fn centre(&self, i: usize) -> [T; 2] {
+        self.centre[i]
+    }
+    #[inline(always)]
+    fn centre_velocity(&self, i: usize) -> [T; 2] {
+        self.centre_velocity[i]
+    }
+}
+
+/// The rods' centres and their velocities from the pivot down (rod
+/// units), the pivot at the origin moving at `v0`: `c_i = sum_{j<i}
+/// lambda_j u_j + lambda_i u_i / 2`, `c_i' = v0 + sum_{j<i} lambda_j w_j v_j
+/// + lambda_i w_i v_i / 2`.
+#[inline(always)]
+pub(crate) fn centres<T: Scalar, R: RodShape>(
+    rods: R,
+    v0: [f64; 2],
+    w: &[T],
+    sc: &[(T, T)],
+    centre: &mut [[T; 2]],
+    velocity: &mut [[T; 2]],
+) {
+    let (mut px, mut py) = (T::cst(0.0), T::cst(0.0));
+    let (mut vx, mut vy) = (T::cst(v0[0]), T::cst(v0[1]));
+    for (i, &(s, c)) in sc.iter().enumerate() {
+        let lam = rods.length(i);
+        let (ux, uy) = (c * lam, s * lam);
+        let (nx, ny) = (-(s * (w[i] * lam)), c * (w[i] * lam));
+        centre[i] = [px + ux * 0.5, py + uy * 0.5];
+        velocity[i] = [vx + nx * 0.5, vy + ny * 0.5];
+        (px, py) = (px + ux, py + uy);
+        (vx, vy) = (vx + nx, vy + ny);
+    }
+}
+
+/// The recursion for rods of shape `rods` (see the module doc) under
+/// `loads`: the backward sweep from the tip, then [`forward_sweep`] from
+/// the pivot. One body for equal and unequal rods; with [`EqualRods`] it is
+/// the equal rods' own arithmetic, bit for bit. Each rod's loads come as a
+/// torque (already over `lambda_i`), a force at its centre and a power; the
+/// field acts on every rod and on the tip mass.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the recursion's inputs, each a slice or a value"
+)]
+#[inline(always)]
+fn sweep<T: Scalar, R: RodShape>(
+    chain: &Chain,
+    rods: R,
+    loads: &Loads,
+    base: Base,
+    pivot_velocity: [f64; 2],
+    phi: &[T],
+    w: &[T],
+    acc: &mut [T],
+    ws: &mut Workspace<T>,
+) -> Reactions<T> {
+    let n = chain.links();
+    // The field `a` in rod units (`(0, -g/l)`).
+    let ay = loads.field.y();
     let zero = T::cst(0.0);
     let one = T::cst(1.0);
     // The tip mass `mu_t = M_t / m` is the articulated body beyond the last
-    // rod: `M_n = mu_t I`, `beta_n = mu_t (0, g/l)` (zero without one, the
-    // same arithmetic as before).
+    // rod: `M_n = mu_t I`, `beta_n = -mu_t a` (zero without one, the same
+    // arithmetic as before).
     let mu_t = chain.tip_mass_ratio();
     let (mut mxx, mut mxy, mut myy) = (T::cst(mu_t), zero, T::cst(mu_t));
-    let (mut bx, mut by) = (zero, T::cst(mu_t * g));
+    let (mut bx, mut by) = (zero, T::cst(-(mu_t * ay)));
 
     // Independent per-rod work first, so that it overlaps freely.
     T::sin_cos_all(phi, &mut ws.sc);
+    // The rods' centres, for the loads that read them (the drag).
+    let forces = loads.reads_centres();
+    if forces {
+        if ws.centre.len() != n {
+            *ws = std::mem::replace(ws, Workspace::new(0)).with_centres();
+        }
+        let l = chain.rod_length();
+        let v0 = [pivot_velocity[0] / l, pivot_velocity[1] / l];
+        centres(rods, v0, w, &ws.sc, &mut ws.centre, &mut ws.centre_velocity);
+    }
+    let Workspace {
+        sc,
+        g: gs,
+        q: qs,
+        map,
+        centre,
+        centre_velocity,
+    } = &mut *ws;
+    let view = RodView {
+        phi,
+        w,
+        sc: &sc[..],
+        rods,
+        centre: &centre[..],
+        centre_velocity: &centre_velocity[..],
+    };
+    let mut load_power = zero;
 
     // Backward sweep. The loop-carried chain is the Riccati-like update of M
     // (one division per rod); expressions are grouped so that everything not
     // depending on M or beta is computed off that chain.
     for i in (0..n).rev() {
-        let (s, c) = ws.sc[i];
+        let (s, c) = sc[i];
         let (mu, lam, inv_lam) = (rods.mass(i), rods.length(i), rods.inv_length(i));
         let wi = w[i];
         let w2 = wi * wi;
@@ -291,13 +415,19 @@ fn sweep<T: Scalar, R: RodShape>(
         let mux = mxx * c + mxy * s;
         let muy = mxy * c + myy * s;
         let dinv = one / d;
-        let torques = if bend {
-            damping_stencil(w, i) * (gamma * inv_lam)
-                + joint_stencil(phi, rods, i) * (kappa * inv_lam)
+        // The loads on rod i: the joints' torques (friction, bending) and,
+        // for loads that read the centres, a force at the centre.
+        let mut f = RodForce::zero();
+        loads.add_to_rod(i, &view, &mut f);
+        // The field's moment about the upper joint, over lambda_i.
+        let e_loads = f.torque + c * (0.5 * (mu * ay));
+        let e_loads = if forces {
+            load_power += f.power;
+            e_loads + (nx * f.force[0] + ny * f.force[1]) * 0.5
         } else {
-            damping_stencil(w, i) * (gamma * inv_lam)
+            e_loads
         };
-        let e_fixed = torques - c * (0.5 * mu * g) + lw2 * (nx * mux + ny * muy);
+        let e_fixed = e_loads + lw2 * (nx * mux + ny * muy);
         let e = e_fixed - (nx * bx + ny * by);
         let qi = e * dinv;
         let (gx, gy) = (hx * dinv, hy * dinv);
@@ -306,14 +436,21 @@ fn sweep<T: Scalar, R: RodShape>(
         mxx = (mxx + T::cst(mu)) - hxx * dinv;
         mxy -= hxy * dinv;
         myy = (myy + T::cst(mu)) - hyy * dinv;
-        bx = (bx - lw2 * (c * (0.5 * mu) + mux)) + hx * qi;
-        by = (by + T::cst(mu * g) - lw2 * (s * (0.5 * mu) + muy)) + hy * qi;
+        // The field's pull, then the loads' force (the bias is minus the
+        // applied force); written as the sum the data were made with.
+        let (bx0, by0) = if forces {
+            (bx - f.force[0], (by + T::cst(-(mu * ay))) - f.force[1])
+        } else {
+            (bx, by + T::cst(-(mu * ay)))
+        };
+        bx = (bx0 - lw2 * (c * (0.5 * mu) + mux)) + hx * qi;
+        by = (by0 - lw2 * (s * (0.5 * mu) + muy)) + hy * qi;
         // alpha_i = q_i - g_i . a_{i-1}, both over lambda_i.
         let (qa, gxa, gya) = (qi * inv_lam, gx * inv_lam, gy * inv_lam);
-        ws.g[i] = [gxa, gya];
-        ws.q[i] = qa;
+        gs[i] = [gxa, gya];
+        qs[i] = qa;
         // a_i = a_{i-1} + lambda_i (alpha_i v - w_i^2 u), alpha_i = qa - ga . a_{i-1}.
-        ws.map[i] = [
+        map[i] = [
             one + s * (gxa * lam),
             s * (gya * lam),
             -(c * (gxa * lam)),
@@ -323,7 +460,9 @@ fn sweep<T: Scalar, R: RodShape>(
         ];
     }
 
-    forward_sweep(chain, base, [mxx, mxy, myy], [bx, by], acc, ws)
+    let mut r = forward_sweep(chain, base, [mxx, mxy, myy], [bx, by], acc, ws);
+    r.load_power = load_power;
+    r
 }
 
 /// The forward sweep from the pivot, given the articulated body of the
@@ -381,6 +520,7 @@ pub(crate) fn forward_sweep<T: Scalar>(
         pivot_force: [f0x * ml, f0y * ml],
         tip_acceleration: [ax * l, ay * l],
         pivot_acceleration: [a0x * l, a0y * l],
+        load_power: zero,
     }
 }
 

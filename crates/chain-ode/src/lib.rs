@@ -52,6 +52,7 @@ pub mod dynamics;
 pub mod elastic;
 pub mod floor;
 pub mod kinematics;
+pub mod load;
 #[cfg(test)]
 mod methods_on_chains;
 pub mod model;
