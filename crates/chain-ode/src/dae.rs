@@ -594,12 +594,18 @@ impl ChainDae {
             // each column they read, in the order the pattern always had:
             // the angles' columns around the inertia's, then the rates'.
             let cols = i.saturating_sub(1)..(i + 2).min(n);
-            // A load force on the tip mass's rod reaches its moment through
-            // `f_n = tip (f_i + F_i + mu_i h_i)`.
-            let tip_moment = |d: &RodForce<Dual>| {
+            // A load force F on the tip mass's rod reaches its moment through
+            // `f_n = tip (f_i + F + mu_i h_i)`: `-half v_i . tip F`, whose
+            // derivative along `phi_i` turns `v_i` too.
+            let tip_moment = |d: &RodForce<Dual>, own_angle: bool| {
                 if tipped && forces {
                     let (fx, fy) = (d.force[0].d * self.tip, d.force[1].d * self.tip);
-                    -half * (-s * fx + cos_i * fy)
+                    let turn = if own_angle {
+                        half * self.tip * (cos_i * d.force[0].v + s * d.force[1].v)
+                    } else {
+                        0.0
+                    };
+                    -half * (-s * fx + cos_i * fy) + turn
                 } else {
                     0.0
                 }
@@ -607,7 +613,7 @@ impl ChainDae {
             for j in cols.clone() {
                 let load = by_angle.then(|| {
                     let d = self.load_derivative(i, Column::Phi(j), &trig, &mut scratch);
-                    d.torque.d + tip_moment(&d)
+                    d.torque.d + tip_moment(&d, j == i)
                 });
                 match (j == i, load) {
                     (true, Some(d)) => emit(m, i, half * (c * sx + s * sy) + d),
@@ -619,7 +625,7 @@ impl ChainDae {
             if by_rate {
                 for j in cols {
                     let d = self.load_derivative(i, Column::W(j), &trig, &mut scratch);
-                    emit(m, n + j, d.torque.d + tip_moment(&d));
+                    emit(m, n + j, d.torque.d + tip_moment(&d, false));
                 }
             }
             let k = self.force(i);

@@ -143,7 +143,7 @@ const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
 
 /// Every scene key, in the order of the README table. The sections
 /// (`chain`, `pivot`, `start`, `run`, `model`) are the first parts of the dotted paths.
-pub static KEYS: &[Key] = &[
+const ROWS: &[Key] = &[
     Key {
         path: "name",
         ty: Type::Text,
@@ -523,6 +523,36 @@ pub static KEYS: &[Key] = &[
         out_of_range: Some("0"),
     },
 ];
+
+/// Every scene key, in the order of the README table ([`ROWS`], checked
+/// as the crate compiles: a doc is one line without a `|`, which would
+/// split its cell of the README's table).
+pub static KEYS: &[Key] = ROWS;
+
+/// True when no row's doc holds a line break or a `|`.
+const fn docs_are_cells(rows: &[Key]) -> bool {
+    let mut i = 0;
+    while i < rows.len() {
+        let doc = rows[i].doc.as_bytes();
+        if doc.is_empty() {
+            return false;
+        }
+        let mut j = 0;
+        while j < doc.len() {
+            if doc[j] == b'|' || doc[j] == b'\n' {
+                return false;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    true
+}
+
+const _: () = assert!(
+    docs_are_cells(ROWS),
+    "a scene key's doc must be one non-empty line without '|' (it is a cell of scenes/README.md's table)"
+);
 
 /// The row of the key at `path` (`chain.links`), if it is one.
 pub fn key(path: &str) -> Option<&'static Key> {

@@ -114,6 +114,10 @@ impl Load for Bending {
         params.bending_stiffness = 0.0;
     }
 
+    fn switch_on(params: &mut ChainParams) {
+        params.bending_stiffness = 0.01;
+    }
+
     /// Present with `EI > 0` only: a chain without it runs no operation of it.
     fn of(chain: &Chain, units: Units) -> Option<Self> {
         if chain.bending_rate() == 0.0 {

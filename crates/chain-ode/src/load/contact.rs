@@ -45,7 +45,8 @@ impl FloorContact {
 
 impl Load for FloorContact {
     const NAME: &'static str = "floor contact";
-    const KEY: &'static str = "floor.stiffness";
+    /// Any `[floor]` key makes a floor; a refusal names its height.
+    const KEY: &'static str = "floor.height";
 
     fn is_on(params: &ChainParams) -> bool {
         params.floor.is_some()
@@ -53,6 +54,19 @@ impl Load for FloorContact {
 
     fn switch_off(params: &mut ChainParams) {
         params.floor = None;
+    }
+
+    /// A floor well below the report's chain (`k = 1e4 m g / l`).
+    fn switch_on(params: &mut ChainParams) {
+        let l = params.length / params.links.max(1) as f64;
+        params.floor = Some(crate::Floor {
+            height: Some(-2.0 * params.length),
+            angle: 0.0,
+            stiffness: 1e4 * params.mass * params.gravity.max(1.0) / l,
+            damping: 0.0,
+            friction: 0.0,
+            slip_speed: 1e-3,
+        });
     }
 
     /// None: the model places the floor for its start.

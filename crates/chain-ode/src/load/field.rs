@@ -33,6 +33,10 @@ impl Load for Field {
         params.gravity = 0.0;
     }
 
+    fn switch_on(params: &mut ChainParams) {
+        params.gravity = 1.0;
+    }
+
     /// Always there (at zero strength without gravity).
     fn of(chain: &Chain, units: Units) -> Option<Self> {
         let ay = match units {

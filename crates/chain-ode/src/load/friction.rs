@@ -34,6 +34,10 @@ impl Load for Friction {
         params.damping = 0.0;
     }
 
+    fn switch_on(params: &mut ChainParams) {
+        params.damping = 0.01;
+    }
+
     /// Always there: at `r = 0` its terms are exact zeros, and the banded
     /// DAE's Jacobian keeps one pattern for every chain.
     fn of(chain: &Chain, units: Units) -> Option<Self> {

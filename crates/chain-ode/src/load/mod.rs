@@ -46,6 +46,7 @@ pub use friction::Friction;
 use crate::chain::{Chain, ChainParams};
 use crate::scalar::Scalar;
 use crate::Vec2;
+use fc_methods::InvalidParameter;
 
 /// The unit system of a path. [`Units::Rod`]: mass in the mean rod's `m`,
 /// length in its `l`, time unchanged (forces in `m l / T^2`, torques in
@@ -221,11 +222,26 @@ pub trait Load: Clone + Debug + PartialEq + Sized {
     /// it names when it refuses it).
     const KEY: &'static str;
 
+    /// True when its strength is an entry of [`ChainParams::coefficients`]
+    /// under [`Load::KEY`] (a load with a scene key of its own and no field
+    /// of [`ChainParams`]).
+    const COEFFICIENT: bool = false;
+
     /// True when `params` turn it on.
     fn is_on(params: &ChainParams) -> bool;
 
     /// `params` with it switched off (`needs` compares a scene with it off).
     fn switch_off(params: &mut ChainParams);
+
+    /// `params` with it switched on at a strength of the scene's order
+    /// (for the tests that walk every load).
+    fn switch_on(params: &mut ChainParams);
+
+    /// Checks its parameters in `params` (its range; the error names its
+    /// key). [`crate::Chain::new`] calls it.
+    fn validate(_params: &ChainParams) -> Result<(), InvalidParameter> {
+        Ok(())
+    }
 
     /// The load of `chain` in `units`, if the chain has it (a load whose
     /// absence would change a path's pattern of operations may be present
@@ -264,6 +280,12 @@ pub struct Kind {
     pub is_on: fn(&ChainParams) -> bool,
     /// [`Load::switch_off`].
     pub switch_off: fn(&mut ChainParams),
+    /// [`Load::switch_on`].
+    pub switch_on: fn(&mut ChainParams),
+    /// [`Load::COEFFICIENT`].
+    pub coefficient: bool,
+    /// [`Load::validate`].
+    pub validate: fn(&ChainParams) -> Result<(), InvalidParameter>,
 }
 
 impl Kind {
@@ -273,8 +295,60 @@ impl Kind {
             key: L::KEY,
             is_on: L::is_on,
             switch_off: L::switch_off,
+            switch_on: L::switch_on,
+            coefficient: L::COEFFICIENT,
+            validate: L::validate,
         }
     }
+}
+
+/// The strengths of the loads that take a `chain.*` scene key of their
+/// own ([`Load::COEFFICIENT`]), by key: plain data of
+/// [`ChainParams`], checked by [`crate::Chain::new`] (each load its range,
+/// [`Load::validate`]; a key of no load is refused). An absent key is 0.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coefficients(Vec<(&'static str, f64)>);
+
+impl Coefficients {
+    /// The strength under `key` (0 when absent).
+    pub fn get(&self, key: &str) -> f64 {
+        self.0
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map_or(0.0, |&(_, x)| x)
+    }
+
+    /// Sets the strength under `key`.
+    pub fn set(&mut self, key: &'static str, x: f64) {
+        match self.0.iter_mut().find(|(k, _)| *k == key) {
+            Some(entry) => entry.1 = x,
+            None => self.0.push((key, x)),
+        }
+    }
+
+    /// Every entry given, in the order set.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
+        self.0.iter().copied()
+    }
+}
+
+/// The scene keys of the loads whose strength is a coefficient.
+pub fn coefficient_keys() -> impl Iterator<Item = &'static str> {
+    KINDS.iter().filter(|k| k.coefficient).map(|k| k.key)
+}
+
+/// Checks every load's parameters in `params`, and that each coefficient
+/// is some load's.
+pub(crate) fn validate(params: &ChainParams) -> Result<(), InvalidParameter> {
+    for (key, x) in params.coefficients.iter() {
+        crate::chain::check(
+            coefficient_keys().any(|k| k == key),
+            "chain",
+            "the coefficients of loads only (load::coefficient_keys)",
+            format_args!("{key} = {x}"),
+        )?;
+    }
+    KINDS.iter().try_for_each(|k| (k.validate)(params))
 }
 
 /// What a load is on one chain, for output: its name, key and stiffness.
@@ -307,6 +381,16 @@ macro_rules! loads {
                     field: Field::new(chain, units),
                     $($field: <$ty as Load>::of(chain, units),)*
                 }
+            }
+
+            /// The key of the first load that reads the rods' centres, if any.
+            pub fn first_reading_centres(&self) -> Option<&'static str> {
+                $(if let Some(l) = &self.$field {
+                    if l.reads().centres {
+                        return Some(<$ty as Load>::KEY);
+                    }
+                })*
+                None
             }
 
             /// What they read, together.
@@ -443,16 +527,28 @@ mod tests {
     use super::*;
 
     /// Every kind has a key of the scene's `chain.` or `floor.` sections,
-    /// a name, and is off by default and after `switch_off`.
+    /// a name, is off by default, on after `switch_on` (a chain that
+    /// validates) and off again after `switch_off`; a coefficient's key is
+    /// refused out of its range, and a key of no load is refused.
     #[test]
-    fn every_kind_is_off_by_default_and_after_switching_off() {
+    fn every_kind_switches_on_and_off() {
         for k in KINDS {
             assert!(k.key.starts_with("chain.") || k.key.starts_with("floor."));
             assert!(!k.name.is_empty());
             let mut p = ChainParams::default();
             assert!(!(k.is_on)(&p), "{} on by default", k.name);
+            (k.switch_on)(&mut p);
+            assert!((k.is_on)(&p), "{}", k.name);
+            assert!(Chain::new(p.clone()).is_ok(), "{}", k.name);
             (k.switch_off)(&mut p);
             assert!(!(k.is_on)(&p), "{}", k.name);
+            if k.coefficient {
+                p.coefficients.set(k.key, -1.0);
+                assert_eq!(Chain::new(p).unwrap_err().field, k.key);
+            }
         }
+        let mut p = ChainParams::default();
+        p.coefficients.set("chain.nonesuch", 1.0);
+        assert!(Chain::new(p).is_err());
     }
 }

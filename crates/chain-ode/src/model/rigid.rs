@@ -70,7 +70,23 @@ fn validate_rigid(
     options: &SolveOptions,
 ) -> Result<(), InvalidParameter> {
     options.validate_common(Some(chain.pivot()), method, &rigid_layout(chain))?;
-    check_dense_size(chain, method)
+    check_dense_size(chain, method)?;
+    // A released pivot moves with the free fall of the centre of mass
+    // (`PivotPath`), which the rigid state does not carry: a load that reads
+    // the rods' velocities (the drag) would see them relative to it.
+    if chain.pivot().release.is_some() {
+        if let Some(key) = Loads::of(chain, Units::Rod).first_reading_centres() {
+            return Err(InvalidParameter {
+                field: key,
+                accepted: "0 with pivot.release on rigid links (the rigid chain's state does \
+                           not carry the free pivot's velocity this load reads); set \
+                           chain.axial_stiffness for elastic links, which do"
+                    .into(),
+                got: format!("{}", chain.params().coefficients.get(key)),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// `bdf-dense`'s size bound, for any chain.
