@@ -244,6 +244,15 @@ const ROWS: &[Key] = &[
         out_of_range: Some("-1"),
     },
     Key {
+        path: "chain.air_drag",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.0)),
+        kinds: Kinds::Any,
+        doc: "quadratic air drag `c` (mass / length^2), in 0..=1e9: a force `-c l_i s_i v_i` at each rod's centre, `v_i` its velocity, `s_i` its speed; not with pivot.release on rigid links",
+        example: "0.05",
+        out_of_range: Some("-1"),
+    },
+    Key {
         path: "chain.taper",
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(1.0)),

@@ -33,6 +33,7 @@
 
 mod bending;
 mod contact;
+mod drag;
 mod field;
 mod friction;
 
@@ -40,6 +41,7 @@ use std::fmt::Debug;
 
 pub use bending::{Bending, JointSprings};
 pub use contact::FloorContact;
+pub use drag::{Drag, MAX_AIR_DRAG};
 pub use field::Field;
 pub use friction::Friction;
 
@@ -490,6 +492,7 @@ loads! {
     friction: Friction,
     bending: Bending,
     floor: FloorContact,
+    drag: Drag,
 }
 
 impl Loads {
