@@ -410,7 +410,7 @@ pub fn normal_and_landed(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> [
         for (k, (p, v)) in ends.into_iter().enumerate() {
             let f = term.contact(p, v).force;
             if f[0] != 0.0 || f[1] != 0.0 {
-                normal += term.n[0] * f[0] + term.n[1] * f[1];
+                normal += term.line.n[0] * f[0] + term.line.n[1] * f[1];
                 let tip = if i + 1 == n && k == 1 {
                     chain.tip_mass()
                 } else {

@@ -12,6 +12,7 @@
 //!
 //! Its files:
 //! * `catenary.rs`: `falling_chain.catenary`: what `falling-chain catenary --json` prints.
+//! * `ensemble_series.rs`: `falling_chain.ensemble_series`: `falling-chain ensemble --out-series`, its time series as numpy arrays.
 //! * `convert.rs`: Conversions between Python objects and the values of the Rust API: scene values (TOML), the CLI's JSON objects, errors, and numpy arrays.
 //! * `interrupt.rs`: Long work that Ctrl-C stops: the work runs on a worker thread with the GIL released ...
 //! * `run.rs`: `falling_chain.simulate` and the `Run` it returns.

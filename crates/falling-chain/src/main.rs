@@ -8,6 +8,7 @@
 //!
 //! Its files:
 //! * `progress.rs`: `simulate --progress`: the time a long run has reached, on stderr.
+//! * `stdout.rs`: Standard output as a pipe's reader may close it: `falling-chain ... | head -3` is an ordinary end.
 //! * `study_commands.rs`: The study's commands: `precision`, `stability`, `needs`, `ensemble` and `merge` (the computations are the fc-study crate's).
 
 use std::path::PathBuf;

@@ -30,8 +30,8 @@ use std::str::FromStr;
 use chain_ode::load::Coefficients;
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, Chain, ChainParams, Floor, Method, ModelKind, Pivot, Profile, ReportChain, SolveOptions,
-    Start, State, Trajectory,
+    solve, Chain, ChainParams, Floor, Method, ModelKind, Pivot, Profile, SolveOptions, Start,
+    State, Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -209,15 +209,18 @@ pub struct Prepared {
 impl Prepared {
     /// Runs it.
     pub fn solve(&self) -> Result<Trajectory, Error> {
-        Ok(match self.report {
-            None => solve(&self.chain, &self.state, self.method, &self.options)?,
-            Some(model) => solve(
-                ModelKind::Report(ReportChain::new(&self.chain, model)),
-                &self.state,
-                self.method,
-                &self.options,
-            )?,
-        })
+        Ok(solve(
+            self.model(),
+            &self.state,
+            self.method,
+            &self.options,
+        )?)
+    }
+
+    /// The model the run runs ([`ModelKind::choose`]: the report's with
+    /// `model.report = true`, else the chain's rigid or elastic one).
+    pub fn model(&self) -> ModelKind {
+        ModelKind::choose(&self.chain, self.report)
     }
 
     /// Checks the start as the run would, without running: the start the
@@ -225,10 +228,7 @@ impl Prepared {
     /// one [`Prepared::solve`] would refuse (O(n), no integrator).
     pub fn check_start(&self) -> Result<(), Error> {
         use chain_ode::Model as _;
-        let mut model = match self.report {
-            None => ModelKind::of(&self.chain),
-            Some(model) => ModelKind::Report(ReportChain::new(&self.chain, model)),
-        };
+        let mut model = self.model();
         model.initial_state(&self.state)?;
         Ok(())
     }
@@ -241,15 +241,7 @@ impl Prepared {
             cancel: Some(cancel),
             ..self.options.clone()
         };
-        Ok(match self.report {
-            None => solve(&self.chain, &self.state, self.method, &options)?,
-            Some(model) => solve(
-                ModelKind::Report(ReportChain::new(&self.chain, model)),
-                &self.state,
-                self.method,
-                &options,
-            )?,
-        })
+        Ok(solve(self.model(), &self.state, self.method, &options)?)
     }
 
     /// An error naming `model.report` if this is the report's model: for
@@ -471,7 +463,7 @@ impl Scene {
             "floor.slip_speed" => "1e-3 sqrt(g L) (chain.gravity, chain.length)",
             _ => return e.into(),
         };
-        let key = e.field.trim_start_matches("floor.");
+        let key = e.field.split('.').nth(1).unwrap_or(e.field);
         let given = match self.tree.get("floor") {
             Some(toml::Value::Table(t)) => t.contains_key(key),
             _ => false,

@@ -482,7 +482,7 @@ const ROWS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Computed("absent: touching the start's lowest rod end (any `[floor]` key makes a floor)"),
         kinds: Kinds::Any,
-        doc: "height `h` of the floor line at `x = 0` (length), in -1e9..=1e9, at or below the start (within `n m g / k`); a floor needs elastic links and takes `chain.axial_stiffness = 1e4 n m g` when it is absent (`docs/model.md`, \"The floor\"); not with a moving pivot",
+        doc: "height `h` of the floor line at `x = 0` (length), in -1e9..=1e9, at or below the start (within `n m g / k` summed over the contact points inside, and at most `L / 100`); a floor needs elastic links and takes `chain.axial_stiffness = 1e4 n m g` when it is absent (`docs/model.md`, \"The floor\"); not with a moving pivot",
         example: "-7",
         out_of_range: Some("1e300"),
     },

@@ -30,6 +30,10 @@
 //! itself. The other loads are listed once, in [`loads!`]'s invocation
 //! below, in the order every path adds them: adding a load is a file here
 //! and a line there (ARCHITECTURE.md, "How to add a load").
+//!
+//! Its files, one load each: `field.rs` (gravity), `friction.rs` (joint
+//! friction), `bending.rs` (bending springs), `contact.rs` (the floor's
+//! contact and friction), `drag.rs` (air drag).
 
 mod bending;
 mod contact;
