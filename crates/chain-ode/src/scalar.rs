@@ -25,6 +25,8 @@ pub trait Scalar:
     /// `f(x)` from its value `fx = f(x.value())` and slope `dfx = f'(x.value())`
     /// (the chain rule for a dual number).
     fn chain_rule(self, fx: f64, dfx: f64) -> Self;
+    /// The square root (of a value > 0 for a dual number: its slope there).
+    fn sqrt(self) -> Self;
     /// `out[i] = xs[i].sin_cos()` for a whole slice (may be vectorised).
     fn sin_cos_all(xs: &[Self], out: &mut [(Self, Self)]) {
         for (o, x) in out.iter_mut().zip(xs) {
@@ -49,6 +51,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn chain_rule(self, fx: f64, _dfx: f64) -> Self {
         fx
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
     }
     fn sin_cos_all(xs: &[Self], out: &mut [(Self, Self)]) {
         let mut in_range = true;
@@ -217,6 +223,11 @@ impl Scalar for Dual {
     #[inline(always)]
     fn chain_rule(self, fx: f64, dfx: f64) -> Self {
         Self::new(fx, dfx * self.d)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        Self::new(r, self.d * (0.5 / r))
     }
 }
 

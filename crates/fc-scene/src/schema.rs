@@ -143,7 +143,7 @@ const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
 
 /// Every scene key, in the order of the README table. The sections
 /// (`chain`, `pivot`, `start`, `run`, `model`) are the first parts of the dotted paths.
-pub static KEYS: &[Key] = &[
+const ROWS: &[Key] = &[
     Key {
         path: "name",
         ty: Type::Text,
@@ -241,6 +241,15 @@ pub static KEYS: &[Key] = &[
         kinds: Kinds::Any,
         doc: "a point mass `M_t` (mass) at the free end, finite and >= 0; rigid or elastic links",
         example: "1.0",
+        out_of_range: Some("-1"),
+    },
+    Key {
+        path: "chain.air_drag",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.0)),
+        kinds: Kinds::Any,
+        doc: "quadratic air drag `c` (mass / length^2), in 0..=1e9: a force `-c l_i s_i v_i` at each rod's centre, `v_i` its velocity, `s_i` its speed; not with pivot.release on rigid links",
+        example: "0.05",
         out_of_range: Some("-1"),
     },
     Key {
@@ -473,7 +482,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Computed("absent: touching the start's lowest rod end (any `[floor]` key makes a floor)"),
         kinds: Kinds::Any,
-        doc: "height `h` of the floor line at `x = 0` (length), in -1e9..=1e9, at or below the start (within `n m g / k`); a floor needs elastic links and takes `chain.axial_stiffness = 1e4 n m g` when it is absent (`docs/model.md`, \"The floor\"); not with a moving pivot",
+        doc: "height `h` of the floor line at `x = 0` (length), in -1e9..=1e9, at or below the start (within `n m g / k` summed over the contact points inside, and at most `L / 100`); a floor needs elastic links and takes `chain.axial_stiffness = 1e4 n m g` when it is absent (`docs/model.md`, \"The floor\"); not with a moving pivot",
         example: "-7",
         out_of_range: Some("1e300"),
     },
@@ -523,6 +532,36 @@ pub static KEYS: &[Key] = &[
         out_of_range: Some("0"),
     },
 ];
+
+/// Every scene key, in the order of the README table ([`ROWS`], checked
+/// as the crate compiles: a doc is one line without a `|`, which would
+/// split its cell of the README's table).
+pub static KEYS: &[Key] = ROWS;
+
+/// True when no row's doc holds a line break or a `|`.
+const fn docs_are_cells(rows: &[Key]) -> bool {
+    let mut i = 0;
+    while i < rows.len() {
+        let doc = rows[i].doc.as_bytes();
+        if doc.is_empty() {
+            return false;
+        }
+        let mut j = 0;
+        while j < doc.len() {
+            if doc[j] == b'|' || doc[j] == b'\n' {
+                return false;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    true
+}
+
+const _: () = assert!(
+    docs_are_cells(ROWS),
+    "a scene key's doc must be one non-empty line without '|' (it is a cell of scenes/README.md's table)"
+);
 
 /// The row of the key at `path` (`chain.links`), if it is one.
 pub fn key(path: &str) -> Option<&'static Key> {

@@ -33,6 +33,11 @@ pub struct RunSummary {
     pub status: String,
     /// The method asked for (`segments` says which ran when).
     pub method: String,
+    /// The model that ran (`chain_ode::Model::name`: `rigid`, `elastic`,
+    /// `report`). In `--json` only, not in the CSV row; absent in older
+    /// JSON reads as empty.
+    #[serde(default)]
+    pub model: String,
     /// Number of rods `n`.
     pub links: usize,
     /// The end time asked for.
@@ -247,6 +252,7 @@ impl RunSummary {
             name: name.to_string(),
             status: traj.status.as_str().to_string(),
             method: traj.method.as_str().to_string(),
+            model: chain_ode::Model::name(&traj.model).to_string(),
             links: traj.chain().links(),
             t_end: traj.t_end,
             t_reached: traj.t_reached,
@@ -353,9 +359,14 @@ impl RunSummary {
 impl fmt::Display for RunSummary {
     /// A readable multi-line summary.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let model = if self.model.is_empty() {
+            String::new()
+        } else {
+            format!(", the {} model", self.model)
+        };
         writeln!(
             f,
-            "{}: {} ({}, {} rods)",
+            "{}: {} ({}{model}, {} rods)",
             self.name, self.status, self.method, self.links
         )?;
         writeln!(

@@ -14,6 +14,7 @@ mod bdf;
 mod bounds;
 mod dae;
 mod dopri5;
+mod drag;
 mod dynamics;
 mod elastic;
 mod elastic_scenes;
