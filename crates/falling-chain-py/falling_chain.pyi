@@ -12,7 +12,7 @@ they raise KeyboardInterrupt within a fraction of a second.
 """
 
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -39,11 +39,20 @@ class Scene:
     def from_toml(text: str) -> Scene:
         """Parses a scene from TOML text (at most 1 MiB, as a scene file). A
         scene without ``name`` is named "scene"."""
-    def set(self, key: str, value: _Value) -> Scene:
+    @overload
+    def set(self, key: str, value: _Value) -> Scene: ...
+    @overload
+    def set(self, key: Mapping[str, _Value]) -> Scene: ...
+    def set(self, key: Union[str, Mapping[str, _Value]], value: Optional[_Value] = None) -> Scene:
         """A new scene with the value at the dotted ``key`` replaced, as
-        ``--set KEY=VALUE`` does. A ``str`` value is read as the text after
-        ``=`` in ``--set``; numbers, bools, sequences (iterators too) and
-        dicts are taken as they are.
+        ``--set KEY=VALUE`` does; or, given one dict, several values at once,
+        applied in order and checked together
+        (``scene.set({"start.kind": "angles", "start.angles": phi})``).
+        A ``str`` value is read as the text after ``=`` in ``--set``;
+        numbers, bools, sequences (iterators too) and dicts are taken as they
+        are. Setting ``start.kind`` removes the ``[start]`` keys the new kind
+        does not take, so a start changes kind with its own keys in one call.
+        A dict holds at most 1000 keys.
 
         The value is bounded before it is read whole: a list, iterator or
         dict holds at most 1000000 items (``start.angles`` at
@@ -51,6 +60,17 @@ class Scene:
         most 8 deep, and a ``str`` is at most 32 MiB. Past a bound (an
         endless iterator such as ``itertools.count()``, a list that contains
         itself) it raises ValueError naming the key."""
+    def unset(self, key: str) -> Scene:
+        """A new scene without the value at the dotted ``key``, which takes
+        its default again; ValueError naming the key for an unknown key, an
+        element or a key that must be given (``chain.links``)."""
+    def refine(self, n: int) -> Scene:
+        """The same continuous chain cut into ``n`` rods (1..=1000000), as
+        ``converge`` and ``--refine N`` refine: total mass, length, the
+        bending viscosity ``eta = r l``, EA, EI and the tip mass kept, so the
+        per-rod ``chain.mass`` and ``chain.damping`` change (``set("chain.links",
+        n)`` keeps them, which is not a refinement). A folded start's
+        ``start.down`` scales with n; an ``angles`` start raises ValueError."""
     def to_toml(self) -> str:
         """The scene as TOML text (with every ``set`` applied; defaults left out)."""
     def to_dict(self) -> Dict[str, Any]:
@@ -109,6 +129,32 @@ class Run:
         j gathers the contacts at rod j's start and rod j - 1's end; summed
         over the joints, what a scale under the chain reads (``simulate
         --forces``'s columns floor_x_k, floor_y_k). None without a floor."""
+    @property
+    def floor_force(self) -> Optional[_Float]:
+        """The floor's total force on the chain, shape (samples, 2), [fx, fy]
+        in the scene's axes (fy > 0 pushes up): what a scale under the chain
+        reads (``simulate --out``'s floor_x, floor_y), read at the samples
+        (a stiff floor's contacts are impulses far shorter than
+        ``output_dt``). None without a floor."""
+    @property
+    def landed_weight(self) -> Optional[_Float]:
+        """The weight of what the floor pushes, shape (samples,): g m_i / 2
+        per contact point with a force (``simulate --out``'s
+        landed_weight). None without a floor."""
+    @property
+    def landed_length(self) -> Optional[_Float]:
+        """The length of chain that has landed, shape (samples,): l_i / 2 per
+        end of rod i at most one rod length above the floor line (or in it),
+        read off the rods' ends, not the contact forces; on Cayley's chain it
+        follows the free fall's g t^2 / 2 to two rods up to half the chain
+        landed; rods thrown higher than a rod are not counted. None without a
+        floor."""
+    @property
+    def pivot_force(self) -> _Float:
+        """The support's force on the first rod, shape (samples, 2), [fx, fy]
+        in the scene's axes ([0, M g] for a chain hanging at rest); zero once
+        the pivot is let go. ``forces[:, 0, :]`` is the same force in the
+        rod's frame."""
     @property
     def dissipated(self) -> _Float:
         """``W`` of the energy balance ``E + W = E(0)`` since t = 0, shape
@@ -289,6 +335,28 @@ def ensemble(
     floor, ``steps``) and ``failures``. ``members`` in 2..=4096, ``spread``
     in [0, 0.1] (ValueError naming it otherwise). Releases the GIL; Ctrl-C
     raises KeyboardInterrupt."""
+
+def ensemble_series(
+    scene: Scene,
+    *,
+    members: int = 16,
+    spread: float = 1e-3,
+    seed: int = 0,
+    budget: Optional[float] = None,
+    jobs: Optional[int] = None,
+) -> Dict[str, Any]:
+    """``scene`` run as ``ensemble`` runs it, and the statistics over the
+    members that ended ok of every output at each output time (the members
+    share them): ``falling-chain ensemble --out-series`` as a dict. ``t``
+    (times,); ``members`` (how many are in the statistics); ``series``, by
+    output (``tip_x``, ``tip_y``, ``tip_vx``, ``tip_vy``, ``tip_speed``,
+    ``energy``, ``dissipated``, ``pivot_x``, ``pivot_y``, and with a floor
+    ``floor_x``, ``floor_y``, ``landed_weight``, ``landed_length``), a dict
+    of arrays ``mean``, ``sem``, ``sd``, ``min``, ``max``, each (times,); and
+    ``ensemble``, what ``ensemble`` returns for the same arguments. The same
+    on any number of ``jobs``, bit for bit. ValueError as ``ensemble``, and
+    naming ``members`` when the series would take more than 1 GiB. Releases
+    the GIL; Ctrl-C raises KeyboardInterrupt."""
 
 def merge(paths: Sequence[Union[str, "os.PathLike[str]"]]) -> Dict[str, np.ndarray]:
     """Joins the ``--out`` tables of a sharded sweep, precision or stability

@@ -463,7 +463,7 @@ fn frame_times_of_the_folded_chain_at_400_rods() {
 }
 
 /// A run with a floor draws it: the line at the scene's `floor.height`
-/// (level here), in the floor's grey where no rod covers it at `t = 0`;
+/// (level here), in the run's colour where no rod covers it at `t = 0`;
 /// a run without a floor draws none.
 #[test]
 fn the_floor_is_drawn_at_its_height() {
@@ -477,6 +477,7 @@ fn the_floor_is_drawn_at_its_height() {
     let v: Vec<f64> = (0..4).map(|k| line[k].as_f64().unwrap()).collect();
     assert_eq!((v[1], v[3]), (-3.0, -3.0), "{v:?}");
     assert!(v[0] < 0.0 && v[2] > 3.0, "{v:?}");
+    let colour = b.eval("fallingChain.colors[0]").unwrap();
     // Far left of the chain (which spans x in [0, 3] at t = 0).
     let at = b
         .eval(&format!(
@@ -490,7 +491,11 @@ fn the_floor_is_drawn_at_its_height() {
     );
     let px = pixels(&mut b);
     let dot = &px[4 * (y * 640 + x)..4 * (y * 640 + x) + 4];
-    assert_eq!(of_colour(dot, "#808080"), 1, "{dot:?} at ({x}, {y})");
+    assert_eq!(
+        of_colour(dot, colour.as_str().unwrap()),
+        1,
+        "{dot:?} at ({x}, {y})"
+    );
     no_errors(&mut b);
     let plain = page(&dir, "plain.html", &[&scene("span-d3")], 0);
     let Some(mut b) = open(&plain, &dir) else {

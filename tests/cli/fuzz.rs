@@ -9,7 +9,7 @@
 //! stability, needs and merge, each with `--budget 1`; a test checks that
 //! [`COMMANDS`] is every subcommand of `--help`), sometimes with two outputs
 //! on one file (`--out` and `--forces` or `--plot`, as `x` and `./x`),
-//! which must be refused, a page not ending in `.html`, and shards to merge
+//! or an ensemble's `--out` onto its own scene file, which must be refused, a page not ending in `.html`, and shards to merge
 //! whose cells hold the drawn name. Every run has a step budget
 //! (`--set run.max_steps=...`, smaller for more rods) and a wall-clock kill
 //! timeout. Each must end with exit 0, 1 or 2, never a signal, 101 (panic),
@@ -253,12 +253,16 @@ fn case() -> impl Strategy<Value = Case> {
         ),
         (
             proptest::bool::weighted(0.3),
-            number(-20.0, 1.0, &[1e300, f64::NAN, 0.0, 1e10]),
+            number(-20.0, 1.0, &[1e300, f64::NAN, 0.0, 1e10, 5e8]),
             number(-0.5, 0.5, &[0.0, 1.5, 2.0, f64::NAN]),
-            number(1e2, 1e7, &[0.0, -1.0, 1e15, 1e16, f64::INFINITY]),
-            number(0.0, 1e3, &[0.0, -1.0, 1e13, f64::NAN]),
+            number(
+                1e2,
+                1e7,
+                &[0.0, -1.0, 1e15, 1e16, f64::INFINITY, 1e-8, 1e10],
+            ),
+            number(0.0, 1e3, &[0.0, -1.0, 1e13, f64::NAN, 1e12, 1e6]),
             number(0.0, 1.0, &[0.0, -0.5, 101.0, f64::NAN]),
-            number(1e-4, 1.0, &[0.0, -1.0, 1e7, 1e-300]),
+            number(1e-4, 1.0, &[0.0, -1.0, 1e7, 1e-300, 1e-12, 1e-9, 2.5e-10]),
         ),
     )
         .prop_map(
@@ -578,7 +582,13 @@ impl Case {
                     "2".into(),
                     "--quiet".into(),
                 ]);
-                if self.with_out {
+                if self.same_out {
+                    // The output onto the scene file: refused (issue 47 F1).
+                    a.extend([
+                        "--out".into(),
+                        dir.join("fuzz.toml").to_string_lossy().into_owned(),
+                    ]);
+                } else if self.with_out {
                     a.extend(["--out".into(), out("e.csv")]);
                 }
             }
@@ -648,7 +658,7 @@ impl Case {
     fn expected(&self) -> Option<i32> {
         let command = COMMANDS[self.command];
         match command {
-            "simulate" | "view" if self.same_out => Some(2),
+            "simulate" | "view" | "ensemble" if self.same_out => Some(2),
             "precision" | "stability" if self.same_out && self.with_out => Some(2),
             "merge" if self.extra % 3 == 0 => {
                 let cell = fc_csv::field(NAMES[self.name]);

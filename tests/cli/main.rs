@@ -12,6 +12,7 @@
 
 mod browser;
 mod browser_profile;
+mod browser_runs;
 mod catenary;
 mod cluster;
 mod common;
@@ -20,6 +21,7 @@ mod ensemble;
 mod floor;
 mod fuzz;
 mod gen_alpha;
+mod hardening_three;
 mod hostile;
 mod hostile_files;
 mod hostile_model;
@@ -28,6 +30,7 @@ mod newton_counters;
 mod pivot;
 mod plot;
 mod progress;
+mod readme;
 mod report;
 mod scenes;
 mod simulate;

@@ -149,6 +149,10 @@ pub fn rigid_floor_stiffness(p: &ChainParams) -> f64 {
 /// The accepted range of `chain.links`, in words.
 const LINKS_RANGE: &str = "an integer in 1..=1000000";
 
+/// The smallest `floor.slip_speed` with friction, as a fraction of the
+/// scene's speed scale `sqrt(g L)` (see [`validate`]).
+pub const MIN_SLIP_SPEED_OF_SCALE: f64 = 1e-10;
+
 /// Checks every field of `p`; the error names the first one out of range.
 /// Only [`Chain::new`] calls it.
 fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
@@ -214,6 +218,20 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
     p.profile.validate(p.links)?;
     if let Some(floor) = &p.floor {
         floor.validate()?;
+        // Friction's tanh(v_t / v_s) is a switch of width v_s in the slip
+        // speed: far below the scene's speeds it is a step the Newton
+        // iteration cannot cross (bdf stalled at v_s = 1e-12 sqrt(g L)).
+        let least = MIN_SLIP_SPEED_OF_SCALE * (p.gravity * p.length).sqrt();
+        check(
+            floor.friction == 0.0 || floor.slip_speed >= least,
+            "floor.slip_speed",
+            format!(
+                "at least 1e-10 sqrt(g L) = {} with floor.friction > 0 (a narrower friction \
+                 switch is a step no method crosses)",
+                number_text(least)
+            ),
+            number_text(floor.slip_speed),
+        )?;
         check(
             !p.pivot.is_driven(),
             "floor.height",

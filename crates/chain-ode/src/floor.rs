@@ -242,29 +242,53 @@ pub fn line(floor: &Floor, height: f64, x0: f64, x1: f64) -> [Vec2; 2] {
     [[x0, height + x0 * slope], [x1, height + x1 * slope]]
 }
 
-/// The deepest a start may lie inside the floor: the static deflection of
-/// one point carrying the whole chain, `M g / k`.
-pub fn start_tolerance(floor: &Floor, weight: f64) -> f64 {
-    weight / floor.stiffness
+/// The most a start may lie inside the floor, summed over every contact
+/// point inside it: the static deflection of one point carrying the whole
+/// chain, `M g / k` (so the start's contact forces `k sum delta` hold at
+/// most the chain's weight, and its stored energy is at most
+/// `(M g)^2 / 2k`), and never more than [`START_OVERLAP_OF_LENGTH`] of the
+/// chain's length `L` (a soft floor far above the chain, `M g / k` of
+/// 10^9, is a mistake, not a start: its spring would throw the chain).
+pub fn start_tolerance(floor: &Floor, weight: f64, length: f64) -> f64 {
+    (weight / floor.stiffness).min(START_OVERLAP_OF_LENGTH * length)
 }
 
-/// The one-line reason a start is refused: point `p` of rod `rod` lies
-/// `depth` inside the floor.
-pub(crate) fn inside_error(rod: usize, depth: f64, tolerance: f64) -> InvalidParameter {
+/// The largest start overlap as a fraction of the chain's length
+/// ([`start_tolerance`]).
+pub const START_OVERLAP_OF_LENGTH: f64 = 0.01;
+
+/// The one-line reason a start is refused: its contact points lie `total`
+/// inside the floor in all, `count` of them, the deepest at rod `rod`.
+pub(crate) fn inside_error(overlap: Overlap, tolerance: f64) -> InvalidParameter {
     InvalidParameter {
         field: "floor.height",
         accepted: format!(
-            "a floor below the chain's start (it may touch it, within the static deflection \
-             {} of the whole weight on one point)",
+            "a floor below the chain's start (it may touch it, within {} summed over every \
+             contact point inside it: the static deflection of the whole weight on one point, \
+             at most 1% of the chain's length)",
             number_text(tolerance)
         )
         .into(),
         got: format!(
-            "the start inside the floor by {} at rod {}",
-            number_text(depth),
-            rod + 1
+            "{} inside at {} point{} (deepest: rod {})",
+            number_text(overlap.total),
+            overlap.count,
+            if overlap.count == 1 { "" } else { "s" },
+            overlap.rod + 1
         ),
     }
+}
+
+/// How far a start lies inside the floor ([`overlap`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overlap {
+    /// The sum of the depths of the contact points inside.
+    pub total: f64,
+    /// How many points are inside.
+    pub count: usize,
+    /// The deepest point's depth and its rod.
+    pub deepest: f64,
+    pub rod: usize,
 }
 
 /// The contact points of the elastic state `y` (relative to `P0`), in
@@ -293,6 +317,41 @@ pub fn point_forces(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Vec<Ve
         .collect()
 }
 
+/// The floor's total normal force on the elastic state `y` (the sum of
+/// its contact points' pushes `N`, along the floor's normal) and the
+/// weight of the points it pushes, `g sum m_i / 2` (each end of rod `i`
+/// stands for half of it; the tip's point also for the tip mass): one
+/// pass, no allocation (a run's peak tracking calls it at every step).
+pub fn normal_and_landed(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> [f64; 2] {
+    let n = chain.links();
+    let (ox, oy, ovx, ovy) = (2 * n + 1, 3 * n + 1, 4 * n + 1, 5 * n + 1);
+    let g = chain.gravity();
+    let (mut normal, mut landed) = (0.0, 0.0);
+    for i in 0..n {
+        let h = crate::elastic::rod_half_length(chain, i);
+        let (s, c) = crate::scalar::sin_cos(y[i]);
+        let w = y[n + i];
+        let (cx, cy, vx, vy) = (y[ox + i], y[oy + i], y[ovx + i], y[ovy + i]);
+        let ends = [
+            ([cx - h * c, cy - h * s], [vx + h * s * w, vy - h * c * w]),
+            ([cx + h * c, cy + h * s], [vx - h * s * w, vy + h * c * w]),
+        ];
+        for (k, (p, v)) in ends.into_iter().enumerate() {
+            let f = term.contact(p, v).force;
+            if f[0] != 0.0 || f[1] != 0.0 {
+                normal += term.n[0] * f[0] + term.n[1] * f[1];
+                let tip = if i + 1 == n && k == 1 {
+                    chain.tip_mass()
+                } else {
+                    0.0
+                };
+                landed += g * (0.5 * crate::elastic::rod_mass(chain, i) + tip);
+            }
+        }
+    }
+    [normal, landed]
+}
+
 /// The floor's total force on the chain, the sum of [`point_forces`]: what
 /// a scale under the chain reads (with the opposite sign).
 pub fn total_force(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Vec2 {
@@ -306,13 +365,26 @@ pub fn stored_energy(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> f64 {
     points(chain, y).iter().map(|[p, _]| term.energy(*p)).sum()
 }
 
-/// The deepest contact point of the start `y` and its rod, if any is
-/// inside the floor: `(rod, depth)`.
-pub fn deepest(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Option<(usize, f64)> {
-    points(chain, y)
-        .iter()
-        .enumerate()
-        .map(|(j, [p, _])| (j / 2, term.penetration(*p)))
-        .filter(|&(_, d)| d > 0.0)
-        .max_by(|a, b| a.1.total_cmp(&b.1))
+/// How far the start `y` lies inside the floor, over every contact point
+/// (`None` when none is inside).
+pub fn overlap(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> Option<Overlap> {
+    let mut o: Option<Overlap> = None;
+    for (j, [p, _]) in points(chain, y).iter().enumerate() {
+        let d = term.penetration(*p);
+        if d > 0.0 {
+            let o = o.get_or_insert(Overlap {
+                total: 0.0,
+                count: 0,
+                deepest: d,
+                rod: j / 2,
+            });
+            o.total += d;
+            o.count += 1;
+            if d > o.deepest {
+                o.deepest = d;
+                o.rod = j / 2;
+            }
+        }
+    }
+    o
 }

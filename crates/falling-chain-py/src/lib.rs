@@ -14,6 +14,7 @@ use pyo3::prelude::*;
 
 mod catenary;
 mod convert;
+mod ensemble_series;
 mod interrupt;
 mod run;
 mod scene;
@@ -50,6 +51,7 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::stability, m)?)?;
     m.add_function(wrap_pyfunction!(study::needs, m)?)?;
     m.add_function(wrap_pyfunction!(study::ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(ensemble_series::ensemble_series, m)?)?;
     m.add_function(wrap_pyfunction!(study::merge, m)?)?;
     m.add_function(wrap_pyfunction!(methods, m)?)?;
     m.add_function(wrap_pyfunction!(view::view, m)?)?;
@@ -66,6 +68,7 @@ fn falling_chain_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
             "stability",
             "needs",
             "ensemble",
+            "ensemble_series",
             "merge",
             "view",
         ],

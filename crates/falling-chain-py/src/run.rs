@@ -75,6 +75,18 @@ struct Series {
     /// The floor's force at each joint, `n + 1` points per sample, for a
     /// scene with a floor only.
     floor_forces: Option<Vec<f64>>,
+    /// The support's force on rod 1, `[fx, fy]` per sample (scene axes).
+    pivot_force: Vec<f64>,
+    /// The floor's total force, the weight and the length landed on it, per
+    /// sample, for a scene with a floor only.
+    floor: Option<FloorSeries>,
+}
+
+/// A floor's time series.
+struct FloorSeries {
+    force: Vec<f64>,
+    landed_weight: Vec<f64>,
+    landed_length: Vec<f64>,
 }
 
 impl Series {
@@ -101,6 +113,12 @@ impl Series {
                 .model
                 .floor_line()
                 .map(|_| Vec::with_capacity(samples * 2 * (n + 1))),
+            pivot_force: Vec::with_capacity(samples * 2),
+            floor: traj.model.floor_line().map(|_| FloorSeries {
+                force: Vec::with_capacity(samples * 2),
+                landed_weight: Vec::with_capacity(samples),
+                landed_length: Vec::with_capacity(samples),
+            }),
         };
         for (k, sample) in traj.samples().enumerate() {
             s.t.push(sample.t);
@@ -116,6 +134,14 @@ impl Series {
             }
             if let (Some(f), Some(joints)) = (s.floor_forces.as_mut(), traj.floor_joint_forces(k)) {
                 f.extend(joints.into_iter().flatten());
+            }
+            s.pivot_force.extend(traj.support_force(k));
+            if let Some(f) = s.floor.as_mut() {
+                f.force.extend(traj.floor_force(k).unwrap_or([0.0, 0.0]));
+                f.landed_weight
+                    .push(traj.floor_landed_weight(k).unwrap_or(0.0));
+                f.landed_length
+                    .push(traj.floor_landed_length(k).unwrap_or(0.0));
             }
         }
         s
@@ -183,6 +209,12 @@ pub struct Run {
     joints: Option<Vec<f64>>,
     /// The floor's force at each joint (`None`: no floor).
     floor_forces: Option<Py<PyArray3<f64>>>,
+    pivot_force: Py<PyArray2<f64>>,
+    /// The floor's total force, landed weight and landed length (`None`:
+    /// no floor).
+    floor_force: Option<Py<PyArray2<f64>>>,
+    landed_weight: Option<Py<PyArray1<f64>>>,
+    landed_length: Option<Py<PyArray1<f64>>>,
 }
 
 #[pymethods]
@@ -248,6 +280,53 @@ impl Run {
     #[getter]
     fn floor_forces<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray3<f64>>> {
         self.floor_forces.as_ref().map(|f| bound(py, f))
+    }
+
+    /// The floor's total force on the chain at every sample, shape
+    /// (samples, 2), `[fx, fy]` in the scene's axes (force units, `fy > 0`
+    /// pushing up): what a scale under the chain reads, `floor_forces`
+    /// summed over the joints (the columns `floor_x`, `floor_y` of
+    /// `simulate --out`). `None` for a scene without a floor. Read at the
+    /// samples: on a stiff floor the contacts are impulses far shorter than
+    /// `run.output_dt`, so a sampled force is no peak and no mean.
+    #[getter]
+    fn floor_force<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.floor_force.as_ref().map(|f| bound(py, f))
+    }
+
+    /// The weight of what the floor pushes at every sample, shape
+    /// (samples,): `g m_i / 2` for each contact point with a force (each
+    /// end of rod i stands for half of it; the tip's also for the tip
+    /// mass), the column `landed_weight` of `simulate --out`. `None` for a
+    /// scene without a floor.
+    #[getter]
+    fn landed_weight<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.landed_weight.as_ref().map(|f| bound(py, f))
+    }
+
+    /// The length of chain that has landed at every sample, shape
+    /// (samples,): `l_i / 2` for each end of rod i at most one rod length
+    /// above the floor line (or in it), so what lies on the floor or has
+    /// piled up on it, to about a rod; read off the rods' ends, not the
+    /// contact forces (landed rods rest far below the tolerance and tumble
+    /// above a plastic floor, pushed by nothing at most samples). On
+    /// Cayley's chain it follows the free fall's `g t^2 / 2` to two rods
+    /// up to half the chain landed; rods thrown higher than a rod are not
+    /// counted. `None` for a scene without a floor.
+    #[getter]
+    fn landed_length<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.landed_length.as_ref().map(|f| bound(py, f))
+    }
+
+    /// The support's force on the chain's first rod at every sample, shape
+    /// (samples, 2), `[fx, fy]` in the scene's axes (force units; a chain
+    /// hanging at rest gives `[0, M g]`, the support holding it up): the
+    /// rigid chain's from its dynamics, the elastic chain's from its pivot
+    /// spring; zero once the pivot is let go. In the rod's frame it is
+    /// `forces[:, 0, :]` (tension and shear at joint 0).
+    #[getter]
+    fn pivot_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        bound(py, &self.pivot_force)
     }
 
     /// `W` of the energy balance `E + W = E(0)` since t = 0, shape
@@ -528,6 +607,7 @@ pub fn simulate(
         })?
         .map_err(value_error)?;
     let (s, n) = (series.samples, series.links);
+    let mut floor = series.floor;
     Ok(Run {
         summary: json,
         summary_value,
@@ -554,6 +634,16 @@ pub fn simulate(
             .floor_forces
             .map(|f| array3(py, f, (s, n + 1, 2)))
             .transpose()?,
+        pivot_force: array2(py, series.pivot_force, s, 2)?,
+        floor_force: floor
+            .as_mut()
+            .map(|f| array2(py, std::mem::take(&mut f.force), s, 2))
+            .transpose()?,
+        landed_weight: floor
+            .as_mut()
+            .map(|f| array1(py, std::mem::take(&mut f.landed_weight)))
+            .transpose()?,
+        landed_length: floor.map(|f| array1(py, f.landed_length)).transpose()?,
         head,
         scene,
     })

@@ -10,7 +10,7 @@ use ::fc_study::stability as core_stability;
 use ::fc_study::{
     self as study, ensemble as core_ensemble, needs as core_needs, precision as core_precision,
 };
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
@@ -220,12 +220,27 @@ pub fn needs<'py>(
             let text = if let Ok(s) = l.cast::<PyString>() {
                 s.to_cow()?.into_owned()
             } else {
+                // Read no more values than a ladder may hold (each distinct
+                // one a level), counting the rest: the error says how many.
+                let cap = ::fc_study::converge::MAX_LEVELS;
                 let v: Vec<String> = l
                     .try_iter()
-                    .and_then(|it| it.take(64).map(|x| Ok(x?.str()?.to_string())).collect())
+                    .and_then(|it| {
+                        it.take(cap + 1)
+                            .map(|x| Ok(x?.str()?.to_string()))
+                            .collect()
+                    })
                     .map_err(|_| {
                         PyTypeError::new_err(format!("links: expected ints (got {})", echo(l)))
                     })?;
+                if v.len() > cap {
+                    let count = l
+                        .len()
+                        .map_or(format!("more than {cap}"), |n| n.to_string());
+                    return Err(PyValueError::new_err(format!(
+                        "links: at most {cap} numbers of rods (got {count} values)"
+                    )));
+                }
                 v.join(",")
             };
             ::fc_study::converge::parse_links(&text).map_err(value_error)?
@@ -256,20 +271,31 @@ pub fn needs<'py>(
 /// draws, the same on every machine): `falling-chain ensemble --json` as a
 /// dict (`members`, `spread`, `seed`, `ok`, `stats` by quantity with
 /// `mean`, `sd`, `sem`, `min`, `max`, `count`, and `failures`). `members`
-/// in 2..=4096, `spread` in [0, 0.1]; `budget` and `jobs` as in
+/// in 2..=4096 (default 16), `seed` in 0..=2^32-1 (default 0), `spread` in
+/// [0, 0.1]; `budget` and `jobs` as in
 /// `precision`. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scene, *, members=16, spread=1e-3, seed=0, budget=None, jobs=None))]
+#[pyo3(signature = (scene, *, members=None, spread=1e-3, seed=None, budget=None, jobs=None))]
 pub fn ensemble<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
-    members: usize,
+    members: Option<&Bound<'_, PyAny>>,
     spread: f64,
-    seed: u32,
+    seed: Option<&Bound<'_, PyAny>>,
     budget: Option<f64>,
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
+    let max = core_ensemble::MAX_MEMBERS as u64;
+    // Defaults as the CLI's: 16 members, seed 0.
+    let members = match members {
+        Some(m) => int_in("members", m, 2, max)? as usize,
+        None => core_ensemble::DEFAULT_MEMBERS,
+    };
+    let seed = match seed {
+        Some(s) => int_in("seed", s, 0, u64::from(u32::MAX))? as u32,
+        None => 0,
+    };
     let options = core_ensemble::EnsembleOptions {
         members,
         spread,
@@ -285,6 +311,28 @@ pub fn ensemble<'py>(
     })?
     .map_err(value_error)?;
     json_to_dict(py, &result.to_json().to_string())
+}
+
+/// The int `value` of the keyword argument `name` in `lo..=hi`: a
+/// TypeError for what is not an int (a bool, a float), a ValueError naming
+/// `name` and the range for an int outside it (`-1`, `10**30`), never
+/// Python's OverflowError.
+fn int_in(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: u64) -> PyResult<u64> {
+    if !value.is_instance_of::<pyo3::types::PyInt>()
+        || value.is_instance_of::<pyo3::types::PyBool>()
+    {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: must be an int in {lo}..={hi} (got '{}')",
+            value.get_type().name()?
+        )));
+    }
+    match value.extract::<u64>() {
+        Ok(n) if (lo..=hi).contains(&n) => Ok(n),
+        _ => Err(PyValueError::new_err(format!(
+            "{name}: must be an integer in {lo}..={hi} (got {})",
+            echo(value)
+        ))),
+    }
 }
 
 /// Joins the tables of a sharded sweep, precision or stability (files

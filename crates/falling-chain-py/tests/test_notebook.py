@@ -50,3 +50,19 @@ def test_the_notebook_runs(monkeypatch, capsys):
     assert namespace["need"]["links"] in (10, 20, 40)
     assert namespace["wp"]["method"][0] == "reference-dopri5"
     plt.close("all")
+
+
+def test_the_notebook_names_the_method_its_fig7b_runs():
+    """The Fig. 7b cell says how its scene runs: the method of
+    scenes/span-d3.toml (once RK4, since DOPRI5: the text was stale)."""
+    import falling_chain as fc
+
+    nb, _ = code_cells()
+    text = next("".join(c["source"]) for c in nb["cells"]
+                if c["cell_type"] == "markdown" and "".join(c["source"]).startswith("## Fig. 7b"))
+    run = fc.simulate(fc.Scene.load(str(ROOT / "scenes" / "span-d3.toml")), t_end=0.1)
+    method = run.summary["method"]
+    assert method.upper() in text, (method, text)
+    for other in fc.methods():
+        if other != method and other.upper() != method.upper():
+            assert f"({other.upper()}" not in text, (other, text)

@@ -12,12 +12,14 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
 use fc_batch::shard::Provenance;
-use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::atomic::{begin, check_distinct, check_not_inputs, check_writable};
 use fc_scene::error::{echo, echo_path, escape, number};
 use fc_scene::summary::stiffness_hint_for_model;
 use fc_scene::{csv, CatenaryReport, Error, RunSummary, Scene};
+use stdout::{say, say_raw};
 
 mod progress;
+mod stdout;
 mod study_commands;
 
 #[derive(Parser)]
@@ -128,12 +130,47 @@ pub(crate) struct SceneArgs {
     /// sweep's --vary, converge's refinement).
     #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
     set: Vec<String>,
+    #[command(flatten)]
+    refine: RefineArgs,
 }
 
 impl SceneArgs {
-    /// The scene file with the overrides applied.
-    pub(crate) fn load(&self) -> Result<Scene, Error> {
-        Scene::load(&self.scene)?.with_overrides(&self.set)
+    /// The scene file with the overrides applied, then refined, once the
+    /// command's `outputs` (`(flag, path)`, `None`: not asked for) are known
+    /// not to be the scene file itself.
+    pub(crate) fn load(
+        &self,
+        outputs: &[(&'static str, Option<&std::path::Path>)],
+    ) -> Result<Scene, Error> {
+        check_not_inputs(outputs, &[("SCENE.toml", &self.scene)])?;
+        self.refine
+            .apply(Scene::load(&self.scene)?.with_overrides(&self.set)?)
+    }
+}
+
+/// `--refine N`: the scene cut into N rods at fixed continuum.
+#[derive(Args)]
+pub(crate) struct RefineArgs {
+    /// Cut the chain into N rods (1..=1000000) at fixed continuum, after
+    /// every --set: total mass, length, the bending viscosity r l, EA, EI
+    /// and the tip mass kept (so chain.mass and chain.damping, which are
+    /// per rod, change), as converge refines. chain.links=N alone is not a
+    /// refinement: it keeps the per-rod mass and friction. Not for an
+    /// angles start.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_rods)]
+    refine: Option<usize>,
+}
+
+impl RefineArgs {
+    /// `scene` refined to `--refine` rods, or as it is.
+    pub(crate) fn apply(&self, scene: Scene) -> Result<Scene, Error> {
+        match self.refine {
+            None => Ok(scene),
+            Some(n) => {
+                fc_scene::refine::check_links("--refine", n)?;
+                scene.refined(n)
+            }
+        }
     }
 }
 
@@ -199,6 +236,8 @@ struct ViewArgs {
     /// Set any scene key of every scene by its dotted path (as simulate).
     #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
     set: Vec<String>,
+    #[command(flatten)]
+    refine: RefineArgs,
     /// Run every scene with each of these methods, M1,M2,... (overrides
     /// run.method), e.g. to overlay rk4 and dopri5.
     #[arg(long, value_name = "M1,M2,...")]
@@ -217,6 +256,11 @@ struct ViewArgs {
     /// (7027 at 4), else refused before any run.
     #[arg(long)]
     forces: bool,
+    /// Open the page at time T (the sample nearest it), in [0, the runs'
+    /// last time]; a `#t=T` at the end of the page's URL does the same,
+    /// and the page keeps the time shown there as it is scrubbed.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    at: Option<f64>,
     /// The page, FILE.html (ending in `.html` exactly: not `.htm`, not
     /// `.HTML`).
     #[arg(short = 'o', long = "out", value_name = "FILE.html")]
@@ -430,15 +474,18 @@ fn catenary(args: &CatenaryArgs) -> Result<ExitCode, Error> {
         &CatenaryReport::CLI_NAMES,
     )?;
     if args.json {
-        println!("{}", report.to_json());
+        say!("{}", report.to_json());
     } else {
-        println!("{report}");
+        say!("{report}");
     }
     Ok(ExitCode::SUCCESS)
 }
 
 fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
-    let mut scene = args.scene.load()?;
+    let mut scene = args.scene.load(&[
+        ("--out", args.out.as_deref()),
+        ("--forces", args.forces.as_deref()),
+    ])?;
     let flags = [
         ("run.method", args.method.clone().map(toml::Value::String)),
         ("run.dt", args.dt.map(toml::Value::Float)),
@@ -507,9 +554,9 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
     };
     let summary = RunSummary::from_trajectory(scene.name(), &traj);
     if args.json {
-        println!("{}", summary.to_json());
+        say!("{}", summary.to_json());
     } else {
-        println!("{summary}");
+        say!("{summary}");
     }
     if let Some(hint) = stiffness_hint_for_model([&summary], run.report.is_some()) {
         eprintln!("{hint}");
@@ -530,7 +577,7 @@ fn simulate(args: &SimulateArgs) -> Result<ExitCode, Error> {
 fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
     use fc_batch::shard::Shard;
     use fc_batch::sweep::{self, Vary};
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", args.out.as_deref())])?;
     let vary = args
         .vary
         .iter()
@@ -590,9 +637,9 @@ fn sweep(args: &SweepArgs) -> Result<ExitCode, Error> {
                 serde_json::json!({ "run": r.run, "values": values, "summary": r.summary })
             })
             .collect();
-        println!("{}", serde_json::Value::Array(objects));
+        say!("{}", serde_json::Value::Array(objects));
     } else if args.out.is_none() {
-        print!("{}", csv_text());
+        say_raw!("{}", csv_text());
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -664,7 +711,7 @@ fn plot(args: &PlotArgs) -> Result<ExitCode, Error> {
             ),
         ));
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", Some(&args.out))])?;
     check_drawn_points(&scene, args.snapshots, "--snapshots")?;
     check_writable("--out", &args.out)?;
     draw_scene(&scene, &args.out, args.snapshots, "snapshots", |fig| {
@@ -729,7 +776,7 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
             ),
         ));
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[("--out", Some(&args.out))])?;
     check_writable("--out", &args.out)?;
     let frames = ((args.seconds * f64::from(args.fps)).round() as usize).max(2);
     check_drawn_points(&scene, frames, "--seconds")?;
@@ -741,6 +788,11 @@ fn animate(args: &AnimateArgs) -> Result<ExitCode, Error> {
 fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     use fc_viewer::{self as viewer, ViewRun, DATA_BUDGET_BYTES};
     viewer::check_page_path("--out", &args.out)?;
+    let inputs: Vec<(&str, &std::path::Path)> = (args.scenes.iter().map(|p| ("SCENE.toml", p)))
+        .chain(args.from.iter().map(|p| ("--from", p)))
+        .map(|(role, p)| (role, p.as_path()))
+        .collect();
+    check_not_inputs(&[("--out", Some(&args.out))], &inputs)?;
     let methods: Vec<Option<&str>> = match &args.method {
         None => vec![None],
         Some(list) => list.split(',').map(|m| Some(m.trim())).collect(),
@@ -754,7 +806,9 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
     // Every scene is checked, and every CSV read, before any run starts.
     let mut prepared = Vec::new();
     for path in &args.scenes {
-        let base = Scene::load(path)?.with_overrides(&args.set)?;
+        let base = args
+            .refine
+            .apply(Scene::load(path)?.with_overrides(&args.set)?)?;
         for method in &methods {
             let scene = match method {
                 Some(m) => base.with_value("run.method", toml::Value::String((*m).to_string()))?,
@@ -787,6 +841,15 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         .iter()
         .map(|p| fc_viewer::run_csv::read_run_csv(p, budget))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(at) = args.at {
+        // The longest run's last time: its t_end, or a CSV's last row.
+        let last = prepared
+            .iter()
+            .map(|(_, _, run)| run.options.t_end)
+            .chain(from.iter().filter_map(|r| r.t.last().copied()))
+            .fold(0.0, f64::max);
+        viewer::check_at("--at", at, last)?;
+    }
     let out = begin("--out", &args.out)?;
     let mut runs = Vec::with_capacity(count);
     let mut failed = 0;
@@ -816,7 +879,7 @@ fn view(args: &ViewArgs) -> Result<ExitCode, Error> {
         .join(" vs ");
     // The data within the page's cap: halved where the estimate was short,
     // refused (no file) where the first and last frames alone exceed it.
-    let page = viewer::fitted_page("--out", &title, &mut runs)?;
+    let page = viewer::fitted_page_at("--out", &title, &mut runs, args.at)?;
     let shown = echo_path(out.path());
     out.write(|w| w.write_all(page.as_bytes()))?;
     let thinned = runs.iter().filter(|r| r.stride > 1).count();
@@ -849,7 +912,7 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
     }
     let links = converge::parse_links(&args.links)?;
     let jobs = args.jobs.threads()?;
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[])?;
     let report = converge::run(
         &scene,
         &links,
@@ -860,9 +923,9 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
         &|done, total| eprintln!("converge: {done} of {total} runs done"),
     )?;
     if args.json {
-        println!("{}", report.to_json());
+        say!("{}", report.to_json());
     } else {
-        println!("{report}");
+        say!("{report}");
     }
     if let Some(hint) = &report.stiffness_hint {
         eprintln!("{hint}");

@@ -9,11 +9,12 @@ use fc_batch::budget::{check_budget, Budget};
 use fc_batch::shard::{self, Shard};
 use fc_batch::sweep::Vary;
 use fc_csv::format::exp;
-use fc_scene::atomic::{begin, check_distinct, check_writable};
+use fc_scene::atomic::{begin, check_distinct, check_not_inputs, check_writable};
 use fc_scene::error::echo_path;
 use fc_scene::Error;
 use fc_study::{self as study, ensemble, needs, plot, precision, stability};
 
+use crate::stdout::{say, say_raw};
 use crate::{JobsArgs, SceneArgs};
 
 /// The flags the study's table commands share.
@@ -115,20 +116,28 @@ pub struct EnsembleArgs {
     #[command(flatten)]
     scene: SceneArgs,
     /// Members: starts run, in 2..=4096.
-    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = ensemble::DEFAULT_MEMBERS, allow_negative_numbers = true, value_parser = parse_members)]
     members: usize,
     /// Each start angle is moved by a number drawn uniformly from
     /// [-S, S] rad, S in [0, 0.1].
     #[arg(long, value_name = "S", default_value_t = ensemble::DEFAULT_SPREAD, allow_negative_numbers = true)]
     spread: f64,
-    /// Which perturbations (member j draws from stream j + 2^32 SEED).
-    #[arg(long, value_name = "SEED", default_value_t = 0)]
+    /// Which perturbations (member j draws from stream j + 2^32 SEED), an
+    /// integer in 0..=4294967295.
+    #[arg(long, value_name = "SEED", default_value_t = 0, allow_negative_numbers = true, value_parser = parse_seed)]
     seed: u32,
     /// Write one row per member as CSV: member, status, and the quantities
     /// (tip_speed_max, t_tip_speed_max, tip_end_x, tip_end_y, energy_end,
     /// dissipated, floor_force_max, steps).
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
+    /// Write the time series as CSV: one row per output time (the members
+    /// share them), t, members (those that ended ok), then for each output
+    /// (tip_x, tip_y, tip_vx, tip_vy, tip_speed, energy, dissipated,
+    /// pivot_x, pivot_y, and with a floor floor_x, floor_y, landed_weight,
+    /// landed_length) its _mean, _sem, _sd, _min and _max over them.
+    #[arg(long = "out-series", value_name = "FILE.csv")]
+    out_series: Option<PathBuf>,
     /// Stop after this many seconds of wall time, in (0, 2592000] (30
     /// days): members that cannot start within it are not run, runs still
     /// going are stopped, and all are listed.
@@ -142,6 +151,16 @@ pub struct EnsembleArgs {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+fn parse_members(text: &str) -> Result<usize, String> {
+    crate::int_in(text, 2, ensemble::MAX_MEMBERS)
+}
+
+fn parse_seed(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .map_err(|_| format!("must be an integer in 0..={}", u32::MAX))
 }
 
 #[derive(Args)]
@@ -198,7 +217,9 @@ fn budget_of(what: &str, b: Option<f64>) -> Result<Option<f64>, Error> {
 
 pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
-    let scene = args.scene.load()?;
+    let scene = args
+        .scene
+        .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = precision::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
         checks: precision::Checks {
@@ -226,9 +247,10 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let s = precision::study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let (a_rk4, a_bdf) = precision::agreement(&s.rows);
-    println!(
+    say!(
         "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
-        s.name, s.t_eval
+        s.name,
+        s.t_eval
     );
     let reference = &s.rows[0];
     if reference.ok() {
@@ -240,7 +262,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
                 "- (the check did not finish)".to_string()
             }
         };
-        println!(
+        say!(
             "  reference: DOPRI5 rtol {}; it agrees with RK4 dt {}{} to {} and with BDF rtol {} to {}",
             exp(precision::REF_RTOL),
             exp(args.check_dt),
@@ -250,7 +272,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
             agree(a_bdf)
         );
     } else {
-        println!(
+        say!(
             "  reference: DOPRI5 rtol {} ended {}{}: no error is measured, no point ran",
             exp(precision::REF_RTOL),
             reference.status,
@@ -264,9 +286,11 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
     let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
     let by_work = precision::fastest(&s.rows, &levels, |pt| pt.rhs_equiv() as f64);
-    println!(
+    say!(
         "  {:>7}  {:<26} {:<26}",
-        "error", "fastest (wall time)", "least work (RHS + JVP)"
+        "error",
+        "fastest (wall time)",
+        "least work (RHS + JVP)"
     );
     for ((level, w), (_, k)) in by_wall.iter().zip(&by_work) {
         let show = |pt: &Option<&precision::Point>, cost: String| match pt {
@@ -276,7 +300,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         if w.is_none() && k.is_none() {
             continue;
         }
-        println!(
+        say!(
             "  {:>7}  {:<26} {:<26}",
             exp(*level),
             show(
@@ -288,7 +312,7 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
-        println!("  not run for --budget: {}", skipped.join(", "));
+        say!("  not run for --budget: {}", skipped.join(", "));
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -317,7 +341,9 @@ fn report_failures(failures: &[String]) -> ExitCode {
 
 pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     let a = &args.study;
-    let scene = args.scene.load()?;
+    let scene = args
+        .scene
+        .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = stability::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
         vary: args.vary.as_deref().map(Vary::parse).transpose()?,
@@ -337,18 +363,18 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
     bar.set_message("cells");
     let s = stability::run_study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    println!(
+    say!(
         "{}: where each method fails (step budget {}, energy limit {} of M g L)",
         s.name,
         exp(stability::MAX_STEPS as f64),
         stability::ENERGY_LIMIT
     );
     for (m, verdict) in stability::verdicts(&s.cells, &options.methods) {
-        println!("  {:>9}: {verdict}", m.as_str());
+        say!("  {:>9}: {verdict}", m.as_str());
     }
     let skipped = s.skipped();
     if !skipped.is_empty() {
-        println!("  not run for --budget: {}", skipped.join(", "));
+        say!("  not run for --budget: {}", skipped.join(", "));
     }
     if let Some(out) = out {
         let shown = echo_path(out.path());
@@ -371,7 +397,7 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     };
     let budget = budget_of("--budget", args.budget)?;
     let jobs = args.jobs.threads()?;
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[])?;
     let bar = progress_bar(args.quiet, 0);
     let options = needs::NeedsOptions {
         tol: args.tol,
@@ -388,9 +414,9 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
     })?;
     bar.finish_and_clear();
     if args.json {
-        println!("{}", answer.to_json());
+        say!("{}", answer.to_json());
     } else {
-        println!("{answer}");
+        say!("{answer}");
     }
     Ok(report_failures(&answer.failures()))
 }
@@ -407,15 +433,32 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
     if let Some(out) = &args.out {
         check_writable("--out", out)?;
     }
-    let scene = args.scene.load()?;
+    let scene = args.scene.load(&[
+        ("--out", args.out.as_deref()),
+        ("--out-series", args.out_series.as_deref()),
+    ])?;
+    let series_out = series_output(args, &scene, &options)?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);
-    let result = Budget::run(budget, None, |b| {
-        ensemble::run(&scene, &options, b, &|done, _| {
-            bar.set_position(done as u64)
-        })
+    let (result, series) = Budget::run(budget, None, |b| {
+        let progress = |done, _| bar.set_position(done as u64);
+        match series_out {
+            None => ensemble::run(&scene, &options, b, &progress).map(|r| (r, None)),
+            Some(_) => study::ensemble_series::run(&scene, &options, b, &progress)
+                .map(|(r, s)| (r, Some(s))),
+        }
     })?;
     bar.finish_and_clear();
+    if let (Some(out), Some(series)) = (series_out, series) {
+        let shown = echo_path(out.path());
+        let text = series.csv();
+        out.write(|w| w.write_all(text.as_bytes()))?;
+        eprintln!(
+            "wrote {} times of {} members to {shown}",
+            series.t.len(),
+            series.count
+        );
+    }
     if let Some(out) = out {
         let shown = echo_path(out.path());
         let text = result.csv();
@@ -423,14 +466,36 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         eprintln!("wrote {} rows to {shown}", result.members.len());
     }
     if args.json {
-        println!("{}", result.to_json());
+        say!("{}", result.to_json());
     } else {
-        print!("{result}");
+        say_raw!("{result}");
     }
     Ok(report_failures(&result.failures()))
 }
 
+/// `ensemble --out-series`: checked (distinct from `--out`, writable, the
+/// series' memory) and begun before any run.
+fn series_output(
+    args: &EnsembleArgs,
+    scene: &fc_scene::Scene,
+    options: &ensemble::EnsembleOptions,
+) -> Result<Option<fc_scene::atomic::PendingOutput>, Error> {
+    let Some(path) = args.out_series.as_deref() else {
+        return Ok(None);
+    };
+    check_distinct(&[("--out", args.out.as_deref()), ("--out-series", Some(path))])?;
+    check_writable("--out-series", path)?;
+    study::ensemble_series::check_size("--out-series", scene, options)?;
+    begin("--out-series", path).map(Some)
+}
+
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, Error> {
+    let inputs: Vec<(&str, &Path)> = args
+        .shards
+        .iter()
+        .map(|p| ("SHARD.csv", p.as_path()))
+        .collect();
+    check_not_inputs(&[("--out", Some(&args.out))], &inputs)?;
     let texts = shard::read(&args.shards)?;
     let out = begin("--out", &args.out)?;
     let merged = shard::merge(&texts)?;

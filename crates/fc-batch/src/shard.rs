@@ -365,6 +365,19 @@ pub fn merge(shards: &[(String, String)]) -> Result<String, Error> {
             Some(_) => {}
         }
     }
+    if study.is_none() {
+        // Not one row: the study's runs (which each row names) are unknown,
+        // so none can be said present; a study has at least one run.
+        return Err(Error::field(
+            "merge",
+            format!(
+                "no shard holds a row (the study's runs, which every row names, are unknown; \
+                 a shard of more shards than runs is empty): give the shards that ran, {} \
+                 shard file(s) had none",
+                shards.len()
+            ),
+        ));
+    }
     let missing: Vec<usize> = (0..total).filter(|r| !rows.contains_key(r)).collect();
     if !missing.is_empty() {
         return Err(Error::field(

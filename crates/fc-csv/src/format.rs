@@ -19,6 +19,18 @@ pub fn exp(x: f64) -> String {
     format!("{x:e}")
 }
 
+/// `x` in the shortest text that reads back to `x`, as a person writes
+/// it: [`num`]'s plain decimals for magnitudes in `[1e-4, 1e16)` (and 0,
+/// NaN, inf), [`exp`]'s exponent form outside (`1e-300`, not 302
+/// digits). For the cells and messages that echo a user's value.
+pub fn short(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 || (1e-4..1e16).contains(&x.abs()) {
+        num(x)
+    } else {
+        exp(x)
+    }
+}
+
 /// An optional number: empty when absent.
 pub fn opt(x: Option<f64>, f: fn(f64) -> String) -> String {
     x.map_or_else(String::new, f)

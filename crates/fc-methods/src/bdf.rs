@@ -38,7 +38,7 @@ use diffsol::{
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
 use super::block_lu::{BlockLayout, BlockLu};
-use super::diffsol_driver::{drive, slice, slice_mut, Hooks};
+use super::diffsol_driver::{drive, raise_first_step, slice, slice_mut, Hooks};
 use super::integrator::{Integrator, Settings, Span};
 use super::sparse_lu::{LuLog, SparseLu};
 use crate::ode::{
@@ -417,8 +417,13 @@ pub fn integrate_dae<D: SemiExplicitDae>(
     }
     let log = Rc::new(LuLog::default());
     let lu = NewtonLu::choose(blocks, &problem.eqn.jacobian_pattern, log.clone());
-    let setup = <BdfState<Vf> as OdeSolverState<Vf>>::new(&problem, 1)
-        .and_then(|state| Bdf::<_, _>::new(&problem, state, lu));
+    let setup = <BdfState<Vf> as OdeSolverState<Vf>>::new(&problem, 1).and_then(|mut state| {
+        let eqn = &problem.eqn;
+        raise_first_step(&mut state, t_end, opts, &mut |t, y, f| {
+            eqn.rhs_slices(t, y, f)
+        });
+        Bdf::<_, _>::new(&problem, state, lu)
+    });
     let Ok(mut solver) = setup else {
         return Outcome::ended(Status::Diverged, t0, Some(t0), stats, y);
     };

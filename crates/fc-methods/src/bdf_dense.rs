@@ -10,7 +10,7 @@ use std::cell::{Cell, RefCell};
 
 use diffsol::{FaerLU, FaerMat, OdeBuilder, OdeSolverMethod};
 
-use super::diffsol_driver::{drive, Hooks};
+use super::diffsol_driver::{drive, raise_first_step, Hooks};
 use super::integrator::{Integrator, Span};
 use crate::ode::{all_finite, Counted, Observer, OdeSystem, Outcome, Stats, Status};
 
@@ -83,7 +83,13 @@ fn run<S: OdeSystem>(sys: &mut Counted<S>, s: &Span<'_>, obs: &mut dyn Observer)
     let Ok(problem) = builder.build() else {
         return fail_setup(stats, y);
     };
-    let Ok(mut solver) = problem.bdf::<Lu>() else {
+    let Ok(mut state) = problem.bdf_state::<Lu>() else {
+        return fail_setup(stats, y);
+    };
+    raise_first_step(&mut state, t_end, opts, &mut |t, y, f| {
+        sys.borrow_mut().rhs(t, y, f)
+    });
+    let Ok(mut solver) = problem.bdf_solver::<Lu>(state) else {
         return fail_setup(stats, y);
     };
     let hooks = Hooks {

@@ -29,7 +29,38 @@ use diffsol::{
 };
 
 use super::integrator::Settings;
+use super::step_size::initial_step_with;
 use crate::ode::{all_finite, Interpolant, Observer, Status, StepView};
+
+/// diffsol's first step (in `state`, from Hairer's guess with its order-1
+/// exponent) raised where it is below the step floor of a run to `t_end`:
+/// its guess trusts an Euler trial that a start at rest makes tiny, and a
+/// very stiff start then stopped at `t = 0` with `step_size_too_small`
+/// ([`initial_step_with`], which grows the trial while its own estimate
+/// allows; a guess at or above the floor is kept, bit for bit). `rhs` is
+/// the problem's right-hand side over diffsol's whole state.
+pub(crate) fn raise_first_step(
+    state: &mut impl diffsol::OdeSolverState<FaerVec<f64>>,
+    t_end: f64,
+    opts: &Settings,
+    rhs: &mut crate::step_size::RhsFn<'_>,
+) {
+    let (t0, h) = (state.as_ref().t, state.as_ref().h);
+    let span = t_end - t0;
+    // The rounding floor only (a user's h_min is a bound, not a step).
+    let floor = opts.floor_towards(t0, t_end).min(1e-14 * t0.abs().max(1.0));
+    if span.is_nan() || span <= 0.0 || h >= floor {
+        return;
+    }
+    let y0 = slice(state.as_ref().y).to_vec();
+    let f0 = slice(state.as_ref().dy).to_vec();
+    let (mut a, mut b) = (vec![0.0; y0.len()], vec![0.0; y0.len()]);
+    // diffsol's exponent is 1 / (1 + order) at order 1.
+    let raised = initial_step_with(rhs, (t0, &y0, &f0), span, opts, 2, (&mut a, &mut b));
+    if raised.is_finite() && raised > h {
+        *state.as_mut().h = raised;
+    }
+}
 
 /// The entries of a (single-batch) faer vector.
 pub(crate) fn slice(v: &FaerVec<f64>) -> &[f64] {

@@ -71,9 +71,7 @@ pub fn check_distinct(outputs: &[(&'static str, Option<&Path>)]) -> Result<(), E
         .collect();
     for (k, (flag, path, resolved)) in given.iter().enumerate() {
         for (earlier, first, first_resolved) in &given[..k] {
-            let same =
-                (resolved.is_some() && resolved == first_resolved) || same_inode(path, first);
-            if same {
+            if same_file((path, resolved), (first, first_resolved)) {
                 return Err(Error::field(
                     *flag,
                     format!(
@@ -81,6 +79,43 @@ pub fn check_distinct(outputs: &[(&'static str, Option<&Path>)]) -> Result<(), E
                          its own",
                         crate::error::echo_path(path),
                         crate::error::echo_path(first)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether two paths, each with its [`target`], reach one file.
+fn same_file(
+    (a, a_target): (&Path, &Option<std::path::PathBuf>),
+    (b, b_target): (&Path, &Option<std::path::PathBuf>),
+) -> bool {
+    (a_target.is_some() && a_target == b_target) || same_inode(a, b)
+}
+
+/// Refuses, before any work, an output that would replace one of the
+/// command's own inputs (`ensemble in.toml --out in.toml`): the same
+/// tests as [`check_distinct`]. Each output is `(flag, path)` (`None`:
+/// not asked for), each input `(role, path)`; the error names the output's
+/// flag, its path and the input's role.
+pub fn check_not_inputs(
+    outputs: &[(&'static str, Option<&Path>)],
+    inputs: &[(&str, &Path)],
+) -> Result<(), Error> {
+    for &(flag, path) in outputs {
+        let Some(path) = path else { continue };
+        let resolved = target(path);
+        for &(role, input) in inputs {
+            if same_file((path, &resolved), (input, &target(input))) {
+                return Err(Error::field(
+                    flag,
+                    format!(
+                        "'{}' is the command's own input ({role} '{}'): an output never \
+                         replaces an input; give it a file of its own",
+                        crate::error::echo_path(path),
+                        crate::error::echo_path(input)
                     ),
                 ));
             }

@@ -159,11 +159,7 @@ pub fn echo(text: &str) -> String {
 /// to it, as a person writes it: `0.5`, `4.157`, `1e300` (not the 301
 /// digits of `f64`'s `Display`), `1e-9`, `NaN`, `inf`.
 pub fn number(x: f64) -> String {
-    if !x.is_finite() || x == 0.0 || (1e-4..1e16).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+    fc_csv::format::short(x)
 }
 
 /// A TOML value as a message echoes it ([`echo`]): numbers by [`number`],

@@ -7,7 +7,8 @@
 //! scene keys; [`RunSummary`] is what a run prints as JSON or as a CSV row,
 //! [`csv`] writes a trajectory's samples (with the CSV layer, `fc-csv`),
 //! [`catenary_report`] is the `catenary` command's answer, and [`atomic`]
-//! makes every output file appear whole or not at all. Every error is an
+//! makes every output file appear whole or not at all; [`refine`] cuts a
+//! scene's chain into another number of rods at fixed continuum. Every error is an
 //! [`Error`], one line that starts with the field it is about.
 
 pub mod atomic;
@@ -15,6 +16,7 @@ pub mod catenary_report;
 pub mod csv;
 pub mod error;
 pub mod overrides;
+pub mod refine;
 pub mod scene;
 pub mod schema;
 pub mod summary;

@@ -64,6 +64,9 @@ pub fn set_path(tree: &mut toml::Table, path: &str, value: toml::Value) -> Resul
                 section(tree, path, top)?.insert(key.name().to_string(), value);
             }
         }
+        if path == schema::START_KIND {
+            drop_keys_of_other_kinds(tree);
+        }
         return Ok(());
     }
     if segments.len() == 1 && schema::is_section(top) {
@@ -103,6 +106,58 @@ pub fn set_path(tree: &mut toml::Table, path: &str, value: toml::Value) -> Resul
         walked = format!("{walked}.{index}");
     }
     *node = value;
+    Ok(())
+}
+
+/// After `start.kind` is set: the `[start]` keys that the new kind does
+/// not take are removed (`p1` when a catenary start becomes `folded`), so
+/// that a start's kind can be changed with its own keys, in one `--set`
+/// list or one Python `Scene.set`. Keys both kinds take (`p0`; `p1` from
+/// catenary to stretched) stay. An unknown kind removes nothing (the
+/// scene's check names it).
+fn drop_keys_of_other_kinds(tree: &mut toml::Table) {
+    let Some(toml::Value::Table(start)) = tree.get_mut("start") else {
+        return;
+    };
+    let Some(kind) = start
+        .get("kind")
+        .and_then(toml::Value::as_str)
+        .and_then(|k| schema::StartKind::ALL.into_iter().find(|s| s.as_str() == k))
+    else {
+        return;
+    };
+    let keep = kind.keys();
+    start.retain(|name, _| name == "kind" || keep.contains(&name));
+}
+
+/// Removes the key at the dotted `path` from `tree`, so that it takes its
+/// default again (`Scene.unset` in Python). The path must name a scene key
+/// of [`schema::KEYS`] (not an element, not a section); a key that must be
+/// given (`chain.links`, a start's own required keys) cannot be removed.
+/// Removing a key that is not set does nothing.
+pub fn unset_path(tree: &mut toml::Table, path: &str) -> Result<(), Error> {
+    let Some(key) = schema::key(path) else {
+        return Err(schema::unknown_key(path));
+    };
+    if key.default == schema::DefaultValue::Required {
+        return Err(Error::field(
+            path,
+            "is required and has no default: it cannot be unset (set another value instead)",
+        ));
+    }
+    match key.section() {
+        None => {
+            tree.remove(key.name());
+        }
+        Some(top) => {
+            if let Some(toml::Value::Table(section)) = tree.get_mut(top) {
+                section.remove(key.name());
+                if section.is_empty() {
+                    tree.remove(top);
+                }
+            }
+        }
+    }
     Ok(())
 }
 
@@ -168,6 +223,59 @@ mod tests {
         // Integer keys take whole floats (what a --vary range gives).
         set_path(&mut t, "chain.links", toml::Value::Float(8.0)).unwrap();
         assert_eq!(t["chain"]["links"].as_integer(), Some(8));
+    }
+
+    #[test]
+    fn a_new_start_kind_drops_the_keys_it_does_not_take() {
+        let mut t = tree();
+        set_path(&mut t, "start.kind", toml::Value::String("folded".into())).unwrap();
+        assert_eq!(t["start"].as_table().unwrap().len(), 1, "{t:?}");
+        let mut t = tree();
+        apply(
+            &mut t,
+            &["start.angles=[0, 0, 0, 0, 0]", "start.kind=angles"],
+        )
+        .unwrap();
+        let start = t["start"].as_table().unwrap();
+        assert!(
+            start.contains_key("angles") && !start.contains_key("p1"),
+            "{t:?}"
+        );
+        // Catenary to stretched: p1 is taken by both and stays.
+        let mut t = tree();
+        set_path(
+            &mut t,
+            "start.kind",
+            toml::Value::String("stretched".into()),
+        )
+        .unwrap();
+        assert!(t["start"].as_table().unwrap().contains_key("p1"));
+        // An unknown kind removes nothing.
+        let mut t = tree();
+        set_path(&mut t, "start.kind", toml::Value::String("zigzag".into())).unwrap();
+        assert!(t["start"].as_table().unwrap().contains_key("p1"));
+    }
+
+    #[test]
+    fn unset_removes_a_key_with_a_default_only() {
+        let mut t = tree();
+        apply(&mut t, &["run.method=dopri5"]).unwrap();
+        unset_path(&mut t, "run.method").unwrap();
+        assert!(!t.contains_key("run"), "{t:?}");
+        unset_path(&mut t, "run.rtol").unwrap();
+        for (bad, why) in [
+            ("chain.links", "required"),
+            ("start.p1", "required"),
+            ("chain.lenght", "unknown"),
+            ("start.p1.0", "unknown"),
+            ("chain", "unknown"),
+        ] {
+            let e = unset_path(&mut t, bad).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("{bad}: ")), "{e}");
+            if why == "required" {
+                assert!(e.contains("required"), "{e}");
+            }
+        }
     }
 
     #[test]

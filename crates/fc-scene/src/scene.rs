@@ -215,6 +215,19 @@ impl Prepared {
         })
     }
 
+    /// Checks the start as the run would, without running: the start the
+    /// model builds (a floor's start overlap, the angles' bounds) is the
+    /// one [`Prepared::solve`] would refuse (O(n), no integrator).
+    pub fn check_start(&self) -> Result<(), Error> {
+        use chain_ode::Model as _;
+        let mut model = match self.report {
+            None => ModelKind::of(&self.chain),
+            Some(model) => ModelKind::Report(ReportChain::new(&self.chain, model)),
+        };
+        model.initial_state(&self.state)?;
+        Ok(())
+    }
+
     /// [`Prepared::solve`] with `cancel` in its options: the caller can stop
     /// the run, and read the time it has reached ([`Cancel::reached`]) from
     /// another thread.
@@ -388,6 +401,26 @@ impl Scene {
         Self::from_tree(tree)
     }
 
+    /// This scene with several values replaced at once, in order, checked
+    /// together: how a start's kind changes with its own keys
+    /// (`[("start.kind", "angles"), ("start.angles", [...])]`), which one
+    /// value at a time cannot do.
+    pub fn with_values(&self, values: &[(&str, toml::Value)]) -> Result<Self, Error> {
+        let mut tree = self.tree.clone();
+        for (path, value) in values {
+            overrides::set_path(&mut tree, path, value.clone())?;
+        }
+        Self::from_tree(tree)
+    }
+
+    /// This scene without the key at `path`, which takes its default again
+    /// ([`overrides::unset_path`]; a required key is refused).
+    pub fn without(&self, path: &str) -> Result<Self, Error> {
+        let mut tree = self.tree.clone();
+        overrides::unset_path(&mut tree, path)?;
+        Self::from_tree(tree)
+    }
+
     /// The scene's name.
     pub fn name(&self) -> &str {
         &self.name
@@ -410,7 +443,39 @@ impl Scene {
 
     /// The chain, validated by chain-ode (the error names the field).
     pub fn chain(&self) -> Result<Chain, Error> {
-        Ok(Chain::new(self.chain.clone())?)
+        Chain::new(self.chain.clone()).map_err(|e| self.named_as_given(e))
+    }
+
+    /// `e`, where it is about a floor key the scene does not set: that
+    /// key's default is derived from the chain (`floor.stiffness = 1e4 m g
+    /// / l`, `floor.slip_speed = 1e-3 sqrt(g L)`), and the message says so
+    /// and names the keys it comes from, not a value the user never gave.
+    fn named_as_given(&self, e: chain_ode::InvalidParameter) -> Error {
+        let derived = match e.field {
+            "floor.stiffness" => {
+                "1e4 m g / l (chain.mass, chain.gravity, chain.length / chain.links)"
+            }
+            "floor.slip_speed" => "1e-3 sqrt(g L) (chain.gravity, chain.length)",
+            _ => return e.into(),
+        };
+        let key = e.field.trim_start_matches("floor.");
+        let given = match self.tree.get("floor") {
+            Some(toml::Value::Table(t)) => t.contains_key(key),
+            _ => false,
+        };
+        if given {
+            return e.into();
+        }
+        Error::field(
+            e.field,
+            format!(
+                "not set, and its default {derived} = {} is out of its range ({}): set {} or \
+                 change those keys",
+                crate::error::echo(&e.got),
+                e.accepted,
+                e.field
+            ),
+        )
     }
 
     /// The chain's parameters as read, before chain-ode's range checks.

@@ -176,7 +176,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Integer,
         default: DefaultValue::Required,
         kinds: Kinds::Any,
-        doc: "number of rods `n`, in 1..=1000000",
+        doc: "number of rods `n`, in 1..=1000000; `chain.mass` and `chain.damping` are per rod, so setting it alone changes the chain: `--refine N` (Python `Scene.refine(n)`) cuts the same chain into `N` rods as `converge` does, total mass, length, `r l`, EA, EI and the tip mass kept",
         example: "6",
         out_of_range: Some("0"),
     },

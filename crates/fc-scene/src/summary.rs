@@ -84,38 +84,44 @@ pub struct RunSummary {
     pub t_tip_speed_max: f64,
     /// Which method ran over which span.
     pub segments: Vec<SegmentSummary>,
-    /// The floor's largest total normal force over the output samples
-    /// (force; what a scale under the chain reads), `None` without a floor
-    /// (and then absent from the JSON). Not in the CSV row.
+    /// The floor's largest total normal force over the run (force; what a
+    /// scale under the chain reads): at the start, every accepted step's
+    /// end and inside a step where it turns (the method's continuous
+    /// extension), never read off the output samples. `None` without a
+    /// floor (and then absent from the JSON). Not in the CSV row.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub floor_force_max: Option<f64>,
     /// When it happened.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub t_floor_force_max: Option<f64>,
-    /// At that sample, the force over the weight of what has landed (the
-    /// contact points the floor pushes, half a rod each): 1 at rest, 3 in
-    /// Cayley's ideal scale.
+    /// At the instant of `floor_force_max`, that force over the weight of
+    /// the contact points the floor pushes then, `g sum m_i / 2` (each end
+    /// of rod `i` stands for half of it; the tip's point also carries the
+    /// tip mass): 1 for a chain resting on the floor. It counts contact
+    /// points, not landed length: at an impact's peak only the few points
+    /// in contact count, so it measures the impact (it can be 1e3 or
+    /// more), not Cayley's scale reading `3 mu g x` (which needs the
+    /// landed length and an average over time). 0 when nothing touches.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub floor_force_over_landed_weight: Option<f64>,
 }
 
-/// The floor's peak over the samples of `traj`: `(F_max, t, F / landed weight)`
-/// along the floor's normal, `None` without a floor.
+/// The floor's peak of the run `traj` (tracked at every step, never read
+/// off its samples): `(F_max, t, F_max / landed weight)` along the
+/// floor's normal, `None` without a floor. The ratio is 0 where nothing
+/// touches the floor at the peak (then `F_max` is 0 too).
 fn floor_peak(traj: &Trajectory) -> Option<(f64, f64, f64)> {
-    use chain_ode::Model as _;
-    let (_, angle) = traj.model.floor_line()?;
-    let (s, c) = angle.sin_cos();
-    let mut best: Option<(f64, f64, f64)> = None;
-    for k in 0..traj.len() {
-        let f = traj.floor_force(k)?;
-        let normal = -s * f[0] + c * f[1];
-        if best.is_none_or(|b| normal > b.0) {
-            let landed = traj.floor_landed_weight(k)?;
-            let ratio = if landed > 0.0 { normal / landed } else { 0.0 };
-            best = Some((normal, traj.times[k], ratio));
-        }
-    }
-    best
+    let p = traj
+        .summary
+        .peaks
+        .iter()
+        .find(|p| p.force == chain_ode::PeakForce::Floor)?;
+    let ratio = if p.reference > 0.0 {
+        p.value / p.reference
+    } else {
+        0.0
+    };
+    Some((p.value, p.t, ratio))
 }
 
 /// Columns of [`RunSummary::csv_row`], in order.
@@ -162,10 +168,18 @@ pub const STIFFNESS_HINT_DETECTIONS: u64 = 10;
 const EXPLICIT_WITH_DETECTOR: [&str; 2] = ["dopri5", "dop853"];
 
 /// Whether `summary` is an explicit method's run that detected stiffness at
-/// least [`STIFFNESS_HINT_DETECTIONS`] times.
+/// least [`STIFFNESS_HINT_DETECTIONS`] times: one named dopri5 or dop853,
+/// or an `auto` run that stayed explicit throughout (its plan did not hand
+/// over, every segment dopri5 or dop853).
 pub fn looks_stiff(summary: &RunSummary) -> bool {
-    EXPLICIT_WITH_DETECTOR.contains(&summary.method.as_str())
-        && summary.stiffness_detections >= STIFFNESS_HINT_DETECTIONS
+    let explicit = EXPLICIT_WITH_DETECTOR.contains(&summary.method.as_str())
+        || (summary.method == "auto"
+            && !summary.segments.is_empty()
+            && summary
+                .segments
+                .iter()
+                .all(|g| EXPLICIT_WITH_DETECTOR.contains(&g.method.as_str())));
+    explicit && summary.stiffness_detections >= STIFFNESS_HINT_DETECTIONS
 }
 
 /// The one-line hint for runs that [`looks_stiff`]: `stiff` of `total` runs
@@ -184,7 +198,10 @@ pub fn stiffness_hint(
     } else {
         format!("{stiff} of {total} runs detected stiffness (up to {detections} times, {method})")
     };
-    let advice = if report {
+    let advice = if method == "auto" {
+        "auto stayed explicit (its plan hands over only where the damping says an implicit \
+         method wins); --method bdf may need far fewer steps (the run goes on as asked)"
+    } else if report {
         "the report's model runs only rk4, dopri5 and dop853; with model.report = false, \
          --method bdf or auto may need far fewer steps (the run goes on as asked)"
     } else {

@@ -21,7 +21,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use chain_ode::analysis::{bending_viscosity, tip_track};
-use chain_ode::{Chain, Start, Vec2};
+use chain_ode::{Chain, Vec2};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -37,27 +37,10 @@ pub const SCALING: &str = "total mass M = n m and bending viscosity eta = r l ke
 pub const DEFAULT_LINKS: [usize; 5] = [25, 50, 100, 200, 400];
 
 /// `scene` cut into `links` rods at fixed total mass and bending viscosity:
-/// its chain refined by [`Chain::refined`] (the one refinement, which
-/// carries every field), written back whole ([`Scene::with_chain`]).
+/// [`Scene::refined`], the one refinement (`fc_scene::refine`), which
+/// `--refine N` and Python's `Scene.refine(n)` call too.
 pub fn refined_scene(scene: &Scene, links: usize) -> Result<Scene, Error> {
-    let chain = scene.chain()?;
-    let mut s = scene.with_chain(&chain.refined(links)?)?;
-    match scene.start() {
-        Start::Angles { .. } => {
-            return Err(Error::field(
-                "start.kind",
-                "an \"angles\" start has a fixed number of rods and cannot be refined",
-            ))
-        }
-        Start::Folded {
-            down: Some(down), ..
-        } => {
-            let scaled = (down as u128 * links as u128 / chain.links() as u128) as i64;
-            s = s.with_value("start.down", toml::Value::Integer(scaled))?;
-        }
-        _ => {}
-    }
-    Ok(s)
+    scene.refined(links)
 }
 
 /// One finished run of the ladder.

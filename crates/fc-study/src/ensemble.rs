@@ -19,13 +19,15 @@ use serde_json::{json, Value};
 use fc_batch::budget::Budget;
 use fc_csv::format::{exp, num};
 use fc_scene::error::Error;
-use fc_scene::scene::Scene;
+use fc_scene::scene::{Prepared, Scene};
 use fc_scene::summary::RunSummary;
 
 /// The most members an ensemble may have.
 pub const MAX_MEMBERS: usize = 4096;
 /// The largest spread (rad).
 pub const MAX_SPREAD: f64 = 0.1;
+/// The most members a failure line names ([`Ensemble::failures`]).
+pub const LISTED: usize = 8;
 /// The default members and spread.
 pub const DEFAULT_MEMBERS: usize = 16;
 pub const DEFAULT_SPREAD: f64 = 1e-3;
@@ -126,14 +128,32 @@ pub struct Stat {
 }
 
 /// `(mean, sample standard deviation, standard error)` of `xs` (the
-/// deviation 0 for one value; `None` for none).
+/// deviation 0 for one value; `None` for none). Scaled before it sums or
+/// squares (by the largest magnitude, then by the largest deviation), so
+/// that neither overflows nor underflows: values near 1e-300 that differ
+/// have a deviation that is not 0, values near 1e308 a finite mean.
 pub fn moments(xs: &[f64]) -> Option<(f64, f64, f64)> {
     if xs.is_empty() {
         return None;
     }
     let m = xs.len() as f64;
-    let mean = xs.iter().sum::<f64>() / m;
+    let big = xs.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+    let mean = if big > 0.0 && big.is_finite() {
+        big * (xs.iter().map(|x| x / big).sum::<f64>() / m)
+    } else {
+        xs.iter().sum::<f64>() / m
+    };
     let var = if xs.len() > 1 {
+        let wide = xs.iter().fold(0.0_f64, |a, x| a.max((x - mean).abs()));
+        if wide > 0.0 && wide.is_finite() {
+            let sum = xs.iter().map(|x| ((x - mean) / wide).powi(2)).sum::<f64>();
+            // sd = wide sqrt(sum / (m - 1)): the square of `wide` never formed.
+            return Some((
+                mean,
+                wide * (sum / (m - 1.0)).sqrt(),
+                wide * (sum / (m - 1.0) / m).sqrt(),
+            ));
+        }
         xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (m - 1.0)
     } else {
         0.0
@@ -168,19 +188,48 @@ pub struct Ensemble {
 }
 
 impl Ensemble {
-    /// The members that did not end `ok` or did not run: `member j: why`.
+    /// The members that did not end `ok` or did not run, grouped by why
+    /// (not run within `--budget`, stopped by `--budget`, or the status
+    /// they ended with), one line per group in the order first seen:
+    /// `N members STATUS (j at t = T, ...)`, at most [`LISTED`] members
+    /// named in a group and the rest counted, so that 4096 failures are a
+    /// few short lines.
     pub fn failures(&self) -> Vec<String> {
-        self.members
-            .iter()
-            .enumerate()
-            .filter_map(|(j, m)| match m {
-                None => Some(format!("member {j}: not run within --budget")),
-                Some(s) if !s.is_ok() => Some(format!(
-                    "member {j}: {} at t = {}",
-                    s.status,
-                    num(s.t_reached)
-                )),
-                Some(_) => None,
+        let mut groups: Vec<(String, Vec<String>)> = Vec::new();
+        for (j, m) in self.members.iter().enumerate() {
+            let (why, at) = match m {
+                None => ("not run within --budget".to_string(), format!("{j}")),
+                Some(s) if s.is_ok() => continue,
+                Some(s) => {
+                    // The ensemble's runs are cancelled only by its budget.
+                    let why = if s.status == "interrupted" {
+                        "stopped by --budget".to_string()
+                    } else {
+                        format!("ended {}", s.status)
+                    };
+                    (why, format!("{j} at t = {}", num(s.t_reached)))
+                }
+            };
+            match groups.iter_mut().find(|(w, _)| *w == why) {
+                Some((_, list)) => list.push(at),
+                None => groups.push((why, vec![at])),
+            }
+        }
+        groups
+            .into_iter()
+            .map(|(why, list)| {
+                let count = list.len();
+                let noun = if count == 1 { "member" } else { "members" };
+                let mut named = list
+                    .iter()
+                    .take(LISTED)
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                if count > LISTED {
+                    let _ = write!(named, " and {} more", count - LISTED);
+                }
+                format!("{count} {noun} {why} ({named})")
             })
             .collect()
     }
@@ -268,9 +317,33 @@ pub fn run(
     budget: &Budget,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Ensemble, Error> {
+    run_watching(scene, options, budget, progress, &|_, _| Ok(()))
+}
+
+/// What [`run_watching`] calls with each member's number and run, on the
+/// thread that ran it, before the run is dropped.
+pub type Watcher<'a> = dyn Fn(usize, &chain_ode::Trajectory) -> Result<(), Error> + Sync + 'a;
+
+/// [`run`], showing each member's run to `each` as it ends: how
+/// `ensemble_series` reads the members' samples without keeping them.
+pub fn run_watching(
+    scene: &Scene,
+    options: &EnsembleOptions,
+    budget: &Budget,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    each: &Watcher<'_>,
+) -> Result<Ensemble, Error> {
     options.validate()?;
     let jobs = fc_batch::sweep::check_jobs("--jobs", options.jobs)?;
     let prepared = scene.prepare()?;
+    // Every member's start is checked before any run: a perturbation that
+    // moves a start out of its bounds (into a floor) is the spread's doing,
+    // and the error says so, naming the member.
+    for j in 0..options.members {
+        member(&prepared, options, j)
+            .check_start()
+            .map_err(|e| spread_error(e, options, j))?;
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.min(options.members).max(1))
         .build()
@@ -283,13 +356,10 @@ pub fn run(
                 if !budget.fits(0.0) {
                     return Ok(None);
                 }
-                let mut p = prepared.clone();
-                let s = stream(options.seed, j);
-                for (i, a) in p.state.angles.iter_mut().enumerate() {
-                    *a += options.spread * uniform(s, i as u64);
-                }
+                let mut p = member(&prepared, options, j);
                 p.options.cancel = Some(budget.cancel().clone());
                 let traj = p.solve()?;
+                each(j, &traj)?;
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, options.members);
                 Ok(Some(RunSummary::from_trajectory(scene.name(), &traj)))
             })
@@ -309,6 +379,38 @@ pub fn run(
         members,
         stats,
     })
+}
+
+/// Member `j`'s run: the scene's, its start angles moved, recording no
+/// samples (an ensemble keeps summaries only, and every quantity of a
+/// summary, the floor's peak force included, is tracked at every step:
+/// memory O(n) per running member, whatever `run.output_dt`).
+fn member(prepared: &Prepared, options: &EnsembleOptions, j: usize) -> Prepared {
+    let mut p = prepared.clone();
+    p.options.output_dt = None;
+    let s = stream(options.seed, j);
+    for (i, a) in p.state.angles.iter_mut().enumerate() {
+        *a += options.spread * uniform(s, i as u64);
+    }
+    p
+}
+
+/// `e`, the refusal of member `j`'s start, said to be the doing of
+/// `--spread` (the scene's own start was accepted).
+fn spread_error(e: Error, options: &EnsembleOptions, j: usize) -> Error {
+    let why = match e {
+        Error::Field { field, message } => format!("{field}: {message}"),
+        other => other.to_string(),
+    };
+    Error::field(
+        "--spread",
+        format!(
+            "member {j}'s start (its angles moved by up to {} rad, seed {}) is refused where \
+             the scene's own start is not; a smaller --spread may fit: {why}",
+            fc_scene::error::number(options.spread),
+            options.seed
+        ),
+    )
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@
 
 pub mod converge;
 pub mod ensemble;
+pub mod ensemble_series;
 pub mod needs;
 #[cfg(feature = "plot")]
 pub mod plot;

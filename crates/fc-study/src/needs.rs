@@ -353,7 +353,10 @@ pub fn check_tol(what: &str, tol: f64) -> Result<f64, Error> {
     } else {
         Err(Error::field(
             what,
-            format!("must be a number in [{MIN_TOL:e}, 1) (got {tol})"),
+            format!(
+                "must be a number in [{MIN_TOL:e}, 1) (got {})",
+                fc_csv::format::short(tol)
+            ),
         ))
     }
 }

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use fc_batch::budget::Budget;
 use fc_batch::shard::Provenance;
-use fc_csv::format::{exp, num, opt, text};
+use fc_csv::format::{exp, num, opt, short, text};
 use fc_csv::Column::{self, Float, Int, Text};
 use fc_scene::error::Error;
 use fc_scene::scene::Prepared;
@@ -294,9 +294,9 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
             fc_csv::field(&row.key).into_owned(),
             text(&row.label),
             ch.links().to_string(),
-            num(ch.damping()),
-            num(ch.damping_rate()),
-            num(p.options.t_end),
+            short(ch.damping()),
+            short(ch.damping_rate()),
+            short(p.options.t_end),
             c.method.to_string(),
             c.method.accuracy_name().to_string(),
             exp(c.param),
@@ -308,8 +308,8 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
                 let cells = [
                     Outcome::of(t).as_str().to_string(),
                     t.status.to_string(),
-                    num(t.t_reached),
-                    opt(t.t_failed, num),
+                    short(t.t_reached),
+                    opt(t.t_failed, short),
                     t.stats.steps.to_string(),
                     t.stats.rejected_steps.to_string(),
                     t.stats.rhs_evals.to_string(),
@@ -606,11 +606,18 @@ pub fn rows_of(
     vary: Option<&fc_batch::sweep::Vary>,
 ) -> Result<Vec<Row>, Error> {
     scene.prepare()?.require_corrected("stability")?;
+    // A row whose start its run would refuse (a floor above the chain) is
+    // refused here, before any cell runs, as the other studies refuse it.
+    let checked = |s: &fc_scene::scene::Scene| -> Result<Prepared, Error> {
+        let p = s.prepare()?;
+        p.check_start()?;
+        Ok(p)
+    };
     let Some(v) = vary else {
         return Ok(vec![Row {
             key: scene.name().to_string(),
             label: scene.name().to_string(),
-            prepared: scene.prepare()?,
+            prepared: checked(scene)?,
         }]);
     };
     if v.values.len() > MAX_ROWS {
@@ -627,16 +634,17 @@ pub fn rows_of(
                 std::slice::from_ref(v),
                 std::slice::from_ref(x),
             )?;
-            // A number as `{}` prints it: 1 and 1.0 are the same row.
+            // A number in its shortest form (1 and 1.0 are the same row;
+            // 1e-300 is not 302 digits).
             let cell = match x {
                 toml::Value::String(t) => t.clone(),
-                toml::Value::Float(f) => format!("{f}"),
+                toml::Value::Float(f) => short(*f),
                 other => other.to_string(),
             };
             Ok(Row {
                 key: format!("{}={cell}", v.key),
                 label: format!("{} = {cell}", v.key),
-                prepared: s.prepare()?,
+                prepared: checked(&s)?,
             })
         })
         .collect()

@@ -489,9 +489,14 @@ fn write_array(out: &mut String, name: &str, values: &[f64], each: impl Fn(&mut 
     out.push(']');
 }
 
-/// The page's data (`#fc-data`, JSON) of `runs`, as the page holds it.
-fn data_of(runs: &[ViewRun]) -> String {
-    let mut data = String::from("{\"version\":1,\"runs\":[");
+/// The page's data (`#fc-data`, JSON) of `runs`, as the page holds it,
+/// with the time it opens at (`at`: `view --at`; a `#t=` in its URL wins).
+fn data_of(runs: &[ViewRun], at: Option<f64>) -> String {
+    let mut data = String::from("{\"version\":1,");
+    if let Some(t) = at.filter(|t| t.is_finite()) {
+        let _ = write!(data, "\"at\":{t},");
+    }
+    data.push_str("\"runs\":[");
     for (k, run) in runs.iter().enumerate() {
         if k > 0 {
             data.push(',');
@@ -516,7 +521,23 @@ fn page_of(title: &str, data: &str) -> String {
 /// The HTML page of `runs`, titled `title`: the data, the style and the
 /// script inline.
 pub fn page(title: &str, runs: &[ViewRun]) -> String {
-    page_of(title, &data_of(runs))
+    page_of(title, &data_of(runs, None))
+}
+
+/// Checks `view --at T` against `runs`: a time in `[0, t]`, `t` the last
+/// time of the longest run (the page opens at the sample nearest `T`).
+pub fn check_at(field: &str, at: f64, last: f64) -> Result<(), Error> {
+    if at.is_finite() && (0.0..=last).contains(&at) {
+        return Ok(());
+    }
+    Err(Error::field(
+        field,
+        format!(
+            "must be a time in [0, {}] (the runs' last time; got {})",
+            fc_scene::error::number(last),
+            fc_scene::error::number(at)
+        ),
+    ))
 }
 
 /// The page of `runs` with at most [`DATA_BUDGET_BYTES`] of data, as the
@@ -525,8 +546,18 @@ pub fn page(title: &str, runs: &[ViewRun]) -> String {
 /// halvings); if the runs' first and last frames alone exceed it, the page
 /// is refused, naming `field`.
 pub fn fitted_page(field: &str, title: &str, runs: &mut [ViewRun]) -> Result<String, Error> {
+    fitted_page_at(field, title, runs, None)
+}
+
+/// [`fitted_page`], opening at the time `at` (`view --at`) when given.
+pub fn fitted_page_at(
+    field: &str,
+    title: &str,
+    runs: &mut [ViewRun],
+    at: Option<f64>,
+) -> Result<String, Error> {
     for _ in 0..64 {
-        let data = data_of(runs);
+        let data = data_of(runs, at);
         if data.len() <= DATA_BUDGET_BYTES {
             return Ok(page_of(title, &data));
         }
@@ -709,7 +740,7 @@ mod tests {
         run.phi = vec![-12_345.678_901; samples * links];
         let mut runs = [run.clone()];
         let page = fitted_page("--out", "t", &mut runs).unwrap();
-        let data = super::data_of(&runs);
+        let data = super::data_of(&runs, None);
         assert!(data.len() <= DATA_BUDGET_BYTES, "{}", data.len());
         assert!(page.contains(&data));
         assert!(runs[0].stride > 1 && runs[0].kept() > 2);

@@ -9,7 +9,6 @@
   const COLORS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd",
     "#ff7f0e", "#8c564b", "#e377c2", "#17becf"];
   const RED = "#d00000";
-  const FLOOR = "#808080";
 
   // Joint positions of every kept frame: x, y of joints 0..n per frame.
   function prepare(r, i) {
@@ -104,6 +103,8 @@
     return "rgb(" + c.join(",") + ")";
   }
 
+  // The outline (px each side) of a chain coloured by its forces.
+  const OUTLINE = 2.5;
   const drawnTip = runs.map(() => null);
   const drawnFrame = runs.map(() => -1);
   const drawnPivot = runs.map(() => null);
@@ -114,17 +115,24 @@
     cx.fillStyle = "#fff";
     cx.fillRect(0, 0, chain.width, chain.height);
     const range = forceKind ? forceRange(forceKind) : null;
-    // The floor of each run that has one: the line y = h + x tan(a)
-    // across the drawing (grey, under the chains).
+    // The floor of each run that has one, with its own run only: the line
+    // y = h + x tan(a) under that run's chain (its own x extent and a
+    // tenth more each side), in the run's colour, hatched below as ground.
     runs.forEach((r, i) => {
       if (!r.floor) return;
-      const [h, a] = r.floor, [xmin, xmax] = r.bounds, pad = 0.5 * (xmax - xmin) + 1;
+      const [h, a] = r.floor, [xmin, xmax] = r.bounds, pad = 0.1 * (xmax - xmin) + 0.02 * (r.rod * r.links);
       const x0 = xmin - pad, x1 = xmax + pad, k = Math.tan(a);
       drawnFloor[i] = [x0, h + x0 * k, x1, h + x1 * k];
-      cx.strokeStyle = FLOOR; cx.lineWidth = 3;
+      const [p0, p1] = [[view.px(x0), view.py(h + x0 * k)], [view.px(x1), view.py(h + x1 * k)]];
+      cx.strokeStyle = r.color; cx.lineWidth = 3; cx.lineCap = "butt";
+      cx.beginPath(); cx.moveTo(p0[0], p0[1]); cx.lineTo(p1[0], p1[1]); cx.stroke();
+      const len = Math.hypot(p1[0] - p0[0], p1[1] - p0[1]), ticks = Math.floor(len / 12);
+      cx.lineWidth = 1;
       cx.beginPath();
-      cx.moveTo(view.px(x0), view.py(h + x0 * k));
-      cx.lineTo(view.px(x1), view.py(h + x1 * k));
+      for (let q = 0; q <= ticks; q++) {
+        const x = p0[0] + (p1[0] - p0[0]) * q / Math.max(ticks, 1), y = p0[1] + (p1[1] - p0[1]) * q / Math.max(ticks, 1);
+        cx.moveTo(x, y + 2); cx.lineTo(x - 6, y + 9);
+      }
       cx.stroke();
     });
     runs.forEach((r, i) => {
@@ -142,7 +150,20 @@
       cx.stroke();
       cx.globalAlpha = 1;
       const forces = range && r.forces && r.forces[forceKind];
-      cx.lineWidth = forces ? 3.5 : 2; cx.lineJoin = "round"; cx.lineCap = "round";
+      cx.lineJoin = "round"; cx.lineCap = "round";
+      if (forces) {
+        // Outlined in the run's colour, so that runs coloured by their
+        // forces are still told apart (the legend's colours).
+        cx.strokeStyle = r.color;
+        for (let j = 0; j < r.links; j++) {
+          cx.lineWidth = (r.widths ? r.widths[j] * 1.75 : 3.5) + 2 * OUTLINE;
+          cx.beginPath();
+          cx.moveTo(view.px(r.xs[base + j]), view.py(r.ys[base + j]));
+          cx.lineTo(view.px(r.xs[base + j + 1]), view.py(r.ys[base + j + 1]));
+          cx.stroke();
+        }
+      }
+      cx.lineWidth = forces ? 3.5 : 2;
       if (forces || r.widths) {
         // Rod by rod: its colour by the joint force, its width by its
         // mass per length.
@@ -304,6 +325,12 @@
       s.innerHTML = '<span class="swatch"></span>';
       s.firstChild.style.background = r.color;
       s.appendChild(document.createTextNode(r.label));
+      if (r.floor) {
+        const f = document.createElement("span");
+        f.className = "floor-mark"; f.style.borderColor = r.color; f.title = "this run's floor (hatched line)";
+        f.textContent = "floor";
+        s.appendChild(f);
+      }
       legend.appendChild(s);
     });
     const notes = [];
@@ -311,7 +338,8 @@
       if (r.stride > 1) notes.push(r.label + ": thinned to one sample in " + r.stride + " of its " + r.samples + ", and the last (" + r.frames + " shown)");
       if (r.source) notes.push(r.label + ": read from " + r.source + " (method, status and steps are not in that file; the maximum tip speed is over its samples)");
     });
-    if (forceKinds.length) notes.push("chain colour: joint " + forceKinds.join(" / ") + ", mean of each rod's two joints, one scale over all runs");
+    if (forceKinds.length) notes.push("chain colour: joint " + forceKinds.join(" / ") + ", mean of each rod's two joints, one scale over all runs" + (runs.length > 1 ? "; each chain outlined in its run's colour" : ""));
+    if (runs.some((r) => r.floor)) notes.push("a floor is drawn under its own run only, in that run's colour, hatched");
     document.getElementById("notes").textContent = notes.join(". ");
     if (forceKinds.length) {
       const sel = document.getElementById("force");
@@ -347,7 +375,22 @@
     index = Math.min(Math.max(Math.round(i), 0), grid.length - 1);
     playTime = grid[index];
     render();
+    remember();
   }
+  // The time shown, in the page's URL (#t=2.76), so that a link opens the
+  // page there; a page in an iframe without a URL of its own keeps none.
+  let opened = false;
+  function remember() {
+    if (playing || !opened) return;
+    try { history.replaceState(null, "", "#t=" + Number(grid[index].toPrecision(6))); } catch (e) { /* no URL */ }
+  }
+  // The time a URL asks for (#t=2.76), or null.
+  function hashTime() {
+    const m = /(?:^#|&)t=([^&]*)/.exec(location.hash);
+    const t = m ? Number(decodeURIComponent(m[1])) : NaN;
+    return isFinite(t) ? t : null;
+  }
+  window.addEventListener("hashchange", () => { const t = hashTime(); if (t !== null) { setPlaying(false); seekTime(t); } });
   function seekTime(t) {
     let lo = 0, hi = grid.length - 1;
     while (lo < hi) { const mid = (lo + hi + 1) >> 1; if (grid[mid] <= t) lo = mid; else hi = mid - 1; }
@@ -361,6 +404,7 @@
     lastStamp = null;
     if (on && index >= grid.length - 1) seek(0);
     if (on) requestAnimationFrame(tick);
+    else remember();
   }
   function tick(stamp) {
     if (!playing) return;
@@ -394,7 +438,11 @@
   }));
 
   buildSummary();
-  seek(0);
+  // Opened at the time its URL asks for (#t=2.76), else at `view --at`'s,
+  // else at the start: the sample nearest it.
+  const opening = hashTime() !== null ? hashTime() : typeof DATA.at === "number" ? DATA.at : null;
+  if (opening !== null) seekTime(opening); else seek(0);
+  opened = true;
 
   // What a test or a notebook may read: the state the drawing used.
   window.fallingChain = {
@@ -411,6 +459,10 @@
     drawnPivot: (i) => drawnPivot[i],
     // The floor line of run i as drawn, [x0, y0, x1, y1], or undefined.
     drawnFloor: (i) => drawnFloor[i],
+    // Run i's extent over its frames, [xmin, xmax, ymin, ymax].
+    bounds: (i) => runs[i].bounds,
+    // The outline (px each side) of a chain coloured by its forces.
+    outline: OUTLINE,
     // The line width (px) of rod j of run i, as drawn without forces.
     rodWidth: (i, j) => (runs[i].widths ? runs[i].widths[j] : 2),
     // Joint j (0 = P0) of run i as drawn now.

@@ -1,8 +1,8 @@
-//! The README's cluster recipes, run as written: its Slurm job-array script
+//! The cluster recipes of `docs/cluster.md`, run as written: its Slurm job-array script
 //! on a real one-node Slurm (the distribution's slurmctld, slurmd and munge,
 //! started here and stopped by PID), and its GNU parallel script with
-//! `-j 2` on this machine. Both read the recipe out of README.md
-//! (`readme::recipe`), so the README cannot drift from what is tested. The
+//! `-j 2` on this machine. Both read the recipe out of docs/cluster.md
+//! (`readme::recipe`), so the page cannot drift from what is tested. The
 //! shards' merged table must equal the unsharded run byte for byte, wall
 //! times aside; a failed array task and a shard of another scene must be
 //! refused by `merge`.
@@ -45,7 +45,7 @@ fn path_with_binary() -> std::ffi::OsString {
     std::env::join_paths(std::iter::once(bin_dir).chain(std::env::split_paths(&old))).unwrap()
 }
 
-/// The recipe `name` of the README, written to `dir/file`.
+/// The recipe `name` of docs/cluster.md, written to `dir/file`.
 fn recipe_file(dir: &Path, name: &str, file: &str) -> PathBuf {
     let path = dir.join(file);
     fs::write(&path, readme::recipe(&readme::text(), name)).unwrap();
@@ -138,7 +138,7 @@ fn strs(v: &[String]) -> Vec<&str> {
     v.iter().map(String::as_str).collect()
 }
 
-/// Submits the README's array script for `study` in `shards` shards with
+/// Submits the array script of docs/cluster.md for `study` in `shards` shards with
 /// `--array=<array>`,
 /// waits for it (bounded), and returns sbatch's output.
 fn submit(
@@ -163,7 +163,10 @@ fn submit(
 
 #[test]
 fn the_readme_job_array_runs_on_a_real_slurm_and_merges_to_the_whole_run() {
-    if skip("the Slurm test of the README's job array", slurm::missing()) {
+    if skip(
+        "the Slurm test of docs/cluster.md's job array",
+        slurm::missing(),
+    ) {
         return;
     }
     let dir = scratch("slurm");
@@ -171,7 +174,7 @@ fn the_readme_job_array_runs_on_a_real_slurm_and_merges_to_the_whole_run() {
     let cluster = slurm::Slurm::start(&dir.join("cluster")).unwrap();
     let span = scene("span-d3");
 
-    // A sweep in three shards, and stability in two, as the README submits.
+    // A sweep in three shards, and stability in two, as docs/cluster.md submits.
     let sweep = small_sweep(&span);
     let o = submit(&cluster, &dir, "0-2", 3, &strs(&sweep));
     assert!(o.status.success(), "sweep array: {}", stderr(&o));
@@ -232,7 +235,7 @@ fn the_readme_gnu_parallel_script_merges_to_the_whole_run() {
     let missing = slurm::find("parallel")
         .is_none()
         .then(|| "no GNU parallel (apt-get install parallel)".to_string());
-    if skip("the GNU parallel test of the README's script", missing) {
+    if skip("the GNU parallel test of docs/cluster.md's script", missing) {
         return;
     }
     let dir = scratch("parallel");

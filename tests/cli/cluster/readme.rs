@@ -1,23 +1,24 @@
-//! The README's cluster recipes, read out of the README itself, so that the
-//! README cannot drift from what the tests run.
+//! The cluster recipes of `docs/cluster.md` (once the README's), read out
+//! of that page itself, so that the page cannot drift from what the tests
+//! run.
 //!
 //! A recipe is the first fenced code block after a marker line
 //! `<!-- recipe: NAME -->`.
 
 use std::path::Path;
 
-/// The README at the workspace's root.
+/// `docs/cluster.md`, where the recipes live.
 pub fn text() -> String {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cluster.md");
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-/// The code of recipe `name` in `readme`, without its fences.
+/// The code of recipe `name` in the page `readme`, without its fences.
 pub fn recipe(readme: &str, name: &str) -> String {
     let marker = format!("<!-- recipe: {name} -->");
     let after = readme
         .split_once(&marker)
-        .unwrap_or_else(|| panic!("README.md has no '{marker}'"))
+        .unwrap_or_else(|| panic!("docs/cluster.md has no '{marker}'"))
         .1;
     let mut lines = after
         .lines()

@@ -7,7 +7,7 @@
 //! `K_0 |d_0|^2 / 2` leaves the chain then: it is added to the work `W`, so
 //! that the balance `E + W = E(0)` holds across the cut.
 
-use super::{Layout, Model, Observed};
+use super::{Layout, Model, Observed, PeakForce, PeakValue};
 use crate::chain::{check, Chain};
 use crate::elastic::{self, ElasticSystem};
 use crate::floor::{self, FloorTerm};
@@ -106,10 +106,10 @@ impl Model for ElasticModel {
                     .term(0.0, start.anchor)
                     .touching(floor::points(&self.chain, &y).into_iter().map(|[p, _]| p)),
             };
-            let tolerance = floor::start_tolerance(f, self.chain.weight());
-            if let Some((rod, depth)) = floor::deepest(&self.chain, &term, &y) {
-                if depth > tolerance {
-                    return Err(floor::inside_error(rod, depth, tolerance));
+            let tolerance = floor::start_tolerance(f, self.chain.weight(), self.chain.length());
+            if let Some(o) = floor::overlap(&self.chain, &term, &y) {
+                if o.total > tolerance {
+                    return Err(floor::inside_error(o, tolerance));
                 }
             }
             self.floor = Some(term);
@@ -246,6 +246,21 @@ impl Model for ElasticModel {
     fn floor_line(&self) -> Option<(f64, f64)> {
         let (term, f) = (self.floor.as_ref()?, self.chain.floor()?);
         Some((term.height(self.path.anchor), f.angle))
+    }
+
+    fn peak_forces(&self) -> &'static [PeakForce] {
+        if self.chain.floor().is_some() {
+            &[PeakForce::Floor]
+        } else {
+            &[]
+        }
+    }
+
+    fn peak_force(&self, force: PeakForce, _t: f64, y: &[f64]) -> PeakValue {
+        match (force, &self.floor) {
+            (PeakForce::Floor, Some(term)) => floor::normal_and_landed(&self.chain, term, y),
+            (PeakForce::Floor, None) => [0.0, 0.0],
+        }
     }
 }
 

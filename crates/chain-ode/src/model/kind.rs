@@ -1,7 +1,7 @@
 //! The crate's models as one type, and the one decision of which model a
 //! chain is.
 
-use super::{ElasticModel, Layout, Model, Observed, ReportChain, RigidModel};
+use super::{ElasticModel, Layout, Model, Observed, PeakForce, PeakValue, ReportChain, RigidModel};
 use crate::chain::Chain;
 use crate::kinematics::Vec2;
 use crate::solve::SolveOptions;
@@ -175,5 +175,11 @@ impl Model for ModelKind {
     }
     fn floor_line(&self) -> Option<(f64, f64)> {
         each!(self, m => m.floor_line())
+    }
+    fn peak_forces(&self) -> &'static [PeakForce] {
+        each!(self, m => m.peak_forces())
+    }
+    fn peak_force(&self, force: PeakForce, t: f64, y: &[f64]) -> PeakValue {
+        each!(self, m => m.peak_force(force, t, y))
     }
 }

@@ -37,6 +37,7 @@ pub use rigid::{bdf_crossover_gamma, RigidModel};
 
 use crate::chain::Chain;
 use crate::kinematics::Vec2;
+pub use crate::solve::peaks::{Peak, PeakForce, PeakValue};
 use crate::solve::SolveOptions;
 use crate::state::State;
 use fc_methods::InvalidParameter;
@@ -227,6 +228,19 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq {
     /// coordinates, or `None` without a floor.
     fn floor_line(&self) -> Option<(f64, f64)> {
         None
+    }
+
+    /// The forces whose peaks the run tracks at every accepted step
+    /// ([`PeakForce`]; `Summary::peaks`): none by default.
+    fn peak_forces(&self) -> &'static [PeakForce] {
+        &[]
+    }
+
+    /// `force`'s value and reference at `(t, y)` ([`PeakValue`]), for a
+    /// force of [`Model::peak_forces`]: a function of the state alone,
+    /// O(n) and allocation free (it runs at every step).
+    fn peak_force(&self, _force: PeakForce, _t: f64, _y: &[f64]) -> PeakValue {
+        [0.0, 0.0]
     }
 }
 

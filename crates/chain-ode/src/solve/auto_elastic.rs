@@ -54,6 +54,27 @@ pub const AUTO_GEN_ALPHA_STIFFNESS: f64 = 1e5;
 /// thousandth of the request it lands below it.
 pub const AUTO_GEN_ALPHA_TOLERANCE: f64 = 1e-3;
 
+/// The stiffness ratio ([`axial_stiffness_ratio`]) up to which `auto`
+/// starts gen-alpha: past it gen-alpha could not progress (bungee, n =
+/// 100, no axial damping, rtol 1e-3: at EA = 1e8, ratio 8.9e5, it reached
+/// t = 0.253 of 5 in 200,000 steps; at EA = 1e12 t = 6.4e-4 in 100,000,
+/// 44 % of them Newton failures, issue 47 H3), where it won at 2.0e5.
+/// Above it the plan stays explicit (DOPRI5 held at its stability limit
+/// finishes: 103 s at EA = 1e12).
+pub const AUTO_GEN_ALPHA_MAX_STIFFNESS: f64 = 4e5;
+
+/// The damping ratio of the floor's contact at a rod end resting on it,
+/// `zeta = c g sqrt(m_p / k) / 2` for the Hunt–Crossley law `N = k delta
+/// (1 + c delta')` (a contact point carries `m_p = m / 2`; at its rest
+/// deflection `delta = m_p g / k` the viscous coefficient `k c delta` is
+/// `c m_p g`, against `2 sqrt(k m_p)`); `None` without a floor or gravity.
+pub fn floor_damping_ratio(chain: &Chain) -> Option<f64> {
+    let f = chain.floor()?;
+    let g = chain.gravity();
+    let m_p = 0.5 * chain.mass();
+    (g > 0.0).then(|| f.damping * g * (m_p / f.stiffness).sqrt() / 2.0)
+}
+
 /// `omega_axial sqrt(L / g)`, `omega_axial = 2 sqrt(K / m)` (a joint's
 /// spring `K = EA / l` and a rod's mass `m`); `None` for rigid links or
 /// without gravity (no slow time scale to compare with).
@@ -66,10 +87,11 @@ pub fn axial_stiffness_ratio(chain: &Chain) -> Option<f64> {
 /// `auto`'s plan for an elastic `chain` at `rtol`: the explicit method it
 /// starts with (DOPRI5, or DOP853 at `rtol <= 1e-8`, as for a problem that
 /// names no chain) and the `|lambda|` past which it hands over to BDF: the
-/// first stiffness detection (0) for joints damped at least
-/// [`AUTO_ELASTIC_ZETA`], never (infinity) below it; except that a lightly
+/// first stiffness detection (0) for joints or a floor contact damped at
+/// least [`AUTO_ELASTIC_ZETA`] ([`floor_damping_ratio`]), never
+/// (infinity) below it; except that a lightly
 /// damped chain whose axial modes are past [`AUTO_GEN_ALPHA_STIFFNESS`]
-/// runs gen-alpha from the start (at [`AUTO_GEN_ALPHA_TOLERANCE`] times
+/// (and not past [`AUTO_GEN_ALPHA_MAX_STIFFNESS`]) runs gen-alpha from the start (at [`AUTO_GEN_ALPHA_TOLERANCE`] times
 /// the tolerance) when `rtol >=` [`AUTO_GEN_ALPHA_RTOL`].
 pub(crate) fn plan(chain: &Chain, rtol: f64) -> AutoPlan {
     let explicit = if rtol <= AUTO_DOP853_RTOL {
@@ -77,8 +99,13 @@ pub(crate) fn plan(chain: &Chain, rtol: f64) -> AutoPlan {
     } else {
         Method::Dopri5
     };
-    let damped = joint_damping_ratio(chain).is_some_and(|z| z >= AUTO_ELASTIC_ZETA);
-    let unresolved = axial_stiffness_ratio(chain).is_some_and(|s| s >= AUTO_GEN_ALPHA_STIFFNESS);
+    // A damped stiff contact is a damped stiff mode as the joints' are
+    // (issue 47 H1: a plastic floor ran DOPRI5 to the end, 14 times
+    // slower than bdf).
+    let damped = joint_damping_ratio(chain).is_some_and(|z| z >= AUTO_ELASTIC_ZETA)
+        || floor_damping_ratio(chain).is_some_and(|z| z >= AUTO_ELASTIC_ZETA);
+    let unresolved = axial_stiffness_ratio(chain)
+        .is_some_and(|s| (AUTO_GEN_ALPHA_STIFFNESS..=AUTO_GEN_ALPHA_MAX_STIFFNESS).contains(&s));
     if !damped && unresolved && rtol >= AUTO_GEN_ALPHA_RTOL {
         return AutoPlan {
             explicit: None,

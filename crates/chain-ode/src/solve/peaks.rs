@@ -1,0 +1,114 @@
+//! The peaks of forces a run tracks as properties of the run, never of its
+//! output samples: at the start, at every accepted step's end, and inside
+//! a step on the method's continuous extension where the force turns from
+//! rising to falling (as the tip speed's maximum is refined). A model
+//! names the forces it has ([`Model::peak_forces`]) and gives each one's
+//! value at a state ([`Model::peak_force`]); the tally folds them
+//! ([`PeakTrack`]). Today the floor's normal force; the pivot's force and
+//! the tensions are meant to join the same way.
+
+use fc_methods::StepView;
+
+use super::recorder::{golden_max, golden_width};
+use crate::model::Model;
+
+/// A force whose largest value a run tracks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PeakForce {
+    /// The floor's total normal force on the chain (force units; what a
+    /// scale under it reads), with the weight of the contact points it
+    /// pushes at that instant as its reference.
+    Floor,
+}
+
+/// A force's value at a state, `[value, reference]`: the scalar whose
+/// maximum is tracked and a quantity of the same instant that the summary
+/// relates it to (the floor: the weight `g sum m_i / 2` of the contact
+/// points it pushes, the tip's point with the tip mass).
+pub type PeakValue = [f64; 2];
+
+/// The largest value of one force over a run, when, and its reference then.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Peak {
+    pub force: PeakForce,
+    /// The largest value (force units).
+    pub value: f64,
+    /// When it was reached.
+    pub t: f64,
+    /// The force's reference at that instant ([`PeakValue`]).
+    pub reference: f64,
+}
+
+/// A step whose ends are both below this fraction of the running peak is
+/// not searched inside: its interior would have to rise more than twice
+/// its ends' value within one step the error control accepted.
+const SEARCH_FRACTION: f64 = 0.5;
+
+/// The running peak of one force.
+pub(crate) struct PeakTrack {
+    peak: Peak,
+    /// The value and slope sign at the last step's end.
+    last: f64,
+    rising: bool,
+}
+
+impl PeakTrack {
+    /// The track of `force` from `(t0, y0)`.
+    pub fn start<M: Model>(model: &M, force: PeakForce, t0: f64, y0: &[f64]) -> Self {
+        let [value, reference] = model.peak_force(force, t0, y0);
+        Self {
+            peak: Peak {
+                force,
+                value,
+                t: t0,
+                reference,
+            },
+            last: value,
+            rising: false,
+        }
+    }
+
+    /// The peak so far.
+    pub fn peak(&self) -> Peak {
+        self.peak
+    }
+
+    /// An accepted step; `buf` is scratch of the state's size.
+    pub fn step<M: Model>(&mut self, model: &M, step: &StepView<'_>, buf: &mut [f64]) {
+        let (t0, t1) = (step.t0, step.t1);
+        let [value, reference] = model.peak_force(self.peak.force, t1, step.y1);
+        // The slope's sign at t1, from the state's derivative there (`y1 -
+        // d f1` is the state at `t1 - d` to O(d^2)): no dense output, whose
+        // stages a lazy method (DOP853) would pay at every step.
+        let d = 1e-3 * (t1 - t0);
+        for ((b, y), f) in buf.iter_mut().zip(step.y1).zip(step.f1) {
+            *b = y - d * f;
+        }
+        let before = model.peak_force(self.peak.force, t1 - d, buf)[0];
+        let rising = value > before;
+        let worth = self.last.max(value) >= SEARCH_FRACTION * self.peak.value;
+        if self.rising && !rising && worth && t1 > t0 {
+            // 1e-5 of the step: the value at the vertex is then right to
+            // about 1e-10 of its curvature's scale (it is quadratic there).
+            let tol = (1e-5 * (t1 - t0)).max(golden_width(t0, t1));
+            let force = self.peak.force;
+            let (t, v, _) = golden_max(t0, t1, tol, |t| {
+                step.interpolant.eval(t, buf);
+                model.peak_force(force, t, buf)[0]
+            });
+            if v > self.peak.value || v.is_nan() {
+                step.interpolant.eval(t, buf);
+                self.peak.value = v;
+                self.peak.t = t;
+                self.peak.reference = model.peak_force(force, t, buf)[1];
+            }
+        }
+        if value > self.peak.value || value.is_nan() {
+            self.peak.value = value;
+            self.peak.t = t1;
+            self.peak.reference = reference;
+        }
+        self.last = value;
+        self.rising = rising;
+    }
+}

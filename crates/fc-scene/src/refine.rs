@@ -1,0 +1,139 @@
+//! Refinement: the same continuous chain cut into another number of rods,
+//! the one rule `converge`, `needs`, the figures, `--refine N` and
+//! Python's `Scene.refine(n)` all use ([`Scene::refined`]).
+//!
+//! `chain.links = N` alone is not a refinement: `chain.mass` and
+//! `chain.damping` are per rod, so it multiplies the chain's mass by
+//! `N / n` and changes its friction's continuum. Refining keeps what the
+//! continuum sees ([`chain_ode::Chain::refined`]): the total mass
+//! `M = n m`, the length `L`, the bending viscosity `eta = r l`, the axial
+//! stiffness and viscosity `EA`, `eta_a` and the bending stiffness `EI`,
+//! the tip mass, the pivot's motion and the rod profile's mass per length.
+
+use chain_ode::Start;
+
+use crate::error::Error;
+use crate::scene::Scene;
+
+/// The most rods a refinement may ask for: the scenes' cap on `chain.links`.
+pub const MAX_LINKS: usize = 1_000_000;
+
+/// One line stating the rule, for help texts, figures and data.
+pub const RULE: &str = "total mass M = n m, length L and bending viscosity eta = r l kept \
+                        (m = M/n, r = eta n/L), EA, EI and the tip mass carried";
+
+/// Checks the number of rods a refinement asks for, naming `flag`
+/// (`--refine`, `links`).
+pub fn check_links(flag: &str, links: usize) -> Result<(), Error> {
+    if (1..=MAX_LINKS).contains(&links) {
+        Ok(())
+    } else {
+        Err(Error::field(
+            flag,
+            format!("must be an integer in 1..={MAX_LINKS} (got {links})"),
+        ))
+    }
+}
+
+impl Scene {
+    /// This scene cut into `links` rods at fixed continuum: its chain
+    /// refined by [`chain_ode::Chain::refined`] (which carries every field)
+    /// and written back whole ([`Scene::with_chain`]). A folded start's
+    /// `start.down` (if given) scales with `n` (rounded down); an `angles`
+    /// start has a fixed number of rods and is refused. The `[floor]` keys
+    /// are the scene's own, kept as written (a contact stiffness given per
+    /// contact point stays per point; its default, `1e4 m g / l`, follows
+    /// the new rod).
+    pub fn refined(&self, links: usize) -> Result<Scene, Error> {
+        check_links("chain.links", links)?;
+        let chain = self.chain()?;
+        if let Start::Angles { .. } = self.start() {
+            return Err(Error::field(
+                "start.kind",
+                "an \"angles\" start has a fixed number of rods and cannot be refined",
+            ));
+        }
+        let mut s = self.with_chain(&chain.refined(links)?)?;
+        if let Start::Folded {
+            down: Some(down), ..
+        } = self.start()
+        {
+            let scaled = (down as u128 * links as u128 / chain.links() as u128) as i64;
+            s = s.with_value("start.down", toml::Value::Integer(scaled))?;
+        }
+        Ok(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene(text: &str) -> Scene {
+        Scene::from_toml_str(text).unwrap()
+    }
+
+    const ELASTIC: &str = "[chain]\nlinks = 10\nmass = 0.3\nlength = 4\ndamping = 0.002\n\
+        axial_stiffness = 1e5\naxial_damping = 3\nbending_stiffness = 0.7\ntip_mass = 0.5\n\
+        [start]\nkind = \"catenary\"\np1 = [2, 0]\n[run]\nt_end = 1\n";
+
+    /// The continuum's properties, computed from the chain each time: M,
+    /// L, eta = r l, EA, eta_a, EI, the tip mass.
+    fn continuum(s: &Scene) -> [f64; 7] {
+        let c = s.chain().unwrap();
+        let p = c.params();
+        [
+            c.total_mass(),
+            c.length(),
+            c.damping() * c.rod_length(),
+            p.axial_stiffness.unwrap_or(0.0),
+            p.axial_damping,
+            p.bending_stiffness,
+            c.tip_mass(),
+        ]
+    }
+
+    #[test]
+    fn refining_keeps_the_continuum_and_moves_only_the_rods() {
+        let base = scene(ELASTIC);
+        let before = continuum(&base);
+        for n in [1, 7, 10, 40, 333] {
+            let s = base.refined(n).unwrap();
+            assert_eq!(s.chain().unwrap().links(), n);
+            for (a, b) in continuum(&s).iter().zip(before) {
+                assert!(
+                    (a - b).abs() <= 1e-13 * b.abs().max(1.0),
+                    "n = {n}: {a} vs {b}"
+                );
+            }
+            // Per rod: m = M / n and r = eta n / L.
+            let c = s.chain().unwrap();
+            assert!((c.mass() - 3.0 / n as f64).abs() < 1e-15 * 3.0);
+            assert!((c.damping() - 0.0008 * n as f64 / 4.0).abs() < 1e-15 * c.damping().max(1.0));
+        }
+        // Setting chain.links is not refining: the mass grows with n.
+        let set = base
+            .with_value("chain.links", toml::Value::Integer(40))
+            .unwrap();
+        assert!((set.chain().unwrap().total_mass() - 12.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_refinement_is_a_round_trip_and_bad_counts_name_the_field() {
+        let base = scene(ELASTIC);
+        let back = base.refined(80).unwrap().refined(10).unwrap();
+        for (a, b) in continuum(&back).iter().zip(continuum(&base)) {
+            assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0));
+        }
+        assert_eq!(back.chain().unwrap().mass(), base.chain().unwrap().mass());
+        for bad in [0, MAX_LINKS + 1] {
+            let e = base.refined(bad).unwrap_err().to_string();
+            assert!(
+                e.starts_with("chain.links: must be an integer in 1..=1000000"),
+                "{e}"
+            );
+            let e = check_links("--refine", bad).unwrap_err().to_string();
+            assert!(e.starts_with("--refine: "), "{e}");
+        }
+    }
+}
