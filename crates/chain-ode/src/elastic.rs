@@ -66,7 +66,7 @@ use crate::kinematics::Vec2;
 use crate::pivot::Pivot;
 use crate::scalar::{sin_cos, Dual, Lanes, Scalar};
 use crate::state::State;
-use fc_methods::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
+use fc_methods::{BandedDae, Measured, OdeSystem, Problem, SemiExplicitDae};
 
 /// Per-rod values of a profiled elastic chain (physical units): rod `i`'s
 /// half length, inverse mass and inverse moment of inertia, and joint `k`'s
@@ -530,6 +530,34 @@ impl Problem for ElasticSystem {
             ),
             y0: y0.to_vec(),
         })
+    }
+
+    /// The pivot force's magnitude while the pivot holds: the force a
+    /// study reads (`Summary::pivot_force_max`, the snap's tension) is
+    /// `K d_1 + C d_1'`, so a position error `e` moves it by `K e`, which
+    /// the configuration's tolerance (`rtol |x|`) leaves unbounded on a
+    /// stiff link (`K e / |F| ~ rtol EA / T`, 1e6 on issue 49's steel
+    /// rope): gen-alpha bounds its error too (docs/model.md, "The
+    /// generalized-alpha method").
+    fn measured(&self) -> Option<Box<dyn Measured>> {
+        if self.springs.released {
+            return None;
+        }
+        Some(Box::new(PivotForceMeasure(self.chain.clone())))
+    }
+}
+
+/// The pivot force's magnitude `|F_1|` ([`pivot_force_at`]) as a quantity
+/// gen-alpha's error control bounds ([`Problem::measured`]).
+struct PivotForceMeasure(Chain);
+
+impl Measured for PivotForceMeasure {
+    fn count(&self) -> usize {
+        1
+    }
+    fn values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let [a, b] = pivot_force_at(&self.0, t, y);
+        out[0] = a.hypot(b);
     }
 }
 

@@ -86,8 +86,8 @@ pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{
     axial_stiffness_ratio, floor_damping_ratio, joint_damping_ratio, AUTO_ELASTIC_ZETA,
-    AUTO_GEN_ALPHA_MAX_STIFFNESS, AUTO_GEN_ALPHA_RTOL, AUTO_GEN_ALPHA_STIFFNESS,
-    AUTO_GEN_ALPHA_TOLERANCE,
+    AUTO_GEN_ALPHA_MAX_STIFFNESS, AUTO_GEN_ALPHA_RHO_INF, AUTO_GEN_ALPHA_RTOL,
+    AUTO_GEN_ALPHA_STIFFNESS, AUTO_GEN_ALPHA_TOLERANCE,
 };
 pub use solve::{
     solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,

@@ -69,9 +69,9 @@ pub use auto::AUTO_DOP853_RTOL;
 #[doc(hidden)]
 pub use bdf::with_general_sparse_lu;
 #[doc(hidden)]
-pub use genalpha::{with_gen_alpha_policy, ControlPolicy, GenAlphaPolicy, ReusePolicy};
-#[doc(hidden)]
 pub use block_lu::BlockLu;
+#[doc(hidden)]
+pub use genalpha::{with_gen_alpha_policy, ControlPolicy, GenAlphaPolicy, ReusePolicy};
 #[doc(hidden)]
 pub use integrator::{Run, Settings, Span};
 #[doc(hidden)]

@@ -12,6 +12,7 @@
 //! hand.
 
 pub mod auto_elastic;
+mod forces;
 pub(crate) mod peaks;
 mod recorder;
 mod report_stepper;
@@ -335,6 +336,11 @@ pub struct Summary {
     /// `None` for rigid links (their pivot force is the DAE's, from the
     /// samples: `analysis::pivot_forces`).
     pub pivot_force_max: Option<(f64, f64)>,
+    /// False when the run's forces (`pivot_force_max`, the joints' and the
+    /// pivot's forces of its samples) are not right to its tolerance
+    /// although everything else is: gen-alpha stepped over the axial modes
+    /// that carry them ([`forces::resolved`]). True for every other run.
+    pub forces_resolved: bool,
     /// The largest value of each force the model tracks
     /// ([`Model::peak_forces`]: the floor's normal force), at the start,
     /// every accepted step's end and inside the steps where it turns: a
@@ -785,6 +791,9 @@ impl Problem for Planned<'_> {
     fn configuration(&self) -> Vec<std::ops::Range<usize>> {
         self.configuration.clone()
     }
+    fn measured(&self) -> Option<Box<dyn fc_methods::Measured>> {
+        self.inner.measured()
+    }
 }
 
 /// The unknowns `gen-alpha` measures its local error on
@@ -902,6 +911,13 @@ fn trajectory<M: Model>(
             .tracks_support_force()
             .then_some((tally.support_force_max, tally.t_support_force_max)),
         peaks: tally.peaks(),
+        forces_resolved: forces::resolved(
+            model.chain(),
+            method,
+            &segments.iter().map(|g| g.method).collect::<Vec<_>>(),
+            options,
+            tally.h_max,
+        ),
         wall_seconds,
     };
     // A non-finite value in the summary (an energy that overflowed, a NaN

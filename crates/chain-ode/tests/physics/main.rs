@@ -29,6 +29,7 @@ mod profile_compression;
 mod profile_terms;
 mod report;
 mod rk4;
+mod snap_tension;
 mod tip_mass;
 mod validation;
 

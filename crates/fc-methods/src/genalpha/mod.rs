@@ -159,7 +159,11 @@ pub(crate) fn integrate(
     if configuration.is_empty() || policy::current().measure_all {
         configuration = (0..nd).collect();
     }
-    let measured = problem.measured();
+    let measured = if policy::current().measured {
+        problem.measured()
+    } else {
+        None
+    };
     let control = ErrorControl {
         configuration: &configuration,
         measured: measured.as_deref(),
@@ -408,7 +412,16 @@ fn run<S: OdeSystem>(
         let t1 = if landing { t_end } else { t + h_step };
         let e = slice(&x);
         let err = if filtered {
-            error_norm(measure, e, &d, &d1, t1, set.rtol, set.atol, (&mut de, &mut q1, &mut qe))
+            error_norm(
+                measure,
+                e,
+                &d,
+                &d1,
+                t1,
+                set.rtol,
+                set.atol,
+                (&mut de, &mut q1, &mut qe),
+            )
         } else {
             f64::INFINITY
         };

@@ -225,4 +225,3 @@ fn a_step_whose_newton_fails_is_retried_smaller() {
         fine.y_end
     );
 }
-
