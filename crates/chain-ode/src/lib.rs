@@ -92,7 +92,7 @@ pub use solve::auto_elastic::{
 pub use solve::{
     solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,
     BALANCE_PER_TOLERANCE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,
-    DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
+    DRIVE_BALANCE_FRACTION, GEN_ALPHA_MIN_RTOL, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 #[doc(hidden)]
 pub use solve::{unit_costs, UnitCosts};
