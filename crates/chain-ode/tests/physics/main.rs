@@ -19,6 +19,7 @@ mod elastic;
 mod elastic_scenes;
 mod failures;
 mod floor;
+mod gen_alpha;
 mod methods;
 mod modes;
 mod observed_rhs;
