@@ -674,7 +674,7 @@ impl ElasticDae {
     /// [`ElasticDae::jacobian_entries`] at `t` (the entries do not depend
     /// on `t`: a driven pivot's frame adds a force independent of the state).
     pub fn jacobian_entries_at(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
-        self.sweeps(t, y, |r, c, v| emit(r, c, v));
+        self.sweeps(t, y, emit);
     }
 
     /// The Jacobian's entries into `emit` (a static call per entry): three

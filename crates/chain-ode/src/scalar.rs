@@ -269,6 +269,10 @@ impl<const N: usize> Sub for Lanes<N> {
 impl<const N: usize> Mul for Lanes<N> {
     type Output = Self;
     #[inline(always)]
+    #[allow(
+        clippy::suspicious_arithmetic_impl,
+        reason = "the product rule: a lane's derivative mixes the factors' values"
+    )]
     fn mul(self, o: Self) -> Self {
         Self::map(self.v * o.v, |k| self.d[k] * o.v + self.v * o.d[k])
     }
@@ -276,6 +280,10 @@ impl<const N: usize> Mul for Lanes<N> {
 impl<const N: usize> Div for Lanes<N> {
     type Output = Self;
     #[inline(always)]
+    #[allow(
+        clippy::suspicious_arithmetic_impl,
+        reason = "the quotient rule: a lane's derivative mixes the factors' values"
+    )]
     fn div(self, o: Self) -> Self {
         let q = self.v / o.v;
         Self::map(q, |k| (self.d[k] - q * o.d[k]) / o.v)
