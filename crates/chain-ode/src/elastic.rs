@@ -65,9 +65,9 @@ use crate::floor::FloorTerm;
 use crate::kinematics::Vec2;
 use crate::load::{Bending, FloorContact, Kinematics, Load, Loads, RodForce, Units};
 use crate::pivot::Pivot;
-use crate::scalar::{sin_cos, Dual, Scalar};
+use crate::scalar::{sin_cos, Dual, Lanes, Scalar};
 use crate::state::State;
-use fc_methods::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
+use fc_methods::{BandedDae, Measured, OdeSystem, Problem, SemiExplicitDae};
 
 /// Per-rod values of a profiled elastic chain (physical units): rod `i`'s
 /// half length, inverse mass and inverse moment of inertia, and joint `k`'s
@@ -265,11 +265,17 @@ fn offsets(n: usize) -> [usize; 7] {
 /// dual number for the exact Jacobian-vector product). One pass over the
 /// joints, no allocation: `sc` holds `(sin, cos)` of the angles.
 fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [(T, T)]) {
+    T::sin_cos_all(&y[..p.n], sc);
+    rhs_with_trig(p, t, y, dy, sc);
+}
+
+/// [`rhs_generic`] with `sc` already `(sin, cos)` of the angles (the
+/// Jacobian's sweeps share them: [`ElasticDae::jacobian_values`]).
+fn rhs_with_trig<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &[(T, T)]) {
     let n = p.n;
     let [_, ow, owk, ox, oy, ovx, ovy] = offsets(n);
     let theta = &y[..n];
     let w = &y[ow..owk];
-    T::sin_cos_all(theta, sc);
     let zero = T::cst(0.0);
     // The frame's velocity and acceleration `P0'(t), P0''(t)` (driven only).
     let [_, v0, a0] = if p.driven {
@@ -564,22 +570,52 @@ impl Problem for ElasticSystem {
             y0: y0.to_vec(),
         })
     }
+
+    /// The pivot force's magnitude while the pivot holds: the force a
+    /// study reads (`Summary::pivot_force_max`, the snap's tension) is
+    /// `K d_1 + C d_1'`, so a position error `e` moves it by `K e`, which
+    /// the configuration's tolerance (`rtol |x|`) leaves unbounded on a
+    /// stiff link (`K e / |F| ~ rtol EA / T`, 1e6 on issue 49's steel
+    /// rope): gen-alpha bounds its error too (docs/model.md, "The
+    /// generalized-alpha method").
+    fn measured(&self) -> Option<Box<dyn Measured>> {
+        if self.springs.released {
+            return None;
+        }
+        Some(Box::new(PivotForceMeasure(self.chain.clone())))
+    }
 }
 
-/// Scratch of [`ElasticDae`]: its trait's methods take `&self`.
+/// The pivot force's magnitude `|F_1|` ([`pivot_force_at`]) as a quantity
+/// gen-alpha's error control bounds ([`Problem::measured`]).
+struct PivotForceMeasure(Chain);
+
+impl Measured for PivotForceMeasure {
+    fn count(&self) -> usize {
+        1
+    }
+    fn values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let [a, b] = pivot_force_at(&self.0, t, y);
+        out[0] = a.hypot(b);
+    }
+}
+
+/// Scratch of [`ElasticDae`]: its trait's methods take `&self`. The
+/// Jacobian's sweeps carry a lane per kind of coordinate.
 #[derive(Clone, Debug)]
 struct DaeScratch {
     sc: Vec<(f64, f64)>,
-    dual_y: Vec<Dual>,
-    dual_dy: Vec<Dual>,
-    dual_sc: Vec<(Dual, Dual)>,
+    lanes_y: Vec<Lanes<6>>,
+    lanes_dy: Vec<Lanes<6>>,
+    lanes_sc: Vec<(Lanes<6>, Lanes<6>)>,
 }
 
 /// The elastic chain for the O(n) sparse BDF: every unknown differential,
 /// and the Jacobian's banded pattern (each rod's accelerations depend on
 /// its own and its two neighbours' coordinates and rates) filled exactly by
-/// 18 dual-number sweeps of the right-hand side, one per kind of
-/// coordinate and per rod modulo 3 (rods three apart share no row).
+/// three sweeps of the right-hand side over dual numbers with six lanes,
+/// one sweep per rod modulo 3 (rods three apart share no row) and one lane
+/// per kind of coordinate.
 #[derive(Debug)]
 pub struct ElasticDae {
     springs: Springs,
@@ -595,9 +631,9 @@ impl ElasticDae {
             springs: Springs::of(chain),
             scratch: RefCell::new(DaeScratch {
                 sc: vec![(0.0, 0.0); n],
-                dual_y: vec![Dual::default(); dim],
-                dual_dy: vec![Dual::default(); dim],
-                dual_sc: vec![(Dual::default(), Dual::default()); n],
+                lanes_y: vec![Lanes::default(); dim],
+                lanes_dy: vec![Lanes::default(); dim],
+                lanes_sc: vec![(Lanes::default(), Lanes::default()); n],
             }),
         }
     }
@@ -627,6 +663,16 @@ impl SemiExplicitDae for ElasticDae {
     }
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ElasticDae::jacobian_entries_at(self, t, y, emit)
+    }
+    /// The entries' values written in order, with no call per entry.
+    fn jacobian_values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let mut k = 0;
+        self.sweeps(t, y, |_, _, v| {
+            if let Some(o) = out.get_mut(k) {
+                *o = v;
+            }
+            k += 1;
+        });
     }
     /// Rod `i` holds `theta_i, w_i, x_i, y_i, vx_i, vy_i` (and rod 0 `W`):
     /// each rod's accelerations read only its neighbours.
@@ -667,6 +713,15 @@ impl ElasticDae {
     /// [`ElasticDae::jacobian_entries`] at `t` (the entries do not depend
     /// on `t`: a driven pivot's frame adds a force independent of the state).
     pub fn jacobian_entries_at(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        self.sweeps(t, y, emit);
+    }
+
+    /// The Jacobian's entries into `emit` (a static call per entry): three
+    /// sweeps of the right-hand side, one per rod modulo 3, each over dual
+    /// numbers with a lane per kind of coordinate, sharing the angles'
+    /// sines and cosines (computed once, their derivatives set in the
+    /// lanes that move the angles).
+    fn sweeps(&self, t: f64, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
         let n = self.springs.n;
         let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
         // theta' = w, x' = vx, y' = vy.
@@ -679,19 +734,38 @@ impl ElasticDae {
         let rows = [ow, ovx, ovy];
         let mut guard = self.scratch.borrow_mut();
         let s = &mut *guard;
+        f64::sin_cos_all(&y[..n], &mut s.sc);
         for colour in 0..3 {
-            for &kind in &kinds {
-                for (d, &yi) in s.dual_y.iter_mut().zip(y) {
-                    *d = Dual::new(yi, 0.0);
-                }
+            // One sweep per colour, a lane per kind: lane `q` moves the
+            // coordinate `kinds[q]` of the rods `colour, colour + 3, ..`.
+            for (d, &yi) in s.lanes_y.iter_mut().zip(y) {
+                *d = Lanes::cst(yi);
+            }
+            for (q, &kind) in kinds.iter().enumerate() {
                 for j in (colour..n).step_by(3) {
-                    s.dual_y[kind + j].d = 1.0;
+                    s.lanes_y[kind + j].d[q] = 1.0;
                 }
-                rhs_generic(&self.springs, t, &s.dual_y, &mut s.dual_dy, &mut s.dual_sc);
+            }
+            // `(sin, cos)` of the angles with their lanes, as
+            // `Lanes::sin_cos` gives them (bit for bit).
+            for ((ds, &(sn, cs)), yd) in s.lanes_sc.iter_mut().zip(&s.sc).zip(&s.lanes_y) {
+                *ds = (
+                    Lanes {
+                        v: sn,
+                        d: yd.d.map(|x| cs * x),
+                    },
+                    Lanes {
+                        v: cs,
+                        d: yd.d.map(|x| -sn * x),
+                    },
+                );
+            }
+            rhs_with_trig(&self.springs, t, &s.lanes_y, &mut s.lanes_dy, &s.lanes_sc);
+            for (q, &kind) in kinds.iter().enumerate() {
                 for j in (colour..n).step_by(3) {
                     for i in j.saturating_sub(1)..(j + 2).min(n) {
                         for &row in &rows {
-                            emit(row + i, kind + j, s.dual_dy[row + i].d);
+                            emit(row + i, kind + j, s.lanes_dy[row + i].d[q]);
                         }
                     }
                 }

@@ -117,6 +117,7 @@ impl Driven {
             error_test_failures: s.number_of_error_test_failures as u64,
             newton_failures: s.number_of_nonlinear_solver_fails as u64,
             newton_iterations: s.number_of_nonlinear_solver_iterations as u64,
+            step_size_changes: 0,
         };
         crate::ode::Outcome::ended(self.status, self.t, self.t_failed, stats, self.y)
     }

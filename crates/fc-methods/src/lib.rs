@@ -81,8 +81,8 @@ pub use genalpha::{DEFAULT_RHO_INF, RHO_INF_RANGE};
 pub use integrator::{Accuracy, Integrator, TimeScales};
 pub use method::{Method, Segment};
 pub use ode::{
-    all_finite, BandedDae, Cancel, Counted, Interpolant, Observer, OdeSystem, Outcome, Problem,
-    SemiExplicitDae, Stats, Status, StepView,
+    all_finite, BandedDae, Cancel, Counted, Interpolant, Measured, Observer, OdeSystem, Outcome,
+    Problem, SemiExplicitDae, Stats, Status, StepView,
 };
 
 // The run layer's side of the interface: what it hands a method and gets
@@ -94,6 +94,8 @@ pub use auto::AUTO_DOP853_RTOL;
 pub use bdf::with_general_sparse_lu;
 #[doc(hidden)]
 pub use block_lu::BlockLu;
+#[doc(hidden)]
+pub use genalpha::{with_gen_alpha_policy, ControlPolicy, GenAlphaPolicy, ReusePolicy};
 #[doc(hidden)]
 pub use integrator::{Run, Settings, Span};
 #[doc(hidden)]

@@ -162,6 +162,7 @@ impl Model for RigidModel {
             hand_over_above: f64::INFINITY,
             implicit: Method::Bdf,
             implicit_tolerance: 1.0,
+            implicit_rho_inf: None,
         }
     }
 

@@ -20,6 +20,7 @@ mod elastic;
 mod elastic_scenes;
 mod failures;
 mod floor;
+mod gen_alpha;
 mod methods;
 mod modes;
 mod observed_rhs;
@@ -30,6 +31,7 @@ mod profile_compression;
 mod profile_terms;
 mod report;
 mod rk4;
+mod snap_tension;
 mod tip_mass;
 mod validation;
 
