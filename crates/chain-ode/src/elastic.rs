@@ -274,7 +274,6 @@ fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [
 fn rhs_with_trig<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &[(T, T)]) {
     let n = p.n;
     let [_, ow, owk, ox, oy, ovx, ovy] = offsets(n);
-    let theta = &y[..n];
     let w = &y[ow..owk];
     let zero = T::cst(0.0);
     // The frame's velocity and acceleration `P0'(t), P0''(t)` (driven only).
@@ -288,7 +287,7 @@ fn rhs_with_trig<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &[(T
     let view = StateView {
         p,
         y,
-        sc: &*sc,
+        sc,
         frame: if p.driven {
             Some(p.pivot.drive(t))
         } else {

@@ -348,6 +348,10 @@ impl<const N: usize> Scalar for Lanes<N> {
     fn chain_rule(self, fx: f64, dfx: f64) -> Self {
         Self::map(fx, |k| dfx * self.d[k])
     }
+    fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        self.chain_rule(r, 0.5 / r)
+    }
 }
 
 #[cfg(test)]

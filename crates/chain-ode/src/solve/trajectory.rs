@@ -34,6 +34,11 @@ pub struct Summary {
     /// `None` for rigid links (their pivot force is the DAE's, from the
     /// samples: `analysis::pivot_forces`).
     pub pivot_force_max: Option<(f64, f64)>,
+    /// False when the run's forces (`pivot_force_max`, the joints' and the
+    /// pivot's forces of its samples) are not right to its tolerance
+    /// although everything else is: gen-alpha stepped over the axial modes
+    /// that carry them (`solve/forces.rs`). True for every other run.
+    pub forces_resolved: bool,
     /// The largest value of each force the model tracks
     /// ([`Model::peak_forces`]: the floor's normal force), at the start,
     /// every accepted step's end and inside the steps where it turns: a
