@@ -23,7 +23,8 @@ fn with_drag(mut params: ChainParams, c: f64) -> ChainParams {
 fn options(method: Method, t_end: f64, dt: f64, rtol: f64) -> SolveOptions {
     let x = match method {
         Method::Rk4 => dt,
-        Method::GenAlpha => rtol * 1e-3,
+        // Its tightest tolerance (issue 47 W2).
+        Method::GenAlpha => (rtol * 1e-3).max(chain_ode::GEN_ALPHA_MIN_RTOL),
         _ => rtol,
     };
     SolveOptions {

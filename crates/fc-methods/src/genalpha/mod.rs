@@ -42,6 +42,8 @@
 //! on a problem with modes the step damps, each change of `h` costs
 //! accuracy. docs/model.md, "The generalized-alpha method", derives all of
 //! it and gives the measurements behind [`policy`]'s constants.
+//! `tests.rs` holds the method's own tests (orders, damping, the Newton
+//! matrix's reuse).
 
 mod control;
 mod newton;
