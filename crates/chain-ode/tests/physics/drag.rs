@@ -88,8 +88,10 @@ fn a_chain_falling_flat_reaches_the_terminal_speed_with_every_method() {
         // the fall (measured: RK4 2e-15, DOPRI5 8e-11, gen-alpha 7e-11,
         // DOP853 and auto 5e-10, the BDFs 1.1e-9 and 1.4e-9; the work and
         // the balance to 6e-9 of theirs).
+        // gen-alpha at its tightest rtol, 1e-10: its work within 1.2e-8.
         let tol = match method {
             Method::Bdf | Method::BdfDense => 2e-8,
+            Method::GenAlpha => 1e-7,
             _ => 1e-8,
         };
         let y0 = tr.tip(0)[1];
@@ -156,8 +158,9 @@ fn the_drag_on_a_spinning_rod_takes_its_closed_form_work_with_every_method() {
         assert_eq!(tr.status, Status::Ok, "{method}");
         // Measured: the angle within 4e-14 (RK4), 3e-11 (the explicit
         // pairs, gen-alpha), 9e-10 (the BDFs; auto runs BDF without gravity).
+        // gen-alpha at its tightest rtol, 1e-10: the angle within 1.1e-9.
         let tol = match method {
-            Method::Bdf | Method::BdfDense | Method::Auto => 1e-8,
+            Method::Bdf | Method::BdfDense | Method::Auto | Method::GenAlpha => 1e-8,
             _ => 1e-9,
         };
         for smp in tr.samples() {

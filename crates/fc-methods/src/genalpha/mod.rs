@@ -42,8 +42,9 @@
 //! on a problem with modes the step damps, each change of `h` costs
 //! accuracy. docs/model.md, "The generalized-alpha method", derives all of
 //! it and gives the measurements behind [`policy`]'s constants.
-//! `tests.rs` holds the method's own tests (orders, damping, the Newton
-//! matrix's reuse).
+//!
+//! Its files: [`control`], [`newton`] and [`policy`] as above, and
+//! `tests.rs`, the method's own tests.
 
 mod control;
 mod newton;
