@@ -380,6 +380,9 @@ impl Case {
         writeln!(t, "axial_damping = {}", toml_f(self.axial_damping)).unwrap();
         writeln!(t, "bending_stiffness = {}", toml_f(self.bending_stiffness)).unwrap();
         writeln!(t, "tip_mass = {}", toml_f(self.tip_mass)).unwrap();
+        // Air drag takes the tip mass's draw (its range, out of it too):
+        // a proptest tuple has no room left for a field of its own.
+        writeln!(t, "air_drag = {}", toml_f(self.tip_mass)).unwrap();
         if self.profiled {
             writeln!(t, "taper = {}", toml_f(self.taper)).unwrap();
             // As many entries as rods where that is small, else a few.

@@ -5,7 +5,10 @@
 //! accurate to about 1e-7) at the tip and in the largest tip speed. An
 //! error control that measured the damped modes' velocities, or a dense
 //! output that carried their accelerations, fails it (docs/model.md, "The
-//! generalized-alpha method").
+//! generalized-alpha method"). What it does not keep is the energy the
+//! stepped-over modes carry: its numerical damping takes it, so the
+//! `dissipated` it reports is off (1% at `EA = 1e7`, rtol 1e-6, against
+//! DOP853 at 1e-9), and such a run must not say `ok`.
 
 use fc_scene::scene::Scene;
 use toml::Value;
@@ -43,7 +46,30 @@ fn gen_alpha_steps_over_the_axial_modes_and_keeps_the_snap() {
     for ea in [1e4, 1e7] {
         let ga = snap(ea, "gen-alpha", 1e-6);
         let dp = snap(ea, "dopri5", 1e-4);
-        assert_eq!((ga.status.as_str(), dp.status.as_str()), ("ok", "ok"));
+        let reference = snap(ea, "dop853", 1e-9);
+        assert_eq!(
+            (dp.status.as_str(), reference.status.as_str()),
+            ("ok", "ok")
+        );
+        // `ok` only if the energy it reports dissipated is right to the
+        // tolerance's rule (100 rtol of the energy scale, docs/model.md).
+        let off = (ga.summary.dissipated - reference.summary.dissipated).abs();
+        let allowed = 100.0 * 1e-6 * ga.chain().energy_scale();
+        // At EA = 1e4 the balance sits at the rule's edge (its largest
+        // |E + W - E(0)| over the steps, 110 rtol of the scale): either.
+        match ga.status.as_str() {
+            "ok" => assert!(off <= allowed, "EA {ea:e}: ok, dissipated off by {off:e}"),
+            "inaccurate" => {}
+            other => panic!("EA {ea:e}: gen-alpha {other}"),
+        }
+        if ea > 1e6 {
+            assert!(off > allowed, "EA {ea:e}: off by only {off:e}");
+            assert_eq!(
+                ga.status.as_str(),
+                "inaccurate",
+                "EA {ea:e}: off by {off:e}"
+            );
+        }
         let (a, b) = (ga.summary.tip_end, dp.summary.tip_end);
         let tip = (a[0] - b[0]).hypot(a[1] - b[1]) / 6.0;
         let vmax = (ga.summary.tip_speed_max / dp.summary.tip_speed_max - 1.0).abs();

@@ -15,6 +15,7 @@ fn simulate_json_keeps_the_contract_and_balances_energy() {
     }
     assert_eq!(v["status"], "ok");
     assert_eq!(v["method"], "dopri5");
+    assert_eq!(v["model"], "rigid");
     assert_eq!(v["links"], 50);
     assert_eq!(num(&v, "t_reached"), 0.5);
     assert!(v["steps"].as_u64().unwrap() >= 1);
@@ -541,4 +542,24 @@ fn a_summary_that_is_not_finite_exits_1_and_json_says_diverged() {
     assert!(v["energy_start"].is_null(), "{v}");
     assert!(v["energy_balance_error"].is_null(), "{v}");
     fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The summary says which model ran: the one the scene's keys choose.
+#[test]
+fn simulate_json_names_the_model_that_ran() {
+    for (set, model) in [
+        (None, "rigid"),
+        (Some("chain.axial_stiffness=1e5"), "elastic"),
+        (Some("model.report=true"), "report"),
+    ] {
+        let mut args = vec!["simulate", "--json", "--t-end", "0.2"];
+        let path = scene("span-d3");
+        args.push(&path);
+        if let Some(s) = set {
+            args.extend(["--set", s]);
+        }
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        assert_eq!(json(&o)["model"], model, "{set:?}");
+    }
 }

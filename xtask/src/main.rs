@@ -9,6 +9,18 @@
 //! data into `figures/data/`, the animations, `figures/README.md` and
 //! the papers (`paper/paper.md`, `paper/methods.md`). `cargo xtask paper
 //! [--check]` fills the papers alone.
+//!
+//! Its files:
+//! * `ctx.rs`: What a figure's `compute` and `draw` may use: the workspace's folders, the one scene loader, the scene runs the report's figures share, and reading and writing `figures/data/`.
+//! * `data.rs`: `figures/data/`: the CSV files every figure is drawn from and the paper quotes, read as a `Table` and written in the study's formats (`fc_csv::format`) ...
+//! * `registry.rs`: Every figure, one entry each: the one place to add a figure.
+//! * `report.rs`: The kinds of the report's figures (fig01 to fig12), each a `Make` with its parameters.
+//! * `report_accuracy.rs`: `report-scenes-accuracy`: is each report figure drawn from a converged run? The report scenes with dynamics (and the folded chain) ...
+//! * `report_model.rs`: The report's own model as a control (`model.report = true`): its figures `rm03` to `rm12` and the runs that measure each erratum.
+//! * `runs.rs`: The scene runs the report's figures share, each made once, in parallel (`fc_paper_figures::scene_run`), and the summary of them the paper quotes (`scenes.csv`).
+//! * `study/`: The study's figures (`docs/figures.md`, "The study's figures"), one file per subject: speed against accuracy (`precision_*`: work-precision, stability map, stiffness ...
+//! * `timing.rs`: Wall times, kept apart from the data that reproduce to the byte ...
+//! * `viewer_shot.rs`: `viewer-peak`: a screenshot of `falling-chain view`'s page for the folded chain, at the instant of its peak tip speed, for the README.
 
 mod ctx;
 mod data;

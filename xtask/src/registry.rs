@@ -632,6 +632,33 @@ mod tests {
         assert_eq!(FIGURES.len(), 67);
     }
 
+    /// The lines of xtask's code (`src/`) each registered figure may take:
+    /// its registry entry and its `Make` (the choice of its scenes and
+    /// files, a call of the library that computes its tables). xtask grows
+    /// with the figures, so its bound is per figure (at 67 figures, 50 is
+    /// 3,350 lines; it holds 44 a figure): a figure whose glue outgrows it
+    /// holds a computation that belongs to `fc_paper_figures`.
+    const LINES_PER_FIGURE: usize = 50;
+
+    /// xtask stays glue: its source within [`LINES_PER_FIGURE`] lines per figure.
+    #[test]
+    fn xtask_stays_glue() {
+        let mut dirs = vec![crate::root().join("xtask").join("src")];
+        let mut lines = 0;
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    dirs.push(path);
+                } else if path.extension().is_some_and(|e| e == "rs") {
+                    lines += std::fs::read_to_string(&path).unwrap().lines().count();
+                }
+            }
+        }
+        let bound = LINES_PER_FIGURE * FIGURES.len();
+        assert!(lines <= bound, "xtask holds {lines} lines, past {bound}");
+    }
+
     /// The panels of the registry's line plots and pairs.
     const PANELS: usize = 63;
 

@@ -12,6 +12,9 @@
 //! This crate is a development tool: the product never starts a browser.
 //! Every wait has a deadline ([`TIMEOUT`]), every error is a `String`, and
 //! the browser is closed (then killed) when the [`Browser`] is dropped.
+//!
+//! Its files:
+//! * `base64.rs`: Standard base64 (RFC 4648, with padding) decoding, for screenshots.
 
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};

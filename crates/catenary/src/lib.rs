@@ -14,6 +14,14 @@
 //! from [`MIN_LENGTH`] (`1e-150`), at most [`MAX_LINKS`] (`10^6`) rods; every
 //! iteration is capped, and a cap that is hit is an error
 //! ([`CatenaryError::NoConvergence`]), never a panic or a silent answer.
+//!
+//! Its files:
+//! * `continuous.rs`: The continuous catenary `y = a cosh((x - x0)/a) + c` through two anchors.
+//! * `discrete.rs`: The exact static equilibrium of `n` equal rigid rods pinned at both ends.
+//! * `error.rs`: Why a catenary could not be built.
+//! * `profiled.rs`: The exact static equilibrium of rods of unequal mass and length pinned at both ends (the tapered chain's catenary start).
+//! * `profiled_kink.rs`: The equilibrium of unequal rods with one rod in compression (or in tension next to that configuration), for `crate::discrete_equilibrium_rods`.
+//! * `rods.rs`: Statics of `n` equal rods pinned at both ends, for a chain running towards `+x`, in rod units (lengths in `l`, forces in rod weights `W = m g`).
 
 mod continuous;
 mod discrete;

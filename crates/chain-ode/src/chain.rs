@@ -6,6 +6,7 @@ use std::fmt;
 use fc_methods::InvalidParameter;
 
 use crate::floor::{Floor, FloorLaw};
+use crate::load::Coefficients;
 use crate::pivot::Pivot;
 use crate::profile::{Profile, Rods};
 
@@ -65,6 +66,9 @@ pub struct ChainParams {
     /// `None` (the default: no floor). It needs elastic links
     /// (`axial_stiffness`) and a pivot that does not move on a path.
     pub floor: Option<Floor>,
+    /// The strengths of the loads that take a `chain.*` key of their own
+    /// ([`crate::load::Load::COEFFICIENT`]), by key; none by default.
+    pub coefficients: Coefficients,
 }
 
 impl Default for ChainParams {
@@ -83,6 +87,7 @@ impl Default for ChainParams {
             pivot: Pivot::default(),
             profile: Profile::default(),
             floor: None,
+            coefficients: Coefficients::default(),
         }
     }
 }
@@ -258,8 +263,8 @@ fn validate(p: &ChainParams) -> Result<(), InvalidParameter> {
         }
     }
     // A profile takes every other term, on rigid and on elastic links
-    // (`dynamics_profile.rs`, `elastic.rs`).
-    Ok(())
+    // (`dynamics.rs`, `elastic.rs`). Each load checks its own.
+    crate::load::validate(p)
 }
 
 impl Chain {
@@ -352,6 +357,11 @@ impl Chain {
     /// ([`Rods`]), `None` for equal rods.
     pub fn rods(&self) -> Option<&Rods> {
         self.rods.as_deref()
+    }
+
+    /// [`Chain::rods`], shared (for a load that keeps them).
+    pub(crate) fn rods_shared(&self) -> Option<std::sync::Arc<Rods>> {
+        self.rods.clone()
     }
 
     /// The tip mass in rod masses, `mu = M_t / m`: the recursion's and the
@@ -593,6 +603,13 @@ mod tests {
                 law: crate::floor::FloorLaw::Penalty,
                 restitution: 0.0,
             }),
+            coefficients: {
+                let mut c = Coefficients::default();
+                for key in crate::load::coefficient_keys() {
+                    c.set(key, 0.3);
+                }
+                c
+            },
         };
         assert_ne!(given, ChainParams::default());
         let chain = Chain::new(given.clone()).unwrap();
@@ -610,7 +627,10 @@ mod tests {
             pivot,
             profile,
             floor,
+            coefficients,
         } = refined.params().clone();
+        // The loads' coefficients (per unit length, per speed): carried.
+        assert_eq!(coefficients, given.coefficients);
         // The floor is a place and a law per contact point: carried (its
         // stiffness is per rod end, so a default `1e4 m g / l` stays).
         assert_eq!(floor, given.floor);

@@ -47,10 +47,10 @@
 use std::cell::RefCell;
 
 use crate::chain::Chain;
-use crate::dynamics::{accelerations_with, damping_stencil, joint_stencil, Base, Workspace};
-use crate::kinematics::dissipation_rate;
+use crate::dynamics::{accelerations_under, Base, Workspace};
+use crate::load::{Kinematics, Loads, RodForce, Units};
 use crate::pivot::Pivot;
-use crate::scalar::{sin_cos, Scalar};
+use crate::scalar::{sin_cos, Dual, Scalar};
 use fc_methods::SemiExplicitDae;
 
 /// The falling chain as `M y' = f(y)` with algebraic unknowns; see the module doc.
@@ -58,12 +58,8 @@ use fc_methods::SemiExplicitDae;
 pub struct ChainDae {
     chain: Chain,
     n: usize,
-    /// `g / l` (1/time^2).
-    gl: f64,
-    /// `gamma = r / (m l^2)` (1/time).
-    gamma: f64,
-    /// `kappa = EI / (l m l^2)` (1/time^2), the bending springs.
-    kappa: f64,
+    /// The chain's loads in rod units; the field `(0, -g/l)` among them.
+    loads: Loads,
     /// The tip mass in rod masses, `mu = M_t / m`.
     mu: f64,
     /// `mu / (mu_l + mu)`: the tip mass's force on its joint,
@@ -77,8 +73,22 @@ pub struct ChainDae {
     /// The pivot is free: `f_0 = 0`, and `f_0`'s unknowns hold `a_0`.
     free: bool,
     /// Scratch of [`ChainDae::rhs_at`]: `(sin phi_i, cos phi_i)` of every
-    /// rod, in one pass that vectorises (bit for bit [`sin_cos`]).
+    /// rod, in one pass that vectorises (bit for bit [`sin_cos`]), and the
+    /// loads' kinematics and forces.
     trig: RefCell<Vec<(f64, f64)>>,
+    scratch: RefCell<LoadScratch>,
+}
+
+/// What the loads of a [`ChainDae`] need between calls: the rods' centres
+/// and their velocities and each rod's load force (for loads that read
+/// centres: empty otherwise), and the dual numbers of the Jacobian's columns.
+#[derive(Clone, Debug, Default)]
+struct LoadScratch {
+    centre: Vec<[f64; 2]>,
+    velocity: Vec<[f64; 2]>,
+    force: Vec<[f64; 2]>,
+    dual_phi: Vec<Dual>,
+    dual_w: Vec<Dual>,
 }
 
 impl ChainDae {
@@ -88,18 +98,34 @@ impl ChainDae {
             .rods()
             .and_then(|r| r.mass.last().copied())
             .unwrap_or(1.0);
+        let n = chain.links();
+        let loads = Loads::of(chain, Units::Rod);
+        let scratch = LoadScratch {
+            dual_phi: vec![Dual::default(); n],
+            dual_w: vec![Dual::default(); n],
+            ..LoadScratch::default()
+        };
+        let scratch = if loads.reads_centres() {
+            LoadScratch {
+                centre: vec![[0.0; 2]; n],
+                velocity: vec![[0.0; 2]; n],
+                force: vec![[0.0; 2]; n],
+                ..scratch
+            }
+        } else {
+            scratch
+        };
         Self {
             chain: chain.clone(),
-            n: chain.links(),
-            gl: chain.gravity_rate(),
-            gamma: chain.damping_rate(),
-            kappa: chain.bending_rate(),
+            n,
+            loads,
             mu: chain.tip_mass_ratio(),
             tip: chain.tip_mass_ratio() / (last_mass + chain.tip_mass_ratio()),
             last_mass,
             pivot: *chain.pivot(),
             free: false,
             trig: RefCell::new(vec![(0.0, 0.0); chain.links()]),
+            scratch: RefCell::new(scratch),
         }
     }
 
@@ -143,6 +169,77 @@ impl ChainDae {
                 r.inv_mass[i],
             ),
             None => (1.0, 1.0, 1.0),
+        }
+    }
+
+    /// The pivot's velocity at `t` (physical units): the prescribed one
+    /// while driven, else zero (a released pivot's is not in the state: the
+    /// loads that read it are refused then).
+    fn pivot_velocity(&self, t: f64) -> [f64; 2] {
+        match self.base_at(t) {
+            Base::Driven(_) => self.pivot.drive(t)[1],
+            _ => [0.0, 0.0],
+        }
+    }
+
+    /// The rods' centres and their velocities (rod units, inertial frame)
+    /// into `scratch`, from the rates `w` and every rod's `(sin, cos)`.
+    fn centres(&self, t: f64, w: &[f64], trig: &[(f64, f64)], scratch: &mut LoadScratch) {
+        let l = self.chain.rod_length();
+        let v = self.pivot_velocity(t);
+        let v0 = [v[0] / l, v[1] / l];
+        let LoadScratch {
+            centre, velocity, ..
+        } = scratch;
+        match self.chain.rods() {
+            Some(r) => crate::dynamics::centres(r, v0, w, trig, centre, velocity),
+            None => {
+                crate::dynamics::centres(crate::dynamics::EqualRods, v0, w, trig, centre, velocity)
+            }
+        }
+    }
+
+    /// Each rod's load force (rod units) into `scratch.force`, and the
+    /// power the loads draw at the rods (physical units).
+    fn load_forces(&self, t: f64, phi: &[f64], w: &[f64], scratch: &mut LoadScratch) -> f64 {
+        let mut trig = self.trig.borrow_mut();
+        f64::sin_cos_all(phi, &mut trig[..self.n]);
+        self.centres(t, w, &trig, scratch);
+        let mut power = 0.0;
+        for i in 0..self.n {
+            let view = DaeView {
+                phi,
+                w,
+                trig: &trig,
+                rods: self.chain.rods(),
+                centre: &scratch.centre,
+                velocity: &scratch.velocity,
+            };
+            let mut load = RodForce::zero();
+            self.loads.add_to_rod(i, &view, &mut load);
+            scratch.force[i] = load.force;
+            power += load.power;
+        }
+        power
+    }
+
+    /// `W'`: the power the loads draw through the joints (friction's `2R`)
+    /// and at the rods, physical units (less a driven pivot's power, which
+    /// [`ChainDae::derivatives_at`] subtracts).
+    fn work_rate(&self, t: f64, phi: &[f64], w: &[f64]) -> f64 {
+        let view = DaeView {
+            phi,
+            w,
+            trig: &[],
+            rods: self.chain.rods(),
+            centre: &[],
+            velocity: &[],
+        };
+        let p = self.loads.joint_power(&view, 0.0);
+        if self.loads.reads_centres() {
+            p + self.load_forces(t, phi, w, &mut self.scratch.borrow_mut())
+        } else {
+            p
         }
     }
 
@@ -209,7 +306,16 @@ impl ChainDae {
         let (diff, alg) = y.split_at_mut(2 * n + 1);
         let (alpha, f) = alg.split_at_mut(n);
         let base = self.base_at(t);
-        let r = accelerations_with(&self.chain, base, &diff[..n], &diff[n..2 * n], alpha, ws);
+        let r = accelerations_under(
+            &self.chain,
+            &self.loads,
+            base,
+            self.pivot_velocity(t),
+            &diff[..n],
+            &diff[n..2 * n],
+            alpha,
+            ws,
+        );
         let l = self.chain.rod_length();
         let a0 = match base {
             Base::Fixed => (0.0, 0.0),
@@ -228,25 +334,40 @@ impl ChainDae {
             ax += 2.0 * hx;
             ay += 2.0 * hy;
         }
-        // Backward: f_i = f_{i+1} + c_i'' / l - (0, -g/l), with f_n = 0, or
-        // `mu (a_n + (0, g/l))` that the tip mass needs (a_n = (ax, ay)).
+        // Backward: f_i = f_{i+1} + c_i'' / l - a - F_i (the field `a =
+        // (0, -g/l)`, the loads' force `F_i` at rod i's centre), with
+        // f_n = 0, or `mu (a_n - a)` that the tip mass needs (a_n = (ax, ay)).
+        let field = self.loads.field.y();
         let (mut fx, mut fy) = if self.mu != 0.0 {
-            (self.mu * ax, self.mu * (ay + self.gl))
+            (self.mu * ax, self.mu * (ay - field))
         } else {
             (0.0, 0.0)
         };
+        let forces = self.loads.reads_centres();
+        let mut scratch = self.scratch.borrow_mut();
+        if forces {
+            self.load_forces(t, &diff[..n], &diff[n..2 * n], &mut scratch);
+        }
         if let Some(rods) = self.chain.rods() {
             // Rod i's weight and inertia are mu_i times a mean rod's.
             for i in (0..n).rev() {
                 fx += rods.mass[i] * f[2 * i];
-                fy += rods.mass[i] * (f[2 * i + 1] + self.gl);
+                fy += rods.mass[i] * (f[2 * i + 1] - field);
+                if forces {
+                    fx -= scratch.force[i][0];
+                    fy -= scratch.force[i][1];
+                }
                 f[2 * i] = fx;
                 f[2 * i + 1] = fy;
             }
         } else {
             for i in (0..n).rev() {
                 fx += f[2 * i];
-                fy += f[2 * i + 1] + self.gl;
+                fy += f[2 * i + 1] - field;
+                if forces {
+                    fx -= scratch.force[i][0];
+                    fy -= scratch.force[i][1];
+                }
                 f[2 * i] = fx;
                 f[2 * i + 1] = fy;
             }
@@ -276,7 +397,7 @@ impl ChainDae {
         let f = &y[3 * n + 1..];
         out[..n].copy_from_slice(w);
         out[n..2 * n].copy_from_slice(alpha);
-        out[2 * n] = dissipation_rate(&self.chain, w);
+        out[2 * n] = self.work_rate(t, &y[..n], w);
         // A driven pivot's power.
         if !self.free && self.pivot.is_driven() {
             let v0 = self.pivot.drive(t)[1];
@@ -311,6 +432,22 @@ impl ChainDae {
         let mut inv_prev = 1.0; // 1 / mu_{i-1}
         let mut trig = self.trig.borrow_mut();
         f64::sin_cos_all(phi, &mut trig[..n]);
+        let forces = self.loads.reads_centres();
+        let mut scratch = self.scratch.borrow_mut();
+        if forces {
+            self.centres(t, w, &trig, &mut scratch);
+        }
+        let scratch = &*scratch;
+        let view = DaeView {
+            phi,
+            w,
+            trig: &trig,
+            rods: self.chain.rods(),
+            centre: &scratch.centre,
+            velocity: &scratch.velocity,
+        };
+        // The loads' force on rod i - 1 over its mass (rod units).
+        let (mut qx, mut qy) = (0.0, 0.0);
         for i in 0..n {
             let (s, c) = trig[i];
             let (fx, fy) = force(i);
@@ -324,6 +461,16 @@ impl ChainDae {
             );
             let (gx, gy) = if i + 1 < n {
                 (f[2 * i + 2], f[2 * i + 3])
+            } else if self.tip != 0.0 && forces {
+                // The tip mass's joint with a load force F on the last rod:
+                // `f_n = tip (f_{n-1} + F + mu_l h_{n-1})`.
+                let mut load = RodForce::zero();
+                self.loads.add_to_rod(i, &view, &mut load);
+                let [lx, ly] = load.force;
+                (
+                    self.tip * (fx + lx + self.last_mass * hx),
+                    self.tip * (fy + ly + self.last_mass * hy),
+                )
             } else if self.tip != 0.0 {
                 // The tip mass's joint: `f_n = tip (f_{n-1} + mu_l h_{n-1})`.
                 (
@@ -333,24 +480,29 @@ impl ChainDae {
             } else {
                 (0.0, 0.0)
             };
-            moment[i] = -(alpha[i] * inertia) / 12.0 - half * (-s * (fx + gx) + c * (fy + gy))
-                + self.gamma * damping_stencil(w, i);
-            if self.kappa != 0.0 {
-                moment[i] += self.kappa
-                    * match self.chain.rods() {
-                        Some(r) => joint_stencil(phi, &r.joint, i),
-                        None => damping_stencil(phi, i),
-                    };
-            }
-            // Rod i's balance over mu_i, less rod i-1's over mu_{i-1}.
+            // The moment about the centre, then the loads' torques.
+            let mut load = RodForce {
+                torque: -(alpha[i] * inertia) / 12.0 - half * (-s * (fx + gx) + c * (fy + gy)),
+                ..RodForce::zero()
+            };
+            self.loads.add_to_rod(i, &view, &mut load);
+            moment[i] = load.torque;
+            // Rod i's balance over mu_i, less rod i-1's over mu_{i-1}; the
+            // field cancels but in rod 0's.
             if i == 0 {
                 trans[0] = (fx - gx) * inv_mu - hx - a0x;
-                trans[1] = (fy - gy) * inv_mu - self.gl - hy - a0y;
+                trans[1] = (fy - gy) * inv_mu + self.loads.field.y() - hy - a0y;
             } else {
                 let (ex, ey) = force(i - 1);
                 let both = inv_prev + inv_mu;
                 trans[2 * i] = -ex * inv_prev + fx * both - gx * inv_mu - px - hx;
                 trans[2 * i + 1] = -ey * inv_prev + fy * both - gy * inv_mu - py - hy;
+            }
+            if forces {
+                let (fx, fy) = (load.force[0] * inv_mu, load.force[1] * inv_mu);
+                trans[2 * i] += fx - qx;
+                trans[2 * i + 1] += fy - qy;
+                (qx, qy) = (fx, fy);
             }
             (px, py) = (hx, hy);
             inv_prev = inv_mu;
@@ -368,7 +520,17 @@ impl ChainDae {
     /// it the sparse LU's fill-reducing ordering breaks down (measured on the
     /// stiff rope: 76 against 16 ms at n = 100, 8.4 against 0.45 s at
     /// n = 1600). [`Self::dissipation_row`] gives the row for checks.
-    pub fn jacobian_entries(&self, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
+    pub fn jacobian_entries(&self, y: &[f64], emit: impl FnMut(usize, usize, f64)) {
+        self.jacobian_entries_at(0.0, y, emit)
+    }
+
+    /// [`ChainDae::jacobian_entries`] at `t` (which places a moving pivot,
+    /// whose velocity the loads that read the centres see). The loads'
+    /// entries are their derivatives within the band: a centre's velocity
+    /// reads every rod above it, and what a rod's force reads of the rods
+    /// more than one above it is left out of the Newton matrix (in the
+    /// difference of two neighbours' balances it nearly cancels).
+    pub fn jacobian_entries_at(&self, t: f64, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
         let n = self.n;
         let (phi, w) = (&y[..n], &y[n..2 * n]);
         let alpha = &y[2 * n + 1..3 * n + 1];
@@ -383,6 +545,20 @@ impl ChainDae {
             }
         };
         let free = self.free;
+        // The loads' columns: each load's derivatives by dual numbers.
+        let reads = self.loads.reads();
+        let (by_angle, by_rate) = (reads.angles || reads.centres, reads.rates || reads.centres);
+        let forces = reads.centres;
+        let mut trig = self.trig.borrow_mut();
+        f64::sin_cos_all(phi, &mut trig[..n]);
+        let mut scratch = self.scratch.borrow_mut();
+        for j in 0..n {
+            scratch.dual_phi[j] = Dual::new(phi[j], 0.0);
+            scratch.dual_w[j] = Dual::new(w[j], 0.0);
+        }
+        if forces {
+            self.centres(t, w, &trig, &mut scratch);
+        }
         // phi' = w, w' = alpha.
         for i in 0..n {
             emit(i, n + i, 1.0);
@@ -392,6 +568,7 @@ impl ChainDae {
         let row_t = |i: usize| 3 * n + 1 + 2 * i;
         for i in 0..n {
             let (s, c) = sin_cos(phi[i]);
+            let cos_i = c;
             let w2 = w[i] * w[i];
             let (inertia, lam, inv_mu) = self.rod(i);
             let half = 0.5 * lam;
@@ -413,37 +590,43 @@ impl ChainDae {
             // d/d(f_i) of rod i's rows is zero for a free pivot's f_0.
             let own_force = if free && i == 0 { 0.0 } else { 1.0 };
             let m = row_m(i);
-            let neighbours = (i > 0) as u8 + (i + 1 < n) as u8;
-            if self.kappa != 0.0 {
-                // The bending springs: kappa D_i(phi), each joint's spring
-                // k_j times kappa for unequal rods (1 for equal rods).
-                let (k_up, k_down) = match self.chain.rods() {
-                    Some(r) => (
-                        if i > 0 { r.joint[i] } else { 0.0 },
-                        if i + 1 < n { r.joint[i + 1] } else { 0.0 },
-                    ),
-                    None => (1.0, 1.0),
-                };
-                if i > 0 {
-                    emit(m, i - 1, self.kappa * k_up);
+            // The loads' torques (friction, bending), by dual numbers along
+            // each column they read, in the order the pattern always had:
+            // the angles' columns around the inertia's, then the rates'.
+            let cols = i.saturating_sub(1)..(i + 2).min(n);
+            // A load force F on the tip mass's rod reaches its moment through
+            // `f_n = tip (f_i + F + mu_i h_i)`: `-half v_i . tip F`, whose
+            // derivative along `phi_i` turns `v_i` too.
+            let tip_moment = |d: &RodForce<Dual>, own_angle: bool| {
+                if tipped && forces {
+                    let (fx, fy) = (d.force[0].d * self.tip, d.force[1].d * self.tip);
+                    let turn = if own_angle {
+                        half * self.tip * (cos_i * d.force[0].v + s * d.force[1].v)
+                    } else {
+                        0.0
+                    };
+                    -half * (-s * fx + cos_i * fy) + turn
+                } else {
+                    0.0
                 }
-                let own = match self.chain.rods() {
-                    Some(_) => self.kappa * (k_up + k_down),
-                    None => self.kappa * f64::from(neighbours),
-                };
-                emit(m, i, half * (c * sx + s * sy) - own);
-                if i + 1 < n {
-                    emit(m, i + 1, self.kappa * k_down);
+            };
+            for j in cols.clone() {
+                let load = by_angle.then(|| {
+                    let d = self.load_derivative(i, Column::Phi(j), &trig, &mut scratch);
+                    d.torque.d + tip_moment(&d, j == i)
+                });
+                match (j == i, load) {
+                    (true, Some(d)) => emit(m, i, half * (c * sx + s * sy) + d),
+                    (true, None) => emit(m, i, half * (c * sx + s * sy)),
+                    (false, Some(d)) => emit(m, j, d),
+                    (false, None) => {}
                 }
-            } else {
-                emit(m, i, half * (c * sx + s * sy));
             }
-            if i > 0 {
-                emit(m, n + i - 1, self.gamma);
-            }
-            emit(m, n + i, -self.gamma * f64::from(neighbours));
-            if i + 1 < n {
-                emit(m, n + i + 1, self.gamma);
+            if by_rate {
+                for j in cols {
+                    let d = self.load_derivative(i, Column::W(j), &trig, &mut scratch);
+                    emit(m, n + j, d.torque.d + tip_moment(&d, false));
+                }
             }
             let k = self.force(i);
             if tipped {
@@ -467,19 +650,43 @@ impl ChainDae {
                 emit(m, k + 2, half * s);
                 emit(m, k + 3, -half * c);
             }
-            // Translation: the terms -h_j of rods j = i-1 and j = i.
+            // Translation: the terms -h_j of rods j = i-1 and j = i, and the
+            // loads' F_i / mu_i less F_{i-1} / mu_{i-1} (on the tip mass's
+            // rod F_i's share `tip F_i` goes to f_n), within the band.
             let t = row_t(i);
             let rods = if i == 0 { 0..=0 } else { i - 1..=i };
+            let weight = if tipped {
+                inv_mu - self.tip * inv_mu
+            } else {
+                inv_mu
+            };
+            let mut load = |col: Column| -> [f64; 2] {
+                if !forces {
+                    return [0.0, 0.0];
+                }
+                let d = self.load_derivative(i, col, &trig, &mut scratch);
+                let mut out = [d.force[0].d * weight, d.force[1].d * weight];
+                let j = match col {
+                    Column::Phi(j) | Column::W(j) => j,
+                };
+                if j + 1 == i {
+                    let e = self.load_derivative(j, col, &trig, &mut scratch);
+                    out[0] -= e.force[0].d * inv_prev;
+                    out[1] -= e.force[1].d * inv_prev;
+                }
+                out
+            };
             for j in rods {
                 let (sj, cj) = if j == i { (s, c) } else { sin_cos(phi[j]) };
                 let wj2 = if j == i { w2 } else { w[j] * w[j] };
                 let a = alpha[j];
+                let (lp, lw) = (load(Column::Phi(j)), load(Column::W(j)));
                 if tipped && j == i && self.chain.rods().is_none() {
                     let k1 = 1.0 + self.tip;
-                    emit(t, j, k1 * (0.5 * (a * cj - wj2 * sj)));
-                    emit(t + 1, j, k1 * (0.5 * (a * sj + wj2 * cj)));
-                    emit(t, n + j, k1 * (w[j] * cj));
-                    emit(t + 1, n + j, k1 * (w[j] * sj));
+                    emit(t, j, k1 * (0.5 * (a * cj - wj2 * sj)) + lp[0]);
+                    emit(t + 1, j, k1 * (0.5 * (a * sj + wj2 * cj)) + lp[1]);
+                    emit(t, n + j, k1 * (w[j] * cj) + lw[0]);
+                    emit(t + 1, n + j, k1 * (w[j] * sj) + lw[1]);
                     emit(t, self.alpha(j), k1 * (0.5 * sj));
                     emit(t + 1, self.alpha(j), k1 * (-0.5 * cj));
                     continue;
@@ -497,11 +704,18 @@ impl ChainDae {
                 let hj = k1 * hj;
                 let lj = k1 * lj;
                 // d(-h_j)/dphi_j = lambda_j (alpha u_j + w^2 v_j) / 2.
-                emit(t, j, hj * (a * cj - wj2 * sj));
-                emit(t + 1, j, hj * (a * sj + wj2 * cj));
-                // d(-h_j)/dw_j = lambda_j w_j u_j.
-                emit(t, n + j, lj * (w[j] * cj));
-                emit(t + 1, n + j, lj * (w[j] * sj));
+                if forces {
+                    emit(t, j, hj * (a * cj - wj2 * sj) + lp[0]);
+                    emit(t + 1, j, hj * (a * sj + wj2 * cj) + lp[1]);
+                    emit(t, n + j, lj * (w[j] * cj) + lw[0]);
+                    emit(t + 1, n + j, lj * (w[j] * sj) + lw[1]);
+                } else {
+                    emit(t, j, hj * (a * cj - wj2 * sj));
+                    emit(t + 1, j, hj * (a * sj + wj2 * cj));
+                    // d(-h_j)/dw_j = lambda_j w_j u_j.
+                    emit(t, n + j, lj * (w[j] * cj));
+                    emit(t + 1, n + j, lj * (w[j] * sj));
+                }
                 // d(-h_j)/dalpha_j = -lambda_j v_j / 2.
                 emit(t, self.alpha(j), hj * sj);
                 emit(t + 1, self.alpha(j), -hj * cj);
@@ -525,6 +739,36 @@ impl ChainDae {
                 emit(t + 1, k + 3, -inv_mu);
             }
         }
+    }
+
+    /// The loads' force and torque on rod `i` with their derivatives along
+    /// `column` (rod units), `scratch` holding the state's dual numbers
+    /// (undisturbed on return) and, for loads that read them, its centres.
+    fn load_derivative(
+        &self,
+        i: usize,
+        column: Column,
+        trig: &[(f64, f64)],
+        scratch: &mut LoadScratch,
+    ) -> RodForce<Dual> {
+        let seed = |s: &mut LoadScratch, d: f64| match column {
+            Column::Phi(j) => s.dual_phi[j].d = d,
+            Column::W(j) => s.dual_w[j].d = d,
+        };
+        seed(scratch, 1.0);
+        let view = ColumnView {
+            phi: &scratch.dual_phi,
+            w: &scratch.dual_w,
+            trig,
+            rods: self.chain.rods(),
+            centre: &scratch.centre,
+            velocity: &scratch.velocity,
+            column,
+        };
+        let mut out = RodForce::zero();
+        self.loads.add_to_rod(i, &view, &mut out);
+        seed(scratch, 0.0);
+        out
     }
 
     /// The rod of every unknown (`phi_i, w_i, alpha_i, f_i` belong to rod
@@ -561,6 +805,134 @@ impl ChainDae {
     }
 }
 
+/// A [`ChainDae`] state's kinematics as the loads read them (rod units;
+/// the DAE's moment rows are about the rods' centres, so a torque enters
+/// them as it is: [`Kinematics::torque_unit`] is 1).
+struct DaeView<'a> {
+    phi: &'a [f64],
+    w: &'a [f64],
+    trig: &'a [(f64, f64)],
+    rods: Option<&'a crate::profile::Rods>,
+    centre: &'a [[f64; 2]],
+    velocity: &'a [[f64; 2]],
+}
+
+impl Kinematics<f64> for DaeView<'_> {
+    fn angles(&self) -> &[f64] {
+        self.phi
+    }
+    fn rates(&self) -> &[f64] {
+        self.w
+    }
+    fn sin_cos(&self, i: usize) -> (f64, f64) {
+        self.trig[i]
+    }
+    fn half_length(&self, i: usize) -> f64 {
+        0.5 * self.rods.map_or(1.0, |r| r.length[i])
+    }
+    fn mass(&self, i: usize) -> f64 {
+        self.rods.map_or(1.0, |r| r.mass[i])
+    }
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    fn centre(&self, i: usize) -> [f64; 2] {
+        self.centre[i]
+    }
+    fn centre_velocity(&self, i: usize) -> [f64; 2] {
+        self.velocity[i]
+    }
+}
+
+/// One column of the Jacobian: `phi_j` or `w_j`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Column {
+    Phi(usize),
+    W(usize),
+}
+
+/// [`DaeView`] over dual numbers whose derivative is along one column:
+/// the angles and rates seeded there, every rod's `(sin, cos)`, centre and
+/// centre velocity with their exact derivative along it (a centre reads
+/// the rods above it: `dc_i/dphi_j = lambda_j v_j` for `j < i`, half that
+/// for `j = i`).
+struct ColumnView<'a> {
+    phi: &'a [Dual],
+    w: &'a [Dual],
+    trig: &'a [(f64, f64)],
+    rods: Option<&'a crate::profile::Rods>,
+    centre: &'a [[f64; 2]],
+    velocity: &'a [[f64; 2]],
+    column: Column,
+}
+
+impl ColumnView<'_> {
+    fn length(&self, i: usize) -> f64 {
+        self.rods.map_or(1.0, |r| r.length[i])
+    }
+
+    /// The share of rod `j`'s `lambda_j` a centre `i` reads: all of it
+    /// above `i`, half of it at `i`, none below.
+    fn share(&self, i: usize, j: usize) -> f64 {
+        match j.cmp(&i) {
+            std::cmp::Ordering::Less => self.length(j),
+            std::cmp::Ordering::Equal => 0.5 * self.length(j),
+            std::cmp::Ordering::Greater => 0.0,
+        }
+    }
+}
+
+impl Kinematics<Dual> for ColumnView<'_> {
+    fn angles(&self) -> &[Dual] {
+        self.phi
+    }
+    fn rates(&self) -> &[Dual] {
+        self.w
+    }
+    fn sin_cos(&self, i: usize) -> (Dual, Dual) {
+        let (s, c) = self.trig[i];
+        let d = self.phi[i].d;
+        (Dual::new(s, c * d), Dual::new(c, -s * d))
+    }
+    fn half_length(&self, i: usize) -> f64 {
+        0.5 * self.length(i)
+    }
+    fn mass(&self, i: usize) -> f64 {
+        self.rods.map_or(1.0, |r| r.mass[i])
+    }
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    fn centre(&self, i: usize) -> [Dual; 2] {
+        let [x, y] = self.centre[i];
+        let (dx, dy) = match self.column {
+            Column::Phi(j) => {
+                let (s, c) = self.trig[j];
+                let k = self.share(i, j);
+                (-s * k, c * k)
+            }
+            Column::W(_) => (0.0, 0.0),
+        };
+        [Dual::new(x, dx), Dual::new(y, dy)]
+    }
+    fn centre_velocity(&self, i: usize) -> [Dual; 2] {
+        let [x, y] = self.velocity[i];
+        let (dx, dy) = match self.column {
+            Column::Phi(j) => {
+                let (s, c) = self.trig[j];
+                let k = self.share(i, j) * self.w[j].v;
+                (-c * k, -s * k)
+            }
+            Column::W(j) => {
+                let (s, c) = self.trig[j];
+                let k = self.share(i, j);
+                (-s * k, c * k)
+            }
+        };
+        [Dual::new(x, dx), Dual::new(y, dy)]
+    }
+}
+
 /// The sparse BDF's view of the chain. With a fixed pivot the chain is
 /// autonomous; a moving pivot reads `t` (its Jacobian does not: `P0''(t)`
 /// does not depend on `y`).
@@ -578,8 +950,8 @@ impl SemiExplicitDae for ChainDae {
         ChainDae::derivatives_at(self, t, y, out);
         true
     }
-    fn jacobian_entries(&self, _t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
-        ChainDae::jacobian_entries(self, y, emit)
+    fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        ChainDae::jacobian_entries_at(self, t, y, emit)
     }
     fn blocks(&self) -> Option<Vec<usize>> {
         Some(self.rod_blocks())

@@ -22,22 +22,70 @@
 //! which needs the residual: one evaluation of [`ChainDae`] per Jacobian.
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 
 use crate::dae::ChainDae;
 use crate::scalar::sin_cos;
 use fc_methods::SemiExplicitDae;
 
 /// A factor of one contribution: 1, or `cos`, `sin`, `-sin` of rod `i`'s
-/// angle, or rod `i`'s world force's `-f_iy` or `f_ix`.
+/// angle, or rod `i`'s world force's `-f_iy` or `f_ix`, packed in a `u32`
+/// (the kind in the top [`Factor::KIND_BITS`] bits, `i` below): the
+/// pattern is stored once per rod and contribution, about 79 a rod.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Factor(u32);
+
+impl Factor {
+    const KIND_BITS: u32 = 3;
+    const ROD_BITS: u32 = u32::BITS - Self::KIND_BITS;
+    /// The largest rod index a factor holds (`2^29 - 1`, far above
+    /// [`crate::chain::MAX_LINKS`]).
+    const MAX_ROD: usize = (1 << Self::ROD_BITS) - 1;
+    const ONE: Self = Self(0);
+    const COS: u32 = 1;
+    const SIN: u32 = 2;
+    const NEG_SIN: u32 = 3;
+    const NEG_FY: u32 = 4;
+    const FX: u32 = 5;
+
+    /// The factor of kind `kind` for rod `i` (`i <= MAX_ROD`, checked by
+    /// [`RodFrameDae::new`] for the whole chain).
+    fn of(kind: u32, i: usize) -> Self {
+        Self((kind << Self::ROD_BITS) | (i as u32 & Self::MAX_ROD as u32))
+    }
+
+    /// Its value, from every rod's `(sin, cos)` and the world-frame state
+    /// `world` whose forces start at `base`.
+    #[inline]
+    fn value(self, trig: &[(f64, f64)], world: &[f64], base: usize) -> f64 {
+        let i = (self.0 & Self::MAX_ROD as u32) as usize;
+        match self.0 >> Self::ROD_BITS {
+            Self::COS => trig[i].1,
+            Self::SIN => trig[i].0,
+            Self::NEG_SIN => -trig[i].0,
+            Self::NEG_FY => -world[base + 2 * i + 1],
+            Self::FX => world[base + 2 * i],
+            _ => 1.0,
+        }
+    }
+}
+
+/// One contribution of a [`ChainDae`] entry to an entry of this DAE:
+/// `values[slot] += j * row * col`.
 #[derive(Clone, Copy, Debug)]
-enum Factor {
-    One,
-    Cos(usize),
-    Sin(usize),
-    NegSin(usize),
-    NegFy(usize),
-    Fx(usize),
+struct Contribution {
+    slot: u32,
+    row: Factor,
+    col: Factor,
+}
+
+/// A `(row, column)` pair as one sortable key.
+fn key(row: usize, col: usize) -> u64 {
+    ((row as u64) << 32) | col as u64
+}
+
+/// The pair of a [`key`].
+fn pair(key: u64) -> (u32, u32) {
+    ((key >> 32) as u32, key as u32)
 }
 
 /// [`ChainDae`] in the rods' frames; see the module doc.
@@ -47,13 +95,12 @@ pub struct RodFrameDae {
     n: usize,
     /// The entries this DAE emits, in order; the turned rows' `d/dphi_i`
     /// are `entries[phi_slots[i]]` (row x) and the next one noted there.
-    entries: Vec<(usize, usize)>,
-    /// For [`ChainDae`]'s `k`-th entry, `contrib[start[k]..start[k + 1]]`:
-    /// `(slot, row factor, column factor)`.
-    contrib: Vec<(usize, Factor, Factor)>,
-    start: Vec<usize>,
+    entries: Vec<(u32, u32)>,
+    /// For [`ChainDae`]'s `k`-th entry, `contrib[start[k]..start[k + 1]]`.
+    contrib: Vec<Contribution>,
+    start: Vec<u32>,
     /// Rod `i`'s two slots `(row x, phi_i)`, `(row y, phi_i)`.
-    phi_slots: Vec<(usize, usize)>,
+    phi_slots: Vec<(u32, u32)>,
     /// Scratch: the world-frame state, `(sin, cos)` of every angle, the
     /// residual, the entries' values.
     world: RefCell<Vec<f64>>,
@@ -63,75 +110,126 @@ pub struct RodFrameDae {
 }
 
 impl RodFrameDae {
-    /// `dae` in the rods' frames.
-    pub fn new(dae: ChainDae) -> Self {
+    /// `dae` in the rods' frames; `None` if its pattern does not fit the
+    /// `u32` indices it is stored in (not for a chain of at most
+    /// [`crate::chain::MAX_LINKS`] rods: about 79 contributions and 38
+    /// entries a rod).
+    ///
+    /// The pattern costs about 1.4 kB a rod, in `u32`s: each contribution
+    /// is noted as a `(row, column)` key, the keys sorted and deduplicated,
+    /// and the slots numbered in the order the keys first appear (the
+    /// order a `HashMap` gave before, so the entries, their sums and the
+    /// runs are bit for bit the same), each contribution's slot found by a
+    /// binary search.
+    pub fn new(dae: ChainDae) -> Option<Self> {
         let n = dae.links();
+        let dim = dae.dim();
         let base = 3 * n + 1;
-        let mut inner_entries = Vec::new();
-        let probe = vec![0.0; dae.dim()];
-        dae.jacobian_entries(&probe, |r, c, _| inner_entries.push((r, c)));
-        let mut entries: Vec<(usize, usize)> = Vec::new();
-        let mut slot: HashMap<(usize, usize), usize> = HashMap::new();
-        let mut place = |rc: (usize, usize), entries: &mut Vec<(usize, usize)>| -> usize {
-            *slot.entry(rc).or_insert_with(|| {
-                entries.push(rc);
-                entries.len() - 1
-            })
-        };
-        let mut contrib = Vec::new();
-        let mut start = Vec::with_capacity(inner_entries.len() + 1);
-        for &(r, c) in &inner_entries {
-            start.push(contrib.len());
-            // A translation row of rod i: x = c ex + s ey, y = -s ex + c ey.
-            let rows: Vec<(usize, Factor)> = if r >= base {
+        if n > Factor::MAX_ROD || u32::try_from(dim).is_err() {
+            return None;
+        }
+        let probe = vec![0.0; dim];
+        // Rod i's translation row pair mixes its two world rows (x = c ex +
+        // s ey, y = -s ex + c ey); its force columns mix into its two
+        // turned ones and its angle (fx = c gx - s gy, fy = s gx + c gy).
+        let rows_of = |r: usize| -> [Option<(usize, Factor)>; 2] {
+            if r >= base {
                 let (i, comp) = ((r - base) / 2, (r - base) % 2);
                 let (rx, ry) = (base + 2 * i, base + 2 * i + 1);
                 if comp == 0 {
-                    vec![(rx, Factor::Cos(i)), (ry, Factor::NegSin(i))]
+                    [
+                        Some((rx, Factor::of(Factor::COS, i))),
+                        Some((ry, Factor::of(Factor::NEG_SIN, i))),
+                    ]
                 } else {
-                    vec![(rx, Factor::Sin(i)), (ry, Factor::Cos(i))]
+                    [
+                        Some((rx, Factor::of(Factor::SIN, i))),
+                        Some((ry, Factor::of(Factor::COS, i))),
+                    ]
                 }
             } else {
-                vec![(r, Factor::One)]
-            };
-            // A force column of rod i: fx = c gx - s gy, fy = s gx + c gy.
-            let cols: Vec<(usize, Factor)> = if c >= base {
+                [Some((r, Factor::ONE)), None]
+            }
+        };
+        let cols_of = |c: usize| -> [Option<(usize, Factor)>; 3] {
+            if c >= base {
                 let (i, comp) = ((c - base) / 2, (c - base) % 2);
                 let (gx, gy) = (base + 2 * i, base + 2 * i + 1);
                 if comp == 0 {
-                    vec![
-                        (gx, Factor::Cos(i)),
-                        (gy, Factor::NegSin(i)),
-                        (i, Factor::NegFy(i)),
+                    [
+                        Some((gx, Factor::of(Factor::COS, i))),
+                        Some((gy, Factor::of(Factor::NEG_SIN, i))),
+                        Some((i, Factor::of(Factor::NEG_FY, i))),
                     ]
                 } else {
-                    vec![
-                        (gx, Factor::Sin(i)),
-                        (gy, Factor::Cos(i)),
-                        (i, Factor::Fx(i)),
+                    [
+                        Some((gx, Factor::of(Factor::SIN, i))),
+                        Some((gy, Factor::of(Factor::COS, i))),
+                        Some((i, Factor::of(Factor::FX, i))),
                     ]
                 }
             } else {
-                vec![(c, Factor::One)]
-            };
-            for &(row, fr) in &rows {
-                for &(col, fc) in &cols {
-                    contrib.push((place((row, col), &mut entries), fr, fc));
+                [Some((c, Factor::ONE)), None, None]
+            }
+        };
+        // Count first, to hold every list at its exact length.
+        let (mut inner, mut count) = (0usize, 0usize);
+        dae.jacobian_entries(&probe, |r, c, _| {
+            inner += 1;
+            count += rows_of(r).iter().flatten().count() * cols_of(c).iter().flatten().count();
+        });
+        let total = count + 2 * n;
+        if u32::try_from(total).is_err() {
+            return None;
+        }
+        // Every contribution's key, in order, then the phi slots' keys.
+        let mut keys: Vec<u64> = Vec::with_capacity(total);
+        let mut contrib: Vec<Contribution> = Vec::with_capacity(count);
+        let mut start: Vec<u32> = Vec::with_capacity(inner + 1);
+        dae.jacobian_entries(&probe, |r, c, _| {
+            start.push(contrib.len() as u32);
+            for &(row, fr) in rows_of(r).iter().flatten() {
+                for &(col, fc) in cols_of(c).iter().flatten() {
+                    keys.push(key(row, col));
+                    contrib.push(Contribution {
+                        slot: 0,
+                        row: fr,
+                        col: fc,
+                    });
                 }
             }
+        });
+        start.push(contrib.len() as u32);
+        keys.extend((0..n).flat_map(|i| [key(base + 2 * i, i), key(base + 2 * i + 1, i)]));
+        if keys.len() != total || contrib.len() != count {
+            return None;
         }
-        start.push(contrib.len());
-        let phi_slots = (0..n)
-            .map(|i| {
-                (
-                    place((base + 2 * i, i), &mut entries),
-                    place((base + 2 * i + 1, i), &mut entries),
-                )
-            })
-            .collect();
-        let dim = dae.dim();
+        // The distinct keys, sorted; each one's slot in the order of its
+        // first appearance.
+        let mut distinct = keys.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        distinct.shrink_to_fit();
+        let mut slot_of = vec![u32::MAX; distinct.len()];
+        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(distinct.len());
+        let mut slots = keys.iter().map(|k| {
+            let p = distinct.binary_search(k).ok()?;
+            if slot_of[p] == u32::MAX {
+                slot_of[p] = entries.len() as u32;
+                entries.push(pair(*k));
+            }
+            Some(slot_of[p])
+        });
+        for c in &mut contrib {
+            c.slot = slots.next()??;
+        }
+        let mut phi_slots = Vec::with_capacity(n);
+        for _ in 0..n {
+            phi_slots.push((slots.next()??, slots.next()??));
+        }
+        drop(slots);
         let len = entries.len();
-        Self {
+        Some(Self {
             inner: dae,
             n,
             entries,
@@ -142,7 +240,18 @@ impl RodFrameDae {
             trig: RefCell::new(vec![(0.0, 1.0); n]),
             residual: RefCell::new(vec![0.0; dim]),
             values: RefCell::new(vec![0.0; len]),
-        }
+        })
+    }
+
+    /// The bytes its pattern holds (entries, contributions, their starts,
+    /// the phi slots), by capacity.
+    #[cfg(test)]
+    fn pattern_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.entries.capacity() * size_of::<(u32, u32)>()
+            + self.contrib.capacity() * size_of::<Contribution>()
+            + self.start.capacity() * size_of::<u32>()
+            + self.phi_slots.capacity() * size_of::<(u32, u32)>()
     }
 
     /// [`ChainDae`]'s state from this DAE's `y` (and every rod's `(sin, cos)`).
@@ -217,30 +326,24 @@ impl SemiExplicitDae for RodFrameDae {
         let mut residual = self.residual.borrow_mut();
         self.rhs_into(t, y, &mut residual, &mut world, &mut trig);
         let (world, trig) = (&*world, &*trig);
-        let factor = |f: Factor| match f {
-            Factor::One => 1.0,
-            Factor::Cos(i) => trig[i].1,
-            Factor::Sin(i) => trig[i].0,
-            Factor::NegSin(i) => -trig[i].0,
-            Factor::NegFy(i) => -world[base + 2 * i + 1],
-            Factor::Fx(i) => world[base + 2 * i],
-        };
         let mut values = self.values.borrow_mut();
         values.fill(0.0);
         let mut k = 0;
         self.inner.jacobian_entries(world, |_, _, j| {
-            for &(s, fr, fc) in &self.contrib[self.start[k]..self.start[k + 1]] {
-                values[s] += j * factor(fr) * factor(fc);
+            let (a, b) = (self.start[k] as usize, self.start[k + 1] as usize);
+            for c in &self.contrib[a..b] {
+                values[c.slot as usize] +=
+                    j * c.row.value(trig, world, base) * c.col.value(trig, world, base);
             }
             k += 1;
         });
         // d/dphi_i of the turned rows: (e . v_i, -e . u_i) = (turned y, -turned x).
         for (i, &(sx, sy)) in self.phi_slots.iter().enumerate() {
-            values[sx] += residual[base + 2 * i + 1];
-            values[sy] -= residual[base + 2 * i];
+            values[sx as usize] += residual[base + 2 * i + 1];
+            values[sy as usize] -= residual[base + 2 * i];
         }
         for (&(r, c), &v) in self.entries.iter().zip(values.iter()) {
-            emit(r, c, v);
+            emit(r as usize, c as usize, v);
         }
     }
     fn blocks(&self) -> Option<Vec<usize>> {
@@ -309,7 +412,7 @@ mod tests {
             world[..2 * n].copy_from_slice(&state(2 * n));
             let t = 0.3;
             world_dae.make_consistent_at(t, &mut world, &mut Workspace::new(n));
-            let dae = RodFrameDae::new(world_dae.clone());
+            let dae = RodFrameDae::new(world_dae.clone()).unwrap();
             let y = dae.from_world(&world);
             let (mut a, mut b) = (vec![0.0; dae.dim()], vec![0.0; dae.dim()]);
             SemiExplicitDae::rhs(&dae, t, &y, &mut a);
@@ -337,7 +440,7 @@ mod tests {
     #[test]
     fn its_jacobian_is_the_central_difference_of_its_residual() {
         for (chain, free) in chains() {
-            let dae = RodFrameDae::new(ChainDae::new(&chain).released(free));
+            let dae = RodFrameDae::new(ChainDae::new(&chain).released(free)).unwrap();
             let dim = dae.dim();
             let (t, y) = (0.7, state(dim));
             let jac = dense_jacobian(&dae, t, &y);
@@ -377,7 +480,7 @@ mod tests {
         })
         .unwrap();
         let n = chain.links();
-        let dae = RodFrameDae::new(ChainDae::new(&chain));
+        let dae = RodFrameDae::new(ChainDae::new(&chain)).unwrap();
         let dim = dae.dim();
         let y = state(dim);
         let mut turned = y.clone();
@@ -441,5 +544,35 @@ mod tests {
             .filter(|&k| (a[k] - b[k]).abs() > 1e-12 * a[k].abs().max(1.0))
             .count();
         assert_eq!(changed, 0, "entries that turn with the chain");
+    }
+
+    /// Every entry is emitted once (bdf writes each into its own CSC
+    /// position, so a repeated one would lose a contribution), and the
+    /// pattern costs a small, fixed number of bytes a rod: 12 a
+    /// contribution, 8 an entry (the `usize` and `HashMap` pattern it
+    /// replaces held about 4 kB a rod, and 9.5 kB at its peak).
+    #[test]
+    fn its_entries_are_distinct_and_its_pattern_small() {
+        for links in [1, 2, 7, 1000] {
+            for (chain, free) in chains() {
+                let chain = Chain::new(ChainParams {
+                    links,
+                    ..chain.params().clone()
+                })
+                .unwrap();
+                let dae = RodFrameDae::new(ChainDae::new(&chain).released(free)).unwrap();
+                let y = state(dae.dim());
+                let mut seen = std::collections::HashSet::new();
+                let mut count = 0;
+                dae.jacobian_entries(0.2, &y, &mut |r, c, _| {
+                    assert!(r < dae.dim() && c < dae.dim());
+                    assert!(seen.insert((r, c)), "({r}, {c}) emitted twice");
+                    count += 1;
+                });
+                assert_eq!(count, dae.entries.len());
+                let per_rod = dae.pattern_bytes() as f64 / links as f64;
+                assert!(per_rod < 1500.0, "n = {links}: {per_rod} bytes a rod");
+            }
+        }
     }
 }

@@ -6,8 +6,8 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use crate::chain::Chain;
-use crate::dynamics::damping_stencil;
 use crate::kinematics::lever_arm;
+use crate::load::{Kinematics, Load, Loads, RodForce, Units};
 
 /// `mt_ij`: `n - i + 1/3` on the diagonal, `n - max(i,j) + 1/2` off it (1-based),
 /// for a chain without a tip mass. A tip mass `mu = M_t / m` adds `mu` to
@@ -42,29 +42,119 @@ pub fn mass_matrix_with_tip(phi: &[f64], mu: f64) -> Mat<f64> {
     Mat::from_fn(n, n, |i, j| mt_tip(n, i, j, mu) * (phi[i] - phi[j]).cos())
 }
 
-/// The right-hand side
-/// `b_i = -sum_j (mt_ij + mu) s_ij w_j^2 - (g/l) (q_i + mu) cos phi_i + gamma D_i(w) + kappa D_i(phi)`
-/// (`kappa = EI / (l m l^2)`, the bending springs; `mu = M_t / m`, the tip mass).
+/// The right-hand side `b_i = -sum_j (mt_ij + mu) s_ij w_j^2 + Q_i`: the
+/// centripetal terms and the loads' generalised forces `Q` (gravity, the
+/// tip mass's weight, friction, bending, ...: [`generalised_forces`]), in
+/// rod units, of equal rods (`mu = M_t / m`, the tip mass).
 pub fn forcing(chain: &Chain, phi: &[f64], w: &[f64]) -> Vec<f64> {
     let n = phi.len();
-    let g = chain.gravity_rate();
-    let gamma = chain.damping_rate();
-    let kappa = chain.bending_rate();
     let mu = chain.tip_mass_ratio();
+    let q = generalised_forces(chain, &Layout::of(chain), phi, w, [0.0, 0.0]).0;
     (0..n)
         .map(|i| {
             let centripetal: f64 = (0..n)
                 .map(|j| mt_tip(n, i, j, mu) * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
-            let q = lever_arm(n, i) + mu;
-            let bending = if kappa != 0.0 {
-                kappa * damping_stencil(phi, i)
-            } else {
-                0.0
-            };
-            -centripetal - g * q * phi[i].cos() + gamma * damping_stencil(w, i) + bending
+            -centripetal + q[i]
         })
         .collect()
+}
+
+/// The loads' generalised forces on the angles, by virtual work: every
+/// load's force `F_k` at rod `k`'s centre and torque `tau_k` (rod units,
+/// [`Loads`]), and the field on the tip mass at `r_n`, give
+/// `Q_i = tau_i + sum_k (d c_k / d phi_i) . F_k + (d r_n / d phi_i) . mu_t a`
+/// with `d c_k / d phi_i = lambda_i v_i` above rod `k` (`i < k`), half that
+/// at it, and `d r_n / d phi_i = lambda_i v_i`. Also the total force on the
+/// chain (the pivot's generalised force). The pivot moves at `v0` (rod
+/// units), which loads that read the centres see. Written from the
+/// Cartesian forces, apart from the recursion's articulated bodies.
+fn generalised_forces(
+    chain: &Chain,
+    rods: &Layout,
+    phi: &[f64],
+    w: &[f64],
+    v0: [f64; 2],
+) -> (Vec<f64>, [f64; 2]) {
+    let n = phi.len();
+    let loads = Loads::of(chain, Units::Rod);
+    let trig: Vec<(f64, f64)> = phi.iter().map(|p| p.sin_cos()).collect();
+    let (mut centre, mut velocity) = (vec![[0.0; 2]; n], vec![[0.0; 2]; n]);
+    let (mut p, mut v) = ([0.0, 0.0], v0);
+    for i in 0..n {
+        let (s, c) = trig[i];
+        let lam = rods.lambda[i];
+        let (u, nv) = ([lam * c, lam * s], [-lam * s * w[i], lam * c * w[i]]);
+        centre[i] = [p[0] + 0.5 * u[0], p[1] + 0.5 * u[1]];
+        velocity[i] = [v[0] + 0.5 * nv[0], v[1] + 0.5 * nv[1]];
+        p = [p[0] + u[0], p[1] + u[1]];
+        v = [v[0] + nv[0], v[1] + nv[1]];
+    }
+    let view = DenseView {
+        phi,
+        w,
+        trig: &trig,
+        rods,
+        centre: &centre,
+        velocity: &velocity,
+    };
+    let a = loads.field.acceleration;
+    let mut q = vec![0.0; n];
+    let mut total = [rods.mu_t * a[0], rods.mu_t * a[1]];
+    // Beyond rod i: the force below it (the tip mass's weight, then each
+    // rod's), which a turn of rod i carries by its length.
+    let mut below = total;
+    for i in (0..n).rev() {
+        let mut f = RodForce::zero();
+        loads.field.add_to_rod(i, &view, &mut f);
+        loads.add_to_rod(i, &view, &mut f);
+        let (s, c) = trig[i];
+        let lam = rods.lambda[i];
+        let vi = [-s, c];
+        let dot = |x: [f64; 2]| vi[0] * x[0] + vi[1] * x[1];
+        q[i] = f.torque + lam * dot(below) + 0.5 * lam * dot(f.force);
+        below = [below[0] + f.force[0], below[1] + f.force[1]];
+        total = [total[0] + f.force[0], total[1] + f.force[1]];
+    }
+    (q, total)
+}
+
+/// The dense reference's view of a state (rod units; torques enter the
+/// angles' equations as they are).
+struct DenseView<'a> {
+    phi: &'a [f64],
+    w: &'a [f64],
+    trig: &'a [(f64, f64)],
+    rods: &'a Layout,
+    centre: &'a [[f64; 2]],
+    velocity: &'a [[f64; 2]],
+}
+
+impl Kinematics<f64> for DenseView<'_> {
+    fn angles(&self) -> &[f64] {
+        self.phi
+    }
+    fn rates(&self) -> &[f64] {
+        self.w
+    }
+    fn sin_cos(&self, i: usize) -> (f64, f64) {
+        self.trig[i]
+    }
+    fn half_length(&self, i: usize) -> f64 {
+        0.5 * self.rods.lambda[i]
+    }
+    fn mass(&self, i: usize) -> f64 {
+        self.rods.mu[i]
+    }
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    fn centre(&self, i: usize) -> [f64; 2] {
+        self.centre[i]
+    }
+    fn centre_velocity(&self, i: usize) -> [f64; 2] {
+        self.velocity[i]
+    }
 }
 
 /// The mass below rod `i` and half of its own, `S_{i+1} + mu_i / 2 + mu_t`,
@@ -108,15 +198,12 @@ pub fn mt_rods_tip(mu: &[f64], lambda: &[f64], mu_t: f64) -> Mat<f64> {
 }
 
 /// The chain's rods as the dense reference reads them: masses `mu_i`,
-/// lengths `lambda_i` (all 1 for equal rods), the tip mass `mu_t`, and the
-/// joints' bending springs `k_i` in the mean rod's `EI / l`,
-/// `2 / (lambda_{i-1} + lambda_i)` (`k_0 = 0`: the pivot has none), written
-/// here from the lengths, not read from [`crate::Rods::joint`].
+/// lengths `lambda_i` (all 1 for equal rods) and the tip mass `mu_t`. (The
+/// loads, the bending springs among them, are the chain's: [`Loads`].)
 struct Layout {
     mu: Vec<f64>,
     lambda: Vec<f64>,
     mu_t: f64,
-    joint: Vec<f64>,
 }
 
 impl Layout {
@@ -129,30 +216,20 @@ impl Layout {
     }
 
     fn from(mu: &[f64], lambda: &[f64], mu_t: f64) -> Self {
-        let n = mu.len();
-        let joint = (0..n)
-            .map(|i| {
-                if i == 0 {
-                    0.0
-                } else {
-                    1.0 / (0.5 * (lambda[i - 1] + lambda[i]))
-                }
-            })
-            .collect();
         Self {
             mu: mu.to_vec(),
             lambda: lambda.to_vec(),
             mu_t,
-            joint,
         }
     }
 }
 
 /// `phi''` of a profiled chain ([`crate::Rods`]) by the dense solve of
 /// `A phi'' = b`, `A_ij = mt_ij cos(phi_i - phi_j)` ([`mt_rods_tip`]) and
-/// `b_i = -sum_j mt_ij sin(phi_i - phi_j) w_j^2 - (g/l) lambda_i (S_{i+1} + mu_i/2) cos phi_i + gamma D_i(w) + kappa K_i(phi)`
-/// (the potential `V = m g l sum_k mu_k y_k`, `S_{i+1}` with the tip mass;
-/// `K_i` the joint springs' stencil), in mean-rod units, the pivot fixed.
+/// `b_i = -sum_j mt_ij sin(phi_i - phi_j) w_j^2 + Q_i` (`Q` the loads'
+/// generalised forces by virtual work, the field on every mass among them:
+/// `-(g/l) lambda_i (S_{i+1} + mu_i/2) cos phi_i`, `S_{i+1}` with the tip
+/// mass), in mean-rod units, the pivot fixed.
 /// `mu` and `lambda` are the chain's rods (given, so that a test may pass
 /// its own).
 pub fn accelerations_rods(
@@ -215,10 +292,8 @@ fn pivot_dynamics(
     let (mu, lambda) = (&rods.mu, &rods.lambda);
     let mt = mt_rods_tip(mu, lambda, rods.mu_t);
     let below = masses_below(mu, rods.mu_t);
-    let g = chain.gravity_rate();
-    let gamma = chain.damping_rate();
-    let kappa = chain.bending_rate();
     let l = chain.rod_length();
+    let (q, total) = generalised_forces(chain, rods, phi, w, [0.0, 0.0]);
     let m_tot: f64 = mu.iter().sum::<f64>() + rods.mu_t;
     let lever: Vec<f64> = (0..n).map(|i| lambda[i] * below[i].0).collect();
     let (v, u): (Vec<[f64; 2]>, Vec<[f64; 2]>) = phi
@@ -230,20 +305,12 @@ fn pivot_dynamics(
             let centripetal: f64 = (0..n)
                 .map(|j| mt[(i, j)] * (phi[i] - phi[j]).sin() * w[j] * w[j])
                 .sum();
-            let mut springs = 0.0;
-            if i > 0 {
-                springs += rods.joint[i] * (phi[i - 1] - phi[i]);
-            }
-            if i + 1 < n {
-                springs += rods.joint[i + 1] * (phi[i + 1] - phi[i]);
-            }
-            -centripetal - g * lever[i] * phi[i].cos()
-                + gamma * damping_stencil(w, i)
-                + kappa * springs
+            -centripetal + q[i]
         })
         .collect();
-    // The pivot's row: sum_i B_i w_i^2 u_i - M (0, g/l), less the force.
-    let mut p_rhs = [0.0, -m_tot * g];
+    // The pivot's row: sum_i B_i w_i^2 u_i plus every force on the chain
+    // (its weight `M (0, -g/l)` and the loads'), less the pivot's force.
+    let mut p_rhs = total;
     for i in 0..n {
         for k in 0..2 {
             p_rhs[k] += lever[i] * w[i] * w[i] * u[i][k];

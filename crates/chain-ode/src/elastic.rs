@@ -60,17 +60,18 @@ use std::cell::RefCell;
 
 use crate::chain::Chain;
 use crate::dae::ChainDae;
-use crate::dynamics::{damping_stencil, Workspace};
+use crate::dynamics::Workspace;
 use crate::floor::FloorTerm;
 use crate::kinematics::Vec2;
+use crate::load::{Bending, FloorContact, Kinematics, Load, Loads, RodForce, Units};
 use crate::pivot::Pivot;
-use crate::scalar::{sin_cos, Dual, Scalar};
+use crate::scalar::{sin_cos, Dual, Lanes, Scalar};
 use crate::state::State;
-use fc_methods::{BandedDae, OdeSystem, Problem, SemiExplicitDae};
+use fc_methods::{BandedDae, Measured, OdeSystem, Problem, SemiExplicitDae};
 
 /// Per-rod values of a profiled elastic chain (physical units): rod `i`'s
 /// half length, inverse mass and inverse moment of inertia, and joint `k`'s
-/// spring, dashpot and bending spring.
+/// spring and dashpot.
 #[derive(Clone, Debug)]
 struct PerRod {
     /// `h_i = l_i / 2`.
@@ -84,9 +85,6 @@ struct PerRod {
     k: Vec<f64>,
     /// Joint `k`'s dashpot `C_k = eta / s_k`.
     c: Vec<f64>,
-    /// Joint `k`'s bending spring `EI / ((l_{k-1} + l_k) / 2)` (`k >= 1`;
-    /// entry 0 unused: the pivot has none).
-    kb: Vec<f64>,
 }
 
 /// The constants of the elastic chain's right-hand side.
@@ -109,10 +107,9 @@ struct Springs {
     k0: f64,
     /// The pivot joint's dashpot `C_0 = 2 eta / l` (equal rods).
     c0: f64,
-    /// Joint friction `r`.
-    r: f64,
-    /// Bending spring `EI / l` (equal rods).
-    kb: f64,
+    /// The loads (physical units): the field `(0, -g)`, joint friction,
+    /// bending springs, the floor (set by the model, placed for its start).
+    loads: Loads,
     /// The per-rod values of a profiled chain; `None` for equal rods, whose
     /// arithmetic is then the scalars above, bit for bit.
     rods: Option<std::sync::Arc<PerRod>>,
@@ -127,9 +124,6 @@ struct Springs {
     driven: bool,
     /// True once the pivot is let go: joint 0 has no spring.
     released: bool,
-    /// The floor in the anchor's frame (`None`: no floor, and not one
-    /// operation more on the path without it).
-    floor: Option<FloorTerm>,
 }
 
 impl Springs {
@@ -138,7 +132,7 @@ impl Springs {
         let m = chain.mass();
         let rods = chain.rods().map(|r| {
             let ea = chain.axial_stiffness().unwrap_or(0.0);
-            let (eta, ei) = (chain.axial_damping(), chain.bending_stiffness());
+            let eta = chain.axial_damping();
             let n = r.length.len();
             let li = |i: usize| l * r.length[i];
             let mi = |i: usize| m * r.mass[i];
@@ -154,12 +148,6 @@ impl Springs {
                 inv_j: (0..n).map(|i| 12.0 / (mi(i) * li(i) * li(i))).collect(),
                 k: (0..n).map(|k| ea / share(k)).collect(),
                 c: (0..n).map(|k| eta / share(k)).collect(),
-                kb: (0..n)
-                    .map(|k| match k {
-                        0 => 0.0,
-                        _ => ei / (0.5 * (li(k - 1) + li(k))),
-                    })
-                    .collect(),
             })
         });
         let n = chain.links();
@@ -175,8 +163,7 @@ impl Springs {
             c: chain.joint_damping(),
             k0: 2.0 * chain.joint_stiffness().unwrap_or(0.0),
             c0: 2.0 * chain.joint_damping(),
-            r: chain.damping(),
-            kb: chain.bending_spring(),
+            loads: Loads::of(chain, Units::Physical),
             rods,
             m_last: rod_mass(chain, n - 1),
             tip_mass: chain.tip_mass(),
@@ -185,10 +172,18 @@ impl Springs {
             // Let go at t = 0: no joint-0 spring from the start (a later
             // release is `ElasticSystem::set_released`'s, in `solve`).
             released: chain.pivot().release == Some(0.0),
-            floor: chain
+        }
+        .with_floor(
+            chain
                 .floor()
                 .and_then(|f| f.height.map(|h| f.term(h, [0.0, 0.0]))),
-        }
+        )
+    }
+
+    /// These springs with the floor `floor` (in the anchor's frame).
+    fn with_floor(mut self, floor: Option<FloorTerm>) -> Self {
+        self.loads.floor = floor.map(FloorContact::placed);
+        self
     }
 
     #[inline(always)]
@@ -217,26 +212,6 @@ impl Springs {
             None if i == 0 => self.c0,
             None => self.c,
             Some(r) => r.c[i],
-        }
-    }
-
-    /// The bending springs' torque on rod `i`: `(EI / l) D_i(theta)` for
-    /// equal rods, `kb_{i+1} (theta_{i+1} - theta_i) - kb_i (theta_i -
-    /// theta_{i-1})` with each joint's own spring for a profile.
-    #[inline(always)]
-    fn bending<T: Scalar>(&self, theta: &[T], i: usize) -> T {
-        match &self.rods {
-            None => damping_stencil(theta, i) * self.kb,
-            Some(r) => {
-                let mut b = T::cst(0.0);
-                if i > 0 {
-                    b += (theta[i - 1] - theta[i]) * r.kb[i];
-                }
-                if i + 1 < self.n {
-                    b += (theta[i + 1] - theta[i]) * r.kb[i + 1];
-                }
-                b
-            }
         }
     }
 }
@@ -290,11 +265,16 @@ fn offsets(n: usize) -> [usize; 7] {
 /// dual number for the exact Jacobian-vector product). One pass over the
 /// joints, no allocation: `sc` holds `(sin, cos)` of the angles.
 fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [(T, T)]) {
+    T::sin_cos_all(&y[..p.n], sc);
+    rhs_with_trig(p, t, y, dy, sc);
+}
+
+/// [`rhs_generic`] with `sc` already `(sin, cos)` of the angles (the
+/// Jacobian's sweeps share them: [`ElasticDae::jacobian_values`]).
+fn rhs_with_trig<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &[(T, T)]) {
     let n = p.n;
     let [_, ow, owk, ox, oy, ovx, ovy] = offsets(n);
-    let theta = &y[..n];
     let w = &y[ow..owk];
-    T::sin_cos_all(theta, sc);
     let zero = T::cst(0.0);
     // The frame's velocity and acceleration `P0'(t), P0''(t)` (driven only).
     let [_, v0, a0] = if p.driven {
@@ -304,6 +284,16 @@ fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [
     };
     // The support's power on the chain, `F_0 . P0'`.
     let mut support = zero;
+    let view = StateView {
+        p,
+        y,
+        sc,
+        frame: if p.driven {
+            Some(p.pivot.drive(t))
+        } else {
+            None
+        },
+    };
     // Force of joint k on rod k, from the previous iteration: F_{k-1}.
     let (mut fpx, mut fpy) = (zero, zero);
     // End of rod k - 1 and its velocity (the pivot for k = 0).
@@ -341,17 +331,18 @@ fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [
             let i = k - 1;
             let (s, c) = sc[i];
             let (sx, sy) = (fpx + fx, fpy + fy);
-            let mut torque =
-                -((c * sy - s * sx) * p.h(i)) + damping_stencil(w, i) * p.r + p.bending(theta, i);
-            // The floor's force on rod i joins the force at its start.
-            let (mut fpx, mut fpy) = (fpx, fpy);
-            if let Some(floor) = &p.floor {
-                let (cx, cy, vx, vy) = (y[ox + i], y[oy + i], y[ovx + i], y[ovy + i]);
-                let [gx, gy, gt, gw] = floor.on_rod([cx, cy], [vx, vy], (s, c), w[i], p.h(i));
-                (fpx, fpy) = (fpx + gx, fpy + gy);
-                torque += gt;
-                dissipated += gw;
-            }
+            // The joints' moment about the centre, then the loads: their
+            // torques, their force joining the force at the rod's start,
+            // their power.
+            let mut load = RodForce {
+                force: [fpx, fpy],
+                torque: -((c * sy - s * sx) * p.h(i)),
+                power: dissipated,
+            };
+            p.loads.add_to_rod(i, &view, &mut load);
+            let [fpx, fpy] = load.force;
+            let torque = load.torque;
+            dissipated = load.power;
             dy[i] = w[i];
             dy[ox + i] = y[ovx + i];
             dy[oy + i] = y[ovy + i];
@@ -365,7 +356,7 @@ fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [
                 let (inv_m, inv_j) = (p.inv_m(i), p.inv_j(i));
                 dy[ow + i] = torque * inv_j;
                 dy[ovx + i] = (fpx - fx) * inv_m;
-                dy[ovy + i] = (fpy - fy) * inv_m - T::cst(p.g);
+                dy[ovy + i] = (fpy - fy) * inv_m - T::cst(-p.loads.field.y());
                 if p.driven {
                     dy[ovx + i] -= T::cst(a0[0]);
                     dy[ovy + i] -= T::cst(a0[1]);
@@ -374,14 +365,67 @@ fn rhs_generic<T: Scalar>(p: &Springs, t: f64, y: &[T], dy: &mut [T], sc: &mut [
         }
         (fpx, fpy) = (fx, fy);
     }
-    let mut friction = zero;
-    for i in 1..n {
-        let dw = w[i] - w[i - 1];
-        friction += dw * dw;
-    }
-    dy[owk] = dissipated + friction * p.r;
+    // The joints' power (friction) after the rods'.
+    dy[owk] = p.loads.joint_power(&view, dissipated);
     if p.driven {
         dy[owk] -= support;
+    }
+}
+
+/// The elastic state's kinematics as the loads read them (physical units;
+/// positions relative to the start's anchor, velocities in the inertial
+/// frame: a driven pivot's motion added).
+struct StateView<'a, T> {
+    p: &'a Springs,
+    y: &'a [T],
+    sc: &'a [(T, T)],
+    /// The driven pivot's `[d, v, a]` at `t` (`None`: not driven).
+    frame: Option<[Vec2; 3]>,
+}
+
+impl<T: Scalar> Kinematics<T> for StateView<'_, T> {
+    #[inline(always)]
+    fn angles(&self) -> &[T] {
+        &self.y[..self.p.n]
+    }
+    #[inline(always)]
+    fn rates(&self) -> &[T] {
+        let n = self.p.n;
+        &self.y[n..2 * n]
+    }
+    #[inline(always)]
+    fn sin_cos(&self, i: usize) -> (T, T) {
+        self.sc[i]
+    }
+    #[inline(always)]
+    fn half_length(&self, i: usize) -> f64 {
+        self.p.h(i)
+    }
+    #[inline(always)]
+    fn mass(&self, i: usize) -> f64 {
+        1.0 / self.p.inv_m(i)
+    }
+    #[inline(always)]
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    #[inline(always)]
+    fn centre(&self, i: usize) -> [T; 2] {
+        let [_, _, _, ox, oy, _, _] = offsets(self.p.n);
+        let c = [self.y[ox + i], self.y[oy + i]];
+        match self.frame {
+            None => c,
+            Some([d, _, _]) => [c[0] + T::cst(d[0]), c[1] + T::cst(d[1])],
+        }
+    }
+    #[inline(always)]
+    fn centre_velocity(&self, i: usize) -> [T; 2] {
+        let [_, _, _, _, _, ovx, ovy] = offsets(self.p.n);
+        let v = [self.y[ovx + i], self.y[ovy + i]];
+        match self.frame {
+            None => v,
+            Some([_, v0, _]) => [v[0] + T::cst(v0[0]), v[1] + T::cst(v0[1])],
+        }
     }
 }
 
@@ -413,7 +457,7 @@ fn tip_body<T: Scalar>(
     let h = p.h(p.n - 1);
     let mt = m + mm;
     let e = mm * h;
-    let (gx, gy) = (a0[0], p.g + a0[1]);
+    let (gx, gy) = (a0[0], -p.loads.field.y() + a0[1]);
     let (qx, qy) = (fx - T::cst(mt * gx), fy - T::cst(mt * gy));
     let q_theta = torque - (c * gy - s * gx) * e;
     let den = m * h * h / 3.0 + m * mm * h * h / mt;
@@ -469,7 +513,7 @@ impl ElasticSystem {
     /// Sets the floor, placed in the anchor's frame (`crate::floor`;
     /// state positions are relative to `P0`).
     pub fn set_floor(&mut self, floor: Option<FloorTerm>) {
-        self.springs.floor = floor;
+        self.springs.loads.floor = floor.map(FloorContact::placed);
     }
 
     /// `dy = f(y)` at `t` (`t` read only for a driven pivot): O(n),
@@ -520,27 +564,57 @@ impl Problem for ElasticSystem {
             dae: Box::new(
                 ElasticDae::new(&self.chain)
                     .released(self.springs.released)
-                    .floor(self.springs.floor),
+                    .floor(self.springs.loads.floor.map(|f| f.term)),
             ),
             y0: y0.to_vec(),
         })
     }
+
+    /// The pivot force's magnitude while the pivot holds: the force a
+    /// study reads (`Summary::pivot_force_max`, the snap's tension) is
+    /// `K d_1 + C d_1'`, so a position error `e` moves it by `K e`, which
+    /// the configuration's tolerance (`rtol |x|`) leaves unbounded on a
+    /// stiff link (`K e / |F| ~ rtol EA / T`, 1e6 on issue 49's steel
+    /// rope): gen-alpha bounds its error too (docs/model.md, "The
+    /// generalized-alpha method").
+    fn measured(&self) -> Option<Box<dyn Measured>> {
+        if self.springs.released {
+            return None;
+        }
+        Some(Box::new(PivotForceMeasure(self.chain.clone())))
+    }
 }
 
-/// Scratch of [`ElasticDae`]: its trait's methods take `&self`.
+/// The pivot force's magnitude `|F_1|` ([`pivot_force_at`]) as a quantity
+/// gen-alpha's error control bounds ([`Problem::measured`]).
+struct PivotForceMeasure(Chain);
+
+impl Measured for PivotForceMeasure {
+    fn count(&self) -> usize {
+        1
+    }
+    fn values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let [a, b] = pivot_force_at(&self.0, t, y);
+        out[0] = a.hypot(b);
+    }
+}
+
+/// Scratch of [`ElasticDae`]: its trait's methods take `&self`. The
+/// Jacobian's sweeps carry a lane per kind of coordinate.
 #[derive(Clone, Debug)]
 struct DaeScratch {
     sc: Vec<(f64, f64)>,
-    dual_y: Vec<Dual>,
-    dual_dy: Vec<Dual>,
-    dual_sc: Vec<(Dual, Dual)>,
+    lanes_y: Vec<Lanes<6>>,
+    lanes_dy: Vec<Lanes<6>>,
+    lanes_sc: Vec<(Lanes<6>, Lanes<6>)>,
 }
 
 /// The elastic chain for the O(n) sparse BDF: every unknown differential,
 /// and the Jacobian's banded pattern (each rod's accelerations depend on
 /// its own and its two neighbours' coordinates and rates) filled exactly by
-/// 18 dual-number sweeps of the right-hand side, one per kind of
-/// coordinate and per rod modulo 3 (rods three apart share no row).
+/// three sweeps of the right-hand side over dual numbers with six lanes,
+/// one sweep per rod modulo 3 (rods three apart share no row) and one lane
+/// per kind of coordinate.
 #[derive(Debug)]
 pub struct ElasticDae {
     springs: Springs,
@@ -556,9 +630,9 @@ impl ElasticDae {
             springs: Springs::of(chain),
             scratch: RefCell::new(DaeScratch {
                 sc: vec![(0.0, 0.0); n],
-                dual_y: vec![Dual::default(); dim],
-                dual_dy: vec![Dual::default(); dim],
-                dual_sc: vec![(Dual::default(), Dual::default()); n],
+                lanes_y: vec![Lanes::default(); dim],
+                lanes_dy: vec![Lanes::default(); dim],
+                lanes_sc: vec![(Lanes::default(), Lanes::default()); n],
             }),
         }
     }
@@ -571,7 +645,7 @@ impl ElasticDae {
 
     /// This DAE with the floor `floor` (in the anchor's frame).
     pub fn floor(mut self, floor: Option<FloorTerm>) -> Self {
-        self.springs.floor = floor;
+        self.springs.loads.floor = floor.map(FloorContact::placed);
         self
     }
 }
@@ -588,6 +662,16 @@ impl SemiExplicitDae for ElasticDae {
     }
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         ElasticDae::jacobian_entries_at(self, t, y, emit)
+    }
+    /// The entries' values written in order, with no call per entry.
+    fn jacobian_values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let mut k = 0;
+        self.sweeps(t, y, |_, _, v| {
+            if let Some(o) = out.get_mut(k) {
+                *o = v;
+            }
+            k += 1;
+        });
     }
     /// Rod `i` holds `theta_i, w_i, x_i, y_i, vx_i, vy_i` (and rod 0 `W`):
     /// each rod's accelerations read only its neighbours.
@@ -628,6 +712,15 @@ impl ElasticDae {
     /// [`ElasticDae::jacobian_entries`] at `t` (the entries do not depend
     /// on `t`: a driven pivot's frame adds a force independent of the state).
     pub fn jacobian_entries_at(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
+        self.sweeps(t, y, emit);
+    }
+
+    /// The Jacobian's entries into `emit` (a static call per entry): three
+    /// sweeps of the right-hand side, one per rod modulo 3, each over dual
+    /// numbers with a lane per kind of coordinate, sharing the angles'
+    /// sines and cosines (computed once, their derivatives set in the
+    /// lanes that move the angles).
+    fn sweeps(&self, t: f64, y: &[f64], mut emit: impl FnMut(usize, usize, f64)) {
         let n = self.springs.n;
         let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
         // theta' = w, x' = vx, y' = vy.
@@ -640,19 +733,38 @@ impl ElasticDae {
         let rows = [ow, ovx, ovy];
         let mut guard = self.scratch.borrow_mut();
         let s = &mut *guard;
+        f64::sin_cos_all(&y[..n], &mut s.sc);
         for colour in 0..3 {
-            for &kind in &kinds {
-                for (d, &yi) in s.dual_y.iter_mut().zip(y) {
-                    *d = Dual::new(yi, 0.0);
-                }
+            // One sweep per colour, a lane per kind: lane `q` moves the
+            // coordinate `kinds[q]` of the rods `colour, colour + 3, ..`.
+            for (d, &yi) in s.lanes_y.iter_mut().zip(y) {
+                *d = Lanes::cst(yi);
+            }
+            for (q, &kind) in kinds.iter().enumerate() {
                 for j in (colour..n).step_by(3) {
-                    s.dual_y[kind + j].d = 1.0;
+                    s.lanes_y[kind + j].d[q] = 1.0;
                 }
-                rhs_generic(&self.springs, t, &s.dual_y, &mut s.dual_dy, &mut s.dual_sc);
+            }
+            // `(sin, cos)` of the angles with their lanes, as
+            // `Lanes::sin_cos` gives them (bit for bit).
+            for ((ds, &(sn, cs)), yd) in s.lanes_sc.iter_mut().zip(&s.sc).zip(&s.lanes_y) {
+                *ds = (
+                    Lanes {
+                        v: sn,
+                        d: yd.d.map(|x| cs * x),
+                    },
+                    Lanes {
+                        v: cs,
+                        d: yd.d.map(|x| -sn * x),
+                    },
+                );
+            }
+            rhs_with_trig(&self.springs, t, &s.lanes_y, &mut s.lanes_dy, &s.lanes_sc);
+            for (q, &kind) in kinds.iter().enumerate() {
                 for j in (colour..n).step_by(3) {
                     for i in j.saturating_sub(1)..(j + 2).min(n) {
                         for &row in &rows {
-                            emit(row + i, kind + j, s.dual_dy[row + i].d);
+                            emit(row + i, kind + j, s.lanes_dy[row + i].d[q]);
                         }
                     }
                 }
@@ -679,7 +791,7 @@ fn static_forces(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
     }
     let n = phi.len();
     let (l, m, g) = (chain.rod_length(), chain.mass(), chain.gravity());
-    let kb = chain.bending_spring();
+    let loads = Loads::of(chain, Units::Physical);
     // F_i = -H + (n - i) m g (0, 1); the moment of rod i about its centre,
     // -(l/2) u_i x (F_i + F_{i+1}) + (EI/l) D_i(phi) = 0, is linear in H:
     // l (s_i Hx - c_i Hy) = (EI/l) D_i - (l/2) c_i (2n - 2i - 1) m g.
@@ -687,7 +799,7 @@ fn static_forces(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
     for (i, &p) in phi.iter().enumerate() {
         let (s, c) = sin_cos(p);
         let (ax, ay) = (l * s, -l * c);
-        let b = kb * damping_stencil(phi, i) - 0.5 * l * c * (2 * (n - i) - 1) as f64 * m * g;
+        let b = rest_torque(&loads, phi, i) - 0.5 * l * c * (2 * (n - i) - 1) as f64 * m * g;
         nxx += ax * ax;
         nxy += ax * ay;
         nyy += ay * ay;
@@ -699,6 +811,48 @@ fn static_forces(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
         .map(|i| [-h[0], -h[1] + (n - i) as f64 * m * g])
         .collect();
     (forces, h)
+}
+
+/// The loads' torque on rod `i` of a shape `phi` at rest, which the
+/// statics balance with the field: the bending springs' (friction's and the
+/// drag's vanish at rest; a start's floor contact is not counted).
+fn rest_torque(loads: &Loads, phi: &[f64], i: usize) -> f64 {
+    let Some(b) = &loads.bending else {
+        return 0.0;
+    };
+    let mut f = RodForce::zero();
+    b.add_to_rod(i, &ShapeView(phi), &mut f);
+    f.torque
+}
+
+/// A shape at rest as a load reads it: its angles alone.
+struct ShapeView<'a>(&'a [f64]);
+
+impl Kinematics<f64> for ShapeView<'_> {
+    fn angles(&self) -> &[f64] {
+        self.0
+    }
+    fn rates(&self) -> &[f64] {
+        &[]
+    }
+    fn sin_cos(&self, i: usize) -> (f64, f64) {
+        sin_cos(self.0[i])
+    }
+    fn half_length(&self, _i: usize) -> f64 {
+        0.0
+    }
+    fn mass(&self, _i: usize) -> f64 {
+        0.0
+    }
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    fn centre(&self, _i: usize) -> [f64; 2] {
+        [0.0, 0.0]
+    }
+    fn centre_velocity(&self, _i: usize) -> [f64; 2] {
+        [0.0, 0.0]
+    }
 }
 
 /// The 2x2 normal equations `N H = r` of the holding force: `H`, or the
@@ -743,7 +897,8 @@ fn static_forces_general(chain: &Chain, phi: &[f64]) -> (Vec<Vec2>, Vec2) {
         let (s, c) = sin_cos(q);
         let l = 2.0 * p.h(i);
         let (ax, ay) = (l * s, -l * c);
-        let b = p.bending(phi, i) - 0.5 * l * (beyond[i] + beyond[i + 1]) * (c * gv[1] - s * gv[0]);
+        let b = rest_torque(&p.loads, phi, i)
+            - 0.5 * l * (beyond[i] + beyond[i + 1]) * (c * gv[1] - s * gv[0]);
         nxx += ax * ax;
         nxy += ax * ay;
         nyy += ay * ay;
@@ -936,10 +1091,17 @@ pub fn pivot_force_at(chain: &Chain, t: f64, y: &[f64]) -> Vec2 {
 
 /// The energy `T + V + U_el + U_b` of the elastic state `y` (zero
 /// potential at the pivot's height; positions and velocities relative to
-/// the pivot: the frame's own terms are [`frame_energy`]'s).
+/// the pivot: the frame's own terms are [`frame_energy`]'s). The loads'
+/// potentials are the chain's own (bending): a floor's is its model's.
 pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
+    energy_under(chain, &Loads::of(chain, Units::Physical), y)
+}
+
+/// [`energy`] with the potentials of `loads` (the model's, a placed floor
+/// among them).
+pub(crate) fn energy_under(chain: &Chain, loads: &Loads, y: &[f64]) -> f64 {
     if !is_plain(chain) {
-        return energy_general(chain, false, y);
+        return energy_general(chain, loads, false, y);
     }
     let n = chain.links();
     let p = Springs::of(chain);
@@ -961,25 +1123,68 @@ pub fn energy(chain: &Chain, y: &[f64]) -> f64 {
         }
         (ex, ey) = (x + p.h * c, yy + p.h * s);
     }
-    let bend: f64 = y[..n].windows(2).map(|q| (q[1] - q[0]).powi(2)).sum();
-    0.5 * t + m * p.g * v + 0.5 * (p.k0 * u0 + p.k * u) + 0.5 * p.kb * bend
+    let e = 0.5 * t + m * p.g * v + 0.5 * (p.k0 * u0 + p.k * u);
+    loads.potential(&EnergyView { chain, y }, e)
 }
 
 /// [`energy`] at `t`: joint 0's spring energy is left out once the pivot
 /// is let go (the run moves it into the work `W` at the release).
 pub fn energy_at(chain: &Chain, t: f64, y: &[f64]) -> f64 {
+    energy_at_under(chain, &Loads::of(chain, Units::Physical), t, y)
+}
+
+/// [`energy_at`] with the potentials of `loads`.
+pub(crate) fn energy_at_under(chain: &Chain, loads: &Loads, t: f64, y: &[f64]) -> f64 {
     if pivot_free_at(chain, t) {
-        energy_general(chain, true, y)
+        energy_general(chain, loads, true, y)
     } else {
-        energy(chain, y)
+        energy_under(chain, loads, y)
+    }
+}
+
+/// An elastic state's rods as the loads' potentials read them (physical
+/// units, relative to the anchor).
+struct EnergyView<'a> {
+    chain: &'a Chain,
+    y: &'a [f64],
+}
+
+impl Kinematics<f64> for EnergyView<'_> {
+    fn angles(&self) -> &[f64] {
+        &self.y[..self.chain.links()]
+    }
+    fn rates(&self) -> &[f64] {
+        let n = self.chain.links();
+        &self.y[n..2 * n]
+    }
+    fn sin_cos(&self, i: usize) -> (f64, f64) {
+        sin_cos(self.y[i])
+    }
+    fn half_length(&self, i: usize) -> f64 {
+        rod_half_length(self.chain, i)
+    }
+    fn mass(&self, i: usize) -> f64 {
+        rod_mass(self.chain, i)
+    }
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    fn centre(&self, i: usize) -> [f64; 2] {
+        let [_, _, _, ox, oy, _, _] = offsets(self.chain.links());
+        [self.y[ox + i], self.y[oy + i]]
+    }
+    fn centre_velocity(&self, i: usize) -> [f64; 2] {
+        let [_, _, _, _, _, ovx, ovy] = offsets(self.chain.links());
+        [self.y[ovx + i], self.y[ovy + i]]
     }
 }
 
 /// [`energy`] for any elastic chain: rod masses `m_i`, inertias `J_i`,
-/// joint springs `K_k`, each joint's bending spring, the tip mass
-/// (`M_t |v_tip|^2 / 2 + M_t g y_tip`); `free0`: no joint-0 spring. One
-/// pass, no allocation.
-fn energy_general(chain: &Chain, free0: bool, y: &[f64]) -> f64 {
+/// joint springs `K_k`, the loads' potentials, the tip mass
+/// (`M_t |v_tip|^2 / 2 + M_t g y_tip`, after the bending springs': the
+/// order the data were made with); `free0`: no joint-0 spring. One pass,
+/// no allocation.
+fn energy_general(chain: &Chain, loads: &Loads, free0: bool, y: &[f64]) -> f64 {
     let n = chain.links();
     let g = chain.gravity();
     let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
@@ -999,12 +1204,6 @@ fn energy_general(chain: &Chain, free0: bool, y: &[f64]) -> f64 {
         }
         (ex, ey) = (x + h * c, yy + h * s);
     }
-    let mut bend = 0.0;
-    let ei = chain.bending_stiffness();
-    for k in 1..n {
-        let share = rod_half_length(chain, k - 1) + rod_half_length(chain, k);
-        bend += ei / share * (y[k] - y[k - 1]).powi(2);
-    }
     let mt = chain.tip_mass();
     let tip_term = if mt != 0.0 {
         let [tvx, tvy] = tip_velocity(chain, y);
@@ -1013,7 +1212,8 @@ fn energy_general(chain: &Chain, free0: bool, y: &[f64]) -> f64 {
     } else {
         0.0
     };
-    0.5 * t + g * v + 0.5 * u + 0.5 * bend + tip_term
+    let e = 0.5 * t + g * v + 0.5 * u;
+    loads.potential_split(&EnergyView { chain, y }, e, Bending::KEY, tip_term)
 }
 
 /// Joint 0's spring energy `K_0 |d_0|^2 / 2`: what leaves the chain when

@@ -153,20 +153,27 @@ impl Floor {
         let (s, c) = self.angle.sin_cos();
         let n = [-s, c];
         FloorTerm {
-            t: [c, s],
-            n,
-            level: n[0] * (0.0 - anchor[0]) + n[1] * (height - anchor[1]),
-            k: self.stiffness,
-            c: self.damping,
-            mu: self.friction,
-            inv_vs: 1.0 / self.slip_speed,
+            line: Line {
+                t: [c, s],
+                n,
+                level: n[0] * (0.0 - anchor[0]) + n[1] * (height - anchor[1]),
+            },
+            law: Penalty {
+                k: self.stiffness,
+                c: self.damping,
+                mu: self.friction,
+                inv_vs: 1.0 / self.slip_speed,
+            },
         }
     }
 }
 
-/// The floor as the right-hand side reads it (positions relative to `P0`).
+/// The floor's geometry in the anchor's frame: the line a point may not
+/// cross. What a contact solver reads of the obstacle (the gap of a point,
+/// the directions of its normal and tangential motion), apart from any
+/// force law.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FloorTerm {
+pub struct Line {
     /// Unit tangent `t`.
     pub t: Vec2,
     /// Unit normal `n` (out of the floor).
@@ -174,6 +181,34 @@ pub struct FloorTerm {
     /// `n . ((0, h) - P0)`: a point `p` (relative to `P0`) is inside by
     /// `delta = level - n . p`.
     pub level: f64,
+}
+
+impl Line {
+    /// The penetration `delta = level - n . p` of the point `p` (> 0 inside).
+    #[inline(always)]
+    pub fn gap<T: Scalar>(&self, p: [T; 2]) -> T {
+        T::cst(self.level) - (p[0] * self.n[0] + p[1] * self.n[1])
+    }
+
+    /// The rate of penetration `delta' = -n . v` of a point moving at `v`.
+    #[inline(always)]
+    pub fn gap_rate<T: Scalar>(&self, v: [T; 2]) -> T {
+        -(v[0] * self.n[0] + v[1] * self.n[1])
+    }
+
+    /// The slip speed `t . v` along the floor.
+    #[inline(always)]
+    pub fn slip<T: Scalar>(&self, v: [T; 2]) -> T {
+        v[0] * self.t[0] + v[1] * self.t[1]
+    }
+}
+
+/// The penalty law of a contact point: the Hunt–Crossley normal force and
+/// regularised Coulomb friction of the module doc, from the penetration,
+/// its rate and the slip speed. A time-stepping contact method would put a
+/// complementarity condition on the same [`Line`] in its place.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Penalty {
     /// `k`.
     pub k: f64,
     /// `c`.
@@ -182,6 +217,52 @@ pub struct FloorTerm {
     pub mu: f64,
     /// `1 / v_s`.
     pub inv_vs: f64,
+}
+
+/// What the law gives one point inside: the normal push `N >= 0`, the
+/// tangential force `T`, and the power lost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reaction<T> {
+    pub normal: T,
+    pub tangential: T,
+    pub dissipation: T,
+}
+
+impl Penalty {
+    /// The reaction at the penetration `delta > 0`, its rate `rate` and the
+    /// slip speed `slip` (evaluated lazily: only when the point pushes).
+    #[inline(always)]
+    pub fn reaction<T: Scalar>(&self, delta: T, rate: T, slip: impl FnOnce() -> T) -> Reaction<T> {
+        let zero = T::cst(0.0);
+        let spring = delta * self.k;
+        let push = spring + spring * rate * self.c;
+        if push.value() <= 0.0 {
+            // Clamped: the floor does not pull. The spring's energy leaves.
+            return Reaction {
+                normal: zero,
+                tangential: zero,
+                dissipation: -(spring * rate),
+            };
+        }
+        let slip = slip();
+        let x = slip.value() * self.inv_vs;
+        let th = x.tanh();
+        let tanh = (slip * self.inv_vs).chain_rule(th, 1.0 - th * th);
+        let tangential = -(push * tanh * self.mu);
+        Reaction {
+            normal: push,
+            tangential,
+            dissipation: push * rate - spring * rate - tangential * slip,
+        }
+    }
+}
+
+/// The floor as the right-hand side reads it (positions relative to `P0`):
+/// its line and its law.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FloorTerm {
+    pub line: Line,
+    pub law: Penalty,
 }
 
 /// What one contact point receives: its force, and the power it loses.
@@ -197,8 +278,9 @@ impl FloorTerm {
     /// This floor moved along its normal to touch the lowest of the points
     /// `points` (relative to `P0`): `level = min n . p`.
     pub fn touching(mut self, points: impl Iterator<Item = Vec2>) -> Self {
-        self.level = points
-            .map(|p| self.n[0] * p[0] + self.n[1] * p[1])
+        let n = self.line.n;
+        self.line.level = points
+            .map(|p| n[0] * p[0] + n[1] * p[1])
             .fold(f64::INFINITY, f64::min);
         self
     }
@@ -206,48 +288,39 @@ impl FloorTerm {
     /// The height `h` of this floor at `x = 0` in scene coordinates, for
     /// the anchor `P0`: `n . ((0, h) - P0) = level`.
     pub fn height(&self, anchor: Vec2) -> f64 {
-        (self.level + self.n[0] * anchor[0] + self.n[1] * anchor[1]) / self.n[1]
+        let Line { n, level, .. } = self.line;
+        (level + n[0] * anchor[0] + n[1] * anchor[1]) / n[1]
     }
 
     /// The penetration `delta` of the point `p` (relative to `P0`).
     #[inline(always)]
     pub fn penetration(&self, p: Vec2) -> f64 {
-        self.level - (self.n[0] * p[0] + self.n[1] * p[1])
+        self.line.gap(p)
     }
 
     /// The contact at the point `p` moving at `v` (relative to `P0`); zero
-    /// when the point is out of the floor.
+    /// when the point is out of the floor: the line's gap, the law's
+    /// reaction, along the line's normal and tangent.
     #[inline(always)]
     pub fn contact<T: Scalar>(&self, p: [T; 2], v: [T; 2]) -> Contact<T> {
         let zero = T::cst(0.0);
-        let delta = T::cst(self.level) - (p[0] * self.n[0] + p[1] * self.n[1]);
+        let delta = self.line.gap(p);
         if delta.value() <= 0.0 {
             return Contact {
                 force: [zero, zero],
                 dissipation: zero,
             };
         }
-        let rate = -(v[0] * self.n[0] + v[1] * self.n[1]);
-        let spring = delta * self.k;
-        let push = spring + spring * rate * self.c;
-        if push.value() <= 0.0 {
-            // Clamped: the floor does not pull. The spring's energy leaves.
-            return Contact {
-                force: [zero, zero],
-                dissipation: -(spring * rate),
-            };
-        }
-        let slip = v[0] * self.t[0] + v[1] * self.t[1];
-        let x = slip.value() * self.inv_vs;
-        let th = x.tanh();
-        let tanh = (slip * self.inv_vs).chain_rule(th, 1.0 - th * th);
-        let tangential = -(push * tanh * self.mu);
+        let r = self
+            .law
+            .reaction(delta, self.line.gap_rate(v), || self.line.slip(v));
+        let Line { t, n, .. } = self.line;
         Contact {
             force: [
-                push * self.n[0] + tangential * self.t[0],
-                push * self.n[1] + tangential * self.t[1],
+                r.normal * n[0] + r.tangential * t[0],
+                r.normal * n[1] + r.tangential * t[1],
             ],
-            dissipation: push * rate - spring * rate - tangential * slip,
+            dissipation: r.dissipation,
         }
     }
 
@@ -256,22 +329,20 @@ impl FloorTerm {
     pub fn energy(&self, p: Vec2) -> f64 {
         let d = self.penetration(p);
         if d > 0.0 {
-            0.5 * self.k * d * d
+            0.5 * self.law.k * d * d
         } else {
             0.0
         }
     }
 
-    /// The floor's force and torque on a rod of centre `c`, velocity `vc`,
-    /// angle `(sin, cos) = sc`, rate `w`, half length `h`, from its two ends
-    /// (`c -+ h u`): `[F_x, F_y, torque about c, W']`.
+    /// The floor's force and torque on a rod from its two ends `ends`
+    /// (start `c - h u`, end `c + h u`, each `[position, velocity]`, the
+    /// rod's `(hc, hs) = h (cos, sin)`): `[F_x, F_y, torque about c, W']`.
     #[inline(always)]
-    pub fn on_rod<T: Scalar>(&self, c: [T; 2], vc: [T; 2], sc: (T, T), w: T, h: f64) -> [T; 4] {
-        let (s, co) = sc;
-        let (hc, hs) = (co * h, s * h);
-        let (hsw, hcw) = (hs * w, hc * w);
-        let a = self.contact([c[0] - hc, c[1] - hs], [vc[0] + hsw, vc[1] - hcw]);
-        let b = self.contact([c[0] + hc, c[1] + hs], [vc[0] - hsw, vc[1] + hcw]);
+    pub fn on_ends<T: Scalar>(&self, ends: [[[T; 2]; 2]; 2], (hc, hs): (T, T)) -> [T; 4] {
+        let [[pa, va], [pb, vb]] = ends;
+        let a = self.contact(pa, va);
+        let b = self.contact(pb, vb);
         let fx = a.force[0] + b.force[0];
         let fy = a.force[1] + b.force[1];
         // r x F with r = -+ h u.
@@ -405,7 +476,7 @@ pub fn normal_and_landed(chain: &crate::Chain, term: &FloorTerm, y: &[f64]) -> [
         for (k, (p, v)) in ends.into_iter().enumerate() {
             let f = term.contact(p, v).force;
             if f[0] != 0.0 || f[1] != 0.0 {
-                normal += term.n[0] * f[0] + term.n[1] * f[1];
+                normal += term.line.n[0] * f[0] + term.line.n[1] * f[1];
                 let tip = if i + 1 == n && k == 1 {
                     chain.tip_mass()
                 } else {

@@ -194,17 +194,9 @@ pub(crate) fn rods_height_sum(rods: &Rods, phi: &[f64]) -> f64 {
 /// `EI / ((l_{i-1} + l_i) / 2)` ([`Rods::joint`]):
 /// `U_b = (EI / 2l) sum_i k_i (phi_i - phi_{i-1})^2`.
 pub fn bending_energy(chain: &Chain, phi: &[f64]) -> f64 {
-    let k = chain.bending_spring();
-    if k == 0.0 {
-        return 0.0;
-    }
-    if let Some(rods) = chain.rods() {
-        let sum: f64 = (1..phi.len())
-            .map(|i| rods.joint[i] * (phi[i] - phi[i - 1]).powi(2))
-            .sum();
-        return 0.5 * k * sum;
-    }
-    0.5 * k * phi.windows(2).map(|p| (p[1] - p[0]).powi(2)).sum::<f64>()
+    let loads = crate::load::Loads::of(chain, crate::load::Units::Rod);
+    let view = crate::load::Angles { phi, w: &[] };
+    loads.potential(&view, 0.0)
 }
 
 /// Total mechanical energy `T + V` of the rigid chain, `+ U_b` when it has

@@ -41,6 +41,25 @@
 //! Everything else is internal: the observers of a run, the methods'
 //! insides (fc-methods'), the scalar type of the recursion (`f64` or a dual
 //! number).
+//!
+//! # Its files
+//!
+//! * the chain: `chain.rs` (its parameters, validated once), `profile.rs`
+//!   (per-rod masses and lengths), `profile_refine.rs` (a list profile cut
+//!   again for any `n`), `pivot.rs` (how `P0` moves or is let go),
+//!   `floor.rs` (the floor's line and contact law), `state.rs` (states and
+//!   the starts that make them), `load/` (the forces every path sums);
+//! * the dynamics: `scalar.rs` (`f64` or a dual number), `dynamics.rs` (the
+//!   O(n) recursion), `system.rs` (the rigid chain as `y' = f(y)`),
+//!   `dae.rs` and `dae_frame.rs` (the banded index-1 DAE, in the rods'
+//!   frames for `bdf`), `dense.rs` (the O(n^3) reference), `elastic.rs`
+//!   (the elastic chain), `report.rs` (the report's own equations);
+//! * the models and the run: `model/` (the [`Model`] trait and each model),
+//!   `solve/` (the run layer);
+//! * checks and closed forms: `kinematics.rs`, `analysis.rs`, `modes.rs`
+//!   (the hanging chain's small oscillations), `tip_mass_law.rs` (the folded
+//!   chain with a tip mass), `beam.rs` (the BEAM benchmark),
+//!   `methods_on_chains.rs` (the integrators' tests that need a chain).
 
 pub mod analysis;
 pub mod beam;
@@ -50,10 +69,10 @@ pub mod dae;
 pub mod dae_frame;
 pub mod dense;
 pub mod dynamics;
-mod dynamics_profile;
 pub mod elastic;
 pub mod floor;
 pub mod kinematics;
+pub mod load;
 #[cfg(test)]
 mod methods_on_chains;
 pub mod model;
@@ -88,13 +107,13 @@ pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{
     axial_stiffness_ratio, floor_damping_ratio, joint_damping_ratio, AUTO_ELASTIC_ZETA,
-    AUTO_GEN_ALPHA_MAX_STIFFNESS, AUTO_GEN_ALPHA_RTOL, AUTO_GEN_ALPHA_STIFFNESS,
-    AUTO_GEN_ALPHA_TOLERANCE,
+    AUTO_GEN_ALPHA_MAX_STIFFNESS, AUTO_GEN_ALPHA_RHO_INF, AUTO_GEN_ALPHA_RTOL,
+    AUTO_GEN_ALPHA_STIFFNESS, AUTO_GEN_ALPHA_TOLERANCE,
 };
 pub use solve::{
     solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,
     BALANCE_PER_TOLERANCE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,
-    DRIVE_BALANCE_FRACTION, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
+    DRIVE_BALANCE_FRACTION, GEN_ALPHA_MIN_RTOL, MAX_OUTPUT_BYTES, REPORT_METHODS, RTOL_RANGE,
 };
 #[doc(hidden)]
 pub use solve::{unit_costs, UnitCosts};

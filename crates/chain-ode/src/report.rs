@@ -44,6 +44,11 @@ use fc_methods::{OdeSystem, Problem};
 /// per right-hand side (the report used `n <= 100`).
 pub const REPORT_MAX_LINKS: usize = 200;
 
+/// The keys of the loads the report's model carries besides gravity (its
+/// field): joint friction's. [`ReportModel::validate`] refuses every other
+/// load of [`crate::load::KINDS`] by its key.
+pub const REPORT_LOADS: [&str; 1] = ["chain.damping"];
+
 /// Which of the report's errata a run keeps (`true`: as the report has it).
 /// [`ReportModel::AS_CODED`] is `model.report = true`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -137,21 +142,25 @@ impl ReportModel {
     /// [`REPORT_MAX_LINKS`] rods. The error names the scene key.
     pub fn validate(self, chain: &Chain) -> Result<(), InvalidParameter> {
         const WHY: &str = "absent with model.report = true (the report's model has rigid links)";
-        check(
-            chain.floor().is_none(),
-            "floor.height",
-            "no [floor] with model.report = true (the report's model has no floor)",
-            "a floor",
-        )?;
+        // The loads it carries are gravity and joint friction (its `G` and
+        // `sigma gamma D_i`); every other load is refused by its key.
+        for kind in crate::load::KINDS {
+            if kind.key != REPORT_LOADS[0] && (kind.is_on)(chain.params()) {
+                return Err(InvalidParameter {
+                    field: kind.key,
+                    accepted: format!(
+                        "absent (0) with model.report = true (the report's model carries \
+                         gravity and joint friction only, no {})",
+                        kind.name
+                    )
+                    .into(),
+                    got: format!("the {}", kind.name),
+                });
+            }
+        }
         if let Some(ea) = chain.axial_stiffness() {
             check(false, "chain.axial_stiffness", WHY, ea)?;
         }
-        check(
-            chain.bending_stiffness() == 0.0,
-            "chain.bending_stiffness",
-            "0 with model.report = true (the report's model has no bending springs)",
-            chain.bending_stiffness(),
-        )?;
         check(
             chain.tip_mass() == 0.0,
             "chain.tip_mass",

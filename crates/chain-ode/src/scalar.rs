@@ -25,6 +25,8 @@ pub trait Scalar:
     /// `f(x)` from its value `fx = f(x.value())` and slope `dfx = f'(x.value())`
     /// (the chain rule for a dual number).
     fn chain_rule(self, fx: f64, dfx: f64) -> Self;
+    /// The square root (of a value > 0 for a dual number: its slope there).
+    fn sqrt(self) -> Self;
     /// `out[i] = xs[i].sin_cos()` for a whole slice (may be vectorised).
     fn sin_cos_all(xs: &[Self], out: &mut [(Self, Self)]) {
         for (o, x) in out.iter_mut().zip(xs) {
@@ -49,6 +51,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn chain_rule(self, fx: f64, _dfx: f64) -> Self {
         fx
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
     }
     fn sin_cos_all(xs: &[Self], out: &mut [(Self, Self)]) {
         let mut in_range = true;
@@ -217,6 +223,134 @@ impl Scalar for Dual {
     #[inline(always)]
     fn chain_rule(self, fx: f64, dfx: f64) -> Self {
         Self::new(fx, dfx * self.d)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        Self::new(r, self.d * (0.5 / r))
+    }
+}
+
+/// A dual number with `N` derivative lanes, `v + sum_k d_k e_k`
+/// (`e_j e_k = 0`): one evaluation gives the derivatives along `N`
+/// directions at once, each lane's arithmetic that of a [`Dual`] (bit for
+/// bit), the value computed once. The elastic chain's Jacobian sweeps the
+/// right-hand side with one lane per kind of coordinate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lanes<const N: usize> {
+    /// The value.
+    pub v: f64,
+    /// The directional derivatives.
+    pub d: [f64; N],
+}
+
+impl<const N: usize> Default for Lanes<N> {
+    fn default() -> Self {
+        Self {
+            v: 0.0,
+            d: [0.0; N],
+        }
+    }
+}
+
+impl<const N: usize> Lanes<N> {
+    #[inline(always)]
+    fn map(v: f64, f: impl Fn(usize) -> f64) -> Self {
+        Self {
+            v,
+            d: std::array::from_fn(f),
+        }
+    }
+}
+
+impl<const N: usize> Add for Lanes<N> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self::map(self.v + o.v, |k| self.d[k] + o.d[k])
+    }
+}
+impl<const N: usize> Sub for Lanes<N> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self::map(self.v - o.v, |k| self.d[k] - o.d[k])
+    }
+}
+impl<const N: usize> Mul for Lanes<N> {
+    type Output = Self;
+    #[inline(always)]
+    #[allow(
+        clippy::suspicious_arithmetic_impl,
+        reason = "the product rule: a lane's derivative mixes the factors' values"
+    )]
+    fn mul(self, o: Self) -> Self {
+        Self::map(self.v * o.v, |k| self.d[k] * o.v + self.v * o.d[k])
+    }
+}
+impl<const N: usize> Div for Lanes<N> {
+    type Output = Self;
+    #[inline(always)]
+    #[allow(
+        clippy::suspicious_arithmetic_impl,
+        reason = "the quotient rule: a lane's derivative mixes the factors' values"
+    )]
+    fn div(self, o: Self) -> Self {
+        let q = self.v / o.v;
+        Self::map(q, |k| (self.d[k] - q * o.d[k]) / o.v)
+    }
+}
+impl<const N: usize> Neg for Lanes<N> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self::map(-self.v, |k| -self.d[k])
+    }
+}
+impl<const N: usize> AddAssign for Lanes<N> {
+    #[inline(always)]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+impl<const N: usize> SubAssign for Lanes<N> {
+    #[inline(always)]
+    fn sub_assign(&mut self, o: Self) {
+        *self = *self - o;
+    }
+}
+impl<const N: usize> Mul<f64> for Lanes<N> {
+    type Output = Self;
+    #[inline(always)]
+    fn mul(self, k: f64) -> Self {
+        Self::map(self.v * k, |j| self.d[j] * k)
+    }
+}
+
+impl<const N: usize> Scalar for Lanes<N> {
+    #[inline(always)]
+    fn cst(x: f64) -> Self {
+        Self { v: x, d: [0.0; N] }
+    }
+    #[inline(always)]
+    fn sin_cos(self) -> (Self, Self) {
+        let (s, c) = sin_cos(self.v);
+        (
+            Self::map(s, |k| c * self.d[k]),
+            Self::map(c, |k| -s * self.d[k]),
+        )
+    }
+    #[inline(always)]
+    fn value(self) -> f64 {
+        self.v
+    }
+    #[inline(always)]
+    fn chain_rule(self, fx: f64, dfx: f64) -> Self {
+        Self::map(fx, |k| dfx * self.d[k])
+    }
+    fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        self.chain_rule(r, 0.5 / r)
     }
 }
 

@@ -5,15 +5,17 @@
 use crate::chain::Chain;
 use crate::dae::ChainDae;
 use crate::dae_frame::RodFrameDae;
-use crate::dynamics::{accelerations, accelerations_with, Base, Reactions, Workspace};
-use crate::kinematics::dissipation_rate;
-use crate::scalar::Dual;
+use crate::dynamics::{accelerations_under, Base, EqualRods, Reactions, RodView, Workspace};
+use crate::load::{Loads, Units};
+use crate::scalar::{Dual, Scalar};
 use fc_methods::{BandedDae, OdeSystem, Problem};
 
 /// The falling chain as `y' = f(y)`, with preallocated workspaces.
 #[derive(Clone, Debug)]
 pub struct ChainSystem {
     chain: Chain,
+    /// The chain's loads in rod units.
+    loads: Loads,
     /// The pivot has been let go (`pivot.release` reached): `solve` sets it
     /// between the run up to the release and the run after it.
     released: bool,
@@ -28,11 +30,17 @@ impl ChainSystem {
     /// The system for a validated chain.
     pub fn new(chain: &Chain) -> Self {
         let n = chain.links();
+        let loads = Loads::of(chain, Units::Rod);
+        let (mut ws, mut dual_ws) = (Workspace::new(n), Workspace::new(n));
+        if loads.reads_centres() {
+            (ws, dual_ws) = (ws.with_centres(), dual_ws.with_centres());
+        }
         Self {
             chain: chain.clone(),
+            loads,
             released: false,
-            ws: Workspace::new(n),
-            dual_ws: Workspace::new(n),
+            ws,
+            dual_ws,
             dual_phi: vec![Dual::default(); n],
             dual_w: vec![Dual::default(); n],
             dual_acc: vec![Dual::default(); n],
@@ -79,9 +87,47 @@ impl ChainSystem {
         let w = &rest[..n];
         let (dphi, drest) = dy.split_at_mut(n);
         dphi.copy_from_slice(w);
-        let r = accelerations(&self.chain, phi, w, &mut drest[..n], &mut self.ws);
-        drest[n] = dissipation_rate(&self.chain, w);
+        let r = accelerations_under(
+            &self.chain,
+            &self.loads,
+            Base::Fixed,
+            [0.0, 0.0],
+            phi,
+            w,
+            &mut drest[..n],
+            &mut self.ws,
+        );
+        drest[n] = self.work_rate(phi, w, r.load_power);
         r
+    }
+
+    /// `W'`: the power the loads draw through the joints and at the rods
+    /// (`rod_power`, the recursion's), physical units.
+    #[inline(always)]
+    fn work_rate<T: Scalar>(&self, phi: &[T], w: &[T], rod_power: T) -> T {
+        let view = RodView {
+            phi,
+            w,
+            sc: &[],
+            rods: EqualRods,
+            centre: &[],
+            centre_velocity: &[],
+        };
+        let p = self.loads.joint_power(&view, T::cst(0.0));
+        if self.loads.reads_centres() {
+            p + rod_power
+        } else {
+            p
+        }
+    }
+
+    /// The pivot's velocity at `t` (physical units; zero unless driven, and
+    /// unknown once let go: the loads that read it are refused then).
+    fn pivot_velocity(&self, base: Base, t: f64) -> [f64; 2] {
+        match base {
+            Base::Driven(_) => self.chain.pivot().drive(t)[1],
+            _ => [0.0, 0.0],
+        }
     }
 
     /// `dy = f(t, y)` with the pivot held as at `t` ([`ChainSystem::base_at`]),
@@ -94,8 +140,18 @@ impl ChainSystem {
         let w = &rest[..n];
         let (dphi, drest) = dy.split_at_mut(n);
         dphi.copy_from_slice(w);
-        let r = accelerations_with(&self.chain, base, phi, w, &mut drest[..n], &mut self.ws);
-        drest[n] = dissipation_rate(&self.chain, w);
+        let v0 = self.pivot_velocity(base, t);
+        let r = accelerations_under(
+            &self.chain,
+            &self.loads,
+            base,
+            v0,
+            phi,
+            w,
+            &mut drest[..n],
+            &mut self.ws,
+        );
+        drest[n] = self.work_rate(phi, w, r.load_power);
         if let Base::Driven(_) = base {
             let v0 = self.chain.pivot().drive(t)[1];
             drest[n] -= r.pivot_force[0] * v0[0] + r.pivot_force[1] * v0[1];
@@ -127,9 +183,12 @@ impl ChainSystem {
             self.dual_w[i] = Dual::new(y[n + i], v[n + i]);
         }
         let base = self.base_at(t);
-        let r = accelerations_with(
+        let v0 = self.pivot_velocity(base, t);
+        let r = accelerations_under(
             &self.chain,
+            &self.loads,
             base,
+            v0,
             &self.dual_phi,
             &self.dual_w,
             &mut self.dual_acc,
@@ -139,13 +198,8 @@ impl ChainSystem {
         for i in 0..n {
             jv[n + i] = self.dual_acc[i].d;
         }
-        // d(2R) = 2 r sum (w_i - w_{i-1}) (v_i - v_{i-1}).
-        let (w, vw) = (&y[n..2 * n], &v[n..2 * n]);
-        let mut d = 0.0;
-        for i in 1..n {
-            d += (w[i] - w[i - 1]) * (vw[i] - vw[i - 1]);
-        }
-        jv[2 * n] = 2.0 * self.chain.damping() * d;
+        // d(W') by the same dual numbers (friction's: 2 r sum dw dv).
+        jv[2 * n] = self.work_rate(&self.dual_phi, &self.dual_w, r.load_power).d;
         if let Base::Driven(_) = base {
             let v0 = self.chain.pivot().drive(t)[1];
             jv[2 * n] -= r.pivot_force[0].d * v0[0] + r.pivot_force[1].d * v0[1];
@@ -181,7 +235,7 @@ impl Problem for ChainSystem {
         dae.make_consistent_at(t0, &mut full, &mut Workspace::new(self.chain.links()));
         // In the rods' frames: a kept Newton matrix does not go stale as the
         // chain swings (`dae_frame`).
-        let dae = RodFrameDae::new(dae);
+        let dae = RodFrameDae::new(dae)?;
         let y0 = dae.from_world(&full);
         Some(BandedDae {
             dae: Box::new(dae),

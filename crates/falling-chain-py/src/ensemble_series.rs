@@ -26,17 +26,19 @@ use crate::sweep::jobs_of;
 /// and naming `members` when the series would take more than 1 GiB.
 /// Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scene, *, members=16, spread=1e-3, seed=0, budget=None, jobs=None))]
+#[pyo3(signature = (scene, *, members=None, spread=1e-3, seed=None, budget=None, jobs=None))]
 pub fn ensemble_series<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
-    members: usize,
+    members: Option<&Bound<'_, PyAny>>,
     spread: f64,
-    seed: u32,
+    seed: Option<&Bound<'_, PyAny>>,
     budget: Option<f64>,
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
+    // `members` and `seed` as `ensemble` takes them (16 and 0 by default).
+    let (members, seed) = crate::study::members_and_seed(members, seed)?;
     let options = EnsembleOptions {
         members,
         spread,

@@ -9,6 +9,17 @@
 //! (`interrupt`); Python values become scene values within bounds on their
 //! length and depth (`convert`), so that no input can exhaust the
 //! interpreter's memory or stack.
+//!
+//! Its files:
+//! * `catenary.rs`: `falling_chain.catenary`: what `falling-chain catenary --json` prints.
+//! * `ensemble_series.rs`: `falling_chain.ensemble_series`: `falling-chain ensemble --out-series`, its time series as numpy arrays.
+//! * `convert.rs`: Conversions between Python objects and the values of the Rust API: scene values (TOML), the CLI's JSON objects, errors, and numpy arrays.
+//! * `interrupt.rs`: Long work that Ctrl-C stops: the work runs on a worker thread with the GIL released ...
+//! * `run.rs`: `falling_chain.simulate` and the `Run` it returns.
+//! * `scene.rs`: `falling_chain.Scene`: a scene file, as the CLI reads it.
+//! * `study.rs`: `falling_chain.precision`, `stability`, `needs`, `ensemble` and `merge`: the CLI's commands of the same names ...
+//! * `sweep.rs`: `falling_chain.sweep`: the CLI's `sweep`, with numpy columns for its CSV.
+//! * `view.rs`: `falling_chain.view`: runs as `falling-chain view`'s HTML page.
 
 use pyo3::prelude::*;
 

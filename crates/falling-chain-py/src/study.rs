@@ -286,16 +286,7 @@ pub fn ensemble<'py>(
     jobs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
-    let max = core_ensemble::MAX_MEMBERS as u64;
-    // Defaults as the CLI's: 16 members, seed 0.
-    let members = match members {
-        Some(m) => int_in("members", m, 2, max)? as usize,
-        None => core_ensemble::DEFAULT_MEMBERS,
-    };
-    let seed = match seed {
-        Some(s) => int_in("seed", s, 0, u64::from(u32::MAX))? as u32,
-        None => 0,
-    };
+    let (members, seed) = members_and_seed(members, seed)?;
     let options = core_ensemble::EnsembleOptions {
         members,
         spread,
@@ -311,6 +302,25 @@ pub fn ensemble<'py>(
     })?
     .map_err(value_error)?;
     json_to_dict(py, &result.to_json().to_string())
+}
+
+/// An ensemble's `members` (in `2..=4096`, default 16) and `seed` (in
+/// `0..=2^32-1`, default 0), as the CLI's `--members` and `--seed`: any
+/// Python object, checked by [`int_in`].
+pub(crate) fn members_and_seed(
+    members: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(usize, u32)> {
+    let max = core_ensemble::MAX_MEMBERS as u64;
+    let members = match members {
+        Some(m) => int_in("members", m, 2, max)? as usize,
+        None => core_ensemble::DEFAULT_MEMBERS,
+    };
+    let seed = match seed {
+        Some(s) => int_in("seed", s, 0, u64::from(u32::MAX))? as u32,
+        None => 0,
+    };
+    Ok((members, seed))
 }
 
 /// The int `value` of the keyword argument `name` in `lo..=hi`: a

@@ -152,10 +152,13 @@ def test_floor_forces_are_the_csv_of_forces(tmp_path):
     joints = cells[:, 1 + 2 * (n + 1) : -2]
     np.testing.assert_array_equal(f.reshape(len(run), -1), joints)
     np.testing.assert_allclose(f.sum(axis=1), cells[:, -2:], rtol=1e-12, atol=1e-12)
-    # The floor pushes, never pulls, and the summary's peak is a sample's total.
+    # The floor pushes, never pulls; the summary's peak is the run's, taken
+    # at every step (issue 47 W1), so no sample's total is above it (here
+    # the samples, 0.1 apart, miss the impacts' peaks altogether).
     assert (f[:, :, 1] >= 0.0).all()
     s = run.summary
-    assert s["floor_force_max"] == pytest.approx(f[:, :, 1].sum(axis=1).max(), rel=1e-12)
+    assert s["floor_force_max"] >= f[:, :, 1].sum(axis=1).max()
+    assert 0.0 <= s["t_floor_force_max"] <= 1.2
 
 
 def test_a_run_without_a_floor_has_no_floor_forces(span):

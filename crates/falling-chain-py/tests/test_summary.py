@@ -72,3 +72,15 @@ def test_flags_come_after_sets_as_in_the_cli():
     assert run.summary["method"] == "dopri5"
     assert run.summary["t_end"] == 0.5
     assert run.scene.to_dict()["run"]["method"] == "dopri5"
+
+
+@pytest.mark.parametrize(
+    "sets,model",
+    [({}, "rigid"), ({"chain.axial_stiffness": 1e5}, "elastic"), ({"model.report": True}, "report")],
+)
+def test_the_summary_says_which_model_ran(sets, model):
+    scene = fc.Scene.load(scene_path("span-d3"))
+    for key, value in sets.items():
+        scene = scene.set(key, value)
+    run = fc.simulate(scene, t_end=0.2)
+    assert run.summary["model"] == model

@@ -5,6 +5,11 @@
 //! outputs are still written), 2 for bad input or an output that could not be
 //! written, with a one-line message on stderr naming the field; 130 or 143
 //! when stopped by SIGINT or SIGTERM (the temporary output file removed).
+//!
+//! Its files:
+//! * `progress.rs`: `simulate --progress`: the time a long run has reached, on stderr.
+//! * `stdout.rs`: Standard output as a pipe's reader may close it: `falling-chain ... | head -3` is an ordinary end.
+//! * `study_commands.rs`: The study's commands: `precision`, `stability`, `needs`, `ensemble` and `merge` (the computations are the fc-study crate's).
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -16,6 +16,9 @@
 //! Python's tables) goes through [`Reader`]; a quote inside an unquoted
 //! cell, text after a closing quote or a quoted cell never closed is an
 //! error naming its line.
+//!
+//! Its files: `format.rs` (the number formats) and `table.rs` (a table read
+//! whole, with columns by name).
 
 pub mod format;
 pub mod table;

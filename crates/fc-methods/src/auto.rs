@@ -34,6 +34,12 @@ pub struct AutoPlan {
     /// The implicit method runs at this times the asked `rtol` and `atol`
     /// (in (0, 1]; 1 for BDF, whose error follows its tolerance).
     pub implicit_tolerance: f64,
+    /// The spectral radius at infinity `gen-alpha` runs with as the
+    /// implicit method (`None`: the run's `rho_inf`). `Some(0)` annihilates
+    /// the modes it steps over at every step, so that the forces they carry
+    /// are their quasi-static values (the elastic chain's: docs/model.md,
+    /// "The generalized-alpha method").
+    pub implicit_rho_inf: Option<f64>,
 }
 
 impl AutoPlan {
@@ -51,6 +57,7 @@ impl AutoPlan {
             hand_over_above: f64::INFINITY,
             implicit: Method::Bdf,
             implicit_tolerance: 1.0,
+            implicit_rho_inf: None,
         }
     }
 }
@@ -104,12 +111,14 @@ fn run(problem: &mut dyn Problem, span: &Span<'_>, obs: &mut dyn Observer) -> Ru
         .unwrap_or_else(|| AutoPlan::generic(span.settings.rtol));
     // The implicit method's settings (unchanged at a factor of 1).
     let tightened = |s: &Settings| {
-        if plan.implicit_tolerance == 1.0 {
+        let rho_inf = plan.implicit_rho_inf.unwrap_or(s.rho_inf);
+        if plan.implicit_tolerance == 1.0 && rho_inf == s.rho_inf {
             *s
         } else {
             Settings {
                 rtol: s.rtol * plan.implicit_tolerance,
                 atol: s.atol * plan.implicit_tolerance,
+                rho_inf,
                 ..*s
             }
         }

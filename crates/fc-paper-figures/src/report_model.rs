@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 
 use chain_ode::report::{finite_difference_tip_speeds, ReportModel};
-use chain_ode::{solve, Method, ModelKind, ReportChain, Trajectory};
+use chain_ode::{solve, Method, ModelKind, Trajectory};
 
 use fc_csv::format::{fixed, num};
 use fc_scene::scene::Scene;
@@ -164,7 +164,7 @@ pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
         o.dt = report_dt(t_report);
         o.output_dt = Some(o.dt);
         let traj = solve(
-            ModelKind::Report(ReportChain::new(&p.chain, ReportModel::AS_CODED)),
+            ModelKind::choose(&p.chain, Some(ReportModel::AS_CODED)),
             &p.state,
             Method::Rk4,
             &o,
@@ -217,7 +217,7 @@ pub fn errata_spans(base: &Scene, t_report: f64) -> Result<String, String> {
             o.dt = report_dt(t_report) * coded / unit;
             o.output_dt = None;
             let traj = solve(
-                ModelKind::Report(ReportChain::new(&p.chain, *model)),
+                ModelKind::choose(&p.chain, Some(*model)),
                 &p.state,
                 Method::Rk4,
                 &o,
@@ -257,7 +257,7 @@ pub fn errata(scenes: &[(&str, &Scene, f64)]) -> Result<String, String> {
             o.dt = report_dt(t_report) * coded / unit;
             o.output_dt = None;
             let traj = solve(
-                ModelKind::Report(ReportChain::new(&p.chain, *model)),
+                ModelKind::choose(&p.chain, Some(*model)),
                 &p.state,
                 Method::Rk4,
                 &o,

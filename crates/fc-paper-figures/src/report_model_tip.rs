@@ -11,7 +11,7 @@
 use std::fmt::Write as _;
 
 use chain_ode::report::{finite_difference_tip_velocities, ReportModel};
-use chain_ode::{solve, Method, ModelKind, ReportChain, Trajectory};
+use chain_ode::{solve, Method, ModelKind, Trajectory};
 
 use super::report_model::report_dt;
 use fc_csv::format::{fixed, num};
@@ -58,7 +58,7 @@ fn runs(scene: &Scene, t_report: f64) -> Result<Vec<Trajectory>, String> {
         .iter()
         .map(|(_, model)| {
             solve(
-                ModelKind::Report(ReportChain::new(&p.chain, *model)),
+                ModelKind::choose(&p.chain, Some(*model)),
                 &p.state,
                 Method::Rk4,
                 &o,

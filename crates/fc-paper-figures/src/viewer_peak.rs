@@ -21,9 +21,10 @@ use fc_scene::summary::RunSummary;
 use fc_viewer::{ViewRun, DATA_BUDGET_BYTES};
 
 /// The summary fields the page's table shows.
-pub const SHOWN: [&str; 10] = [
+pub const SHOWN: [&str; 11] = [
     "status",
     "method",
+    "model",
     "links",
     "steps",
     "tip_speed_max",

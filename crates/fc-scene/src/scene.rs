@@ -27,10 +27,11 @@
 use std::path::Path;
 use std::str::FromStr;
 
+use chain_ode::load::Coefficients;
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, Chain, ChainParams, Floor, FloorLaw, Method, ModelKind, Pivot, Profile, ReportChain,
-    SolveOptions, Start, State, Trajectory,
+    solve, Chain, ChainParams, Floor, FloorLaw, Method, ModelKind, Pivot, Profile, SolveOptions,
+    Start, State, Trajectory,
 };
 use serde::{Deserialize, Serialize};
 
@@ -137,8 +138,10 @@ struct ModelSection {
     report: bool,
 }
 
+/// `[chain]`: the chain's fields, and the loads' coefficients by key (the
+/// rows of [`chain_ode::load::coefficient_keys`], such as `air_drag`; any
+/// other key `schema::check` has refused already).
 #[derive(Debug, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
 struct ChainSection {
     length: f64,
     links: usize,
@@ -152,6 +155,8 @@ struct ChainSection {
     taper: f64,
     rod_masses: Option<Vec<f64>>,
     rod_lengths: Option<Vec<f64>>,
+    #[serde(flatten)]
+    loads: std::collections::BTreeMap<String, f64>,
 }
 
 /// The pivot's motion ([`chain_ode::Pivot`]).
@@ -234,15 +239,18 @@ pub struct Prepared {
 impl Prepared {
     /// Runs it.
     pub fn solve(&self) -> Result<Trajectory, Error> {
-        Ok(match self.report {
-            None => solve(&self.chain, &self.state, self.method, &self.options)?,
-            Some(model) => solve(
-                ModelKind::Report(ReportChain::new(&self.chain, model)),
-                &self.state,
-                self.method,
-                &self.options,
-            )?,
-        })
+        Ok(solve(
+            self.model(),
+            &self.state,
+            self.method,
+            &self.options,
+        )?)
+    }
+
+    /// The model the run runs ([`ModelKind::choose`]: the report's with
+    /// `model.report = true`, else the chain's rigid or elastic one).
+    pub fn model(&self) -> ModelKind {
+        ModelKind::choose(&self.chain, self.report)
     }
 
     /// Checks the start as the run would, without running: the start the
@@ -250,10 +258,7 @@ impl Prepared {
     /// one [`Prepared::solve`] would refuse (O(n), no integrator).
     pub fn check_start(&self) -> Result<(), Error> {
         use chain_ode::Model as _;
-        let mut model = match self.report {
-            None => ModelKind::of(&self.chain),
-            Some(model) => ModelKind::Report(ReportChain::new(&self.chain, model)),
-        };
+        let mut model = self.model();
         model.initial_state(&self.state)?;
         Ok(())
     }
@@ -266,15 +271,7 @@ impl Prepared {
             cancel: Some(cancel),
             ..self.options.clone()
         };
-        Ok(match self.report {
-            None => solve(&self.chain, &self.state, self.method, &options)?,
-            Some(model) => solve(
-                ModelKind::Report(ReportChain::new(&self.chain, model)),
-                &self.state,
-                self.method,
-                &options,
-            )?,
-        })
+        Ok(solve(self.model(), &self.state, self.method, &options)?)
     }
 
     /// An error naming `model.report` if this is the report's model: for
@@ -337,6 +334,7 @@ impl Scene {
             taper,
             rod_masses,
             rod_lengths,
+            loads,
         } = chain;
         let PivotSection {
             acceleration,
@@ -370,8 +368,15 @@ impl Scene {
                 lengths: rod_lengths,
             },
             floor: None,
+            coefficients: Coefficients::default(),
         };
         chain.floor = floor.floor(&chain)?;
+        for (name, x) in loads {
+            let key = chain_ode::load::coefficient_keys()
+                .find(|k| k.split_once('.').map(|(_, field)| field) == Some(name.as_str()))
+                .ok_or_else(|| Error::field("chain", format!("'{name}' is no load's key")))?;
+            chain.coefficients.set(key, x);
+        }
         // `schema::check` has made sure that each kind's required keys are there.
         let p0 = start.p0;
         let start = match (start.kind, start.p1, start.angles) {
@@ -533,6 +538,7 @@ impl Scene {
             profile,
             // The `[floor]` keys are the scene's own: kept as they are.
             floor: _,
+            coefficients,
         } = chain.params().clone();
         let links = i64::try_from(links)
             .map_err(|_| Error::field("chain.links", format!("too large (got {links})")))?;
@@ -616,6 +622,18 @@ impl Scene {
                 None => {
                     if let Some(toml::Value::Table(section)) = tree.get_mut("chain") {
                         section.remove(name);
+                    }
+                }
+            }
+        }
+        // The loads' coefficients are written only when on, so that a scene
+        // without them reads as it did before the keys existed.
+        for key in chain_ode::load::coefficient_keys() {
+            match coefficients.get(key) {
+                x if x != 0.0 => overrides::set_path(&mut tree, key, toml::Value::Float(x))?,
+                _ => {
+                    if let Some(toml::Value::Table(section)) = tree.get_mut("chain") {
+                        section.remove(key.split_once('.').map_or(key, |(_, field)| field));
                     }
                 }
             }
@@ -873,6 +891,47 @@ t_end = 4
         let mut rows: Vec<&str> = schema::KEYS.iter().map(|k| k.path).collect();
         rows.sort();
         assert_eq!(paths, rows);
+    }
+
+    /// Every load of chain-ode whose strength is a coefficient has its row
+    /// (a number, 0 by default: off), and every row of `[chain]` that is no
+    /// field of the serde struct is such a load's: a load added without its
+    /// row, or a row no load reads, fails here.
+    #[test]
+    fn every_load_coefficient_is_a_row_and_back() {
+        let keys: Vec<&str> = chain_ode::load::coefficient_keys().collect();
+        for key in &keys {
+            let row = schema::key(key).unwrap_or_else(|| panic!("{key}: no row in schema::KEYS"));
+            assert_eq!(row.ty, schema::Type::Number, "{key}");
+            assert_eq!(
+                row.default,
+                schema::DefaultValue::Value(schema::Literal::Number(0.0)),
+                "{key}"
+            );
+        }
+        let mut tree = valid_base(StartKind::Catenary);
+        for key in &keys {
+            overrides::set_path(&mut tree, key, toml::Value::Float(0.5)).unwrap();
+        }
+        let file = SceneFile::read(&tree).unwrap();
+        let mut loads: Vec<String> = file
+            .chain
+            .loads
+            .keys()
+            .map(|k| format!("chain.{k}"))
+            .collect();
+        loads.sort();
+        let mut want: Vec<String> = keys.iter().map(|k| k.to_string()).collect();
+        want.sort();
+        assert_eq!(loads, want);
+        // And the chain carries them, and a scene rewritten from it keeps them.
+        let scene = Scene::from_tree(tree).unwrap();
+        for key in &keys {
+            assert_eq!(scene.chain_params().coefficients.get(key), 0.5, "{key}");
+        }
+        let chain = scene.chain().unwrap();
+        let again = scene.with_chain(&chain).unwrap();
+        assert_eq!(again.chain_params(), scene.chain_params());
     }
 
     #[test]

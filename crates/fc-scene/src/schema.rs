@@ -143,7 +143,7 @@ const ALL_KINDS: Kinds = Kinds::Only(&StartKind::ALL);
 
 /// Every scene key, in the order of the README table. The sections
 /// (`chain`, `pivot`, `start`, `run`, `model`) are the first parts of the dotted paths.
-pub static KEYS: &[Key] = &[
+const ROWS: &[Key] = &[
     Key {
         path: "name",
         ty: Type::Text,
@@ -241,6 +241,15 @@ pub static KEYS: &[Key] = &[
         kinds: Kinds::Any,
         doc: "a point mass `M_t` (mass) at the free end, finite and >= 0; rigid or elastic links",
         example: "1.0",
+        out_of_range: Some("-1"),
+    },
+    Key {
+        path: "chain.air_drag",
+        ty: Type::Number,
+        default: DefaultValue::Value(Literal::Number(0.0)),
+        kinds: Kinds::Any,
+        doc: "quadratic air drag `c` (mass / length^2), in 0..=1e9: a force `-c l_i s_i v_i` at each rod's centre, `v_i` its velocity, `s_i` its speed; not with pivot.release on rigid links",
+        example: "0.05",
         out_of_range: Some("-1"),
     },
     Key {
@@ -410,7 +419,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(1e-8)),
         kinds: Kinds::Any,
-        doc: "relative tolerance of the adaptive methods, in [1e-14, 0.1]",
+        doc: "relative tolerance of the adaptive methods, in [1e-14, 0.1] (`gen-alpha`: [1e-10, 0.1], below which its error stops following it)",
         example: "1e-6",
         out_of_range: Some("1"),
     },
@@ -455,7 +464,7 @@ pub static KEYS: &[Key] = &[
         ty: Type::Number,
         default: DefaultValue::Value(Literal::Number(0.9)),
         kinds: Kinds::Any,
-        doc: "`gen-alpha`'s spectral radius at infinity, in [0, 1]: the share of a mode its step does not resolve that survives a step (1: the trapezoidal rule, no damping; 0: gone in one step); the other methods ignore it",
+        doc: "`gen-alpha`'s spectral radius at infinity, in [0, 1]: the share of a mode its step does not resolve that survives a step (1: the trapezoidal rule, no damping; 0: gone in one step, and the forces of the elastic links' stepped-over axial modes their quasi-static values, as `auto` runs it; above 0 those forces are not resolved: `forces_resolved`); the other methods ignore it",
         example: "0.6",
         out_of_range: Some("1.5"),
     },
@@ -541,6 +550,36 @@ pub static KEYS: &[Key] = &[
         out_of_range: Some("0"),
     },
 ];
+
+/// Every scene key, in the order of the README table ([`ROWS`], checked
+/// as the crate compiles: a doc is one line without a `|`, which would
+/// split its cell of the README's table).
+pub static KEYS: &[Key] = ROWS;
+
+/// True when no row's doc holds a line break or a `|`.
+const fn docs_are_cells(rows: &[Key]) -> bool {
+    let mut i = 0;
+    while i < rows.len() {
+        let doc = rows[i].doc.as_bytes();
+        if doc.is_empty() {
+            return false;
+        }
+        let mut j = 0;
+        while j < doc.len() {
+            if doc[j] == b'|' || doc[j] == b'\n' {
+                return false;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    true
+}
+
+const _: () = assert!(
+    docs_are_cells(ROWS),
+    "a scene key's doc must be one non-empty line without '|' (it is a cell of scenes/README.md's table)"
+);
 
 /// The row of the key at `path` (`chain.links`), if it is one.
 pub fn key(path: &str) -> Option<&'static Key> {

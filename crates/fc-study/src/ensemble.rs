@@ -317,7 +317,7 @@ pub fn run(
     budget: &Budget,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Ensemble, Error> {
-    run_watching(scene, options, budget, progress, &|_, _| Ok(()))
+    run_members(scene, options, budget, progress, None)
 }
 
 /// What [`run_watching`] calls with each member's number and run, on the
@@ -325,7 +325,9 @@ pub fn run(
 pub type Watcher<'a> = dyn Fn(usize, &chain_ode::Trajectory) -> Result<(), Error> + Sync + 'a;
 
 /// [`run`], showing each member's run to `each` as it ends: how
-/// `ensemble_series` reads the members' samples without keeping them.
+/// `ensemble_series` reads the members' samples without keeping them. Its
+/// members record the scene's samples (`run.output_dt`), which [`run`]'s
+/// do not (`ensemble_series::check_size` bounds what they take).
 pub fn run_watching(
     scene: &Scene,
     options: &EnsembleOptions,
@@ -333,6 +335,18 @@ pub fn run_watching(
     progress: &(dyn Fn(usize, usize) + Sync),
     each: &Watcher<'_>,
 ) -> Result<Ensemble, Error> {
+    run_members(scene, options, budget, progress, Some(each))
+}
+
+/// [`run`] and [`run_watching`]: the members sampled only when watched.
+fn run_members(
+    scene: &Scene,
+    options: &EnsembleOptions,
+    budget: &Budget,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    each: Option<&Watcher<'_>>,
+) -> Result<Ensemble, Error> {
+    let samples = each.is_some();
     options.validate()?;
     let jobs = fc_batch::sweep::check_jobs("--jobs", options.jobs)?;
     let prepared = scene.prepare()?;
@@ -340,7 +354,7 @@ pub fn run_watching(
     // moves a start out of its bounds (into a floor) is the spread's doing,
     // and the error says so, naming the member.
     for j in 0..options.members {
-        member(&prepared, options, j)
+        member(&prepared, options, j, samples)
             .check_start()
             .map_err(|e| spread_error(e, options, j))?;
     }
@@ -356,10 +370,12 @@ pub fn run_watching(
                 if !budget.fits(0.0) {
                     return Ok(None);
                 }
-                let mut p = member(&prepared, options, j);
+                let mut p = member(&prepared, options, j, samples);
                 p.options.cancel = Some(budget.cancel().clone());
                 let traj = p.solve()?;
-                each(j, &traj)?;
+                if let Some(each) = each {
+                    each(j, &traj)?;
+                }
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, options.members);
                 Ok(Some(RunSummary::from_trajectory(scene.name(), &traj)))
             })
@@ -382,12 +398,15 @@ pub fn run_watching(
 }
 
 /// Member `j`'s run: the scene's, its start angles moved, recording no
-/// samples (an ensemble keeps summaries only, and every quantity of a
-/// summary, the floor's peak force included, is tracked at every step:
-/// memory O(n) per running member, whatever `run.output_dt`).
-fn member(prepared: &Prepared, options: &EnsembleOptions, j: usize) -> Prepared {
+/// samples unless `samples` (an ensemble keeps summaries only, and every
+/// quantity of a summary, the floor's peak force included, is tracked at
+/// every step: memory O(n) per running member, whatever `run.output_dt`;
+/// `ensemble_series` reads the samples, bounded by its own size check).
+fn member(prepared: &Prepared, options: &EnsembleOptions, j: usize, samples: bool) -> Prepared {
     let mut p = prepared.clone();
-    p.options.output_dt = None;
+    if !samples {
+        p.options.output_dt = None;
+    }
     let s = stream(options.seed, j);
     for (i, a) in p.state.angles.iter_mut().enumerate() {
         *a += options.spread * uniform(s, i as u64);

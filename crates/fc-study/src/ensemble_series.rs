@@ -338,6 +338,38 @@ mod tests {
         f.finish().unwrap()
     }
 
+    /// The members record the scene's samples: every output time from 0
+    /// to `t_end` is in the series (the summaries-only ensemble keeps no
+    /// samples; its members must not lose them here), each with every
+    /// member, and the start's spread is the spread the seed drew.
+    #[test]
+    fn the_series_holds_every_output_time_of_the_scene() {
+        let scene = Scene::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/span-d3.toml"
+        ))
+        .unwrap()
+        .with_overrides(&["chain.links=4", "run.t_end=0.05", "run.output_dt=0.01"])
+        .unwrap();
+        let options = EnsembleOptions {
+            members: 3,
+            spread: 1e-3,
+            seed: 0,
+            jobs: 1,
+        };
+        let (result, series) =
+            Budget::run(None, None, |b| run(&scene, &options, b, &|_, _| {})).unwrap();
+        assert_eq!(result.members.len(), 3);
+        assert_eq!(series.count, 3);
+        assert_eq!(series.t.len(), 6, "{:?}", series.t);
+        for (k, t) in series.t.iter().enumerate() {
+            assert!((t - 0.01 * k as f64).abs() < 1e-12, "{:?}", series.t);
+        }
+        // The tip's x at t = 0: the members' starts differ (spread > 0).
+        let q = series.names.iter().position(|&n| n == "tip_x").unwrap();
+        assert!(series.max[q] > series.min[q]);
+    }
+
     /// The statistics are the two-pass ones of `ensemble::moments`, and
     /// members arriving in any order fold to the same numbers, bit for bit.
     #[test]

@@ -10,7 +10,7 @@
 //!   `n`, each method from loose to tight until its error is below `tol`;
 //!   the fastest (least wall time) of those that get there, and the one of
 //!   least work.
-//! * Terms: for each term of [`TERMS`] the scene turns on, the run at that
+//! * Terms: for each term of [`terms`] the scene turns on, the run at that
 //!   `n` with the term switched off, against the same run with it on: the
 //!   term is needed if the tip path or the maximum tip speed moves by more
 //!   than `tol`.
@@ -34,6 +34,7 @@ use fc_scene::scene::Scene;
 /// switches it, whether the scene has it on, and the scene to compare with:
 /// the term off or, for a penalty parameter such as the floor's stiffness,
 /// the term made stiffer (`change` says which).
+#[derive(Clone, Copy)]
 pub struct Term {
     pub name: &'static str,
     /// The scene key that sets it.
@@ -42,95 +43,146 @@ pub struct Term {
     /// `"10x stiffer"` (a penalty made ten times stiffer: the term is then
     /// "needed" when the scene's value is too soft for the tolerance).
     pub change: &'static str,
-    pub is_on: fn(&Scene) -> bool,
-    pub off: fn(&Scene) -> Result<Scene, Error>,
+    switch: Switch,
+}
+
+/// How a term is read and switched in a scene.
+#[derive(Clone, Copy)]
+enum Switch {
+    /// A load of chain-ode ([`chain_ode::load::KINDS`]), off at 0 of its key.
+    Load(chain_ode::load::Kind),
+    /// A term that is no load: its own functions.
+    Other {
+        is_on: fn(&Scene) -> bool,
+        off: fn(&Scene) -> Result<Scene, Error>,
+    },
+}
+
+impl Term {
+    /// True when `scene` has it on.
+    pub fn is_on(&self, scene: &Scene) -> bool {
+        match self.switch {
+            Switch::Load(kind) => (kind.is_on)(scene.chain_params()),
+            Switch::Other { is_on, .. } => is_on(scene),
+        }
+    }
+
+    /// `scene` with it off (or changed).
+    pub fn off(&self, scene: &Scene) -> Result<Scene, Error> {
+        match self.switch {
+            Switch::Load(kind) => scene.with_value(kind.key, toml::Value::Float(0.0)),
+            Switch::Other { off, .. } => off(scene),
+        }
+    }
+
+    /// Its stiffness on `scene`'s chain (a load's), if it has one.
+    pub fn stiffness(&self, scene: &Scene) -> Option<chain_ode::load::Stiffness> {
+        let Switch::Load(kind) = self.switch else {
+            return None;
+        };
+        let chain = scene.chain().ok()?;
+        chain_ode::load::Loads::of(&chain, chain_ode::load::Units::Physical)
+            .present(&chain)
+            .into_iter()
+            .find(|p| p.key == kind.key)
+            .map(|p| p.stiffness)
+    }
 }
 
 /// The ratio of the floor-stiffness term's comparison run.
 pub const FLOOR_STIFFENING: f64 = 10.0;
 
-/// The optional terms, one entry each: the joint friction, the elastic
-/// links (off: rigid links, `chain.axial_stiffness` absent, so its
-/// `chain.axial_damping` no longer acts), the bending stiffness (off:
-/// `chain.bending_stiffness = 0`), the floor's friction (off:
-/// `floor.friction = 0`), the penalty floor's stiffness (compared with a
-/// floor [`FLOOR_STIFFENING`] times stiffer: whether the scene's contact is
-/// stiff enough for the tolerance; the default stiffness `1e4 m g / l = 1e4
-/// M g / L` does not change as the ladder refines `n`, nor does a given
-/// one) and the penalty floor itself (compared with the constraint floor,
-/// its limit of rigid rods on a hard floor, run by `auto` as
-/// `moreau-jean` at the scene's `run.dt`: "needed" when the scene's
-/// springs move the tip by `tol` or more, so that the constraint floor
-/// would not do; a tip mass keeps the penalty floor, which the constraint
-/// floor does not hold yet). A constraint floor has no stiffness to judge.
-pub const TERMS: &[Term] = &[
-    Term {
-        name: "joint friction",
-        key: "chain.damping",
-        change: "off",
-        is_on: |s| s.chain_params().damping > 0.0,
-        off: |s| s.with_value("chain.damping", toml::Value::Float(0.0)),
-    },
+/// The optional terms: every load of chain-ode ([`chain_ode::load::KINDS`],
+/// off at 0 of its key: joint friction, bending stiffness, air drag, ...),
+/// but the floor's contact, which the two floor terms judge; then the
+/// elastic links (off: rigid links, `chain.axial_stiffness` absent, so its
+/// `chain.axial_damping` no longer acts), the floor's friction (off:
+/// `floor.friction = 0`) and the floor's stiffness (compared with a floor
+/// [`FLOOR_STIFFENING`] times stiffer: whether the scene's contact is stiff
+/// enough for the tolerance, on a penalty floor; the default stiffness `1e4
+/// m g / l = 1e4 M g / L` does not change as the ladder refines `n`, nor does
+/// a given one) and the penalty floor itself (compared with the constraint
+/// floor, its limit of rigid rods on a hard floor, run by `auto` as
+/// `moreau-jean` at the scene's `run.dt`: "needed" when the scene's springs
+/// move the tip by `tol` or more, so that the constraint floor would not do;
+/// a tip mass keeps the penalty floor, which the constraint floor does not
+/// hold yet). A constraint floor has no stiffness to judge.
+pub fn terms() -> Vec<Term> {
+    let loads = chain_ode::load::KINDS
+        .iter()
+        .filter(|k| k.key.split('.').next() != Some("floor"))
+        .map(|&kind| Term {
+            name: kind.name,
+            key: kind.key,
+            change: "off",
+            switch: Switch::Load(kind),
+        });
+    loads.chain(OTHER_TERMS.iter().copied()).collect()
+}
+
+/// The terms that are no load of chain-ode.
+const OTHER_TERMS: &[Term] = &[
     Term {
         name: "elastic links",
         key: "chain.axial_stiffness",
         change: "off",
-        is_on: |s| s.chain_params().axial_stiffness.is_some(),
-        off: |s| {
-            let mut params = s.chain_params().clone();
-            params.axial_stiffness = None;
-            s.with_chain(&chain_ode::Chain::new(params)?)
+        switch: Switch::Other {
+            is_on: |s| s.chain_params().axial_stiffness.is_some(),
+            off: |s| {
+                let mut params = s.chain_params().clone();
+                params.axial_stiffness = None;
+                s.with_chain(&chain_ode::Chain::new(params)?)
+            },
         },
-    },
-    Term {
-        name: "bending stiffness",
-        key: "chain.bending_stiffness",
-        change: "off",
-        is_on: |s| s.chain_params().bending_stiffness > 0.0,
-        off: |s| s.with_value("chain.bending_stiffness", toml::Value::Float(0.0)),
     },
     Term {
         name: "floor friction",
         key: "floor.friction",
         change: "off",
-        is_on: |s| s.chain_params().floor.is_some_and(|f| f.friction > 0.0),
-        off: |s| s.with_value("floor.friction", toml::Value::Float(0.0)),
+        switch: Switch::Other {
+            is_on: |s| s.chain_params().floor.is_some_and(|f| f.friction > 0.0),
+            off: |s| s.with_value("floor.friction", toml::Value::Float(0.0)),
+        },
     },
     Term {
         name: "floor stiffness",
         key: "floor.stiffness",
         change: "10x stiffer",
-        is_on: |s| {
-            s.chain_params()
-                .floor
-                .is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty)
-        },
-        off: |s| {
-            let k = s.chain_params().floor.map_or(0.0, |f| f.stiffness);
-            // Held at floor.stiffness's bound, 1e15 (a floor already there
-            // compares with itself and is judged stiff enough).
-            let stiffer = (FLOOR_STIFFENING * k).min(1e15);
-            s.with_value("floor.stiffness", toml::Value::Float(stiffer))
+        switch: Switch::Other {
+            is_on: |s| {
+                s.chain_params()
+                    .floor
+                    .is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty)
+            },
+            off: |s| {
+                let k = s.chain_params().floor.map_or(0.0, |f| f.stiffness);
+                // Held at floor.stiffness's bound, 1e15 (a floor already there
+                // compares with itself and is judged stiff enough).
+                let stiffer = (FLOOR_STIFFENING * k).min(1e15);
+                s.with_value("floor.stiffness", toml::Value::Float(stiffer))
+            },
         },
     },
     Term {
         name: "penalty floor",
         key: "floor.law",
         change: "constraint",
-        is_on: |s| {
-            let p = s.chain_params();
-            p.floor
-                .is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty)
-                && p.tip_mass == 0.0
-        },
-        off: |s| {
-            let mut params = s.chain_params().clone();
-            params.axial_stiffness = None;
-            if let Some(f) = params.floor.as_mut() {
-                f.law = chain_ode::FloorLaw::Constraint;
-            }
-            s.with_chain(&chain_ode::Chain::new(params)?)?
-                .with_value("floor.law", toml::Value::String("constraint".into()))
+        switch: Switch::Other {
+            is_on: |s| {
+                let p = s.chain_params();
+                p.floor
+                    .is_some_and(|f| f.law == chain_ode::FloorLaw::Penalty)
+                    && p.tip_mass == 0.0
+            },
+            off: |s| {
+                let mut params = s.chain_params().clone();
+                params.axial_stiffness = None;
+                if let Some(f) = params.floor.as_mut() {
+                    f.law = chain_ode::FloorLaw::Constraint;
+                }
+                s.with_chain(&chain_ode::Chain::new(params)?)?
+                    .with_value("floor.law", toml::Value::String("constraint".into()))
+            },
         },
     },
 ];
@@ -162,19 +214,23 @@ pub fn judge_term_until(
     rtol: f64,
     cancel: Option<&chain_ode::Cancel>,
 ) -> Result<TermNeed, Error> {
-    let on = (term.is_on)(scene);
+    let on = term.is_on(scene);
     let mut need = TermNeed {
         term: term.name,
         key: term.key,
         change: term.change,
         on,
+        time_scale: term
+            .stiffness(scene)
+            .map(|s| s.time_scale())
+            .filter(|t| t.is_finite()),
         tip_path: None,
         tip_speed_max: None,
         needed: None,
     };
     if on {
         let off = converge::run_level_until(
-            &(term.off)(scene)?,
+            &term.off(scene)?,
             n,
             Some(LADDER_METHOD),
             Some(rtol),
@@ -219,6 +275,10 @@ pub struct TermNeed {
     pub change: &'static str,
     /// Whether the scene turns it on (terms it leaves off are not run).
     pub on: bool,
+    /// A load's stiffness on the scene's chain as a time scale (`1 / rate`
+    /// of a decay, `1 / omega` of a spring; `None` for a term that is no
+    /// load): the shortest time it asks a method to follow.
+    pub time_scale: Option<f64>,
     /// `max_t |tip - tip_on| / L` with the term off (or changed).
     pub tip_path: Option<f64>,
     /// The relative change of the maximum tip speed with the term off (or
@@ -408,8 +468,8 @@ pub fn check_bounds(scene: &Scene, links: &[usize], methods: &[Method]) -> Resul
     p.options.output_dt = None;
     let t_eval = p.options.t_end;
     precision::check_bounds(&p, t_eval, Checks::default(), methods)?;
-    for term in TERMS.iter().filter(|t| (t.is_on)(scene)) {
-        let off = converge::refined_scene(&(term.off)(scene)?, n)?
+    for term in terms().iter().filter(|t| t.is_on(scene)) {
+        let off = converge::refined_scene(&term.off(scene)?, n)?
             .with_value("run.method", toml::Value::String(LADDER_METHOD.into()))?;
         off.prepare()?;
     }
@@ -589,15 +649,16 @@ pub fn run(
         .iter()
         .find(|l| l.links() == n)
         .ok_or_else(|| Error::field("--links", "the adequate n is not a level of the ladder"))?;
-    for (k, term) in TERMS.iter().enumerate() {
-        progress("terms", k, TERMS.len());
+    let terms = terms();
+    for (k, term) in terms.iter().enumerate() {
+        progress("terms", k, terms.len());
         let need = judge_term_until(term, scene, n, on_level, tol, rtol, cancel)?;
         if need.on && need.needed.is_none() && budget.cancel().is_cancelled() {
             needs.skipped.push(format!("term {}", need.term));
         }
         needs.terms.push(need);
     }
-    progress("terms", TERMS.len(), TERMS.len());
+    progress("terms", terms.len(), terms.len());
     Ok(needs)
 }
 
@@ -760,6 +821,9 @@ impl std::fmt::Display for Needs {
                 }
                 (true, ..) => write!(f, "unknown: the run without it failed")?,
             }
+            if let (true, Some(tau)) = (t.on, t.time_scale) {
+                write!(f, "; its time scale {tau:.2e}")?;
+            }
         }
         Ok(())
     }
@@ -779,8 +843,8 @@ mod tests {
         Scene::from_toml_str(&text).unwrap()
     }
 
-    fn term(key: &str) -> &'static Term {
-        TERMS.iter().find(|t| t.key == key).unwrap()
+    fn term(key: &str) -> Term {
+        terms().into_iter().find(|t| t.key == key).unwrap()
     }
 
     /// The term's judgement for `scene` at `tol = 1e-3`.
@@ -788,29 +852,48 @@ mod tests {
         let tol = 1e-3;
         let rtol = ladder_rtol(tol);
         let on = converge::run_level(scene, 10, Some(LADDER_METHOD), Some(rtol)).unwrap();
-        judge_term(term(key), scene, 10, &on, tol, rtol).unwrap()
+        judge_term(&term(key), scene, 10, &on, tol, rtol).unwrap()
     }
 
-    /// Every term's `off` scene has it off, and keeps the chain otherwise.
+    /// Every term's `off` scene has it off, and keeps the chain otherwise;
+    /// every load of chain-ode but the floor's contact (judged by the two
+    /// floor terms) is a term, with its stiffness.
     #[test]
     fn each_term_switches_off() {
         let s = folded(
-            "damping = 0.01\naxial_stiffness = 1e4\naxial_damping = 0.5\nbending_stiffness = 0.1",
+            "damping = 0.01\naxial_stiffness = 1e4\naxial_damping = 0.5\nbending_stiffness = 0.1\n\
+             air_drag = 0.01",
         );
-        assert_eq!(TERMS.len(), 6);
-        let chain_terms = || TERMS.iter().filter(|t| t.key.starts_with("chain."));
-        assert_eq!(chain_terms().count(), 3);
+        let all = terms();
+        for kind in chain_ode::load::KINDS {
+            assert!(
+                kind.key.split('.').next() == Some("floor")
+                    || all.iter().any(|t| t.key == kind.key),
+                "{}: no term",
+                kind.name
+            );
+        }
+        assert_eq!(
+            all.len(),
+            chain_ode::load::KINDS.len() - 1 + OTHER_TERMS.len()
+        );
+        let chain_terms = || all.iter().filter(|t| t.key.starts_with("chain."));
+        assert_eq!(chain_terms().count(), 4);
         for t in chain_terms() {
             assert_eq!(t.change, "off");
-            assert!((t.is_on)(&s), "{}", t.key);
-            let off = (t.off)(&s).unwrap();
-            assert!(!(t.is_on)(&off), "{}", t.key);
+            assert!(t.is_on(&s), "{}", t.key);
+            let off = t.off(&s).unwrap();
+            assert!(!t.is_on(&off), "{}", t.key);
             for u in chain_terms().filter(|u| u.key != t.key) {
-                assert!((u.is_on)(&off), "{} lost {}", t.key, u.key);
+                assert!(u.is_on(&off), "{} lost {}", t.key, u.key);
+            }
+            if t.key != "chain.axial_stiffness" {
+                let tau = t.stiffness(&s).map(|x| x.time_scale());
+                assert!(tau.is_some_and(|x| x > 0.0 && x.is_finite()), "{}", t.key);
             }
         }
         // Without a floor, neither floor term is on.
-        assert!(!(term("floor.friction").is_on)(&s) && !(term("floor.stiffness").is_on)(&s));
+        assert!(!term("floor.friction").is_on(&s) && !term("floor.stiffness").is_on(&s));
     }
 
     /// The floor's friction switches off and leaves the floor; its
@@ -821,15 +904,17 @@ mod tests {
         let s = floor_scene("friction = 0.5");
         let k = s.chain_params().floor.unwrap().stiffness;
         assert_eq!(k, 1e4 * 0.2 * s.chain_params().gravity / 0.6);
-        let off = (term("floor.friction").off)(&s).unwrap();
+        let off = term("floor.friction").off(&s).unwrap();
         let f = off.chain_params().floor.unwrap();
         assert_eq!((f.friction, f.stiffness), (0.0, k));
-        assert!(!(term("floor.friction").is_on)(&off));
-        let stiffer = (term("floor.stiffness").off)(&s).unwrap();
+        assert!(!term("floor.friction").is_on(&off));
+        let stiffer = term("floor.stiffness").off(&s).unwrap();
         let f = stiffer.chain_params().floor.unwrap();
         assert_eq!((f.friction, f.stiffness), (0.5, 10.0 * k));
         assert_eq!(term("floor.stiffness").change, "10x stiffer");
-        let top = (term("floor.stiffness").off)(&floor_scene("stiffness = 1e15")).unwrap();
+        let top = term("floor.stiffness")
+            .off(&floor_scene("stiffness = 1e15"))
+            .unwrap();
         assert_eq!(top.chain_params().floor.unwrap().stiffness, 1e15);
     }
 
@@ -876,8 +961,8 @@ mod tests {
         let law = term("floor.law");
         assert_eq!(law.change, "constraint");
         let soft = floor_scene("stiffness = 5.0\nfriction = 0.5");
-        assert!((law.is_on)(&soft) && (term("floor.stiffness").is_on)(&soft));
-        let hard = (law.off)(&soft).unwrap();
+        assert!(law.is_on(&soft) && term("floor.stiffness").is_on(&soft));
+        let hard = law.off(&soft).unwrap();
         let p = hard.chain_params();
         let f = p.floor.unwrap();
         assert_eq!(f.law, chain_ode::FloorLaw::Constraint);
@@ -885,9 +970,9 @@ mod tests {
             (p.axial_stiffness, f.friction, f.height),
             (None, 0.5, Some(-3.2))
         );
-        assert!(!(law.is_on)(&hard) && !(term("floor.stiffness").is_on)(&hard));
+        assert!(!law.is_on(&hard) && !term("floor.stiffness").is_on(&hard));
         let constraint = floor_scene("law = \"constraint\"");
-        assert!(!(law.is_on)(&constraint) && !(term("floor.stiffness").is_on)(&constraint));
+        assert!(!law.is_on(&constraint) && !term("floor.stiffness").is_on(&constraint));
         let judged = judge("floor.law", &soft);
         assert_eq!(judged.needed, Some(true), "{judged:?}");
         assert!(judged.tip_path.unwrap() > 0.05, "{judged:?}");

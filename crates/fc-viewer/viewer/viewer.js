@@ -290,7 +290,7 @@
     const a = Math.abs(v);
     return a >= 1e-3 && a < 1e5 ? String(Number(v.toPrecision(4))) : v.toExponential(3);
   }
-  const SUMMARY_KEYS = ["status", "method", "links", "steps", "tip_speed_max", "t_tip_speed_max",
+  const SUMMARY_KEYS = ["status", "method", "model", "links", "steps", "tip_speed_max", "t_tip_speed_max",
     "t_reached", "t_failed", "tip_end", "energy_balance_error"];
   function buildSummary() {
     const table = document.getElementById("summary");

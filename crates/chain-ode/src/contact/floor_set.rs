@@ -35,7 +35,7 @@ impl ContactSet for FloorSet {
     /// The normal row (the gap `n . p − level`, positive above the floor)
     /// and, with friction, the tangent row.
     fn joint_rows(&self, p: Vec2, jac: &[[f64; BODY]; 2], half: usize, out: &mut [Row]) {
-        let (n, t) = (self.term.n, self.term.t);
+        let (n, t) = (self.term.line.n, self.term.line.t);
         let mut normal = Row {
             kind: RowKind::Normal {
                 restitution: self.restitution,
@@ -63,7 +63,7 @@ impl ContactSet for FloorSet {
     }
 
     fn force(&self, impulses: &[f64], h: f64) -> Vec2 {
-        let (n, t) = (self.term.n, self.term.t);
+        let (n, t) = (self.term.line.n, self.term.line.t);
         let (pn, pt) = (impulses[0], impulses[1]);
         [(pn * n[0] + pt * t[0]) / h, (pn * n[1] + pt * t[1]) / h]
     }

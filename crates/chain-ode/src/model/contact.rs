@@ -64,13 +64,17 @@ impl ContactModel {
         let f = self.chain.floor();
         FloorSet {
             term: self.floor.unwrap_or(FloorTerm {
-                t: [1.0, 0.0],
-                n: [0.0, 1.0],
-                level: f64::NEG_INFINITY,
-                k: 0.0,
-                c: 0.0,
-                mu: 0.0,
-                inv_vs: 0.0,
+                line: crate::floor::Line {
+                    t: [1.0, 0.0],
+                    n: [0.0, 1.0],
+                    level: f64::NEG_INFINITY,
+                },
+                law: crate::floor::Penalty {
+                    k: 0.0,
+                    c: 0.0,
+                    mu: 0.0,
+                    inv_vs: 0.0,
+                },
             }),
             friction: f.map_or(0.0, |f| f.friction),
             restitution: f.map_or(0.0, |f| f.restitution),
@@ -187,6 +191,7 @@ impl Model for ContactModel {
             hand_over_above: f64::INFINITY,
             implicit: Method::MoreauJean,
             implicit_tolerance: 1.0,
+            implicit_rho_inf: None,
         }
     }
 

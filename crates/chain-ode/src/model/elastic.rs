@@ -12,6 +12,7 @@ use crate::chain::{check, Chain};
 use crate::elastic::{self, ElasticSystem};
 use crate::floor::{self, FloorTerm};
 use crate::kinematics::Vec2;
+use crate::load::{FloorContact, Loads, Units};
 use crate::pivot::PivotPath;
 use crate::solve::auto_elastic;
 use crate::solve::{SolveOptions, BDF_DENSE_MAX_ELASTIC_LINKS};
@@ -28,6 +29,8 @@ pub struct ElasticModel {
     released: bool,
     /// The floor in the frame of the start's anchor (`None`: no floor).
     floor: Option<FloorTerm>,
+    /// The loads (physical units), the placed floor among them.
+    loads: Loads,
 }
 
 impl ElasticModel {
@@ -39,6 +42,7 @@ impl ElasticModel {
             path: PivotPath::new(chain, [0.0, 0.0]),
             released: chain.pivot().release == Some(0.0),
             floor: None,
+            loads: Loads::of(chain, Units::Physical),
         }
     }
 }
@@ -113,6 +117,7 @@ impl Model for ElasticModel {
                 }
             }
             self.floor = Some(term);
+            self.loads.floor = Some(FloorContact::placed(term));
         }
         Ok(y)
     }
@@ -156,17 +161,17 @@ impl Model for ElasticModel {
 
     fn observe(&self, t: f64, y: &[f64], f: &[f64], _trig: &mut Vec<(f64, f64)>) -> Observed {
         let chain = &self.chain;
-        if let Some(term) = &self.floor {
+        if self.floor.is_some() {
             // A floor's pivot is fixed until a release: no frame terms.
             return Observed {
-                energy: elastic::energy_at(chain, t, y) + floor::stored_energy(chain, term, y),
+                energy: elastic::energy_at_under(chain, &self.loads, t, y),
                 tip_velocity: elastic::tip_velocity(chain, y),
                 tip_acceleration: elastic::tip_acceleration(chain, y, f),
             };
         }
         if self.path.is_fixed() {
             return Observed {
-                energy: elastic::energy(chain, y),
+                energy: elastic::energy_under(chain, &self.loads, y),
                 tip_velocity: elastic::tip_velocity(chain, y),
                 tip_acceleration: elastic::tip_acceleration(chain, y, f),
             };
@@ -187,9 +192,9 @@ impl Model for ElasticModel {
     /// [`elastic::energy_at`] (no joint-0 spring once let go), plus the
     /// frame's terms of a driven pivot ([`elastic::frame_energy`]).
     fn energy(&self, t: f64, y: &[f64]) -> f64 {
-        let e = elastic::energy_at(&self.chain, t, y);
-        if let Some(term) = &self.floor {
-            return e + floor::stored_energy(&self.chain, term, y);
+        let e = elastic::energy_at_under(&self.chain, &self.loads, t, y);
+        if self.floor.is_some() {
+            return e;
         }
         if !self.chain.pivot().is_driven() {
             return e;

@@ -8,6 +8,7 @@ use super::{
 use crate::chain::Chain;
 use crate::floor::FloorLaw;
 use crate::kinematics::Vec2;
+use crate::report::ReportModel;
 use crate::solve::SolveOptions;
 use crate::state::State;
 use fc_methods::InvalidParameter;
@@ -31,9 +32,24 @@ pub enum ModelKind {
 }
 
 impl ModelKind {
-    /// The model of `chain`: rigid rods on a constraint floor when its
-    /// floor's law is `constraint`, elastic links when it has an axial
-    /// stiffness, rigid rods otherwise. This is the one place that asks.
+    /// The names of the models a scene can choose ([`Model::name`] of each
+    /// variant, in [`ModelKind::choose`]'s order); tests walk it.
+    pub const MODELS: [&'static str; 4] = ["rigid", "elastic", "contact", "report"];
+
+    /// The model of `chain` with the report's equations `report`
+    /// (`model.report = true` is `Some(ReportModel::AS_CODED)`): the
+    /// report's when asked, else [`ModelKind::of`]. This is the one place
+    /// that chooses a scene's model.
+    pub fn choose(chain: &Chain, report: Option<ReportModel>) -> Self {
+        match report {
+            Some(model) => Self::Report(ReportChain::new(chain, model)),
+            None => Self::of(chain),
+        }
+    }
+
+    /// The model of `chain` without the report's equations: rigid rods on a
+    /// constraint floor when its floor's law is `constraint`, elastic links
+    /// when it has an axial stiffness, rigid rods otherwise.
     pub fn of(chain: &Chain) -> Self {
         if chain.floor().is_some_and(|f| f.law == FloorLaw::Constraint) {
             Self::Contact(ContactModel::new(chain))
@@ -198,5 +214,32 @@ impl Model for ModelKind {
     }
     fn peak_force(&self, force: PeakForce, t: f64, y: &[f64]) -> PeakValue {
         each!(self, m => m.peak_force(force, t, y))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::ChainParams;
+
+    /// [`ModelKind::choose`] chooses each of [`ModelKind::MODELS`], in its
+    /// order: rigid links, elastic links, the report's equations.
+    #[test]
+    fn choose_makes_every_model_of_the_list() {
+        let rigid = Chain::report(4, 0.0).unwrap();
+        let elastic = Chain::new(ChainParams {
+            links: 4,
+            axial_stiffness: Some(1e4),
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let chosen = [
+            ModelKind::choose(&rigid, None),
+            ModelKind::choose(&elastic, None),
+            ModelKind::choose(&rigid, Some(ReportModel::AS_CODED)),
+        ];
+        let names: Vec<&str> = chosen.iter().map(Model::name).collect();
+        assert_eq!(names, ModelKind::MODELS);
+        assert_eq!(ModelKind::of(&elastic), chosen[1]);
     }
 }

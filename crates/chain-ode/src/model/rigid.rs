@@ -4,7 +4,8 @@
 use super::{Layout, Model, Observed};
 use crate::chain::Chain;
 use crate::elastic;
-use crate::kinematics::{bending_energy, joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
+use crate::kinematics::{joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
+use crate::load::{Angles, Loads, Units};
 use crate::pivot::{centre_of_mass, PivotPath};
 use crate::profile::Rods;
 use crate::scalar::Scalar;
@@ -22,6 +23,8 @@ pub struct RigidModel {
     chain: Chain,
     path: PivotPath,
     released: bool,
+    /// The chain's loads (rod units; their potentials are physical).
+    loads: Loads,
 }
 
 impl RigidModel {
@@ -32,6 +35,7 @@ impl RigidModel {
             chain: chain.clone(),
             path: PivotPath::new(chain, [0.0, 0.0]),
             released: false,
+            loads: Loads::of(chain, Units::Rod),
         }
     }
 
@@ -66,7 +70,23 @@ fn validate_rigid(
     options: &SolveOptions,
 ) -> Result<(), InvalidParameter> {
     options.validate_common(Some(chain.pivot()), method, &rigid_layout(chain))?;
-    check_dense_size(chain, method)
+    check_dense_size(chain, method)?;
+    // A released pivot moves with the free fall of the centre of mass
+    // (`PivotPath`), which the rigid state does not carry: a load that reads
+    // the rods' velocities (the drag) would see them relative to it.
+    if chain.pivot().release.is_some() {
+        if let Some(key) = Loads::of(chain, Units::Rod).first_reading_centres() {
+            return Err(InvalidParameter {
+                field: key,
+                accepted: "0 with pivot.release on rigid links (the rigid chain's state does \
+                           not carry the free pivot's velocity this load reads); set \
+                           chain.axial_stiffness for elastic links, which do"
+                    .into(),
+                got: format!("{}", chain.params().coefficients.get(key)),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// `bdf-dense`'s size bound, for any chain.
@@ -142,6 +162,7 @@ impl Model for RigidModel {
             hand_over_above: f64::INFINITY,
             implicit: Method::Bdf,
             implicit_tolerance: 1.0,
+            implicit_rho_inf: None,
         }
     }
 
@@ -158,7 +179,7 @@ impl Model for RigidModel {
     }
 
     fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
-        let mut m = rigid_pass(&self.chain, y, Some(f), trig);
+        let mut m = rigid_pass(&self.chain, &self.loads, y, Some(f), trig);
         if self.path.is_fixed() {
             return m;
         }
@@ -174,7 +195,7 @@ impl Model for RigidModel {
     }
 
     fn energy(&self, t: f64, y: &[f64]) -> f64 {
-        let e = rigid_energy(&self.chain, y);
+        let e = rigid_pass(&self.chain, &self.loads, y, None, &mut Vec::new()).energy;
         if self.path.is_fixed() {
             return e;
         }
@@ -242,14 +263,20 @@ impl Model for RigidModel {
 /// every sample's `energy`, [`kinematics::energy`](crate::kinematics::energy)).
 pub(crate) fn rigid_energy(chain: &Chain, y: &[f64]) -> f64 {
     let mut trig = Vec::new();
-    rigid_pass(chain, y, None, &mut trig).energy
+    rigid_pass(chain, &Loads::of(chain, Units::Rod), y, None, &mut trig).energy
 }
 
 /// The fused pass: energy, tip velocity and (with `f`) tip acceleration of
 /// a rigid chain's state, relative to the pivot, in one loop over the rods.
-fn rigid_pass(chain: &Chain, y: &[f64], f: Option<&[f64]>, trig: &mut Vec<(f64, f64)>) -> Observed {
+fn rigid_pass(
+    chain: &Chain,
+    loads: &Loads,
+    y: &[f64],
+    f: Option<&[f64]>,
+    trig: &mut Vec<(f64, f64)>,
+) -> Observed {
     if let Some(rods) = chain.rods() {
-        return rods_pass(chain, rods, y, f);
+        return rods_pass(chain, rods, loads, y, f);
     }
     let n = chain.links();
     let (phi, w) = (&y[..n], &y[n..2 * n]);
@@ -286,18 +313,15 @@ fn rigid_pass(chain: &Chain, y: &[f64], f: Option<&[f64]>, trig: &mut Vec<(f64, 
             + chain.tip_mass() * chain.gravity() * y_tip;
     }
     Observed {
-        energy: if chain.bending_spring() != 0.0 {
-            e + bending_energy(chain, phi)
-        } else {
-            e
-        },
+        // The loads' potentials (bending's).
+        energy: loads.potential(&Angles { phi, w }, e),
         tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }
 }
 
 /// [`rigid_pass`] for unequal rods (masses `mu_i m`, lengths `lambda_i l`).
-fn rods_pass(chain: &Chain, rods: &Rods, y: &[f64], f: Option<&[f64]>) -> Observed {
+fn rods_pass(chain: &Chain, rods: &Rods, loads: &Loads, y: &[f64], f: Option<&[f64]>) -> Observed {
     let n = chain.links();
     let (phi, w) = (&y[..n], &y[n..2 * n]);
     let acc = |i: usize| f.map_or(0.0, |f| f[n + i]);
@@ -323,11 +347,8 @@ fn rods_pass(chain: &Chain, rods: &Rods, y: &[f64], f: Option<&[f64]>) -> Observ
         e += 0.5 * chain.tip_mass() * (vx * vx + vy * vy)
             + chain.tip_mass() * chain.gravity() * (l * joint);
     }
-    if chain.bending_spring() != 0.0 {
-        e += bending_energy(chain, phi);
-    }
     Observed {
-        energy: e,
+        energy: loads.potential(&Angles { phi, w }, e),
         tip_velocity: sums.tip_velocity(l),
         tip_acceleration: [l * ax, l * ay],
     }

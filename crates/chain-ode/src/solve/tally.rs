@@ -92,6 +92,9 @@ pub(crate) struct Tally {
     pub support_force_max: f64,
     /// Where it was.
     pub t_support_force_max: f64,
+    /// The largest accepted step (time): whether a method stepped over the
+    /// modes that carry a force ([`super::forces::resolved`]).
+    pub h_max: f64,
     /// The model's force peaks ([`Model::peak_forces`]), tracked at every
     /// accepted step and refined inside it.
     peaks: Vec<PeakTrack>,
@@ -133,6 +136,7 @@ impl Tally {
             tip_speed: ContinuousMax::default(),
             support_force_max: 0.0,
             t_support_force_max: 0.0,
+            h_max: 0.0,
             peaks: Vec::with_capacity(model.peak_forces().len()),
             energy_scale: model.energy_scale(),
             work_variation: 0.0,
@@ -231,6 +235,7 @@ impl Tally {
 
     /// An accepted step.
     pub fn step<M: Model>(&mut self, model: &M, rec: &mut Recorder, step: &StepView<'_>) {
+        self.h_max = self.h_max.max(step.t1 - step.t0);
         let m = model.observe(step.t1, step.y1, step.f1, &mut self.trig);
         let work = self.work_of(step.y1);
         self.energy_balance_error = max_nan(

@@ -877,8 +877,8 @@ fn auto_hands_an_elastic_chain_to_bdf_only_when_its_joints_are_damped() {
 
 /// `auto` on a lightly damped elastic chain whose axial modes are far
 /// faster than the fall (`omega_axial sqrt(L/g) >= AUTO_GEN_ALPHA_STIFFNESS`)
-/// runs gen-alpha from the start at a thousandth of a loose tolerance, step
-/// for step what gen-alpha runs there, and lands within the asked `1e-3`
+/// runs gen-alpha from the start at a thousandth of a loose tolerance and
+/// `rho_inf = AUTO_GEN_ALPHA_RHO_INF`, step for step what gen-alpha runs there, and lands within the asked `1e-3`
 /// of DOPRI5's tip (whose error here is `1e-8`); at a tighter tolerance, or
 /// with softer links, it stays DOPRI5. The folded snap, `n = 20`, 5%
 /// damping, to `t = 3.2` past the snap. A rule that ignores the tolerance,
@@ -922,7 +922,10 @@ fn auto_runs_gen_alpha_on_stiff_lightly_damped_links_at_loose_tolerances() {
         &stiff,
         &s,
         Method::GenAlpha,
-        &tolerances(3.2, 1e-3 * f, 1e-5 * f),
+        &SolveOptions {
+            rho_inf: chain_ode::AUTO_GEN_ALPHA_RHO_INF,
+            ..tolerances(3.2, 1e-3 * f, 1e-5 * f)
+        },
     )
     .unwrap();
     assert_eq!(auto.stats.steps, ga.stats.steps);

@@ -2,11 +2,13 @@
 //! the CSV writes) is the one the run's balance used (`Summary::energy_end`,
 //! from `Model::observe`), for each model and each kind of pivot. A model
 //! whose per-state energy and per-step energy drift apart (a frame term, a
-//! tip mass or a bending term in one and not the other) fails.
+//! tip mass or a bending term in one and not the other) fails. The runs
+//! walk every model a scene can choose ([`ModelKind::MODELS`]): a model
+//! added there without a run here fails.
 
 use chain_ode::report::ReportModel;
 use chain_ode::{
-    solve, Chain, ChainParams, Method, ModelKind, Pivot, ReportChain, SolveOptions, Start, Status,
+    solve, Chain, ChainParams, Method, Model, ModelKind, Pivot, SolveOptions, Start, Status,
 };
 
 fn chain(pivot: Pivot, elastic: bool) -> Chain {
@@ -72,9 +74,15 @@ fn every_samples_energy_is_the_balances_energy() {
     .unwrap();
     runs.push((
         "report".into(),
-        ModelKind::Report(ReportChain::new(&plain, ReportModel::AS_CODED)),
+        ModelKind::choose(&plain, Some(ReportModel::AS_CODED)),
         start,
     ));
+    for model in ModelKind::MODELS {
+        assert!(
+            runs.iter().any(|r| r.1.name() == model),
+            "no run of the {model} model"
+        );
+    }
     for (name, model, start) in runs {
         let traj = solve(model, &start, Method::Dopri5, &options).unwrap();
         assert_eq!(traj.status, Status::Ok, "{name}");

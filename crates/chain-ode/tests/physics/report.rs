@@ -368,3 +368,46 @@ fn the_reports_tip_velocity_is_the_chord_of_its_point() {
         assert!((s[k][1] - chord).abs() < 1e-12, "{s:?} {chord}");
     }
 }
+
+/// The report's model carries gravity and joint friction alone: every
+/// other load of `chain_ode::load::KINDS`, switched on, is refused by its
+/// own key (through the scene's model too), and the two it carries are
+/// not. A load added to the crate is walked here without a line of this
+/// test changing.
+#[test]
+fn the_report_model_refuses_every_load_it_cannot_carry_by_its_key() {
+    use chain_ode::load::KINDS;
+    use chain_ode::report::{ReportModel, REPORT_LOADS};
+    use chain_ode::{ChainParams, ReportChain};
+    let mut refused = 0;
+    for kind in KINDS {
+        let mut params = ChainParams {
+            links: 10,
+            ..ChainParams::default()
+        };
+        (kind.switch_on)(&mut params);
+        let chain = Chain::new(params).unwrap();
+        let s = Start::Catenary {
+            p0: [0.0, 0.0],
+            p1: [1.0, 0.0],
+        }
+        .state(&chain)
+        .unwrap();
+        let model = ReportChain::new(&chain, ReportModel::AS_CODED);
+        let run = solve(model, &s, Method::Dopri5, &SolveOptions::default());
+        if REPORT_LOADS.contains(&kind.key) {
+            assert!(
+                ReportModel::AS_CODED.validate(&chain).is_ok(),
+                "{}",
+                kind.name
+            );
+            assert!(run.is_ok(), "{}", kind.name);
+        } else {
+            let e = ReportModel::AS_CODED.validate(&chain).unwrap_err();
+            assert_eq!(e.field, kind.key, "{}: {e}", kind.name);
+            assert_eq!(run.unwrap_err().field, kind.key, "{}", kind.name);
+            refused += 1;
+        }
+    }
+    assert_eq!(refused, KINDS.len() - REPORT_LOADS.len());
+}
