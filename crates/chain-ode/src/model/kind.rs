@@ -223,7 +223,8 @@ mod tests {
     use crate::chain::ChainParams;
 
     /// [`ModelKind::choose`] chooses each of [`ModelKind::MODELS`], in its
-    /// order: rigid links, elastic links, the report's equations.
+    /// order: rigid links, elastic links, rigid links on a constraint floor,
+    /// the report's equations.
     #[test]
     fn choose_makes_every_model_of_the_list() {
         let rigid = Chain::report(4, 0.0).unwrap();
@@ -233,9 +234,25 @@ mod tests {
             ..ChainParams::default()
         })
         .unwrap();
+        let on_floor = Chain::new(ChainParams {
+            links: 4,
+            floor: Some(crate::Floor {
+                height: Some(-10.0),
+                angle: 0.0,
+                stiffness: 1e4,
+                damping: 0.0,
+                friction: 0.0,
+                slip_speed: 1e-3,
+                law: crate::floor::FloorLaw::Constraint,
+                restitution: 0.0,
+            }),
+            ..ChainParams::default()
+        })
+        .unwrap();
         let chosen = [
             ModelKind::choose(&rigid, None),
             ModelKind::choose(&elastic, None),
+            ModelKind::choose(&on_floor, None),
             ModelKind::choose(&rigid, Some(ReportModel::AS_CODED)),
         ];
         let names: Vec<&str> = chosen.iter().map(Model::name).collect();

@@ -23,8 +23,8 @@
 //! A model of another crate implements [`Model`] and runs through the same
 //! [`solve`](crate::solve) (ARCHITECTURE.md, "How to add a model").
 //!
-//! Its files: `rigid.rs`, `elastic.rs`, `report.rs` and `beam.rs` (one
-//! model each), `kind.rs` (the chain's models as one type, chosen in one
+//! Its files: `rigid.rs`, `elastic.rs`, `contact.rs`, `report.rs` and
+//! `beam.rs` (one model each), `kind.rs` (the chain's models as one type, chosen in one
 //! place: [`ModelKind::choose`]).
 
 pub mod beam;

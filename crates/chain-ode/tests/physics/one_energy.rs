@@ -77,6 +77,30 @@ fn every_samples_energy_is_the_balances_energy() {
         ModelKind::choose(&plain, Some(ReportModel::AS_CODED)),
         start,
     ));
+    // The rigid chain on a constraint floor (no tip mass: refused there).
+    let on_floor = Chain::new(ChainParams {
+        links: 6,
+        damping: 0.01,
+        floor: Some(chain_ode::Floor {
+            height: Some(-3.2),
+            angle: 0.0,
+            stiffness: 1e4,
+            damping: 0.0,
+            friction: 0.3,
+            slip_speed: 1e-3,
+            law: chain_ode::FloorLaw::Constraint,
+            restitution: 0.0,
+        }),
+        ..ChainParams::default()
+    })
+    .unwrap();
+    let start = Start::Catenary {
+        p0: [0.0, 0.0],
+        p1: [0.6, 0.0],
+    }
+    .state(&on_floor)
+    .unwrap();
+    runs.push(("contact".into(), ModelKind::of(&on_floor), start));
     for model in ModelKind::MODELS {
         assert!(
             runs.iter().any(|r| r.1.name() == model),
@@ -84,7 +108,13 @@ fn every_samples_energy_is_the_balances_energy() {
         );
     }
     for (name, model, start) in runs {
-        let traj = solve(model, &start, Method::Dopri5, &options).unwrap();
+        let (method, options) = if name == "contact" {
+            let o = options.clone().at_accuracy(Method::MoreauJean, 1e-3);
+            (Method::MoreauJean, o)
+        } else {
+            (Method::Dopri5, options.clone())
+        };
+        let traj = solve(model, &start, method, &options).unwrap();
         assert_eq!(traj.status, Status::Ok, "{name}");
         let last = traj.len() - 1;
         assert_eq!(traj.times[last], traj.t_reached, "{name}");
