@@ -13,6 +13,9 @@
 //!
 //! Conventions (see `docs/model.md`): angles `phi_i` from the horizontal,
 //! counter-clockwise; rod 1 pinned at `P0`; `mass` is per rod; gravity along -y.
+//!
+//! `contact/` ([`contact`]): the rigid chain on a constraint floor as a
+//! nonsmooth problem for `moreau-jean` (issue 50).
 
 //! # What is public
 //!

@@ -45,6 +45,11 @@
 //! * `step_size.rs`: Step-size helpers shared by the explicit adaptive pairs (DOPRI5, DOP853).
 //! * `test_problems.rs`: What the integrators' tests share: a system made of closures with exact call counters (`Toy`), problems with known solutions (as ODEs, and as index-1 DAEs for the sparse BDF) ...
 //! * `testing.rs`: Test support: what the integrators' own tests share with the tests of problems defined elsewhere (the chains, whose banded DAEs the sparse BDF and its block LU are checked on) ...
+//!
+//! The nonsmooth side: `nonsmooth.rs` (the [`Nonsmooth`] interface a
+//! problem with impacts gives), `complementarity.rs` (the Alart–Curnier
+//! semismooth Newton on the block-tridiagonal Delassus matrix) and
+//! `moreau_jean.rs` (Moreau–Jean time stepping).
 
 mod auto;
 mod bdf;

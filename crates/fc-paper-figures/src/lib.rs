@@ -41,6 +41,9 @@
 //! * `validation.rs`: Tables that check the model against physics: the energy budget of runs (`E + W` conserved ...
 //! * `viewer_peak.rs`: The tables of the `viewer-peak` figure (a screenshot of `falling-chain view`'s page at a run's peak tip speed) and the page's run read back from them.
 //! * `whip_taper.rs`: The tapered whip: the largest tip speed of the chain released from the U of span d = 3 against the taper of its mass per length (`chain.taper`, base to tip) ...
+//!
+//! `cayley_single.rs`: one run's reading of Cayley's scale on the
+//! constraint floor.
 
 pub mod accuracy;
 pub mod beam;

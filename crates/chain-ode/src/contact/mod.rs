@@ -17,6 +17,9 @@
 //! chain's (rod centres relative to the start's anchor), then each joint's
 //! contact force and joint force averaged over the step that ended there
 //! (`2 (n + 1)` each; [`Offsets`]).
+//!
+//! Its files: `floor_set.rs` (the floor's rows: gaps, normals and tangents
+//! at the joints).
 
 pub mod floor_set;
 pub mod rods;
