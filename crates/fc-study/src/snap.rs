@@ -120,11 +120,11 @@ impl StepPeak {
 
 impl<M: Model> Watch<M> for StepPeak {
     fn start(&mut self, model: &M, t0: f64, y0: &[f64]) {
-        self.see(t0, model.support_force(t0, y0));
+        self.see(t0, model.view().support_force(t0, y0));
     }
 
     fn step(&mut self, model: &M, step: &StepView<'_>) {
-        self.see(step.t1, model.support_force(step.t1, step.y1));
+        self.see(step.t1, model.view().support_force(step.t1, step.y1));
     }
 }
 
