@@ -199,6 +199,28 @@ impl ChainDae {
         }
     }
 
+    /// The loads' view of `(phi, w)` with its `(sin, cos)`, centres and
+    /// their velocities (rod units; empty where no load reads them).
+    fn view<'a>(
+        &'a self,
+        phi: &'a [f64],
+        w: &'a [f64],
+        trig: &'a [(f64, f64)],
+        centre: &'a [[f64; 2]],
+        velocity: &'a [[f64; 2]],
+    ) -> RodSlices<'a> {
+        let rods = self.chain.rods();
+        RodSlices {
+            phi,
+            w,
+            trig,
+            length: rods.map(|r| &r.length[..]),
+            mass: rods.map(|r| &r.mass[..]),
+            centre,
+            velocity,
+        }
+    }
+
     /// Each rod's load force (rod units) into `scratch.force`, and the
     /// power the loads draw at the rods (physical units).
     fn load_forces(&self, t: f64, phi: &[f64], w: &[f64], scratch: &mut LoadScratch) -> f64 {
@@ -207,15 +229,7 @@ impl ChainDae {
         self.centres(t, w, &trig, scratch);
         let mut power = 0.0;
         for i in 0..self.n {
-            let view = RodSlices {
-                phi,
-                w,
-                trig: &trig,
-                length: self.chain.rods().map(|r| &r.length[..]),
-                mass: self.chain.rods().map(|r| &r.mass[..]),
-                centre: &scratch.centre,
-                velocity: &scratch.velocity,
-            };
+            let view = self.view(phi, w, &trig, &scratch.centre, &scratch.velocity);
             let mut load = RodForce::zero();
             self.loads.add_to_rod(i, &view, &mut load);
             scratch.force[i] = load.force;
@@ -228,15 +242,7 @@ impl ChainDae {
     /// and at the rods, physical units (less a driven pivot's power, which
     /// [`ChainDae::derivatives_at`] subtracts).
     fn work_rate(&self, t: f64, phi: &[f64], w: &[f64]) -> f64 {
-        let view = RodSlices {
-            phi,
-            w,
-            trig: &[],
-            length: self.chain.rods().map(|r| &r.length[..]),
-            mass: self.chain.rods().map(|r| &r.mass[..]),
-            centre: &[],
-            velocity: &[],
-        };
+        let view = self.view(phi, w, &[], &[], &[]);
         let p = self.loads.joint_power(&view, 0.0);
         if self.loads.reads_centres() {
             p + self.load_forces(t, phi, w, &mut self.scratch.borrow_mut())
@@ -440,15 +446,7 @@ impl ChainDae {
             self.centres(t, w, &trig, &mut scratch);
         }
         let scratch = &*scratch;
-        let view = RodSlices {
-            phi,
-            w,
-            trig: &trig,
-            length: self.chain.rods().map(|r| &r.length[..]),
-            mass: self.chain.rods().map(|r| &r.mass[..]),
-            centre: &scratch.centre,
-            velocity: &scratch.velocity,
-        };
+        let view = self.view(phi, w, &trig, &scratch.centre, &scratch.velocity);
         // The loads' force on rod i - 1 over its mass (rod units).
         let (mut qx, mut qy) = (0.0, 0.0);
         for i in 0..n {
