@@ -1,10 +1,12 @@
 //! The peaks of forces a run tracks as properties of the run, never of its
 //! output samples: at the start, at every accepted step's end, and inside
 //! a step on the method's continuous extension where the force turns from
-//! rising to falling (as the tip speed's maximum is refined). A model
-//! names the forces it has ([`Model::peak_forces`]) and gives each one's
-//! value at a state ([`Model::peak_force`]); the tally folds them
-//! ([`PeakTrack`]). Today the floor's normal force; the pivot's force and
+//! rising to falling (as the tip speed's maximum is refined). A model's
+//! view names the forces it has
+//! ([`StateView::peak_forces`](crate::StateView::peak_forces)) and gives
+//! each one's value at a state
+//! ([`StateView::peak_force`](crate::StateView::peak_force)); the tally
+//! folds them ([`PeakTrack`]). Today the floor's normal force; the pivot's force and
 //! the tensions are meant to join the same way.
 
 use fc_methods::StepView;

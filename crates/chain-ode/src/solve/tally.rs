@@ -1,7 +1,8 @@
 //! What a run's summary reads from its states, by asking the model: the
 //! energy balance `E + W = E(0)`, the largest rise of `E`, the continuous
 //! maximum of the tip speed and, where the model tracks it, of the
-//! support force. One [`Model::observe`] pass per step.
+//! support force. One
+//! [`StateView::observe`](crate::StateView::observe) pass per step.
 
 use super::peaks::{Peak, PeakTrack};
 use super::recorder::{ContinuousMax, Recorder};
@@ -95,7 +96,8 @@ pub(crate) struct Tally {
     /// The largest accepted step (time): whether a method stepped over the
     /// modes that carry a force ([`super::forces::resolved`]).
     pub h_max: f64,
-    /// The model's force peaks ([`Model::peak_forces`]), tracked at every
+    /// The model's force peaks
+    /// ([`StateView::peak_forces`](crate::StateView::peak_forces)), tracked at every
     /// accepted step and refined inside it.
     peaks: Vec<PeakTrack>,
     /// The energy balance error above which a run is not a solution of the

@@ -40,8 +40,9 @@ pub struct Summary {
     /// that carry them (`solve/forces.rs`). True for every other run.
     pub forces_resolved: bool,
     /// The largest value of each force the model tracks
-    /// ([`Model::peak_forces`]: the floor's normal force), at the start,
-    /// every accepted step's end and inside the steps where it turns: a
+    /// ([`StateView::peak_forces`](crate::StateView::peak_forces): the
+    /// floor's normal force), at the start, every accepted step's end and
+    /// inside the steps where it turns: a
     /// property of the run, whatever its output samples.
     pub peaks: Vec<crate::model::Peak>,
     /// Wall time of the integration (s).
@@ -174,7 +175,7 @@ impl<M: Model> Trajectory<M> {
         self.model.view().tip_velocity(self.times[k], self.state(k))
     }
 
-    /// The energy at sample `k`, the run's own ([`Model::energy`]).
+    /// The energy at sample `k`, the run's own ([`StateView::energy`](crate::StateView::energy)).
     pub fn energy(&self, k: usize) -> f64 {
         self.model.view().energy(self.times[k], self.state(k))
     }
@@ -197,7 +198,7 @@ impl<M: Model> Trajectory<M> {
     }
 
     /// The floor's force on each contact point at sample `k`
-    /// ([`Model::floor_forces`]), `None` without a floor.
+    /// ([`StateView::floor_forces`](crate::StateView::floor_forces)), `None` without a floor.
     pub fn floor_forces(&self, k: usize) -> Option<Vec<Vec2>> {
         self.model.view().floor_forces(self.times[k], self.state(k))
     }
