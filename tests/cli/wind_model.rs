@@ -20,7 +20,8 @@ use std::cell::RefCell;
 
 use chain_ode::{
     solve, BandedDae, Chain, ChainParams, ChainSystem, InvalidParameter, Layout, Method, Model,
-    Observed, OdeSystem, Problem, RigidModel, SemiExplicitDae, SolveOptions, State, Status, Vec2,
+    Observed, OdeSystem, Problem, RigidModel, SemiExplicitDae, SolveOptions, State, StateView,
+    Status, Vec2,
 };
 
 /// The chain in wind: the windless chain under `G`, turned by `theta`.
@@ -80,7 +81,7 @@ impl WindModel {
     }
 
     fn anchor(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.turned.support(t, y)[0]
+        self.turned.view().support(t, y)[0]
     }
 }
 
@@ -222,8 +223,16 @@ impl Model for WindModel {
     fn energy_scale(&self) -> f64 {
         self.turned.energy_scale()
     }
+    fn view(&self) -> &dyn StateView {
+        self
+    }
+}
+
+/// The wind model's states are the turned rigid chain's, read back in the
+/// scene's axes.
+impl StateView for WindModel {
     fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
-        let m = self.turned(y, |y| self.turned.observe(t, y, f, trig));
+        let m = self.turned(y, |y| self.turned.view().observe(t, y, f, trig));
         Observed {
             energy: m.energy,
             tip_velocity: self.back(m.tip_velocity),
@@ -231,33 +240,33 @@ impl Model for WindModel {
         }
     }
     fn energy(&self, t: f64, y: &[f64]) -> f64 {
-        self.turned(y, |y| self.turned.energy(t, y))
+        self.turned(y, |y| self.turned.view().energy(t, y))
     }
     fn tip(&self, t: f64, y: &[f64]) -> Vec2 {
-        let p = self.turned(y, |y| self.turned.tip(t, y));
+        let p = self.turned(y, |y| self.turned.view().tip(t, y));
         self.back_point(self.anchor(t, y), p)
     }
     fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.back(self.turned(y, |y| self.turned.tip_velocity(t, y)))
+        self.back(self.turned(y, |y| self.turned.view().tip_velocity(t, y)))
     }
     fn support(&self, t: f64, y: &[f64]) -> [Vec2; 2] {
-        self.turned.support(t, y)
+        self.turned.view().support(t, y)
     }
     fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
         let a = self.anchor(t, y);
-        let joints = self.turned(y, |y| self.turned.joints(t, y));
+        let joints = self.turned(y, |y| self.turned.view().joints(t, y));
         joints.into_iter().map(|p| self.back_point(a, p)).collect()
     }
     /// Tension and shear are read in each rod's own frame: the turn leaves
     /// them as they are.
     fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
-        self.turned(y, |y| self.turned.joint_forces(t, y))
+        self.turned(y, |y| self.turned.view().joint_forces(t, y))
     }
     fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.back(self.turned(y, |y| self.turned.support_force(t, y)))
+        self.back(self.turned(y, |y| self.turned.view().support_force(t, y)))
     }
     fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.back(self.turned(y, |y| self.turned.momentum(t, y)))
+        self.back(self.turned(y, |y| self.turned.view().momentum(t, y)))
     }
 }
 

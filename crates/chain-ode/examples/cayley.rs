@@ -108,7 +108,7 @@ fn main() {
             let lo = js.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
             let hi = js.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
             let f = tr.floor_force(j).unwrap();
-            let (h, _) = chain_ode::Model::floor_line(&tr.model).unwrap();
+            let (h, _) = chain_ode::Model::view(&tr.model).floor_line().unwrap();
             println!(
                 "t={:.3} F=({:.4},{:.4}) lowest-floor={:.3e} top={:.4} tipy={:.4}",
                 tr.times[j],

@@ -48,7 +48,7 @@ use std::cell::RefCell;
 
 use crate::chain::Chain;
 use crate::dynamics::{accelerations_under, Base, Workspace};
-use crate::load::{Kinematics, Loads, RodForce, Units};
+use crate::load::{Kinematics, Loads, RodForce, RodSlices, Units};
 use crate::pivot::Pivot;
 use crate::scalar::{sin_cos, Dual, Scalar};
 use fc_methods::SemiExplicitDae;
@@ -199,6 +199,28 @@ impl ChainDae {
         }
     }
 
+    /// The loads' view of `(phi, w)` with its `(sin, cos)`, centres and
+    /// their velocities (rod units; empty where no load reads them).
+    fn view<'a>(
+        &'a self,
+        phi: &'a [f64],
+        w: &'a [f64],
+        trig: &'a [(f64, f64)],
+        centre: &'a [[f64; 2]],
+        velocity: &'a [[f64; 2]],
+    ) -> RodSlices<'a> {
+        let rods = self.chain.rods();
+        RodSlices {
+            phi,
+            w,
+            trig,
+            length: rods.map(|r| &r.length[..]),
+            mass: rods.map(|r| &r.mass[..]),
+            centre,
+            velocity,
+        }
+    }
+
     /// Each rod's load force (rod units) into `scratch.force`, and the
     /// power the loads draw at the rods (physical units).
     fn load_forces(&self, t: f64, phi: &[f64], w: &[f64], scratch: &mut LoadScratch) -> f64 {
@@ -207,14 +229,7 @@ impl ChainDae {
         self.centres(t, w, &trig, scratch);
         let mut power = 0.0;
         for i in 0..self.n {
-            let view = DaeView {
-                phi,
-                w,
-                trig: &trig,
-                rods: self.chain.rods(),
-                centre: &scratch.centre,
-                velocity: &scratch.velocity,
-            };
+            let view = self.view(phi, w, &trig, &scratch.centre, &scratch.velocity);
             let mut load = RodForce::zero();
             self.loads.add_to_rod(i, &view, &mut load);
             scratch.force[i] = load.force;
@@ -227,14 +242,7 @@ impl ChainDae {
     /// and at the rods, physical units (less a driven pivot's power, which
     /// [`ChainDae::derivatives_at`] subtracts).
     fn work_rate(&self, t: f64, phi: &[f64], w: &[f64]) -> f64 {
-        let view = DaeView {
-            phi,
-            w,
-            trig: &[],
-            rods: self.chain.rods(),
-            centre: &[],
-            velocity: &[],
-        };
+        let view = self.view(phi, w, &[], &[], &[]);
         let p = self.loads.joint_power(&view, 0.0);
         if self.loads.reads_centres() {
             p + self.load_forces(t, phi, w, &mut self.scratch.borrow_mut())
@@ -438,14 +446,7 @@ impl ChainDae {
             self.centres(t, w, &trig, &mut scratch);
         }
         let scratch = &*scratch;
-        let view = DaeView {
-            phi,
-            w,
-            trig: &trig,
-            rods: self.chain.rods(),
-            centre: &scratch.centre,
-            velocity: &scratch.velocity,
-        };
+        let view = self.view(phi, w, &trig, &scratch.centre, &scratch.velocity);
         // The loads' force on rod i - 1 over its mass (rod units).
         let (mut qx, mut qy) = (0.0, 0.0);
         for i in 0..n {
@@ -760,7 +761,8 @@ impl ChainDae {
             phi: &scratch.dual_phi,
             w: &scratch.dual_w,
             trig,
-            rods: self.chain.rods(),
+            length: self.chain.rods().map(|r| &r.length[..]),
+            mass: self.chain.rods().map(|r| &r.mass[..]),
             centre: &scratch.centre,
             velocity: &scratch.velocity,
             column,
@@ -805,45 +807,6 @@ impl ChainDae {
     }
 }
 
-/// A [`ChainDae`] state's kinematics as the loads read them (rod units;
-/// the DAE's moment rows are about the rods' centres, so a torque enters
-/// them as it is: [`Kinematics::torque_unit`] is 1).
-struct DaeView<'a> {
-    phi: &'a [f64],
-    w: &'a [f64],
-    trig: &'a [(f64, f64)],
-    rods: Option<&'a crate::profile::Rods>,
-    centre: &'a [[f64; 2]],
-    velocity: &'a [[f64; 2]],
-}
-
-impl Kinematics<f64> for DaeView<'_> {
-    fn angles(&self) -> &[f64] {
-        self.phi
-    }
-    fn rates(&self) -> &[f64] {
-        self.w
-    }
-    fn sin_cos(&self, i: usize) -> (f64, f64) {
-        self.trig[i]
-    }
-    fn half_length(&self, i: usize) -> f64 {
-        0.5 * self.rods.map_or(1.0, |r| r.length[i])
-    }
-    fn mass(&self, i: usize) -> f64 {
-        self.rods.map_or(1.0, |r| r.mass[i])
-    }
-    fn torque_unit(&self, _i: usize) -> f64 {
-        1.0
-    }
-    fn centre(&self, i: usize) -> [f64; 2] {
-        self.centre[i]
-    }
-    fn centre_velocity(&self, i: usize) -> [f64; 2] {
-        self.velocity[i]
-    }
-}
-
 /// One column of the Jacobian: `phi_j` or `w_j`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Column {
@@ -851,7 +814,7 @@ enum Column {
     W(usize),
 }
 
-/// [`DaeView`] over dual numbers whose derivative is along one column:
+/// [`RodSlices`] over dual numbers whose derivative is along one column:
 /// the angles and rates seeded there, every rod's `(sin, cos)`, centre and
 /// centre velocity with their exact derivative along it (a centre reads
 /// the rods above it: `dc_i/dphi_j = lambda_j v_j` for `j < i`, half that
@@ -860,7 +823,9 @@ struct ColumnView<'a> {
     phi: &'a [Dual],
     w: &'a [Dual],
     trig: &'a [(f64, f64)],
-    rods: Option<&'a crate::profile::Rods>,
+    /// `lambda_i` and `mu_i` (`None`: equal rods), as [`RodSlices`] has them.
+    length: Option<&'a [f64]>,
+    mass: Option<&'a [f64]>,
     centre: &'a [[f64; 2]],
     velocity: &'a [[f64; 2]],
     column: Column,
@@ -868,7 +833,7 @@ struct ColumnView<'a> {
 
 impl ColumnView<'_> {
     fn length(&self, i: usize) -> f64 {
-        self.rods.map_or(1.0, |r| r.length[i])
+        self.length.map_or(1.0, |l| l[i])
     }
 
     /// The share of rod `j`'s `lambda_j` a centre `i` reads: all of it
@@ -898,7 +863,7 @@ impl Kinematics<Dual> for ColumnView<'_> {
         0.5 * self.length(i)
     }
     fn mass(&self, i: usize) -> f64 {
-        self.rods.map_or(1.0, |r| r.mass[i])
+        self.mass.map_or(1.0, |m| m[i])
     }
     fn torque_unit(&self, _i: usize) -> f64 {
         1.0

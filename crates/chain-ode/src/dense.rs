@@ -7,7 +7,7 @@ use faer::{Mat, Side};
 
 use crate::chain::Chain;
 use crate::kinematics::lever_arm;
-use crate::load::{Kinematics, Load, Loads, RodForce, Units};
+use crate::load::{Load, Loads, RodForce, RodSlices, Units};
 
 /// `mt_ij`: `n - i + 1/3` on the diagonal, `n - max(i,j) + 1/2` off it (1-based),
 /// for a chain without a tip mass. A tip mass `mu = M_t / m` adds `mu` to
@@ -90,11 +90,12 @@ fn generalised_forces(
         p = [p[0] + u[0], p[1] + u[1]];
         v = [v[0] + nv[0], v[1] + nv[1]];
     }
-    let view = DenseView {
+    let view = RodSlices {
         phi,
         w,
         trig: &trig,
-        rods,
+        length: Some(&rods.lambda),
+        mass: Some(&rods.mu),
         centre: &centre,
         velocity: &velocity,
     };
@@ -117,44 +118,6 @@ fn generalised_forces(
         total = [total[0] + f.force[0], total[1] + f.force[1]];
     }
     (q, total)
-}
-
-/// The dense reference's view of a state (rod units; torques enter the
-/// angles' equations as they are).
-struct DenseView<'a> {
-    phi: &'a [f64],
-    w: &'a [f64],
-    trig: &'a [(f64, f64)],
-    rods: &'a Layout,
-    centre: &'a [[f64; 2]],
-    velocity: &'a [[f64; 2]],
-}
-
-impl Kinematics<f64> for DenseView<'_> {
-    fn angles(&self) -> &[f64] {
-        self.phi
-    }
-    fn rates(&self) -> &[f64] {
-        self.w
-    }
-    fn sin_cos(&self, i: usize) -> (f64, f64) {
-        self.trig[i]
-    }
-    fn half_length(&self, i: usize) -> f64 {
-        0.5 * self.rods.lambda[i]
-    }
-    fn mass(&self, i: usize) -> f64 {
-        self.rods.mu[i]
-    }
-    fn torque_unit(&self, _i: usize) -> f64 {
-        1.0
-    }
-    fn centre(&self, i: usize) -> [f64; 2] {
-        self.centre[i]
-    }
-    fn centre_velocity(&self, i: usize) -> [f64; 2] {
-        self.velocity[i]
-    }
 }
 
 /// The mass below rod `i` and half of its own, `S_{i+1} + mu_i / 2 + mu_t`,

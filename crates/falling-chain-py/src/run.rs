@@ -47,7 +47,7 @@ impl Head {
             status: traj.status,
             t_reached: traj.t_reached,
             samples: traj.len(),
-            floor: traj.model.floor_line().map(|(h, a)| [h, a]),
+            floor: traj.model.view().floor_line().map(|(h, a)| [h, a]),
         }
     }
 }
@@ -111,10 +111,11 @@ impl Series {
                 .then(|| Vec::with_capacity(samples * 2 * (n + 1))),
             floor_forces: traj
                 .model
+                .view()
                 .floor_line()
                 .map(|_| Vec::with_capacity(samples * 2 * (n + 1))),
             pivot_force: Vec::with_capacity(samples * 2),
-            floor: traj.model.floor_line().map(|_| FloorSeries {
+            floor: traj.model.view().floor_line().map(|_| FloorSeries {
                 force: Vec::with_capacity(samples * 2),
                 landed_weight: Vec::with_capacity(samples),
                 landed_length: Vec::with_capacity(samples),

@@ -3,8 +3,7 @@
 //! what `unit_costs` times the linear solvers on, and what the block LU's
 //! tests solve against. Not on any solver's path (it is `O(dim^2)`).
 
-use diffsol::{FaerContext, FaerSparseMat, FaerVec, Matrix};
-use diffsol_la::LinearOp;
+use diffsol::FaerContext;
 use faer::sparse::{Pair, SymbolicSparseColMat};
 
 use crate::ode::SemiExplicitDae;
@@ -46,30 +45,48 @@ impl NewtonMatrix {
     }
 }
 
-impl LinearOp for NewtonMatrix {
-    type T = f64;
-    type V = FaerVec<f64>;
-    type M = FaerSparseMat<f64>;
-    type C = FaerContext;
-    fn nrows(&self) -> usize {
-        self.dim
-    }
-    fn ncols(&self) -> usize {
-        self.dim
-    }
-    fn context(&self) -> &FaerContext {
-        &self.ctx
-    }
-    fn matrix_inplace(&self, y: &mut FaerSparseMat<f64>) {
+/// `LinearOp` for a square operator of `dim` rows held on a sparsity
+/// `pattern` with a faer `ctx`, whose `fill_values(&self, vals)` writes the
+/// pattern's values in its column order: the Newton matrix here and
+/// gen-alpha's Newton operator share it.
+macro_rules! pattern_op {
+    ($ty:ty) => {
+        impl diffsol_la::LinearOp for $ty {
+            type T = f64;
+            type V = diffsol::FaerVec<f64>;
+            type M = diffsol::FaerSparseMat<f64>;
+            type C = diffsol::FaerContext;
+            fn nrows(&self) -> usize {
+                self.dim
+            }
+            fn ncols(&self) -> usize {
+                self.dim
+            }
+            fn context(&self) -> &diffsol::FaerContext {
+                &self.ctx
+            }
+            fn matrix_inplace(&self, y: &mut diffsol::FaerSparseMat<f64>) {
+                use diffsol::Matrix;
+                self.fill_values(y.inner_mut()[0].val_mut());
+            }
+            fn sparsity(&self) -> Option<faer::sparse::SymbolicSparseColMat<usize>> {
+                Some(self.pattern.clone())
+            }
+        }
+    };
+}
+pub(crate) use pattern_op;
+
+impl NewtonMatrix {
+    /// The pattern's values, column by column, from the dense matrix.
+    fn fill_values(&self, vals: &mut [f64]) {
         let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
-        let vals = y.inner_mut()[0].val_mut();
         for c in 0..self.dim {
             for k in col_ptr[c]..col_ptr[c + 1] {
                 vals[k] = self.a[row_idx[k] * self.dim + c];
             }
         }
     }
-    fn sparsity(&self) -> Option<SymbolicSparseColMat<usize>> {
-        Some(self.pattern.clone())
-    }
 }
+
+pattern_op!(NewtonMatrix);

@@ -30,7 +30,11 @@ pub fn snapshots_csv(traj: &Trajectory, times: &[f64]) -> Result<String, String>
             let _ = writeln!(s, "{},{j},{},{}", num(traj.times[k]), num(p[0]), num(p[1]));
         }
     }
-    let (h, angle) = traj.model.floor_line().ok_or("the scene has no floor")?;
+    let (h, angle) = traj
+        .model
+        .view()
+        .floor_line()
+        .ok_or("the scene has no floor")?;
     for (j, x) in [lo, hi].into_iter().enumerate() {
         let _ = writeln!(s, "-1,{j},{},{}", num(x), num(h + x * angle.tan()));
     }

@@ -92,7 +92,7 @@ pub struct Snap {
 }
 
 /// The chain's momentum relative to the pivot, `P = Σ m_i c_i' + M_t v_tip`,
-/// at sample `k`: the model's own ([`chain_ode::Model::momentum`]), so
+/// at sample `k`: the model's own ([`chain_ode::StateView::momentum`]), so
 /// that a tip mass and unequal rods count as the equations of motion count
 /// them.
 pub fn momentum(traj: &Trajectory, k: usize) -> Vec2 {
@@ -101,7 +101,8 @@ pub fn momentum(traj: &Trajectory, k: usize) -> Vec2 {
 
 /// The largest support force `|F_1|` (force units) at the start and at
 /// every accepted step's end of a run, and when: a [`Watch`] on the run
-/// ([`Solve::watch`]), asking the model ([`Model::support_force`]), so that
+/// ([`Solve::watch`]), asking the model's view
+/// ([`StateView::support_force`](chain_ode::StateView::support_force)), so that
 /// a pulse between two output samples is still seen.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StepPeak {
@@ -120,11 +121,11 @@ impl StepPeak {
 
 impl<M: Model> Watch<M> for StepPeak {
     fn start(&mut self, model: &M, t0: f64, y0: &[f64]) {
-        self.see(t0, model.support_force(t0, y0));
+        self.see(t0, model.view().support_force(t0, y0));
     }
 
     fn step(&mut self, model: &M, step: &StepView<'_>) {
-        self.see(step.t1, model.support_force(step.t1, step.y1));
+        self.see(step.t1, model.view().support_force(step.t1, step.y1));
     }
 }
 

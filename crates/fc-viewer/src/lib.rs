@@ -310,7 +310,7 @@ impl ViewRun {
             source: None,
             floor: {
                 use chain_ode::Model as _;
-                traj.model.floor_line().map(|(h, a)| [h, a])
+                traj.model.view().floor_line().map(|(h, a)| [h, a])
             },
         };
         let (mut tension, mut shear) = (Vec::new(), Vec::new());

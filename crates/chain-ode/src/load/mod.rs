@@ -184,6 +184,50 @@ pub trait Kinematics<T: Scalar> {
     }
 }
 
+/// A rigid chain's state in rod units, from the slices a path has at hand
+/// (the banded DAE's and the dense reference's view): the angles, rates
+/// and their `(sin, cos)`, the rods' lengths and masses relative to the
+/// mean rod (`None`: equal rods, 1), the centres and their velocities. A
+/// torque enters the angles' rows as it is (`torque_unit` 1).
+pub(crate) struct RodSlices<'a> {
+    pub phi: &'a [f64],
+    pub w: &'a [f64],
+    pub trig: &'a [(f64, f64)],
+    /// `lambda_i` (`None`: all 1).
+    pub length: Option<&'a [f64]>,
+    /// `mu_i` (`None`: all 1).
+    pub mass: Option<&'a [f64]>,
+    pub centre: &'a [[f64; 2]],
+    pub velocity: &'a [[f64; 2]],
+}
+
+impl Kinematics<f64> for RodSlices<'_> {
+    fn angles(&self) -> &[f64] {
+        self.phi
+    }
+    fn rates(&self) -> &[f64] {
+        self.w
+    }
+    fn sin_cos(&self, i: usize) -> (f64, f64) {
+        self.trig[i]
+    }
+    fn half_length(&self, i: usize) -> f64 {
+        0.5 * self.length.map_or(1.0, |l| l[i])
+    }
+    fn mass(&self, i: usize) -> f64 {
+        self.mass.map_or(1.0, |m| m[i])
+    }
+    fn torque_unit(&self, _i: usize) -> f64 {
+        1.0
+    }
+    fn centre(&self, i: usize) -> [f64; 2] {
+        self.centre[i]
+    }
+    fn centre_velocity(&self, i: usize) -> [f64; 2] {
+        self.velocity[i]
+    }
+}
+
 /// A state's angles and rates alone, as a load reads them where nothing
 /// else is at hand (the rigid chain's energy: bending's potential reads the
 /// angles only). Centres read through it are NaN: a load that reads them

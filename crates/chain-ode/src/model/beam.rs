@@ -7,7 +7,7 @@
 //! `inaccurate`; its accuracy is its distance from the test set's
 //! reference ([`crate::beam::REFERENCE`]).
 
-use super::{Layout, Model, Observed};
+use super::{Layout, Model, Observed, StateView};
 use crate::beam::{BeamSystem, SEGMENTS, T_END};
 use crate::chain::check;
 use crate::kinematics::Vec2;
@@ -155,6 +155,14 @@ impl Model for BeamModel {
         f64::INFINITY
     }
 
+    fn view(&self) -> &dyn StateView {
+        self
+    }
+}
+
+/// BEAM's states are its own view: the tip and the joints of the
+/// segments, no energy.
+impl StateView for BeamModel {
     fn observe(&self, _t: f64, y: &[f64], f: &[f64], _trig: &mut Vec<(f64, f64)>) -> Observed {
         let (_, v, a) = self.tip_terms(y, Some(f));
         Observed {

@@ -4,12 +4,14 @@
 //! [`crate::contact`]'s; `docs/model.md`, "The floor as a constraint").
 //! The state is the elastic chain's `[theta, w, W, x, y, vx, vy]` (rod
 //! centres relative to the start's anchor) and each joint's contact and
-//! joint force over the step that ended there ([`Offsets`]).
+//! joint force over the step that ended there ([`Offsets`]); what such a
+//! state means is [`ContactView`] (the elastic chain's kinematics, the
+//! joints' and the floor's forces read from the state).
 //!
 //! Its event is the release of the pivot at `0 < t_r < t_end`: the run is
 //! cut there and goes on without the pivot's rows.
 
-use super::{Layout, Model, Observed};
+use super::{Layout, Model, Observed, StateView};
 use crate::chain::{check, Chain};
 use crate::contact::floor_set::FloorSet;
 use crate::contact::{ContactChain, Offsets};
@@ -28,10 +30,18 @@ pub const START_TOLERANCE: f64 = 1e-12;
 /// The rigid chain on a constraint floor.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactModel {
-    chain: Chain,
-    anchor: Vec2,
+    view: ContactView,
     /// The pivot has let go of joint 0.
     released: bool,
+}
+
+/// What a state of the rigid chain on a constraint floor means: the rods
+/// in maximal coordinates from the start's anchor, and the forces of the
+/// step that ended there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactView {
+    chain: Chain,
+    anchor: Vec2,
     /// The floor in the anchor's frame, once placed by the start.
     floor: Option<FloorTerm>,
 }
@@ -40,30 +50,26 @@ impl ContactModel {
     /// The model of a validated chain whose floor is a constraint.
     pub fn new(chain: &Chain) -> Self {
         Self {
-            chain: chain.clone(),
-            anchor: [0.0, 0.0],
+            view: ContactView {
+                chain: chain.clone(),
+                anchor: [0.0, 0.0],
+                floor: None,
+            },
             released: chain.pivot().release == Some(0.0),
-            floor: None,
         }
     }
 
     /// The chain.
     pub fn chain_ref(&self) -> &Chain {
-        &self.chain
-    }
-
-    fn offsets(&self) -> Offsets {
-        Offsets {
-            n: self.chain.links(),
-        }
+        &self.view.chain
     }
 
     /// The floor's set of rows, as the start placed it (before the start:
     /// none the chain can reach).
     fn floor_set(&self) -> FloorSet {
-        let f = self.chain.floor();
+        let f = self.view.chain.floor();
         FloorSet {
-            term: self.floor.unwrap_or(FloorTerm {
+            term: self.view.floor.unwrap_or(FloorTerm {
                 line: crate::floor::Line {
                     t: [1.0, 0.0],
                     n: [0.0, 1.0],
@@ -78,6 +84,14 @@ impl ContactModel {
             }),
             friction: f.map_or(0.0, |f| f.friction),
             restitution: f.map_or(0.0, |f| f.restitution),
+        }
+    }
+}
+
+impl ContactView {
+    fn offsets(&self) -> Offsets {
+        Offsets {
+            n: self.chain.links(),
         }
     }
 
@@ -106,11 +120,11 @@ impl Model for ContactModel {
     }
 
     fn chain(&self) -> Option<&Chain> {
-        Some(&self.chain)
+        Some(&self.view.chain)
     }
 
     fn layout(&self) -> Layout {
-        contact_layout(&self.chain)
+        contact_layout(&self.view.chain)
     }
 
     /// `moreau-jean` (or `auto`, which runs it) at a fixed step within the
@@ -129,10 +143,10 @@ impl Model for ContactModel {
     }
 
     fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
-        super::check_start(&self.chain, start)?;
-        self.anchor = start.anchor;
-        let chain = &self.chain;
-        let o = self.offsets();
+        super::check_start(&self.view.chain, start)?;
+        self.view.anchor = start.anchor;
+        let chain = &self.view.chain;
+        let o = self.view.offsets();
         let n = o.n;
         let mut y = vec![0.0; o.dim()];
         let (mut ex, mut ey, mut evx, mut evy) = (0.0, 0.0, 0.0, 0.0);
@@ -167,21 +181,21 @@ impl Model for ContactModel {
                     return Err(floor::constraint_inside_error(rod, depth, tolerance));
                 }
             }
-            self.floor = Some(term);
+            self.view.floor = Some(term);
         }
         Ok(y)
     }
 
     fn problem(&self) -> Box<dyn Problem + '_> {
         Box::new(ContactChain::new(
-            &self.chain,
+            &self.view.chain,
             self.floor_set(),
             !self.released,
         ))
     }
 
     fn energy_scale(&self) -> f64 {
-        self.chain.energy_scale()
+        self.view.chain.energy_scale()
     }
 
     /// `moreau-jean` at the run's step.
@@ -196,13 +210,19 @@ impl Model for ContactModel {
     }
 
     fn event_time(&self) -> Option<f64> {
-        self.chain.pivot().release
+        self.view.chain.pivot().release
     }
 
     fn at_event(&mut self, _t: f64, _y: &mut [f64]) {
         self.released = true;
     }
 
+    fn view(&self) -> &dyn StateView {
+        &self.view
+    }
+}
+
+impl StateView for ContactView {
     fn observe(&self, t: f64, y: &[f64], f: &[f64], _trig: &mut Vec<(f64, f64)>) -> Observed {
         Observed {
             energy: self.energy(t, y),

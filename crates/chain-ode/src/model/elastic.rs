@@ -1,13 +1,14 @@
 //! The chain with elastic links as a [`Model`]: the state
 //! `[phi, w, W, x, y, vx, vy]` (`6 n + 1`, rod centres relative to the
-//! pivot's prescribed position); the physics is [`crate::elastic`]'s.
+//! pivot's prescribed position), and what such a state means, [`LinkView`];
+//! the physics is [`crate::elastic`]'s.
 //!
 //! Its event is the release of the pivot at `0 < t_r < t_end`: the run is
 //! cut there and goes on without the joint-0 spring, whose energy
 //! `K_0 |d_0|^2 / 2` leaves the chain then: it is added to the work `W`, so
 //! that the balance `E + W = E(0)` holds across the cut.
 
-use super::{Layout, Model, Observed, PeakForce, PeakValue};
+use super::{Layout, Model, Observed, PeakForce, PeakValue, StateView};
 use crate::chain::{check, Chain};
 use crate::elastic::{self, ElasticSystem};
 use crate::floor::{self, FloorTerm};
@@ -24,9 +25,17 @@ use fc_methods::{AutoPlan, Method, TimeScales};
 /// The elastic chain, its pivot's path, and whether joint 0 has let go.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ElasticModel {
+    view: LinkView,
+    released: bool,
+}
+
+/// What a state `[phi, w, W, x, y, vx, vy]` of elastic links means: its
+/// pivot's path, the floor as placed, the loads whose potentials its energy
+/// holds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinkView {
     chain: Chain,
     path: PivotPath,
-    released: bool,
     /// The floor in the frame of the start's anchor (`None`: no floor).
     floor: Option<FloorTerm>,
     /// The loads (physical units), the placed floor among them.
@@ -38,11 +47,13 @@ impl ElasticModel {
     /// at `t = 0` is free from the start).
     pub fn new(chain: &Chain) -> Self {
         Self {
-            chain: chain.clone(),
-            path: PivotPath::new(chain, [0.0, 0.0]),
+            view: LinkView {
+                chain: chain.clone(),
+                path: PivotPath::new(chain, [0.0, 0.0]),
+                floor: None,
+                loads: Loads::of(chain, Units::Physical),
+            },
             released: chain.pivot().release == Some(0.0),
-            floor: None,
-            loads: Loads::of(chain, Units::Physical),
         }
     }
 }
@@ -50,18 +61,18 @@ impl ElasticModel {
 impl ElasticModel {
     /// The chain.
     pub fn chain_ref(&self) -> &Chain {
-        &self.chain
+        &self.view.chain
     }
 
     /// The floor as placed for the start (in the anchor's frame), once
     /// [`Model::initial_state`] has run; `None` without a floor.
     pub fn floor(&self) -> Option<&FloorTerm> {
-        self.floor.as_ref()
+        self.view.floor.as_ref()
     }
 
     /// The start's anchor `P0`.
     pub fn anchor(&self) -> Vec2 {
-        self.path.anchor
+        self.view.path.anchor
     }
 }
 
@@ -71,94 +82,103 @@ impl Model for ElasticModel {
     }
 
     fn chain(&self) -> Option<&Chain> {
-        Some(&self.chain)
+        Some(&self.view.chain)
     }
 
     fn layout(&self) -> Layout {
-        elastic_layout(&self.chain)
+        elastic_layout(&self.view.chain)
     }
 
     fn validate(&self, method: Method, options: &SolveOptions) -> Result<(), InvalidParameter> {
         options.validate_common(
-            Some(self.chain.pivot()),
+            Some(self.view.chain.pivot()),
             method,
-            &elastic_layout(&self.chain),
+            &elastic_layout(&self.view.chain),
         )?;
         if method == Method::BdfDense {
             check(
-                self.chain.links() <= BDF_DENSE_MAX_ELASTIC_LINKS,
+                self.view.chain.links() <= BDF_DENSE_MAX_ELASTIC_LINKS,
                 "chain.links",
                 format!(
                     "at most {BDF_DENSE_MAX_ELASTIC_LINKS} for bdf-dense with chain.axial_stiffness \
                      (its dense Jacobian of 6 n + 1 unknowns grows like n^2 in memory and n^3 in \
                      time); run.method = \"bdf\" is the same method in O(n)"
                 ),
-                self.chain.links(),
+                self.view.chain.links(),
             )?;
         }
-        super::rigid::check_dense_size(&self.chain, method)
+        super::rigid::check_dense_size(&self.view.chain, method)
     }
 
     fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
-        super::check_start(&self.chain, start)?;
-        self.path = PivotPath::new(&self.chain, start.anchor);
-        let y = elastic::start_state(&self.chain, start);
-        if let Some(f) = self.chain.floor() {
+        super::check_start(&self.view.chain, start)?;
+        self.view.path = PivotPath::new(&self.view.chain, start.anchor);
+        let y = elastic::start_state(&self.view.chain, start);
+        if let Some(f) = self.view.chain.floor() {
             let term = match f.height {
                 Some(h) => f.term(h, start.anchor),
-                None => f
-                    .term(0.0, start.anchor)
-                    .touching(floor::points(&self.chain, &y).into_iter().map(|[p, _]| p)),
+                None => f.term(0.0, start.anchor).touching(
+                    floor::points(&self.view.chain, &y)
+                        .into_iter()
+                        .map(|[p, _]| p),
+                ),
             };
-            let tolerance = floor::start_tolerance(f, self.chain.weight(), self.chain.length());
-            if let Some(o) = floor::overlap(&self.chain, &term, &y) {
+            let tolerance =
+                floor::start_tolerance(f, self.view.chain.weight(), self.view.chain.length());
+            if let Some(o) = floor::overlap(&self.view.chain, &term, &y) {
                 if o.total > tolerance {
                     return Err(floor::inside_error(o, tolerance));
                 }
             }
-            self.floor = Some(term);
-            self.loads.floor = Some(FloorContact::placed(term));
+            self.view.floor = Some(term);
+            self.view.loads.floor = Some(FloorContact::placed(term));
         }
         Ok(y)
     }
 
     fn problem(&self) -> Box<dyn Problem + '_> {
-        let mut sys = ElasticSystem::new(&self.chain);
+        let mut sys = ElasticSystem::new(&self.view.chain);
         if self.released {
             sys.set_released(true);
         }
-        if self.floor.is_some() {
-            sys.set_floor(self.floor);
+        if self.view.floor.is_some() {
+            sys.set_floor(self.view.floor);
         }
         Box::new(sys)
     }
 
     fn energy_scale(&self) -> f64 {
-        self.chain.energy_scale()
+        self.view.chain.energy_scale()
     }
 
     fn is_driven(&self) -> bool {
-        self.chain.pivot().is_driven()
+        self.view.chain.pivot().is_driven()
     }
 
     fn time_scales(&self) -> TimeScales {
-        self.chain.pivot().time_scales()
+        self.view.chain.pivot().time_scales()
     }
 
     fn auto_plan(&self, rtol: f64) -> AutoPlan {
-        auto_elastic::plan(&self.chain, rtol)
+        auto_elastic::plan(&self.view.chain, rtol)
     }
 
     fn event_time(&self) -> Option<f64> {
-        self.chain.pivot().release
+        self.view.chain.pivot().release
     }
 
     fn at_event(&mut self, _t: f64, y: &mut [f64]) {
-        let n = self.chain.links();
-        y[2 * n] += elastic::pivot_spring_energy(&self.chain, y);
+        let n = self.view.chain.links();
+        y[2 * n] += elastic::pivot_spring_energy(&self.view.chain, y);
         self.released = true;
     }
 
+    fn view(&self) -> &dyn StateView {
+        &self.view
+    }
+}
+
+impl StateView for LinkView {
     fn observe(&self, t: f64, y: &[f64], f: &[f64], _trig: &mut Vec<(f64, f64)>) -> Observed {
         let chain = &self.chain;
         if self.floor.is_some() {

@@ -1,13 +1,9 @@
 //! The crate's models as one type, and the one decision of which model a
 //! chain is.
 
-use super::{
-    ContactModel, ElasticModel, Layout, Model, Observed, PeakForce, PeakValue, ReportChain,
-    RigidModel,
-};
+use super::{ContactModel, ElasticModel, Layout, Model, ReportChain, RigidModel, StateView};
 use crate::chain::Chain;
 use crate::floor::FloorLaw;
-use crate::kinematics::Vec2;
 use crate::report::ReportModel;
 use crate::solve::SolveOptions;
 use crate::state::State;
@@ -170,50 +166,8 @@ impl Model for ModelKind {
     fn at_event(&mut self, t: f64, y: &mut [f64]) {
         each!(self, m => m.at_event(t, y))
     }
-    fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
-        each!(self, m => m.observe(t, y, f, trig))
-    }
-    fn energy(&self, t: f64, y: &[f64]) -> f64 {
-        each!(self, m => m.energy(t, y))
-    }
-    fn tip(&self, t: f64, y: &[f64]) -> Vec2 {
-        each!(self, m => m.tip(t, y))
-    }
-    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
-        each!(self, m => m.tip_velocity(t, y))
-    }
-    fn support(&self, t: f64, y: &[f64]) -> [Vec2; 2] {
-        each!(self, m => m.support(t, y))
-    }
-    fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
-        each!(self, m => m.joints(t, y))
-    }
-    fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
-        each!(self, m => m.joint_forces(t, y))
-    }
-    fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
-        each!(self, m => m.support_force(t, y))
-    }
-    fn tracks_support_force(&self) -> bool {
-        each!(self, m => m.tracks_support_force())
-    }
-    fn refines_tip_speed(&self) -> bool {
-        each!(self, m => m.refines_tip_speed())
-    }
-    fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
-        each!(self, m => m.momentum(t, y))
-    }
-    fn floor_forces(&self, t: f64, y: &[f64]) -> Option<Vec<Vec2>> {
-        each!(self, m => m.floor_forces(t, y))
-    }
-    fn floor_line(&self) -> Option<(f64, f64)> {
-        each!(self, m => m.floor_line())
-    }
-    fn peak_forces(&self) -> &'static [PeakForce] {
-        each!(self, m => m.peak_forces())
-    }
-    fn peak_force(&self, force: PeakForce, t: f64, y: &[f64]) -> PeakValue {
-        each!(self, m => m.peak_force(force, t, y))
+    fn view(&self) -> &dyn StateView {
+        each!(self, m => m.view())
     }
 }
 

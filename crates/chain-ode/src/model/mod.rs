@@ -1,31 +1,38 @@
-//! What a state means: the [`Model`] trait, and the one place that decides
-//! which model a chain is ([`ModelKind::of`]).
+//! What a state is and what it means: the [`Model`] trait (the problem
+//! side), the [`StateView`] trait (what a state means), and the one place
+//! that decides which model a chain is ([`ModelKind::choose`]).
 //!
 //! The integrators see only a [`Problem`] (`y' = f(t, y)`, and maybe a
 //! banded DAE); they never look inside a state. The run layer ([`solve`](crate::solve))
 //! sees only a [`Model`]: it asks the model for its first state, the
-//! problem to integrate, its events, and, at every accepted step, for the
-//! energy and the tip's velocity of the state (one pass). The trajectory
-//! keeps the model, and every accessor of a sample (the tip, the joints,
-//! the joint forces, the energy) asks it again. No other code branches on
-//! the kind of model.
+//! problem to integrate, its events, and, at every accepted step, its view
+//! ([`Model::view`]) for the energy and the tip's velocity of the state (one
+//! pass). The trajectory keeps the model, and every accessor of a sample
+//! (the tip, the joints, the joint forces, the energy) asks its view again.
+//! No other code branches on the kind of model.
 //!
-//! The models of the crate:
-//! * [`RigidModel`]: the chain of rigid rods (`[phi, w, W]`, `2 n + 1`);
-//! * [`ElasticModel`]: elastic links (`[phi, w, W, x, y, vx, vy]`, `6 n + 1`);
+//! The models of the crate, and the view each shares:
+//! * [`RigidModel`]: the chain of rigid rods (`[phi, w, W]`, `2 n + 1`),
+//!   viewed by [`RigidView`];
+//! * [`ElasticModel`]: elastic links (`[phi, w, W, x, y, vx, vy]`, `6 n + 1`),
+//!   viewed by [`LinkView`];
 //! * [`ContactModel`]: rigid rods on a constraint floor, in maximal
 //!   coordinates (`[phi, w, W, x, y, vx, vy]` and the forces of the last
-//!   step, `10 n + 5`), run by `moreau-jean`;
+//!   step, `10 n + 5`), run by `moreau-jean`, viewed by [`ContactView`];
 //! * [`ReportModel`](crate::report::ReportModel)'s chain, [`ReportChain`]: the
-//!   student report's equations, as a control;
-//! * [`BeamModel`]: the BEAM benchmark of Hairer & Wanner (`[z, z']`, `2 n`).
+//!   student report's equations, as a control: the rigid model's state,
+//!   viewed by the same [`RigidView`] with the report's energy;
+//! * [`BeamModel`]: the BEAM benchmark of Hairer & Wanner (`[z, z']`, `2 n`),
+//!   its own view.
 //!
-//! A model of another crate implements [`Model`] and runs through the same
-//! [`solve`](crate::solve) (ARCHITECTURE.md, "How to add a model").
+//! A model of another crate implements [`Model`] (and a [`StateView`], or
+//! reuses one) and runs through the same [`solve`](crate::solve)
+//! (ARCHITECTURE.md, "How to add a model").
 //!
-//! Its files: `rigid.rs`, `elastic.rs`, `contact.rs`, `report.rs` and
-//! `beam.rs` (one model each), `kind.rs` (the chain's models as one type, chosen in one
-//! place: [`ModelKind::choose`]).
+//! Its files: `view.rs` (the [`StateView`] trait), `rigid.rs`, `elastic.rs`,
+//! `contact.rs` (one model and its view each), `report.rs` (the report's
+//! model on the rigid view) and `beam.rs`, `kind.rs` (the chain's models as
+//! one type, chosen in one place: [`ModelKind::choose`]).
 
 pub mod beam;
 mod contact;
@@ -33,16 +40,18 @@ mod elastic;
 mod kind;
 mod report;
 mod rigid;
+mod view;
 
 use std::ops::Range;
 
 pub use beam::BeamModel;
-pub use contact::{ContactModel, START_TOLERANCE as CONTACT_START_TOLERANCE};
-pub use elastic::ElasticModel;
+pub use contact::{ContactModel, ContactView, START_TOLERANCE as CONTACT_START_TOLERANCE};
+pub use elastic::{ElasticModel, LinkView};
 pub use kind::{IntoModel, ModelKind};
 pub use report::ReportChain;
 pub(crate) use rigid::rigid_energy;
-pub use rigid::{bdf_crossover_gamma, RigidModel};
+pub use rigid::{bdf_crossover_gamma, RigidModel, RigidView};
+pub use view::StateView;
 
 use crate::chain::Chain;
 use crate::kinematics::Vec2;
@@ -106,8 +115,9 @@ pub struct Observed {
     pub tip_acceleration: Vec2,
 }
 
-/// A model: a physical system with a state vector, the problem that
-/// integrates it, and what a state means.
+/// A model: a physical system with a state vector and the problem that
+/// integrates it (the problem side); what a state means is its view
+/// ([`Model::view`]).
 ///
 /// Conventions: time in the model's units, energies in its units; a state
 /// is the vector the model's [`Problem`] integrates, laid out as
@@ -176,81 +186,9 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq {
     /// may change). The problem is then made anew from the model.
     fn at_event(&mut self, _t: f64, _y: &mut [f64]) {}
 
-    /// The run's view of `y` at `t` (`f = y'` there), in one pass. `trig`
-    /// is scratch the model may use (no allocation once it has grown).
-    fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed;
-
-    /// The energy of `y` at `t`, as [`Model::observe`] has it.
-    fn energy(&self, t: f64, y: &[f64]) -> f64;
-
-    /// The tip (the free end) at `t`.
-    fn tip(&self, t: f64, y: &[f64]) -> Vec2;
-
-    /// The tip's velocity at `t` in the inertial frame.
-    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2;
-
-    /// The support's (pivot's) position and velocity at `t`.
-    fn support(&self, _t: f64, _y: &[f64]) -> [Vec2; 2] {
-        [[0.0, 0.0], [0.0, 0.0]]
-    }
-
-    /// The joints `P_0..P_n` at `t`.
-    fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2>;
-
-    /// The joint forces `[tension, shear]` at joints `0..=n` at `t`.
-    fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2>;
-
-    /// The force of the support on the first rod at `t` (zero where the
-    /// model has none).
-    fn support_force(&self, _t: f64, _y: &[f64]) -> Vec2 {
-        [0.0, 0.0]
-    }
-
-    /// True when the summary tracks the support force's maximum at every
-    /// step (`Summary::pivot_force_max`): a model whose force is a function
-    /// of the state alone and cheap (the elastic chain's pivot spring).
-    fn tracks_support_force(&self) -> bool {
-        false
-    }
-
-    /// True when the summary's tip speed maximum is refined inside the
-    /// steps on the continuous extension (the chains'); false keeps the
-    /// step ends' values only, so that a benchmark's work counters are its
-    /// integrator's alone (a lazy dense output costs right-hand sides).
-    fn refines_tip_speed(&self) -> bool {
-        true
-    }
-
-    /// The momentum relative to the support.
-    fn momentum(&self, _t: f64, _y: &[f64]) -> Vec2 {
-        [0.0, 0.0]
-    }
-
-    /// The floor's force on each contact point at `t` (physical units; the
-    /// elastic chain's: rod 0's start, rod 0's end, rod 1's start, ...), or
-    /// `None` for a model without a floor.
-    fn floor_forces(&self, _t: f64, _y: &[f64]) -> Option<Vec<Vec2>> {
-        None
-    }
-
-    /// The floor as placed for the run, `(height at x = 0, angle)` in scene
-    /// coordinates, or `None` without a floor.
-    fn floor_line(&self) -> Option<(f64, f64)> {
-        None
-    }
-
-    /// The forces whose peaks the run tracks at every accepted step
-    /// ([`PeakForce`]; `Summary::peaks`): none by default.
-    fn peak_forces(&self) -> &'static [PeakForce] {
-        &[]
-    }
-
-    /// `force`'s value and reference at `(t, y)` ([`PeakValue`]), for a
-    /// force of [`Model::peak_forces`]: a function of the state alone,
-    /// O(n) and allocation free (it runs at every step).
-    fn peak_force(&self, _force: PeakForce, _t: f64, _y: &[f64]) -> PeakValue {
-        [0.0, 0.0]
-    }
+    /// What a state means: the tip, the joints, the energy and the forces
+    /// of a state ([`StateView`]), shared by the models of one state layout.
+    fn view(&self) -> &dyn StateView;
 }
 
 /// A start for `chain` must give one angle and one rate per rod.

@@ -1,11 +1,11 @@
 //! The report's model ([`crate::report`]) as a [`Model`]: the rigid chain's
 //! state and geometry, the report's equations and energy (its errata as
 //! switches), and, for `rk4` with the stepper erratum, the report's own
-//! first-order stepper.
+//! first-order stepper. Its states are the rigid model's, read by the same
+//! [`RigidView`](super::RigidView) with the report's energy.
 
-use super::{Layout, Model, Observed, RigidModel};
+use super::{Layout, Model, RigidModel, StateView};
 use crate::chain::{check, Chain};
-use crate::kinematics::Vec2;
 use crate::report::{ReportModel, ReportSystem};
 use crate::solve::{SolveOptions, REPORT_METHODS, REPORT_RK4};
 use crate::state::State;
@@ -24,7 +24,7 @@ impl ReportChain {
     /// `chain` under the report's `model` (checked by [`Model::validate`]).
     pub fn new(chain: &Chain, model: ReportModel) -> Self {
         Self {
-            rigid: RigidModel::new(chain),
+            rigid: RigidModel::new(chain).reading_as(model),
             model,
         }
     }
@@ -88,41 +88,7 @@ impl Model for ReportChain {
         self.model.energy_scale(self.rigid_chain())
     }
 
-    fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
-        Observed {
-            energy: self.energy(t, y),
-            ..self.rigid.observe(t, y, f, trig)
-        }
-    }
-
-    /// The report's energy (its Lagrangian's `T + V`, in its units).
-    fn energy(&self, _t: f64, y: &[f64]) -> f64 {
-        let chain = self.rigid_chain();
-        let n = chain.links();
-        self.model.energy(chain, &y[..n], &y[n..2 * n])
-    }
-
-    fn tip(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.rigid.tip(t, y)
-    }
-
-    fn tip_velocity(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.rigid.tip_velocity(t, y)
-    }
-
-    fn support(&self, t: f64, y: &[f64]) -> [Vec2; 2] {
-        self.rigid.support(t, y)
-    }
-
-    fn joints(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
-        self.rigid.joints(t, y)
-    }
-
-    fn joint_forces(&self, t: f64, y: &[f64]) -> Vec<Vec2> {
-        self.rigid.joint_forces(t, y)
-    }
-
-    fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
-        self.rigid.momentum(t, y)
+    fn view(&self) -> &dyn StateView {
+        self.rigid.view()
     }
 }

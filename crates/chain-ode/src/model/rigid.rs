@@ -1,13 +1,16 @@
 //! The chain of rigid rods as a [`Model`]: the state `[phi, w, W]`
-//! (`2 n + 1`), the pivot's path along the run, and the chain's one energy.
+//! (`2 n + 1`), the pivot's path along the run, and what such a state means,
+//! [`RigidView`] (the chain's one energy, or the report's), which the report's
+//! model shares.
 
-use super::{Layout, Model, Observed};
+use super::{Layout, Model, Observed, StateView};
 use crate::chain::Chain;
 use crate::elastic;
 use crate::kinematics::{joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
 use crate::load::{Angles, Loads, Units};
 use crate::pivot::{centre_of_mass, PivotPath};
 use crate::profile::Rods;
+use crate::report::ReportModel;
 use crate::scalar::Scalar;
 use crate::solve::{SolveOptions, BDF_DENSE_MAX_LINKS};
 use crate::state::State;
@@ -20,11 +23,22 @@ use fc_methods::{AutoPlan, Method, TimeScales, AUTO_DOP853_RTOL};
 /// motion and, once let go, the free fall of the centre of mass).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RigidModel {
+    view: RigidView,
+    released: bool,
+}
+
+/// What a state `[phi, w, W]` of a chain of rigid rods means: its pivot's
+/// path, its tip, joints and joint forces, and its energy (the chain's, or
+/// the report's equations' for the report's model).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidView {
     chain: Chain,
     path: PivotPath,
-    released: bool,
     /// The chain's loads (rod units; their potentials are physical).
     loads: Loads,
+    /// The report's equations, whose energy (in their units) the state's is;
+    /// `None`: the chain's.
+    report: Option<ReportModel>,
 }
 
 impl RigidModel {
@@ -32,21 +46,51 @@ impl RigidModel {
     /// origin until [`Model::initial_state`] places it.
     pub fn new(chain: &Chain) -> Self {
         Self {
-            chain: chain.clone(),
-            path: PivotPath::new(chain, [0.0, 0.0]),
+            view: RigidView {
+                chain: chain.clone(),
+                path: PivotPath::new(chain, [0.0, 0.0]),
+                loads: Loads::of(chain, Units::Rod),
+                report: None,
+            },
             released: false,
-            loads: Loads::of(chain, Units::Rod),
         }
+    }
+
+    /// The same model whose states are read by the report's equations
+    /// (their energy): the report's model's view.
+    pub(super) fn reading_as(mut self, report: ReportModel) -> Self {
+        self.view.report = Some(report);
+        self
     }
 
     /// The chain.
     pub fn chain_ref(&self) -> &Chain {
-        &self.chain
+        &self.view.chain
     }
 
     /// The pivot's path.
     pub fn path(&self) -> &PivotPath {
-        &self.path
+        &self.view.path
+    }
+}
+
+impl RigidView {
+    /// The fused pass of [`rigid_pass`] plus the frame's terms of a moving
+    /// pivot.
+    fn chain_pass(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
+        let mut m = rigid_pass(&self.chain, &self.loads, y, Some(f), trig);
+        if self.path.is_fixed() {
+            return m;
+        }
+        let n = self.chain.links();
+        let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
+        let frame = self.path.frame(&self.chain, t, phi, w);
+        let a0 = self.path.acceleration(&self.chain, t, phi, w, acc);
+        m.energy += frame.energy;
+        let [v, a] = [frame.velocity, a0];
+        m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
+        m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
+        m
     }
 
     fn split<'a>(&self, y: &'a [f64]) -> (&'a [f64], &'a [f64]) {
@@ -109,31 +153,32 @@ impl Model for RigidModel {
     }
 
     fn chain(&self) -> Option<&Chain> {
-        Some(&self.chain)
+        Some(&self.view.chain)
     }
 
     fn layout(&self) -> Layout {
-        rigid_layout(&self.chain)
+        rigid_layout(&self.view.chain)
     }
 
     fn validate(&self, method: Method, options: &SolveOptions) -> Result<(), InvalidParameter> {
-        validate_rigid(&self.chain, method, options)
+        validate_rigid(&self.view.chain, method, options)
     }
 
     fn initial_state(&mut self, start: &State) -> Result<Vec<f64>, InvalidParameter> {
-        super::check_start(&self.chain, start)?;
-        self.path = PivotPath::new(&self.chain, start.anchor);
+        super::check_start(&self.view.chain, start)?;
+        self.view.path = PivotPath::new(&self.view.chain, start.anchor);
         // A pivot let go at the start is free from the first step.
-        if self.chain.pivot().release.is_some_and(|tr| tr <= 0.0) {
-            self.path
-                .release(&self.chain, 0.0, &start.angles, &start.rates);
+        if self.view.chain.pivot().release.is_some_and(|tr| tr <= 0.0) {
+            self.view
+                .path
+                .release(&self.view.chain, 0.0, &start.angles, &start.rates);
             self.released = true;
         }
         Ok(ChainSystem::pack(&start.angles, &start.rates, 0.0))
     }
 
     fn problem(&self) -> Box<dyn Problem + '_> {
-        let mut sys = ChainSystem::new(&self.chain);
+        let mut sys = ChainSystem::new(&self.view.chain);
         if self.released {
             sys.set_released(true);
         }
@@ -141,15 +186,15 @@ impl Model for RigidModel {
     }
 
     fn energy_scale(&self) -> f64 {
-        self.chain.energy_scale()
+        self.view.chain.energy_scale()
     }
 
     fn is_driven(&self) -> bool {
-        self.chain.pivot().is_driven()
+        self.view.chain.pivot().is_driven()
     }
 
     fn time_scales(&self) -> TimeScales {
-        self.chain.pivot().time_scales()
+        self.view.chain.pivot().time_scales()
     }
 
     /// BDF from the start past the crossover damping rate, else DOPRI5
@@ -158,7 +203,7 @@ impl Model for RigidModel {
     /// hand over mid-run.
     fn auto_plan(&self, rtol: f64) -> AutoPlan {
         AutoPlan {
-            explicit: rigid_auto_start(&self.chain, rtol),
+            explicit: rigid_auto_start(&self.view.chain, rtol),
             hand_over_above: f64::INFINITY,
             implicit: Method::Bdf,
             implicit_tolerance: 1.0,
@@ -167,34 +212,45 @@ impl Model for RigidModel {
     }
 
     fn event_time(&self) -> Option<f64> {
-        self.chain.pivot().release
+        self.view.chain.pivot().release
     }
 
     /// The release: the path notes where the centre of mass is and how fast
     /// it moves; from then on joint 0 is a free end.
     fn at_event(&mut self, t: f64, y: &mut [f64]) {
-        let n = self.chain.links();
-        self.path.release(&self.chain, t, &y[..n], &y[n..2 * n]);
+        let n = self.view.chain.links();
+        self.view
+            .path
+            .release(&self.view.chain, t, &y[..n], &y[n..2 * n]);
         self.released = true;
     }
 
+    fn view(&self) -> &dyn StateView {
+        &self.view
+    }
+}
+
+impl StateView for RigidView {
+    /// The chain's pass (with the report's equations, their energy and the
+    /// chain's tip).
     fn observe(&self, t: f64, y: &[f64], f: &[f64], trig: &mut Vec<(f64, f64)>) -> Observed {
-        let mut m = rigid_pass(&self.chain, &self.loads, y, Some(f), trig);
-        if self.path.is_fixed() {
-            return m;
+        let m = self.chain_pass(t, y, f, trig);
+        match self.report {
+            Some(_) => Observed {
+                energy: self.energy(t, y),
+                ..m
+            },
+            None => m,
         }
-        let n = self.chain.links();
-        let (phi, w, acc) = (&y[..n], &y[n..2 * n], &f[n..2 * n]);
-        let frame = self.path.frame(&self.chain, t, phi, w);
-        let a0 = self.path.acceleration(&self.chain, t, phi, w, acc);
-        m.energy += frame.energy;
-        let [v, a] = [frame.velocity, a0];
-        m.tip_velocity = [m.tip_velocity[0] + v[0], m.tip_velocity[1] + v[1]];
-        m.tip_acceleration = [m.tip_acceleration[0] + a[0], m.tip_acceleration[1] + a[1]];
-        m
     }
 
+    /// The chain's energy, or the report's (its Lagrangian's `T + V`, in
+    /// its units).
     fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        if let Some(report) = self.report {
+            let n = self.chain.links();
+            return report.energy(&self.chain, &y[..n], &y[n..2 * n]);
+        }
         let e = rigid_pass(&self.chain, &self.loads, y, None, &mut Vec::new()).energy;
         if self.path.is_fixed() {
             return e;
@@ -235,8 +291,12 @@ impl Model for RigidModel {
     }
 
     /// The recursion's force on rod 1 (with a moving pivot at its
-    /// acceleration at `t`; zero once let go).
+    /// acceleration at `t`; zero once let go; zero for the report's
+    /// equations, which state none).
     fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
+        if self.report.is_some() {
+            return [0.0, 0.0];
+        }
         let mut sys = ChainSystem::new(&self.chain);
         let (phi, w) = self.split(y);
         let y = ChainSystem::pack(phi, w, 0.0);

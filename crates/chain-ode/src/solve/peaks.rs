@@ -1,10 +1,12 @@
 //! The peaks of forces a run tracks as properties of the run, never of its
 //! output samples: at the start, at every accepted step's end, and inside
 //! a step on the method's continuous extension where the force turns from
-//! rising to falling (as the tip speed's maximum is refined). A model
-//! names the forces it has ([`Model::peak_forces`]) and gives each one's
-//! value at a state ([`Model::peak_force`]); the tally folds them
-//! ([`PeakTrack`]). Today the floor's normal force; the pivot's force and
+//! rising to falling (as the tip speed's maximum is refined). A model's
+//! view names the forces it has
+//! ([`StateView::peak_forces`](crate::StateView::peak_forces)) and gives
+//! each one's value at a state
+//! ([`StateView::peak_force`](crate::StateView::peak_force)); the tally
+//! folds them ([`PeakTrack`]). Today the floor's normal force; the pivot's force and
 //! the tensions are meant to join the same way.
 
 use fc_methods::StepView;
@@ -55,7 +57,7 @@ pub(crate) struct PeakTrack {
 impl PeakTrack {
     /// The track of `force` from `(t0, y0)`.
     pub fn start<M: Model>(model: &M, force: PeakForce, t0: f64, y0: &[f64]) -> Self {
-        let [value, reference] = model.peak_force(force, t0, y0);
+        let [value, reference] = model.view().peak_force(force, t0, y0);
         Self {
             peak: Peak {
                 force,
@@ -76,7 +78,7 @@ impl PeakTrack {
     /// An accepted step; `buf` is scratch of the state's size.
     pub fn step<M: Model>(&mut self, model: &M, step: &StepView<'_>, buf: &mut [f64]) {
         let (t0, t1) = (step.t0, step.t1);
-        let [value, reference] = model.peak_force(self.peak.force, t1, step.y1);
+        let [value, reference] = model.view().peak_force(self.peak.force, t1, step.y1);
         // The slope's sign at t1, from the state's derivative there (`y1 -
         // d f1` is the state at `t1 - d` to O(d^2)): no dense output, whose
         // stages a lazy method (DOP853) would pay at every step.
@@ -84,7 +86,7 @@ impl PeakTrack {
         for ((b, y), f) in buf.iter_mut().zip(step.y1).zip(step.f1) {
             *b = y - d * f;
         }
-        let before = model.peak_force(self.peak.force, t1 - d, buf)[0];
+        let before = model.view().peak_force(self.peak.force, t1 - d, buf)[0];
         let rising = value > before;
         let worth = self.last.max(value) >= SEARCH_FRACTION * self.peak.value;
         if self.rising && !rising && worth && t1 > t0 {
@@ -94,13 +96,13 @@ impl PeakTrack {
             let force = self.peak.force;
             let (t, v, _) = golden_max(t0, t1, tol, |t| {
                 step.interpolant.eval(t, buf);
-                model.peak_force(force, t, buf)[0]
+                model.view().peak_force(force, t, buf)[0]
             });
             if v > self.peak.value || v.is_nan() {
                 step.interpolant.eval(t, buf);
                 self.peak.value = v;
                 self.peak.t = t;
-                self.peak.reference = model.peak_force(force, t, buf)[1];
+                self.peak.reference = model.view().peak_force(force, t, buf)[1];
             }
         }
         if value > self.peak.value || value.is_nan() {

@@ -202,11 +202,12 @@ pub(super) fn trajectory<M: Model>(
         dissipated: tally.work_of(y),
         energy_balance_error: tally.energy_balance_error,
         max_energy_rise: tally.max_energy_rise,
-        tip_end: model.tip(outcome.t_reached, y),
-        tip_velocity_end: model.tip_velocity(outcome.t_reached, y),
+        tip_end: model.view().tip(outcome.t_reached, y),
+        tip_velocity_end: model.view().tip_velocity(outcome.t_reached, y),
         tip_speed_max: tally.tip_speed.value,
         t_tip_speed_max: tally.tip_speed.t,
         pivot_force_max: model
+            .view()
             .tracks_support_force()
             .then_some((tally.support_force_max, tally.t_support_force_max)),
         peaks: tally.peaks(),

@@ -1,7 +1,8 @@
 //! What a run's summary reads from its states, by asking the model: the
 //! energy balance `E + W = E(0)`, the largest rise of `E`, the continuous
 //! maximum of the tip speed and, where the model tracks it, of the
-//! support force. One [`Model::observe`] pass per step.
+//! support force. One
+//! [`StateView::observe`](crate::StateView::observe) pass per step.
 
 use super::peaks::{Peak, PeakTrack};
 use super::recorder::{ContinuousMax, Recorder};
@@ -95,7 +96,8 @@ pub(crate) struct Tally {
     /// The largest accepted step (time): whether a method stepped over the
     /// modes that carry a force ([`super::forces::resolved`]).
     pub h_max: f64,
-    /// The model's force peaks ([`Model::peak_forces`]), tracked at every
+    /// The model's force peaks
+    /// ([`StateView::peak_forces`](crate::StateView::peak_forces)), tracked at every
     /// accepted step and refined inside it.
     peaks: Vec<PeakTrack>,
     /// The energy balance error above which a run is not a solution of the
@@ -137,13 +139,13 @@ impl Tally {
             support_force_max: 0.0,
             t_support_force_max: 0.0,
             h_max: 0.0,
-            peaks: Vec::with_capacity(model.peak_forces().len()),
+            peaks: Vec::with_capacity(model.view().peak_forces().len()),
             energy_scale: model.energy_scale(),
             work_variation: 0.0,
             work_last: 0.0,
             driven: model.is_driven(),
             tolerance,
-            floor: model.floor_line().is_some(),
+            floor: model.view().floor_line().is_some(),
             work: layout.work,
             t_inaccurate: None,
             started: false,
@@ -182,8 +184,8 @@ impl Tally {
     }
 
     fn note_support_force<M: Model>(&mut self, model: &M, t: f64, y: &[f64]) {
-        if model.tracks_support_force() {
-            let f = model.support_force(t, y);
+        if model.view().tracks_support_force() {
+            let f = model.view().support_force(t, y);
             let f = f[0].hypot(f[1]);
             if f > self.support_force_max || f.is_nan() {
                 self.support_force_max = f;
@@ -205,7 +207,7 @@ impl Tally {
             return;
         }
         self.started = true;
-        let m = model.observe(t0, y0, f0, &mut self.trig);
+        let m = model.view().observe(t0, y0, f0, &mut self.trig);
         self.energy_start = m.energy;
         self.work_last = self.work_of(y0);
         self.energy_end = m.energy;
@@ -213,7 +215,7 @@ impl Tally {
         let slope = 2.0
             * (m.tip_velocity[0] * m.tip_acceleration[0]
                 + m.tip_velocity[1] * m.tip_acceleration[1]);
-        let slope = if model.refines_tip_speed() {
+        let slope = if model.view().refines_tip_speed() {
             slope
         } else {
             0.0
@@ -221,6 +223,7 @@ impl Tally {
         self.tip_speed.start(t0, speed, slope);
         self.note_support_force(model, t0, y0);
         self.peaks = model
+            .view()
             .peak_forces()
             .iter()
             .map(|&f| PeakTrack::start(model, f, t0, y0))
@@ -236,7 +239,9 @@ impl Tally {
     /// An accepted step.
     pub fn step<M: Model>(&mut self, model: &M, rec: &mut Recorder, step: &StepView<'_>) {
         self.h_max = self.h_max.max(step.t1 - step.t0);
-        let m = model.observe(step.t1, step.y1, step.f1, &mut self.trig);
+        let m = model
+            .view()
+            .observe(step.t1, step.y1, step.f1, &mut self.trig);
         let work = self.work_of(step.y1);
         self.energy_balance_error = max_nan(
             self.energy_balance_error,
@@ -257,14 +262,14 @@ impl Tally {
             * (m.tip_velocity[0] * m.tip_acceleration[0]
                 + m.tip_velocity[1] * m.tip_acceleration[1]);
         let buf = &mut self.buf;
-        let slope = if model.refines_tip_speed() {
+        let slope = if model.view().refines_tip_speed() {
             slope
         } else {
             0.0
         };
         self.tip_speed.step(step.t0, step.t1, speed, slope, |t| {
             step.interpolant.eval(t, buf);
-            let v = model.tip_velocity(t, buf);
+            let v = model.view().tip_velocity(t, buf);
             v[0].hypot(v[1])
         });
         self.note_support_force(model, step.t1, step.y1);
@@ -289,11 +294,12 @@ impl Tally {
         if self.started {
             return;
         }
-        self.energy_start = model.energy(t, y);
+        self.energy_start = model.view().energy(t, y);
         self.energy_end = self.energy_start;
-        let v = model.tip_velocity(t, y);
+        let v = model.view().tip_velocity(t, y);
         self.tip_speed.start(t, v[0].hypot(v[1]), 0.0);
         self.peaks = model
+            .view()
             .peak_forces()
             .iter()
             .map(|&f| PeakTrack::start(model, f, t, y))

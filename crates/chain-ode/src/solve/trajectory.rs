@@ -40,8 +40,9 @@ pub struct Summary {
     /// that carry them (`solve/forces.rs`). True for every other run.
     pub forces_resolved: bool,
     /// The largest value of each force the model tracks
-    /// ([`Model::peak_forces`]: the floor's normal force), at the start,
-    /// every accepted step's end and inside the steps where it turns: a
+    /// ([`StateView::peak_forces`](crate::StateView::peak_forces): the
+    /// floor's normal force), at the start, every accepted step's end and
+    /// inside the steps where it turns: a
     /// property of the run, whatever its output samples.
     pub peaks: Vec<crate::model::Peak>,
     /// Wall time of the integration (s).
@@ -156,48 +157,50 @@ impl<M: Model> Trajectory<M> {
 
     /// The pivot's position and velocity at sample `k`.
     pub fn pivot_at(&self, k: usize) -> [Vec2; 2] {
-        self.model.support(self.times[k], self.state(k))
+        self.model.view().support(self.times[k], self.state(k))
     }
 
     /// The joints `P_0..P_n` at sample `k`.
     pub fn joints(&self, k: usize) -> Vec<Vec2> {
-        self.model.joints(self.times[k], self.state(k))
+        self.model.view().joints(self.times[k], self.state(k))
     }
 
     /// The tip at sample `k`.
     pub fn tip(&self, k: usize) -> Vec2 {
-        self.model.tip(self.times[k], self.state(k))
+        self.model.view().tip(self.times[k], self.state(k))
     }
 
     /// The tip's velocity at sample `k` (inertial frame).
     pub fn tip_velocity(&self, k: usize) -> Vec2 {
-        self.model.tip_velocity(self.times[k], self.state(k))
+        self.model.view().tip_velocity(self.times[k], self.state(k))
     }
 
-    /// The energy at sample `k`, the run's own ([`Model::energy`]).
+    /// The energy at sample `k`, the run's own ([`StateView::energy`](crate::StateView::energy)).
     pub fn energy(&self, k: usize) -> f64 {
-        self.model.energy(self.times[k], self.state(k))
+        self.model.view().energy(self.times[k], self.state(k))
     }
 
     /// The joint forces `[tension, shear]` at joints `0..=n` at sample `k`.
     pub fn joint_forces(&self, k: usize) -> Vec<Vec2> {
-        self.model.joint_forces(self.times[k], self.state(k))
+        self.model.view().joint_forces(self.times[k], self.state(k))
     }
 
     /// The support's force on the first rod at sample `k`.
     pub fn support_force(&self, k: usize) -> Vec2 {
-        self.model.support_force(self.times[k], self.state(k))
+        self.model
+            .view()
+            .support_force(self.times[k], self.state(k))
     }
 
     /// The momentum relative to the support at sample `k`.
     pub fn momentum(&self, k: usize) -> Vec2 {
-        self.model.momentum(self.times[k], self.state(k))
+        self.model.view().momentum(self.times[k], self.state(k))
     }
 
     /// The floor's force on each contact point at sample `k`
-    /// ([`Model::floor_forces`]), `None` without a floor.
+    /// ([`StateView::floor_forces`](crate::StateView::floor_forces)), `None` without a floor.
     pub fn floor_forces(&self, k: usize) -> Option<Vec<Vec2>> {
-        self.model.floor_forces(self.times[k], self.state(k))
+        self.model.view().floor_forces(self.times[k], self.state(k))
     }
 
     /// The floor's force gathered at each joint at sample `k`, `n + 1` of
@@ -259,7 +262,7 @@ impl<M: Model> Trajectory<M> {
     /// rods up to `x = L / 2`, and falls behind as the pile is thrown up to
     /// four rods high (0.54 against 0.72 at `t = 1.2`).
     pub fn floor_landed_length(&self, k: usize) -> Option<f64> {
-        let (h, a) = self.model.floor_line()?;
+        let (h, a) = self.model.view().floor_line()?;
         let chain = self.model.chain()?;
         let joints = self.joints(k);
         let (sin, cos) = a.sin_cos();

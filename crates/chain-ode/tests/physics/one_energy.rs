@@ -1,6 +1,6 @@
 //! One energy per model: every sample's energy (`Trajectory::energy`, what
 //! the CSV writes) is the one the run's balance used (`Summary::energy_end`,
-//! from `Model::observe`), for each model and each kind of pivot. A model
+//! from `StateView::observe`), for each model and each kind of pivot. A model
 //! whose per-state energy and per-step energy drift apart (a frame term, a
 //! tip mass or a bending term in one and not the other) fails. The runs
 //! walk every model a scene can choose ([`ModelKind::MODELS`]): a model

@@ -7,8 +7,8 @@
 
 use std::rc::Rc;
 
-use diffsol::{FaerContext, FaerSparseMat, FaerVec, Matrix};
-use diffsol_la::{LinearOp, LinearSolver};
+use diffsol::{FaerContext, FaerVec};
+use diffsol_la::LinearSolver;
 use faer::sparse::SymbolicSparseColMat;
 
 use crate::bdf::NewtonLu;
@@ -83,27 +83,14 @@ impl NewtonOp {
     }
 }
 
-impl LinearOp for NewtonOp {
-    type T = f64;
-    type V = FaerVec<f64>;
-    type M = FaerSparseMat<f64>;
-    type C = FaerContext;
-    fn nrows(&self) -> usize {
-        self.dim
-    }
-    fn ncols(&self) -> usize {
-        self.dim
-    }
-    fn context(&self) -> &FaerContext {
-        &self.ctx
-    }
-    fn matrix_inplace(&self, y: &mut FaerSparseMat<f64>) {
-        y.inner_mut()[0].val_mut().copy_from_slice(&self.values);
-    }
-    fn sparsity(&self) -> Option<SymbolicSparseColMat<usize>> {
-        Some(self.pattern.clone())
+impl NewtonOp {
+    /// The kept values, in the pattern's order.
+    fn fill_values(&self, vals: &mut [f64]) {
+        vals.copy_from_slice(&self.values);
     }
 }
+
+crate::newton_matrix::pattern_op!(NewtonOp);
 
 /// The Newton matrix, its LU, and when they were made.
 pub(crate) struct Newton {
