@@ -133,12 +133,15 @@ pub fn check_only(entries: &[Entry], only: &[String], extra: &str) -> Result<(),
     }
 }
 
-/// [`RUN`]: `step,seconds`, the wall time of each step of a full timed
-/// run (seconds, to a tenth).
-pub fn run_timing(steps: &[(String, f64)]) -> String {
-    let mut csv = String::from("step,seconds\n");
-    for (step, secs) in steps {
-        let _ = writeln!(csv, "{step},{}", fc_csv::format::fixed(*secs, 1));
+/// [`RUN`]: `step,seconds,cpu_seconds`, the wall time of each step of a
+/// full timed run (seconds, to a tenth) and the CPU time the process spent
+/// in it (all its threads; empty where unknown or where steps overlapped):
+/// its compute, whatever else held the cores.
+pub fn run_timing(steps: &[(String, f64, Option<f64>)]) -> String {
+    let mut csv = String::from("step,seconds,cpu_seconds\n");
+    for (step, secs, cpu) in steps {
+        let cpu = cpu.map_or(String::new(), |c| fc_csv::format::fixed(c, 1));
+        let _ = writeln!(csv, "{step},{},{cpu}", fc_csv::format::fixed(*secs, 1));
     }
     csv
 }
