@@ -100,6 +100,9 @@ fn root() -> PathBuf {
         .to_path_buf()
 }
 
+/// A figure and what its `compute` wrote (or why it failed).
+type Computed<'a> = (&'a Figure, Result<Vec<String>, String>);
+
 fn figures_cmd(args: Args) -> Result<(), String> {
     let clock = Instant::now();
     let c_all = timing::cpu_seconds();
@@ -155,11 +158,11 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         let (t0, c0) = (Instant::now(), cpu());
         let (report, study): (Vec<&Figure>, Vec<&Figure>) =
             selected.iter().partition(|f| f.report.is_some());
-        let results: Vec<(&Figure, Result<Vec<String>, String>, f64)> = report
+        let results: Vec<(Computed, f64)> = report
             .par_iter()
             .map(|&f| {
                 let t0 = Instant::now();
-                (f, f.make.compute(&ctx, f), t0.elapsed().as_secs_f64())
+                ((f, f.make.compute(&ctx, f)), t0.elapsed().as_secs_f64())
             })
             .collect();
         if !report.is_empty() {
@@ -169,8 +172,8 @@ fn figures_cmd(args: Args) -> Result<(), String> {
                 since(c0),
             ));
         }
-        let mut results: Vec<(&Figure, Result<Vec<String>, String>)> = (results.into_iter())
-            .map(|(f, r, secs)| {
+        let mut results: Vec<Computed> = (results.into_iter())
+            .map(|((f, r), secs)| {
                 steps.push((f.id.to_string(), secs, None));
                 (f, r)
             })
