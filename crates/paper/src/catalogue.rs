@@ -199,7 +199,9 @@ pub fn readme(entries: &[Entry]) -> String {
          **Wall times** are kept apart, in the files whose names end in `-timing.csv` \
          (in italics below), with `data/machine-timing.csv` (the machine, its CPU and \
          cores, the date and the Rust compiler they were measured with) and \
-         `data/run-timing.csv` (how long each step of the last full timed run took). \
+         `data/run-timing.csv` (each step of the last full timed run, every figure \
+         one: its wall time and the CPU time spent in it; a run without `--timings` \
+         writes the same table to `target/run-timing.csv`). \
          `cargo xtask figures` reads them and never rewrites them, so on an unchanged \
          checkout it leaves `git status` clean; `cargo xtask figures --timings` measures \
          them again and rewrites them (run it whole, so that every timing file comes from \
