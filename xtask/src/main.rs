@@ -100,8 +100,12 @@ fn root() -> PathBuf {
         .to_path_buf()
 }
 
+/// A figure and what its `compute` wrote (or why it failed).
+type Computed<'a> = (&'a Figure, Result<Vec<String>, String>);
+
 fn figures_cmd(args: Args) -> Result<(), String> {
     let clock = Instant::now();
+    let c_all = timing::cpu_seconds();
     let root = root();
     let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut ctx = Ctx::new(&root, jobs, args.timings);
@@ -119,13 +123,16 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         } else {
             vec![]
         };
-    let mut steps: Vec<(String, f64)> = vec![];
+    // Each step's wall time and the CPU time the process spent in it.
+    let mut steps: Vec<(String, f64, Option<f64>)> = vec![];
+    let cpu = timing::cpu_seconds;
+    let since = |c0: Option<f64>| c0.zip(cpu()).map(|(a, b)| b - a);
     let mut failed: Vec<String> = vec![];
     let mut computed: Vec<&Figure> = vec![];
 
     if !args.draw_only {
         // The scene runs the report's figures and the animations share.
-        let t0 = Instant::now();
+        let (t0, c0) = (Instant::now(), cpu());
         let mut needed: BTreeSet<&'static str> =
             selected.iter().flat_map(|f| f.make.scenes()).collect();
         needed.extend(anim_scenes.iter().copied());
@@ -144,31 +151,45 @@ fn figures_cmd(args: Args) -> Result<(), String> {
             ctx.write("scenes.csv", &runs::summary_csv(&ctx.runs))?;
             println!("wrote figures/data/scenes.csv");
         }
-        steps.push(("scene runs".into(), t0.elapsed().as_secs_f64()));
+        steps.push(("scene runs".into(), t0.elapsed().as_secs_f64(), since(c0)));
 
-        // The report's figures, in parallel (nothing in them is timed).
-        let t0 = Instant::now();
+        // The report's figures, in parallel (nothing in them is timed):
+        // each one's wall time, and their CPU time together.
+        let (t0, c0) = (Instant::now(), cpu());
         let (report, study): (Vec<&Figure>, Vec<&Figure>) =
             selected.iter().partition(|f| f.report.is_some());
-        let results: Vec<(&Figure, Result<Vec<String>, String>)> = report
+        let results: Vec<(Computed, f64)> = report
             .par_iter()
-            .map(|&f| (f, f.make.compute(&ctx, f)))
+            .map(|&f| {
+                let t0 = Instant::now();
+                ((f, f.make.compute(&ctx, f)), t0.elapsed().as_secs_f64())
+            })
             .collect();
         if !report.is_empty() {
-            steps.push(("report figures".into(), t0.elapsed().as_secs_f64()));
+            steps.push((
+                "report figures".into(),
+                t0.elapsed().as_secs_f64(),
+                since(c0),
+            ));
         }
+        let mut results: Vec<Computed> = (results.into_iter())
+            .map(|((f, r), secs)| {
+                steps.push((f.id.to_string(), secs, None));
+                (f, r)
+            })
+            .collect();
         // The study's, one after another: some time their runs.
-        let mut results = results;
         for f in study {
             if f.timing == Timing::Only && !ctx.timings {
                 println!("{}: timing only, drawn from its committed data", f.id);
                 continue;
             }
-            let t0 = Instant::now();
+            let (t0, c0) = (Instant::now(), cpu());
             let r = f.make.compute(&ctx, f);
-            let secs = t0.elapsed().as_secs_f64();
-            println!("  ({} computed in {secs:.1} s)", f.id);
-            steps.push((f.id.to_string(), secs));
+            let (secs, used) = (t0.elapsed().as_secs_f64(), since(c0));
+            let used_s = used.map_or(String::new(), |c| format!(", {c:.1} s of CPU"));
+            println!("  ({} computed in {secs:.1} s{used_s})", f.id);
+            steps.push((f.id.to_string(), secs, used));
             results.push((f, r));
         }
         for (f, r) in results {
@@ -189,7 +210,7 @@ fn figures_cmd(args: Args) -> Result<(), String> {
 
     // Every selected figure is drawn from its data (a figure whose compute
     // failed is not), with the animations beside them.
-    let t0 = Instant::now();
+    let (t0, c0) = (Instant::now(), cpu());
     let to_draw: Vec<&Figure> = selected
         .iter()
         .copied()
@@ -218,7 +239,8 @@ fn figures_cmd(args: Args) -> Result<(), String> {
             Err(e) => failed.push(e),
         }
     }
-    steps.push(("drawing and animations".into(), t0.elapsed().as_secs_f64()));
+    let drawing = t0.elapsed().as_secs_f64();
+    steps.push(("drawing and animations".into(), drawing, since(c0)));
     if let Ok(problems) = ctx.layout_problems.lock() {
         for (id, lines) in problems.iter() {
             for line in lines {
@@ -240,10 +262,20 @@ fn figures_cmd(args: Args) -> Result<(), String> {
         ctx.write(timing::MACHINE, &machine)?;
         println!("wrote figures/data/{}", timing::MACHINE);
         if all {
-            steps.push(("all".into(), clock.elapsed().as_secs_f64()));
+            steps.push(("all".into(), clock.elapsed().as_secs_f64(), since(c_all)));
             ctx.write(timing::RUN, &catalogue::run_timing(&steps))?;
             println!("wrote figures/data/{}", timing::RUN);
         }
+    } else if !args.draw_only {
+        // Without --timings the costs go beside the build, never into
+        // figures/data/ (which reproduces to the byte).
+        steps.push(("all".into(), clock.elapsed().as_secs_f64(), since(c_all)));
+        let costs = root.join("target").join(timing::RUN);
+        write_text(&costs, &catalogue::run_timing(&steps))?;
+        println!(
+            "wrote target/{} (each step's wall and CPU time)",
+            timing::RUN
+        );
     }
     if all && failed.is_empty() && root.join("paper/paper.tmpl.md").exists() {
         paper::fill::run(&root, false)?;

@@ -254,21 +254,37 @@ pub fn readings(traj: &Trajectory) -> Result<Member, String> {
     Ok(m)
 }
 
-/// Runs the ensemble `case` from `base` (its members in parallel). A
-/// member whose run ends with a failed status is listed in
-/// [`Ensemble::failed`] and left out of the statistics; fewer than two
-/// members that end `ok` is an error naming the first failure.
+/// Runs the ensemble `case` from `base` (its members in parallel): [`run_all`]
+/// of the one case.
 pub fn run(base: &Scene, case: &Case) -> Result<Ensemble, String> {
-    if !(2..=MAX_MEMBERS).contains(&case.members) {
+    run_all(base, std::slice::from_ref(case))?
+        .pop()
+        .ok_or_else(|| "cayley: no ensemble".to_string())
+}
+
+/// Runs the ensembles `cases` from `base`, every member of every case in
+/// one parallel loop (no case waits for another's slowest member; each
+/// member's run is its own, so the ensembles are those of [`run`] one case
+/// at a time, bit for bit). A member whose run ends with a failed status is
+/// listed in [`Ensemble::failed`] and left out of the statistics; fewer
+/// than two members that end `ok` is an error naming the first failure.
+pub fn run_all(base: &Scene, cases: &[Case]) -> Result<Vec<Ensemble>, String> {
+    if let Some(c) = cases
+        .iter()
+        .find(|c| !(2..=MAX_MEMBERS).contains(&c.members))
+    {
         return Err(format!(
             "cayley: members must be 2 to {MAX_MEMBERS} (got {})",
-            case.members
+            c.members
         ));
     }
-    let runs: Vec<Result<Member, String>> = (0..case.members)
-        .into_par_iter()
-        .map(|j| {
-            let scene = member_scene(base, case, j)?;
+    let jobs: Vec<(usize, usize)> = (cases.iter().enumerate())
+        .flat_map(|(c, case)| (0..case.members).map(move |j| (c, j)))
+        .collect();
+    let mut runs: Vec<Result<Member, String>> = jobs
+        .par_iter()
+        .map(|&(c, j)| {
+            let scene = member_scene(base, &cases[c], j)?;
             let traj = scene
                 .prepare()
                 .map_err(|e| e.to_string())?
@@ -280,7 +296,21 @@ pub fn run(base: &Scene, case: &Case) -> Result<Ensemble, String> {
                 Err(format!("status {} at t = {}", traj.status, traj.t_reached))
             })
         })
-        .collect::<Result<_, String>>()?;
+        .collect::<Result<Vec<_>, String>>()?
+        .into_iter()
+        .rev()
+        .collect();
+    cases
+        .iter()
+        .map(|case| {
+            let mine: Vec<_> = (0..case.members).filter_map(|_| runs.pop()).collect();
+            ensemble(case, mine)
+        })
+        .collect()
+}
+
+/// The statistics of `case`'s members' runs (in member order).
+fn ensemble(case: &Case, runs: Vec<Result<Member, String>>) -> Result<Ensemble, String> {
     let failed: Vec<(usize, String)> = runs
         .iter()
         .enumerate()
@@ -541,6 +571,26 @@ mod tests {
             "one member has no spread"
         );
         assert!(still.failed.is_empty() && moved.failed.is_empty());
+    }
+
+    /// The cases run together ([`run_all`], every member in one parallel
+    /// loop) are the cases run one at a time, bit for bit (the wall times
+    /// aside), in the cases' order; a case with too few members is refused
+    /// before anything runs.
+    #[test]
+    fn cases_run_together_are_the_cases_run_alone() {
+        let cases = [case(10, 1e-3, 3), case(6, 1e-3, 2), case(10, 0.0, 2)];
+        let together = run_all(&base(), &cases).unwrap();
+        assert_eq!(together.len(), cases.len());
+        for (c, e) in cases.iter().zip(&together) {
+            let alone = run(&base(), c).unwrap();
+            assert_eq!(e.case, *c);
+            assert_eq!(e.points, alone.points, "{c:?}");
+            assert_eq!((e.steps, e.rhs_evals), (alone.steps, alone.rhs_evals));
+            assert_eq!(e.failed, alone.failed);
+        }
+        assert_ne!(together[0].points, together[1].points);
+        assert!(run_all(&base(), &[case(10, 1e-3, 2), case(10, 1e-3, 1)]).is_err());
     }
 
     #[test]

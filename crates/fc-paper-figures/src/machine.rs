@@ -95,3 +95,55 @@ mod tests {
         assert_eq!(t.len(), 1);
     }
 }
+
+/// The CPU time this process has used so far, user and system, all its
+/// threads (s; `/proc/self/stat`'s `utime + stime` in the kernel's fixed
+/// 100 ticks a second), or `None` off Linux. A step's difference is its
+/// compute whatever the machine's load: a wall time on a shared machine
+/// also counts the time other processes held the cores.
+pub fn cpu_seconds() -> Option<f64> {
+    let stat = fs::read_to_string("/proc/self/stat").ok()?;
+    cpu_of_stat(&stat)
+}
+
+/// [`cpu_seconds`] from the text of a `/proc/<pid>/stat` (its second field,
+/// the command, is in parentheses and may hold spaces: the fields are
+/// counted after its closing one).
+fn cpu_of_stat(stat: &str) -> Option<f64> {
+    let (_, rest) = stat.rsplit_once(')')?;
+    // After the command: state (field 3) .. utime (14), stime (15).
+    let mut fields = rest.split_whitespace().skip(11);
+    let utime: u64 = fields.next()?.parse().ok()?;
+    let stime: u64 = fields.next()?.parse().ok()?;
+    Some((utime + stime) as f64 / 100.0)
+}
+
+#[cfg(test)]
+mod cpu_tests {
+    use super::*;
+
+    /// The fields are counted after the command's closing parenthesis,
+    /// whatever it holds.
+    #[test]
+    fn the_cpu_time_is_utime_plus_stime() {
+        let stat = "4242 (x task) (R) S 1 2 3 4 5 6 7 8 9 10 250 75 12 13 20 0";
+        assert_eq!(cpu_of_stat(stat), Some(3.25));
+        assert_eq!(cpu_of_stat("4242 (xtask) R 1"), None);
+    }
+
+    /// It grows with work done (within 10 s of wall time, however loaded
+    /// the machine).
+    #[test]
+    fn the_cpu_time_grows_with_work() {
+        let Some(c0) = cpu_seconds() else { return };
+        let t0 = std::time::Instant::now();
+        let mut x = 1.0f64;
+        while cpu_seconds().unwrap() < c0 + 0.05 && t0.elapsed().as_secs_f64() < 10.0 {
+            for _ in 0..100_000 {
+                x = (x * 1.000_000_1).sin() + 1.0;
+            }
+        }
+        assert!(x.is_finite());
+        assert!(cpu_seconds().unwrap() >= c0 + 0.05, "{c0} after 10 s");
+    }
+}

@@ -14,6 +14,7 @@ use chain_ode::{solve, Method, ModelKind, Trajectory};
 use fc_csv::format::{fixed, num};
 use fc_scene::scene::Scene;
 use fc_study::render;
+use rayon::prelude::*;
 
 /// The report's step over a span `t` of its clock: its code steps over
 /// `linspace(0, t, 100 t)`, so `dt = t / (100 t - 1)` (0.01001 at t = 10),
@@ -152,8 +153,9 @@ pub const CASES: &[(&str, ReportModel)] = &[
 /// and `corrected`, the corrected model (DOPRI5, rtol 1e-8) to the same
 /// physical time; `read_off`, the published Fig. 9 ([`READ_OFF_FIG9`]).
 pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
-    let mut csv = String::from("d,vmax_report,vmax_fd,vmax,t_vmax,status,corrected,read_off\n");
-    for (d, read) in report_spans().into_iter().zip(READ_OFF_FIG9) {
+    let spans: Vec<(f64, f64)> = report_spans().into_iter().zip(READ_OFF_FIG9).collect();
+    // The spans in parallel, their rows in order.
+    let rows = spans.par_iter().map(|&(d, read)| {
         let s = base
             .with_overrides(&[format!("start.p1.0={d}")])
             .map_err(err)?;
@@ -181,9 +183,8 @@ pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
         oc.output_dt = None;
         let cor = chain_ode::solve(&p.chain, &p.state, Method::Dopri5, &oc).map_err(err)?;
         let sm = &traj.summary;
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{},{},{}",
+        Ok(format!(
+            "{},{},{},{},{},{},{},{}\n",
             num(d),
             num(sm.tip_speed_max),
             num(fd),
@@ -192,9 +193,21 @@ pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
             traj.status,
             num(cor.summary.tip_speed_max),
             num(read)
-        );
-    }
-    Ok(csv)
+        ))
+    });
+    table(
+        "d,vmax_report,vmax_fd,vmax,t_vmax,status,corrected,read_off\n",
+        rows,
+    )
+}
+
+/// `head` and the rows, in their order; the first error if any.
+fn table(
+    head: &str,
+    rows: impl IndexedParallelIterator<Item = Result<String, String>>,
+) -> Result<String, String> {
+    let rows: Vec<String> = rows.collect::<Result<_, String>>()?;
+    Ok(std::iter::once(head.to_string()).chain(rows).collect())
 }
 
 /// Fig. 9 with each erratum undone in turn: `d,case,vmax,t_vmax,status,
@@ -203,13 +216,14 @@ pub fn vmax(base: &Scene, t_report: f64) -> Result<String, String> {
 /// report's clock, at its step, in physical time when the clock is
 /// corrected), the maximum tip speed and its time in our units.
 pub fn errata_spans(base: &Scene, t_report: f64) -> Result<String, String> {
-    let mut csv = String::from("d,case,vmax,t_vmax,status,t_reached\n");
-    for d in report_spans() {
+    let spans = report_spans();
+    let rows = spans.par_iter().map(|&d| {
         let s = base
             .with_overrides(&[format!("start.p1.0={d}")])
             .map_err(err)?;
         let p = s.prepare().map_err(err)?;
         let coded = ReportModel::AS_CODED.time_unit(&p.chain);
+        let mut csv = String::new();
         for (case, model) in CASES {
             let unit = model.time_unit(&p.chain);
             let mut o = p.options.clone();
@@ -233,8 +247,9 @@ pub fn errata_spans(base: &Scene, t_report: f64) -> Result<String, String> {
                 num(traj.t_reached * unit),
             );
         }
-    }
-    Ok(csv)
+        Ok(csv)
+    });
+    table("d,case,vmax,t_vmax,status,t_reached\n", rows)
 }
 
 /// What each erratum changes: `scene,case,vmax,t_vmax,status,t_reached,
@@ -246,11 +261,14 @@ pub fn errata_spans(base: &Scene, t_report: f64) -> Result<String, String> {
 /// its energy scale; `kink`, the largest angle between neighbouring rods
 /// at the end (rad, [`kink`]): how crumpled the chain ends.
 pub fn errata(scenes: &[(&str, &Scene, f64)]) -> Result<String, String> {
-    let mut csv = String::from("scene,case,vmax,t_vmax,status,t_reached,balance,kink\n");
-    for &(name, scene, t_report) in scenes {
-        let p = scene.prepare().map_err(err)?;
-        let coded = ReportModel::AS_CODED.time_unit(&p.chain);
-        for (case, model) in CASES {
+    let runs: Vec<_> = (scenes.iter())
+        .flat_map(|s| CASES.iter().map(move |c| (s, c)))
+        .collect();
+    let rows = runs
+        .par_iter()
+        .map(|&(&(name, scene, t_report), (case, model))| {
+            let p = scene.prepare().map_err(err)?;
+            let coded = ReportModel::AS_CODED.time_unit(&p.chain);
             let unit = model.time_unit(&p.chain);
             let mut o = p.options.clone();
             o.t_end = t_report * coded / unit;
@@ -263,19 +281,20 @@ pub fn errata(scenes: &[(&str, &Scene, f64)]) -> Result<String, String> {
                 &o,
             )
             .map_err(err)?;
-            let _ = writeln!(
-                csv,
-                "{name},{case},{},{},{},{},{},{}",
+            Ok(format!(
+                "{name},{case},{},{},{},{},{},{}\n",
                 num(traj.summary.tip_speed_max / unit),
                 num(traj.summary.t_tip_speed_max * unit),
                 traj.status,
                 num(traj.t_reached * unit),
                 num(traj.summary.energy_balance_error / model.energy_scale(&p.chain)),
                 num(kink(&traj.final_state[..p.chain.links()]))
-            );
-        }
-    }
-    Ok(csv)
+            ))
+        });
+    table(
+        "scene,case,vmax,t_vmax,status,t_reached,balance,kink\n",
+        rows,
+    )
 }
 
 #[cfg(test)]

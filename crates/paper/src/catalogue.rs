@@ -133,12 +133,15 @@ pub fn check_only(entries: &[Entry], only: &[String], extra: &str) -> Result<(),
     }
 }
 
-/// [`RUN`]: `step,seconds`, the wall time of each step of a full timed
-/// run (seconds, to a tenth).
-pub fn run_timing(steps: &[(String, f64)]) -> String {
-    let mut csv = String::from("step,seconds\n");
-    for (step, secs) in steps {
-        let _ = writeln!(csv, "{step},{}", fc_csv::format::fixed(*secs, 1));
+/// [`RUN`]: `step,seconds,cpu_seconds`, the wall time of each step of a
+/// full timed run (seconds, to a tenth) and the CPU time the process spent
+/// in it (all its threads; empty where unknown or where steps overlapped):
+/// its compute, whatever else held the cores.
+pub fn run_timing(steps: &[(String, f64, Option<f64>)]) -> String {
+    let mut csv = String::from("step,seconds,cpu_seconds\n");
+    for (step, secs, cpu) in steps {
+        let cpu = cpu.map_or(String::new(), |c| fc_csv::format::fixed(c, 1));
+        let _ = writeln!(csv, "{step},{},{cpu}", fc_csv::format::fixed(*secs, 1));
     }
     csv
 }
@@ -196,7 +199,9 @@ pub fn readme(entries: &[Entry]) -> String {
          **Wall times** are kept apart, in the files whose names end in `-timing.csv` \
          (in italics below), with `data/machine-timing.csv` (the machine, its CPU and \
          cores, the date and the Rust compiler they were measured with) and \
-         `data/run-timing.csv` (how long each step of the last full timed run took). \
+         `data/run-timing.csv` (each step of the last full timed run, every figure \
+         one: its wall time and the CPU time spent in it; a run without `--timings` \
+         writes the same table to `target/run-timing.csv`). \
          `cargo xtask figures` reads them and never rewrites them, so on an unchanged \
          checkout it leaves `git status` clean; `cargo xtask figures --timings` measures \
          them again and rewrites them (run it whole, so that every timing file comes from \

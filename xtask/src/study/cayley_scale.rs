@@ -57,22 +57,29 @@ fn ensembles(ctx: &Ctx) -> Result<&'static [Ensemble], String> {
     static DONE: OnceLock<Result<Vec<Ensemble>, String>> = OnceLock::new();
     let done = DONE.get_or_init(|| {
         let base = ctx.scene("cayley-scale", &[] as &[&str])?;
-        let pool = ctx.pool()?;
-        let mut all = Vec::with_capacity(CASES.len());
-        for (links, stiffness, damping, friction, joint_friction, tilt, spread) in CASES {
-            let case = cayley::Case {
-                links,
-                stiffness,
-                damping,
-                friction,
-                joint_friction,
-                tilt,
-                spread,
-                members: MEMBERS,
-                method: METHOD,
-                rtol: RTOL,
-            };
-            let e = pool.install(|| cayley::run(&base, &case))?;
+        let cases: Vec<cayley::Case> = (CASES.iter())
+            .map(
+                |&(links, stiffness, damping, friction, joint_friction, tilt, spread)| {
+                    cayley::Case {
+                        links,
+                        stiffness,
+                        damping,
+                        friction,
+                        joint_friction,
+                        tilt,
+                        spread,
+                        members: MEMBERS,
+                        method: METHOD,
+                        rtol: RTOL,
+                    }
+                },
+            )
+            .collect();
+        // Every member of every case in one parallel loop.
+        let all = ctx.pool()?.install(|| cayley::run_all(&base, &cases))?;
+        for e in &all {
+            let c = &e.case;
+            let (links, stiffness) = (c.links, c.stiffness);
             if let Some((j, why)) = e.failed.first() {
                 return Err(format!(
                     "cayley: n = {links}, k = {stiffness:e}: member {j} {why}"
@@ -80,12 +87,18 @@ fn ensembles(ctx: &Ctx) -> Result<&'static [Ensemble], String> {
             }
             let p = e.midfall();
             println!(
-                "  cayley: n = {links}, k = {stiffness:e}, c = {damping}, mu_f = {friction}, \
-                 r = {joint_friction:e}, tilt {tilt}, spread {spread:e}: mid-fall reading \
-                 {:.3} +- {:.3} (sem), momentum {:.3}, top {:.4}",
-                p.reading.mean, p.reading.sem, p.momentum.mean, p.top.mean
+                "  cayley: n = {links}, k = {stiffness:e}, c = {}, mu_f = {}, r = {:e}, tilt {}, \
+                 spread {:e}: mid-fall reading {:.3} +- {:.3} (sem), momentum {:.3}, top {:.4}",
+                c.damping,
+                c.friction,
+                c.joint_friction,
+                c.tilt,
+                c.spread,
+                p.reading.mean,
+                p.reading.sem,
+                p.momentum.mean,
+                p.top.mean
             );
-            all.push(e);
         }
         Ok(all)
     });
