@@ -1080,6 +1080,43 @@ pub fn pivot_force(chain: &Chain, y: &[f64]) -> Vec2 {
     [-kk * dx - cc * ddx, -kk * dyy - cc * ddy]
 }
 
+/// The largest tension over the joints of the elastic state `y` at `t`,
+/// `max_k T_k` with `T_k = -F_k . u_k` ([`joint_forces`]' `F_k` on rod
+/// `k`, [`tension_shear`]'s tension; joint 0's force is zero once the
+/// pivot is let go), and the joint `k` that carries it: one pass, no
+/// allocation (a run's peak tracking calls it at every step).
+pub fn largest_tension(chain: &Chain, t: f64, y: &[f64]) -> (f64, usize) {
+    let n = chain.links();
+    let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
+    let free = pivot_free_at(chain, t);
+    let (mut best, mut at) = (f64::NEG_INFINITY, 0);
+    let (mut ex, mut ey, mut evx, mut evy) = (0.0, 0.0, 0.0, 0.0);
+    for k in 0..n {
+        let h = rod_half_length(chain, k);
+        let (kk, cc) = joint_spring(chain, k);
+        let (s, c) = sin_cos(y[k]);
+        let (hs, hc) = (h * s, h * c);
+        let w = y[ow + k];
+        let (x, yy, vx, vy) = (y[ox + k], y[oy + k], y[ovx + k], y[ovy + k]);
+        let (dx, dyy) = (x - hc - ex, yy - hs - ey);
+        let (ddx, ddy) = (vx + hs * w - evx, vy - hc * w - evy);
+        let f = [-kk * dx - cc * ddx, -kk * dyy - cc * ddy];
+        let tension = if k == 0 && free {
+            0.0
+        } else {
+            -(f[0] * c + f[1] * s)
+        };
+        if tension > best || tension.is_nan() {
+            (best, at) = (tension, k);
+            if tension.is_nan() {
+                break;
+            }
+        }
+        (ex, ey, evx, evy) = (x + hc, yy + hs, vx - hs * w, vy + hc * w);
+    }
+    (best, at)
+}
+
 /// [`pivot_force`] at `t`: zero once the pivot is let go.
 pub fn pivot_force_at(chain: &Chain, t: f64, y: &[f64]) -> Vec2 {
     if pivot_free_at(chain, t) {

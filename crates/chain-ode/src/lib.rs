@@ -103,8 +103,8 @@ pub use floor::{Floor, FloorLaw};
 pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
-    bdf_crossover_gamma, BeamModel, ContactModel, ElasticModel, IntoModel, Layout, Model,
-    ModelKind, Observed, Peak, PeakForce, PeakValue, ReportChain, RigidModel,
+    bdf_crossover_gamma, BeamModel, ContactModel, ElasticModel, ForceScratch, IntoModel, Layout,
+    Model, ModelKind, Observed, Peak, PeakForce, PeakValue, ReportChain, RigidModel,
 };
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};

@@ -174,7 +174,14 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
     // (`weight`, the peak force's unit, is the rods' alone).
     let carried = (mass + chain.tip_mass()) * chain.gravity();
     let momentum_unit = mass * (chain.gravity() * chain.length()).sqrt();
-    let (peak, t_peak) = match traj.summary.pivot_force_max {
+    // The rigid chain's peak stays the samples' (the module's doc): its
+    // step-tracked one exists (`Summary::pivot_force_max`) but an arrest
+    // at full extension is an impulse whose peak has no limit.
+    let tracked = traj
+        .summary
+        .pivot_force_max
+        .filter(|_| traj.chain().is_elastic());
+    let (peak, t_peak) = match tracked {
         Some(pf) => pf,
         None => chain_ode::analysis::pivot_forces(&traj)
             .into_iter()

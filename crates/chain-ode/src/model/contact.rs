@@ -267,10 +267,6 @@ impl Model for ContactModel {
         [y[o.joint()], y[o.joint() + 1]]
     }
 
-    fn tracks_support_force(&self) -> bool {
-        true
-    }
-
     /// The steps' ends only: between them the speed is the step's.
     fn refines_tip_speed(&self) -> bool {
         false

@@ -2,8 +2,8 @@
 //! chain is.
 
 use super::{
-    ContactModel, ElasticModel, Layout, Model, Observed, PeakForce, PeakValue, ReportChain,
-    RigidModel,
+    ContactModel, ElasticModel, ForceScratch, Layout, Model, Observed, PeakForce, PeakValue,
+    ReportChain, RigidModel,
 };
 use crate::chain::Chain;
 use crate::floor::FloorLaw;
@@ -194,9 +194,6 @@ impl Model for ModelKind {
     fn support_force(&self, t: f64, y: &[f64]) -> Vec2 {
         each!(self, m => m.support_force(t, y))
     }
-    fn tracks_support_force(&self) -> bool {
-        each!(self, m => m.tracks_support_force())
-    }
     fn refines_tip_speed(&self) -> bool {
         each!(self, m => m.refines_tip_speed())
     }
@@ -212,8 +209,14 @@ impl Model for ModelKind {
     fn peak_forces(&self) -> &'static [PeakForce] {
         each!(self, m => m.peak_forces())
     }
-    fn peak_force(&self, force: PeakForce, t: f64, y: &[f64]) -> PeakValue {
-        each!(self, m => m.peak_force(force, t, y))
+    fn peak_force(
+        &self,
+        force: PeakForce,
+        t: f64,
+        y: &[f64],
+        scratch: &mut ForceScratch,
+    ) -> PeakValue {
+        each!(self, m => m.peak_force(force, t, y, scratch))
     }
 }
 

@@ -42,11 +42,12 @@ pub use elastic::ElasticModel;
 pub use kind::{IntoModel, ModelKind};
 pub use report::ReportChain;
 pub(crate) use rigid::rigid_energy;
+pub(crate) use rigid::RigidForces;
 pub use rigid::{bdf_crossover_gamma, RigidModel};
 
 use crate::chain::Chain;
 use crate::kinematics::Vec2;
-pub use crate::solve::peaks::{Peak, PeakForce, PeakValue};
+pub use crate::solve::peaks::{ForceScratch, Peak, PeakForce, PeakValue};
 use crate::solve::SolveOptions;
 use crate::state::State;
 use fc_methods::InvalidParameter;
@@ -206,13 +207,6 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq {
         [0.0, 0.0]
     }
 
-    /// True when the summary tracks the support force's maximum at every
-    /// step (`Summary::pivot_force_max`): a model whose force is a function
-    /// of the state alone and cheap (the elastic chain's pivot spring).
-    fn tracks_support_force(&self) -> bool {
-        false
-    }
-
     /// True when the summary's tip speed maximum is refined inside the
     /// steps on the continuous extension (the chains'); false keeps the
     /// step ends' values only, so that a benchmark's work counters are its
@@ -247,8 +241,15 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq {
 
     /// `force`'s value and reference at `(t, y)` ([`PeakValue`]), for a
     /// force of [`Model::peak_forces`]: a function of the state alone,
-    /// O(n) and allocation free (it runs at every step).
-    fn peak_force(&self, _force: PeakForce, _t: f64, _y: &[f64]) -> PeakValue {
+    /// O(n) and allocation free once `scratch` has grown at the run's
+    /// first call (it runs at every step).
+    fn peak_force(
+        &self,
+        _force: PeakForce,
+        _t: f64,
+        _y: &[f64],
+        _scratch: &mut ForceScratch,
+    ) -> PeakValue {
         [0.0, 0.0]
     }
 }

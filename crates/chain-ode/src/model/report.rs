@@ -3,7 +3,7 @@
 //! switches), and, for `rk4` with the stepper erratum, the report's own
 //! first-order stepper.
 
-use super::{Layout, Model, Observed, RigidModel};
+use super::{ForceScratch, Layout, Model, Observed, PeakForce, PeakValue, RigidModel};
 use crate::chain::{check, Chain};
 use crate::kinematics::Vec2;
 use crate::report::{ReportModel, ReportSystem};
@@ -124,5 +124,22 @@ impl Model for ReportChain {
 
     fn momentum(&self, t: f64, y: &[f64]) -> Vec2 {
         self.rigid.momentum(t, y)
+    }
+
+    /// The corrected chain's forces at the report's state, as
+    /// [`Model::joint_forces`] has them (the report's equations have no
+    /// multipliers of their own).
+    fn peak_forces(&self) -> &'static [PeakForce] {
+        self.rigid.peak_forces()
+    }
+
+    fn peak_force(
+        &self,
+        force: PeakForce,
+        t: f64,
+        y: &[f64],
+        scratch: &mut ForceScratch,
+    ) -> PeakValue {
+        self.rigid.peak_force(force, t, y, scratch)
     }
 }

@@ -206,9 +206,11 @@ pub(super) fn trajectory<M: Model>(
         tip_velocity_end: model.tip_velocity(outcome.t_reached, y),
         tip_speed_max: tally.tip_speed.value,
         t_tip_speed_max: tally.tip_speed.t,
-        pivot_force_max: model
-            .tracks_support_force()
-            .then_some((tally.support_force_max, tally.t_support_force_max)),
+        pivot_force_max: tally
+            .peaks()
+            .iter()
+            .find(|p| p.force == crate::model::PeakForce::Pivot)
+            .map(|p| (p.value, p.t)),
         peaks: tally.peaks(),
         forces_resolved: super::forces::resolved(
             model.chain(),

@@ -1,9 +1,10 @@
 //! What a run's summary reads from its states, by asking the model: the
 //! energy balance `E + W = E(0)`, the largest rise of `E`, the continuous
-//! maximum of the tip speed and, where the model tracks it, of the
-//! support force. One [`Model::observe`] pass per step.
+//! maximum of the tip speed, and the peaks of the model's forces
+//! ([`Model::peak_forces`]: the support's, the joints' tensions, the
+//! floor's). One [`Model::observe`] pass per step, and the forces' own.
 
-use super::peaks::{Peak, PeakTrack};
+use super::peaks::{ForceScratch, Peak, PeakTrack};
 use super::recorder::{ContinuousMax, Recorder};
 use crate::model::Model;
 use fc_methods::StepView;
@@ -87,17 +88,14 @@ pub(crate) struct Tally {
     pub max_energy_rise: f64,
     /// The tip speed's continuous maximum.
     pub tip_speed: ContinuousMax,
-    /// The support force's largest magnitude at a step's end (models that
-    /// track it).
-    pub support_force_max: f64,
-    /// Where it was.
-    pub t_support_force_max: f64,
     /// The largest accepted step (time): whether a method stepped over the
     /// modes that carry a force ([`super::forces::resolved`]).
     pub h_max: f64,
     /// The model's force peaks ([`Model::peak_forces`]), tracked at every
     /// accepted step and refined inside it.
     peaks: Vec<PeakTrack>,
+    /// The models' scratch for those forces.
+    forces: ForceScratch,
     /// The energy balance error above which a run is not a solution of the
     /// model: the model's energy scale.
     energy_scale: f64,
@@ -134,10 +132,9 @@ impl Tally {
             energy_balance_error: 0.0,
             max_energy_rise: 0.0,
             tip_speed: ContinuousMax::default(),
-            support_force_max: 0.0,
-            t_support_force_max: 0.0,
             h_max: 0.0,
             peaks: Vec::with_capacity(model.peak_forces().len()),
+            forces: ForceScratch::default(),
             energy_scale: model.energy_scale(),
             work_variation: 0.0,
             work_last: 0.0,
@@ -181,17 +178,6 @@ impl Tally {
         }
     }
 
-    fn note_support_force<M: Model>(&mut self, model: &M, t: f64, y: &[f64]) {
-        if model.tracks_support_force() {
-            let f = model.support_force(t, y);
-            let f = f[0].hypot(f[1]);
-            if f > self.support_force_max || f.is_nan() {
-                self.support_force_max = f;
-                self.t_support_force_max = t;
-            }
-        }
-    }
-
     /// The start (a continuation goes on with the tally).
     pub fn start<M: Model>(
         &mut self,
@@ -219,11 +205,11 @@ impl Tally {
             0.0
         };
         self.tip_speed.start(t0, speed, slope);
-        self.note_support_force(model, t0, y0);
+        let scratch = &mut self.forces;
         self.peaks = model
             .peak_forces()
             .iter()
-            .map(|&f| PeakTrack::start(model, f, t0, y0))
+            .map(|&f| PeakTrack::start(model, f, t0, y0, scratch))
             .collect();
         rec.note_finite(t0, &[m.energy, self.tip_speed.value]);
     }
@@ -267,9 +253,8 @@ impl Tally {
             let v = model.tip_velocity(t, buf);
             v[0].hypot(v[1])
         });
-        self.note_support_force(model, step.t1, step.y1);
         for peak in &mut self.peaks {
-            peak.step(model, step, &mut self.buf);
+            peak.step(model, step, &mut self.buf, &mut self.forces);
         }
         rec.note_finite(
             step.t1,
@@ -293,10 +278,11 @@ impl Tally {
         self.energy_end = self.energy_start;
         let v = model.tip_velocity(t, y);
         self.tip_speed.start(t, v[0].hypot(v[1]), 0.0);
+        let scratch = &mut self.forces;
         self.peaks = model
             .peak_forces()
             .iter()
-            .map(|&f| PeakTrack::start(model, f, t, y))
+            .map(|&f| PeakTrack::start(model, f, t, y, scratch))
             .collect();
         rec.note_finite(t, &[self.energy_start, self.tip_speed.value]);
     }
