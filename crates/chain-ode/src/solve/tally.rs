@@ -4,7 +4,7 @@
 //! ([`Model::peak_forces`]: the support's, the joints' tensions, the
 //! floor's). One [`Model::observe`] pass per step, and the forces' own.
 
-use super::peaks::{ForceScratch, Peak, PeakTrack};
+use super::peaks::{ForceScratch, Peak, PeakForce, PeakTrack};
 use super::recorder::{ContinuousMax, Recorder};
 use crate::model::Model;
 use fc_methods::StepView;
@@ -96,6 +96,9 @@ pub(crate) struct Tally {
     peaks: Vec<PeakTrack>,
     /// The models' scratch for those forces.
     forces: ForceScratch,
+    /// False: the pivot's force and the tensions are not tracked
+    /// (`Solve::without_force_peaks`).
+    force_peaks: bool,
     /// The energy balance error above which a run is not a solution of the
     /// model: the model's energy scale.
     energy_scale: f64,
@@ -135,6 +138,7 @@ impl Tally {
             h_max: 0.0,
             peaks: Vec::with_capacity(model.peak_forces().len()),
             forces: ForceScratch::default(),
+            force_peaks: true,
             energy_scale: model.energy_scale(),
             work_variation: 0.0,
             work_last: 0.0,
@@ -147,6 +151,22 @@ impl Tally {
             buf: vec![0.0; layout.dim],
             trig: vec![(0.0, 0.0); layout.links],
         }
+    }
+
+    /// This tally, tracking the pivot's force and the tensions or not.
+    pub fn with_force_peaks(mut self, on: bool) -> Self {
+        self.force_peaks = on;
+        self
+    }
+
+    /// The peaks of `model`'s forces this tally tracks.
+    fn tracked<M: Model>(&self, model: &M) -> impl Iterator<Item = PeakForce> + '_ {
+        let on = self.force_peaks;
+        model
+            .peak_forces()
+            .iter()
+            .copied()
+            .filter(move |&f| on || f == PeakForce::Floor)
     }
 
     /// `W` in `y` (0 for a model without it).
@@ -205,11 +225,11 @@ impl Tally {
             0.0
         };
         self.tip_speed.start(t0, speed, slope);
+        let forces: Vec<PeakForce> = self.tracked(model).collect();
         let scratch = &mut self.forces;
-        self.peaks = model
-            .peak_forces()
-            .iter()
-            .map(|&f| PeakTrack::start(model, f, t0, y0, scratch))
+        self.peaks = forces
+            .into_iter()
+            .map(|f| PeakTrack::start(model, f, t0, y0, scratch))
             .collect();
         rec.note_finite(t0, &[m.energy, self.tip_speed.value]);
     }
@@ -278,11 +298,11 @@ impl Tally {
         self.energy_end = self.energy_start;
         let v = model.tip_velocity(t, y);
         self.tip_speed.start(t, v[0].hypot(v[1]), 0.0);
+        let forces: Vec<PeakForce> = self.tracked(model).collect();
         let scratch = &mut self.forces;
-        self.peaks = model
-            .peak_forces()
-            .iter()
-            .map(|&f| PeakTrack::start(model, f, t, y, scratch))
+        self.peaks = forces
+            .into_iter()
+            .map(|f| PeakTrack::start(model, f, t, y, scratch))
             .collect();
         rec.note_finite(t, &[self.energy_start, self.tip_speed.value]);
     }
