@@ -233,3 +233,54 @@ fn the_peak_forces_do_not_depend_on_the_output_spacing() {
         );
     }
 }
+
+/// Cayley's reading (`analysis::floor_reading_of`) of the ideal chain's
+/// samples, `x = g t^2 / 2` landed and the rest falling freely (`P_y =
+/// -mu (L - x) g t`), is 1 over any window, from the momentum (exact
+/// whatever the samples miss) and from the sampled force `3 mu g x` alike,
+/// to the trapezoid's `O(dt^2)` (checked from `x = 0.02 L` on, samples
+/// 1e-3 apart); a window out of range is refused, naming it.
+#[test]
+fn cayleys_reading_of_the_ideal_chain_is_one() {
+    use chain_ode::analysis::{floor_reading_of, FloorSamples};
+    use chain_ode::Pivot;
+    for release in [Some(0.0), None] {
+        let chain = Chain::new(ChainParams {
+            length: 1.0,
+            links: 40,
+            mass: 0.025,
+            pivot: Pivot {
+                release,
+                ..Pivot::default()
+            },
+            ..ChainParams::default()
+        })
+        .unwrap();
+        let (mu, g, l) = (1.0, 1.0, 1.0);
+        let times: Vec<f64> = (0..=1200).map(|k| k as f64 * 1e-3).collect();
+        let x = |t: f64| 0.5 * g * t * t;
+        let momentum: Vec<[f64; 2]> = times
+            .iter()
+            .map(|&t| [0.0, -mu * (l - x(t)) * g * t])
+            .collect();
+        let floor_force: Vec<[f64; 2]> =
+            times.iter().map(|&t| [0.0, 3.0 * mu * g * x(t)]).collect();
+        let landed: Vec<f64> = times.iter().map(|&t| x(t)).collect();
+        let s = FloorSamples {
+            times: &times,
+            momentum: &momentum,
+            floor_force: &floor_force,
+            landed_length: &landed,
+        };
+        for window in [0.02, 0.05, 0.2] {
+            let r = floor_reading_of(&chain, 0.0, s, window).unwrap();
+            assert!(!r.t.is_empty());
+            assert!(r.from_momentum.iter().all(|&m| m == release.is_some()));
+            for (t, v) in r.t.iter().zip(&r.reading).filter(|(t, _)| **t >= 0.2) {
+                assert!((v - 1.0).abs() < 1e-5, "{release:?} {window}: {v} at {t}");
+            }
+        }
+        let e = floor_reading_of(&chain, 0.0, s, 5.0).unwrap_err();
+        assert!(e.starts_with("window must be in"), "{e}");
+    }
+}
