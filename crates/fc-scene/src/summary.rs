@@ -148,10 +148,11 @@ pub struct RunSummary {
     pub tension_max_joint: Option<usize>,
     /// False when the run's forces (`pivot_force_max`, `tension_max`,
     /// `floor_force_max`, its `--forces` samples) are not right to its
-    /// tolerance although its motion is (README, "Status";
-    /// `chain_ode::solve::forces`): gen-alpha stepped over the axial modes
-    /// of elastic links that carry them at `rho_inf > 0`. Not in the CSV
-    /// row; absent in older JSON reads as true.
+    /// tolerance although its motion is (docs/cli.md; docs/model.md,
+    /// "Forces as results"): on elastic links gen-alpha at `rho_inf > 0`
+    /// or bdf stepped over the axial modes that carry them, or dopri5 or
+    /// dop853 ran at rtol above 1e-4; or the chain landed on the penalty
+    /// floor. Not in the CSV row; absent in older JSON reads as true.
     #[serde(default = "resolved_default")]
     pub forces_resolved: bool,
 }
@@ -512,7 +513,7 @@ impl fmt::Display for RunSummary {
         if !self.forces_resolved {
             write!(
                 f,
-                "\n  forces            NOT resolved: gen-alpha stepped over the axial modes that carry them (rho_inf > 0); the motion is; use bdf, dopri5 or run.rho_inf = 0"
+                "\n  forces            NOT resolved to the tolerance (the motion is): the method stepped over the elastic links' axial modes, or ran explicit at rtol above 1e-4, or the chain landed on the penalty floor (docs/model.md, \"Forces as results\"); dopri5 or dop853 at rtol 1e-5 or tighter resolve a rope's"
             )?;
         }
         Ok(())

@@ -218,7 +218,7 @@ pub(super) fn trajectory<M: Model>(
             &segments.iter().map(|g| g.method).collect::<Vec<_>>(),
             options,
             tally.h_max,
-        ),
+        ) && super::forces::floor_resolved(&tally.peaks()),
         wall_seconds,
     };
     // A non-finite value in the summary (an energy that overflowed, a NaN
