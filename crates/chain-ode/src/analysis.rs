@@ -310,7 +310,7 @@ pub fn floor_reading_of(
     // The sample nearest `t`.
     let near = |t: f64| match s.times.binary_search_by(|x| x.total_cmp(&t)) {
         Ok(i) => i,
-        Err(i) if i == 0 => 0,
+        Err(0) => 0,
         Err(i) if i >= k => k - 1,
         Err(i) => {
             if t - s.times[i - 1] <= s.times[i] - t {
