@@ -235,3 +235,158 @@ pub fn scale_reading<M: Model>(
         scatter: var.sqrt(),
     })
 }
+
+/// Cayley's reading of a run with a floor, over windows of the user's
+/// width (`docs/model.md`, "The floor's reading"): at each sample `t_k`
+/// whose window `[t_k - w/2, t_k + w/2]` lies in the run, the floor's
+/// normal force averaged over the window, `F`, over `3 mu g x`, `x` the
+/// landed length averaged over the same window (`mu = M / L`, `M` with the
+/// tip mass). `F` comes from the momentum balance where that is exact
+/// (the pivot let go before the window and no force but gravity and the
+/// floor's on the chain: `F = n . (P(hi) - P(lo)) / (t_hi - t_lo) + M g
+/// n_y`, whatever the contact's impulses between the samples), otherwise
+/// from the sampled floor force by the trapezoid rule (then only as good as
+/// the sampling: `from_momentum` says which). A window whose mean landed
+/// length is zero has no reading and is left out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FloorReading {
+    /// The windows' centres (samples of the run).
+    pub t: Vec<f64>,
+    /// The mean normal force over each window (force units).
+    pub force: Vec<f64>,
+    /// The mean landed length over each window (length units).
+    pub landed_length: Vec<f64>,
+    /// `force / (3 mu g landed_length)`: 1 for Cayley's ideal chain.
+    pub reading: Vec<f64>,
+    /// True where `force` is the momentum balance's (exact).
+    pub from_momentum: Vec<bool>,
+}
+
+/// What [`floor_reading_of`] reads, per sample: the times, the chain's
+/// momentum, the floor's total force and the landed length.
+#[derive(Clone, Copy, Debug)]
+pub struct FloorSamples<'a> {
+    pub times: &'a [f64],
+    pub momentum: &'a [Vec2],
+    pub floor_force: &'a [Vec2],
+    pub landed_length: &'a [f64],
+}
+
+/// [`FloorReading`] of `chain`'s run on a floor of slope `angle`, from its
+/// samples, over windows of width `window` (time units, at least one
+/// sample spacing, at most the run). An error names `window` and its range.
+pub fn floor_reading_of(
+    chain: &Chain,
+    angle: f64,
+    s: FloorSamples<'_>,
+    window: f64,
+) -> Result<FloorReading, String> {
+    let k = s.times.len();
+    let span = match (s.times.first(), s.times.last()) {
+        (Some(a), Some(b)) if k >= 2 => b - a,
+        _ => return Err("the run has fewer than two samples".to_string()),
+    };
+    let spacing = s.times.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    if !(window.is_finite() && window >= (1.0 - 1e-9) * spacing && window <= span) {
+        return Err(format!(
+            "window must be in [{spacing}, {span}] (one output spacing to the run; got {window})"
+        ));
+    }
+    let (g, l) = (chain.gravity(), chain.length());
+    let mass = chain.total_mass() + chain.tip_mass();
+    let normal = [-angle.sin(), angle.cos()];
+    let dot = |f: Vec2| normal[0] * f[0] + normal[1] * f[1];
+    let free_from = match chain.pivot().release {
+        Some(tr)
+            if crate::load::Loads::of(chain, crate::load::Units::Physical)
+                .drag
+                .is_none() =>
+        {
+            tr
+        }
+        _ => f64::INFINITY,
+    };
+    let eps = 1e-9 * span;
+    // The sample nearest `t`.
+    let near = |t: f64| match s.times.binary_search_by(|x| x.total_cmp(&t)) {
+        Ok(i) => i,
+        Err(0) => 0,
+        Err(i) if i >= k => k - 1,
+        Err(i) => {
+            if t - s.times[i - 1] <= s.times[i] - t {
+                i - 1
+            } else {
+                i
+            }
+        }
+    };
+    let trapezoid = |v: &dyn Fn(usize) -> f64, lo: usize, hi: usize| -> f64 {
+        (lo..hi)
+            .map(|j| 0.5 * (v(j) + v(j + 1)) * (s.times[j + 1] - s.times[j]))
+            .sum::<f64>()
+            / (s.times[hi] - s.times[lo])
+    };
+    let mut out = FloorReading {
+        t: Vec::new(),
+        force: Vec::new(),
+        landed_length: Vec::new(),
+        reading: Vec::new(),
+        from_momentum: Vec::new(),
+    };
+    for (c, &t) in s.times.iter().enumerate() {
+        let (a, b) = (t - 0.5 * window, t + 0.5 * window);
+        if a < s.times[0] - eps || b > s.times[k - 1] + eps {
+            continue;
+        }
+        let (lo, hi) = (near(a), near(b));
+        if hi <= lo {
+            continue;
+        }
+        let dt = s.times[hi] - s.times[lo];
+        let exact = s.times[lo] >= free_from;
+        let force = if exact {
+            let (p, q) = (s.momentum[lo], s.momentum[hi]);
+            dot([(q[0] - p[0]) / dt, (q[1] - p[1]) / dt + mass * g])
+        } else {
+            trapezoid(&|j| dot(s.floor_force[j]), lo, hi)
+        };
+        let x = trapezoid(&|j| s.landed_length[j], lo, hi);
+        if x <= 0.0 {
+            continue;
+        }
+        out.t.push(s.times[c]);
+        out.force.push(force);
+        out.landed_length.push(x);
+        out.reading.push(force / (3.0 * (mass / l) * g * x));
+        out.from_momentum.push(exact);
+    }
+    Ok(out)
+}
+
+/// [`floor_reading_of`] of `traj`'s samples; `None` without a floor.
+pub fn floor_reading<M: Model>(
+    traj: &Trajectory<M>,
+    window: f64,
+) -> Option<Result<FloorReading, String>> {
+    let (_, angle) = traj.model.view().floor_line()?;
+    let chain = traj.model.chain()?;
+    let k = traj.len();
+    let momentum: Vec<Vec2> = (0..k).map(|j| traj.momentum(j)).collect();
+    let floor_force: Vec<Vec2> = (0..k)
+        .map(|j| traj.floor_force(j).unwrap_or([0.0; 2]))
+        .collect();
+    let landed: Vec<f64> = (0..k)
+        .map(|j| traj.floor_landed_length(j).unwrap_or(0.0))
+        .collect();
+    Some(floor_reading_of(
+        chain,
+        angle,
+        FloorSamples {
+            times: &traj.times,
+            momentum: &momentum,
+            floor_force: &floor_force,
+            landed_length: &landed,
+        },
+        window,
+    ))
+}

@@ -1035,9 +1035,18 @@ pub fn tip_acceleration(chain: &Chain, y: &[f64], f: &[f64]) -> Vec2 {
 /// The forces of the joints `0..=n` on the rod after each (physical units;
 /// joint `n`, the free tip, is zero): the springs' `F_k = -K_k d_k - C_k d_k'`.
 pub fn joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
+    let mut out = Vec::with_capacity(chain.links() + 1);
+    each_joint_force(chain, y, |_, f, _| out.push(f));
+    out.push([0.0, 0.0]);
+    out
+}
+
+/// Calls `each(k, F_k, (sin phi_k, cos phi_k))` for the joints `0..n` of
+/// the elastic state `y` ([`joint_forces`]' springs), in one pass without
+/// allocation.
+fn each_joint_force(chain: &Chain, y: &[f64], mut each: impl FnMut(usize, Vec2, (f64, f64))) {
     let n = chain.links();
     let [_, ow, _, ox, oy, ovx, ovy] = offsets(n);
-    let mut out = Vec::with_capacity(n + 1);
     let (mut ex, mut ey, mut evx, mut evy) = (0.0, 0.0, 0.0, 0.0);
     for k in 0..n {
         let h = rod_half_length(chain, k);
@@ -1048,11 +1057,9 @@ pub fn joint_forces(chain: &Chain, y: &[f64]) -> Vec<Vec2> {
         let (x, yy, vx, vy) = (y[ox + k], y[oy + k], y[ovx + k], y[ovy + k]);
         let (dx, dyy) = (x - hc - ex, yy - hs - ey);
         let (ddx, ddy) = (vx + hs * w - evx, vy - hc * w - evy);
-        out.push([-kk * dx - cc * ddx, -kk * dyy - cc * ddy]);
+        each(k, [-kk * dx - cc * ddx, -kk * dyy - cc * ddy], (s, c));
         (ex, ey, evx, evy) = (x + hc, yy + hs, vx - hs * w, vy + hc * w);
     }
-    out.push([0.0, 0.0]);
-    out
 }
 
 /// [`joint_forces`] at `t`: joint 0's is zero once the pivot is let go.
@@ -1078,6 +1085,27 @@ pub fn pivot_force(chain: &Chain, y: &[f64]) -> Vec2 {
     let (dx, dyy) = (y[ox] - hc, y[oy] - hs);
     let (ddx, ddy) = (y[ovx] + hs * w, y[ovy] - hc * w);
     [-kk * dx - cc * ddx, -kk * dyy - cc * ddy]
+}
+
+/// The largest tension over the joints of the elastic state `y` at `t`,
+/// `max_k T_k` with `T_k = -F_k . u_k` ([`joint_forces`]' `F_k` on rod
+/// `k`, [`tension_shear`]'s tension; joint 0's force is zero once the
+/// pivot is let go), and the joint `k` that carries it: one pass, no
+/// allocation (a run's peak tracking calls it at every step).
+pub fn largest_tension(chain: &Chain, t: f64, y: &[f64]) -> (f64, usize) {
+    let free = pivot_free_at(chain, t);
+    let (mut best, mut at) = (f64::NEG_INFINITY, 0);
+    each_joint_force(chain, y, |k, f, (s, c)| {
+        let tension = if k == 0 && free {
+            0.0
+        } else {
+            -(f[0] * c + f[1] * s)
+        };
+        if (tension > best || tension.is_nan()) && !best.is_nan() {
+            (best, at) = (tension, k);
+        }
+    });
+    (best, at)
 }
 
 /// [`pivot_force`] at `t`: zero once the pivot is let go.

@@ -103,9 +103,9 @@ pub use floor::{Floor, FloorLaw};
 pub use kinematics::Vec2;
 pub use model::beam::BEAM_MAX_STEPS;
 pub use model::{
-    bdf_crossover_gamma, BeamModel, ContactModel, ContactView, ElasticModel, IntoModel, Layout,
-    LinkView, Model, ModelKind, Observed, Peak, PeakForce, PeakValue, ReportChain, RigidModel,
-    RigidView, StateView,
+    bdf_crossover_gamma, BeamModel, ContactModel, ContactView, ElasticModel, ForceScratch,
+    IntoModel, Layout, LinkView, Model, ModelKind, Observed, Peak, PeakForce, PeakValue,
+    ReportChain, RigidModel, RigidView, StateView,
 };
 pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};

@@ -87,6 +87,19 @@ struct FloorSeries {
     force: Vec<f64>,
     landed_weight: Vec<f64>,
     landed_length: Vec<f64>,
+    /// What `Run.floor_reading` reads: the chain's momentum, the floor's
+    /// total force and the landed length per sample, and the times.
+    reading: ReadingSamples,
+}
+
+/// The samples Cayley's reading is computed from, kept as they are
+/// (`chain_ode::analysis::floor_reading_of`).
+#[derive(Default)]
+struct ReadingSamples {
+    times: Vec<f64>,
+    momentum: Vec<Vec2>,
+    floor_force: Vec<Vec2>,
+    landed_length: Vec<f64>,
 }
 
 impl Series {
@@ -119,6 +132,7 @@ impl Series {
                 force: Vec::with_capacity(samples * 2),
                 landed_weight: Vec::with_capacity(samples),
                 landed_length: Vec::with_capacity(samples),
+                reading: ReadingSamples::default(),
             }),
         };
         for (k, sample) in traj.samples().enumerate() {
@@ -138,7 +152,14 @@ impl Series {
             }
             s.pivot_force.extend(traj.support_force(k));
             if let Some(f) = s.floor.as_mut() {
-                f.force.extend(traj.floor_force(k).unwrap_or([0.0, 0.0]));
+                let force = traj.floor_force(k).unwrap_or([0.0, 0.0]);
+                f.reading.times.push(sample.t);
+                f.reading.momentum.push(traj.momentum(k));
+                f.reading.floor_force.push(force);
+                f.reading
+                    .landed_length
+                    .push(traj.floor_landed_length(k).unwrap_or(0.0));
+                f.force.extend(force);
                 f.landed_weight
                     .push(traj.floor_landed_weight(k).unwrap_or(0.0));
                 f.landed_length
@@ -216,10 +237,54 @@ pub struct Run {
     floor_force: Option<Py<PyArray2<f64>>>,
     landed_weight: Option<Py<PyArray1<f64>>>,
     landed_length: Option<Py<PyArray1<f64>>>,
+    /// Cayley's reading's samples (`None`: no floor).
+    reading: Option<ReadingSamples>,
 }
 
 #[pymethods]
 impl Run {
+    /// Cayley's reading over windows of width `window` (time units, from
+    /// one output spacing to the whole run), as a dict of arrays: `t` (the
+    /// windows' centres, samples of the run), `force` (the floor's normal
+    /// force averaged over the window), `landed_length` (the landed length
+    /// averaged over it), `reading` (`force / (3 mu g landed_length)`, `mu
+    /// = M / L`: 1 for Cayley's ideal chain) and `from_momentum` (True
+    /// where `force` is the momentum balance's, exact whatever happens
+    /// between the samples: the pivot let go and no air drag; otherwise the
+    /// sampled force's trapezoid average). Windows whose mean landed length
+    /// is zero are left out. `None` for a scene without a floor; a window
+    /// out of range raises ValueError naming it (docs/model.md, "The
+    /// floor's reading").
+    #[pyo3(signature = (window))]
+    fn floor_reading<'py>(
+        &self,
+        py: Python<'py>,
+        window: f64,
+    ) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let (Some(r), Some([_, angle])) = (self.reading.as_ref(), self.head.floor) else {
+            return Ok(None);
+        };
+        let read = chain_ode::analysis::floor_reading_of(
+            &self.head.chain,
+            angle,
+            chain_ode::analysis::FloorSamples {
+                times: &r.times,
+                momentum: &r.momentum,
+                floor_force: &r.floor_force,
+                landed_length: &r.landed_length,
+            },
+            window,
+        )
+        .map_err(pyo3::exceptions::PyValueError::new_err)?;
+        let d = PyDict::new(py);
+        d.set_item("t", array1(py, read.t)?)?;
+        d.set_item("force", array1(py, read.force)?)?;
+        d.set_item("landed_length", array1(py, read.landed_length)?)?;
+        d.set_item("reading", array1(py, read.reading)?)?;
+        d.set_item("from_momentum", read.from_momentum)?;
+        Ok(Some(d))
+    }
+
     /// The `simulate --json` object as a dict (a new dict on each access).
     #[getter]
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -644,6 +709,7 @@ pub fn simulate(
             .as_mut()
             .map(|f| array1(py, std::mem::take(&mut f.landed_weight)))
             .transpose()?,
+        reading: floor.as_mut().map(|f| std::mem::take(&mut f.reading)),
         landed_length: floor.map(|f| array1(py, f.landed_length)).transpose()?,
         head,
         scene,

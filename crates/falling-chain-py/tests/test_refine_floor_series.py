@@ -212,3 +212,29 @@ def test_ensemble_out_series_is_the_python_series(tmp_path):
     # --out-series onto --out is refused before any run, naming both.
     same = cli("ensemble", scene_path("span-d3"), "--out", path, "--out-series", path)
     assert same.returncode == 2 and "--out-series" in same.stderr and "--out" in same.stderr
+
+
+def test_cayleys_reading_is_the_momentum_balance_over_the_landed_length():
+    """Run.floor_reading(window): the floor's force averaged over each
+    window from the momentum balance (exact: the chain is let go at t = 0
+    and only gravity and the floor act on it) over 3 mu g x of the landed
+    length averaged over the same window (docs/model.md, "The floor's
+    reading"): every window from the momentum, the reading the force over
+    3 mu g x (mu = g = 1 here), of the size of Cayley's 1 at mid-fall; a
+    window out of range names `window`; no floor, no reading. The summary
+    carries the run's force peaks, and a run that landed does not claim
+    them."""
+    cayley = fc.Scene.load(scene_path("cayley-scale")).set({"run.t_end": 1.0, "run.output_dt": 0.005})
+    run = fc.simulate(cayley)
+    r = run.floor_reading(0.1)
+    assert set(r) == {"t", "force", "landed_length", "reading", "from_momentum"}
+    assert len(r["t"]) > 0 and all(r["from_momentum"])
+    assert np.allclose(r["reading"], r["force"] / (3.0 * r["landed_length"]), rtol=1e-12)
+    mid = r["reading"][(r["t"] >= 0.5) & (r["t"] <= 0.95)]
+    assert len(mid) > 0 and 0.5 < np.median(mid) < 2.0, np.median(mid)
+    with pytest.raises(ValueError, match="window"):
+        run.floor_reading(1e-4)
+    assert fc.simulate(fc.Scene.load(scene_path("span-d3")), t_end=0.5).floor_reading(0.1) is None
+    s = run.summary
+    assert s["floor_force_max"] > 0 and s["forces_resolved"] is False
+    assert "pivot_force_max" in s and "tension_max" in s and "tension_max_joint" in s

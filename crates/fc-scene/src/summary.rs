@@ -121,11 +121,38 @@ pub struct RunSummary {
     /// landed length and an average over time). 0 when nothing touches.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub floor_force_over_landed_weight: Option<f64>,
-    /// False when the run's forces (its `--forces` samples, the pivot's
-    /// largest force) are not right to its tolerance although its motion
-    /// is: gen-alpha stepped over the axial modes of elastic links that
-    /// carry them at `rho_inf > 0` (README, "Status"). Not in the CSV
-    /// row; absent in older JSON reads as true.
+    /// The support's largest force `|F_1|` over the run (force units; the
+    /// pivot's pull on the first rod, zero once let go), tracked like
+    /// `floor_force_max` (every accepted step, refined inside a step where
+    /// it turns), never read off the output samples: the elastic links'
+    /// pivot spring, the rigid chain's multiplier (the report's model: the
+    /// rigid chain's at its state). `None` (absent) for the contact model
+    /// (`moreau-jean`), whose forces are a step's impulses over its length:
+    /// their peak at an impact grows as `1 / h` and is no property of the
+    /// run. Not in the CSV row.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pivot_force_max: Option<f64>,
+    /// When it happened.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_pivot_force_max: Option<f64>,
+    /// The largest tension over every joint and the whole run (force
+    /// units; `T_k = -F_k . u_k`, the joint's force on the rod after it
+    /// along that rod, positive when pulling it toward the support; joint
+    /// 0 is the pivot), tracked like `pivot_force_max`, with its time and
+    /// the joint `k` (0..n-1). Same models. Not in the CSV row.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tension_max: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_tension_max: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tension_max_joint: Option<usize>,
+    /// False when the run's forces (`pivot_force_max`, `tension_max`,
+    /// `floor_force_max`, its `--forces` samples) are not right to its
+    /// tolerance although its motion is (docs/cli.md; docs/model.md,
+    /// "Forces as results"): on elastic links gen-alpha at `rho_inf > 0`
+    /// or bdf stepped over the axial modes that carry them, or dopri5 or
+    /// dop853 ran at rtol above 1e-4; or the chain landed on the penalty
+    /// floor. Not in the CSV row; absent in older JSON reads as true.
     #[serde(default = "resolved_default")]
     pub forces_resolved: bool,
 }
@@ -272,6 +299,8 @@ impl RunSummary {
         let s = &traj.summary;
         let st = &traj.stats;
         let floor = floor_peak(traj);
+        let pivot = s.peak(chain_ode::PeakForce::Pivot);
+        let tension = s.peak(chain_ode::PeakForce::Tension);
         let nonsmooth = traj.segments.iter().any(|g| g.method.is_nonsmooth());
         Self {
             name: name.to_string(),
@@ -315,6 +344,11 @@ impl RunSummary {
                     t_end: g.t_end,
                 })
                 .collect(),
+            pivot_force_max: pivot.map(|p| p.value),
+            t_pivot_force_max: pivot.map(|p| p.t),
+            tension_max: tension.map(|p| p.value),
+            t_tension_max: tension.map(|p| p.t),
+            tension_max_joint: tension.map(|p| p.reference as usize),
             floor_force_max: floor.map(|f| f.0),
             t_floor_force_max: floor.map(|f| f.1),
             floor_force_over_landed_weight: floor.map(|f| f.2),
@@ -458,6 +492,14 @@ impl fmt::Display for RunSummary {
             "  max tip speed     {:.6} at t = {:.6}",
             self.tip_speed_max, self.t_tip_speed_max
         )?;
+        if let (Some(fm), Some(t)) = (self.pivot_force_max, self.t_pivot_force_max) {
+            write!(f, "\n  max pivot force   {fm:.6} at t = {t:.6}")?;
+        }
+        if let (Some(tm), Some(t), Some(k)) =
+            (self.tension_max, self.t_tension_max, self.tension_max_joint)
+        {
+            write!(f, "\n  max tension       {tm:.6} at t = {t:.6}, joint {k}")?;
+        }
         if let (Some(fm), Some(t), Some(r)) = (
             self.floor_force_max,
             self.t_floor_force_max,
@@ -471,7 +513,7 @@ impl fmt::Display for RunSummary {
         if !self.forces_resolved {
             write!(
                 f,
-                "\n  forces            NOT resolved: gen-alpha stepped over the axial modes that carry them (rho_inf > 0); the motion is; use bdf, dopri5 or run.rho_inf = 0"
+                "\n  forces            NOT resolved to the tolerance (the motion is): the method stepped over the elastic links' axial modes, or ran explicit at rtol above 1e-4, or the chain landed on the penalty floor (docs/model.md, \"Forces as results\"); dopri5 or dop853 at rtol 1e-5 or tighter resolve a rope's"
             )?;
         }
         Ok(())

@@ -175,7 +175,13 @@ pub fn measure(scene: &Scene, opts: &Options) -> Result<(Snap, Trajectory), Erro
     // (`weight`, the peak force's unit, is the rods' alone).
     let carried = (mass + chain.tip_mass()) * chain.gravity();
     let momentum_unit = mass * (chain.gravity() * chain.length()).sqrt();
-    let (peak, t_peak) = match traj.summary.pivot_force_max {
+    // Elastic links: the peak at the steps' ends (the watch's, which the
+    // study's figures hold; `Summary::pivot_force_max` also refines it
+    // inside the steps since issue 49). The rigid chain's peak stays the
+    // samples' (the module's doc): an arrest at full extension is an
+    // impulse whose peak has no limit.
+    let tracked = traj.chain().is_elastic().then_some((steps.force, steps.t));
+    let (peak, t_peak) = match tracked {
         Some(pf) => pf,
         None => chain_ode::analysis::pivot_forces(&traj)
             .into_iter()

@@ -12,9 +12,7 @@
 
 use std::sync::{Mutex, PoisonError};
 
-use chain_ode::{
-    solve, InvalidParameter, Method, Model, ModelKind, SolveOptions, State, Trajectory,
-};
+use chain_ode::{InvalidParameter, Method, Model, ModelKind, SolveOptions, State, Trajectory};
 
 use fc_scene::scene::Prepared;
 
@@ -63,13 +61,20 @@ pub trait Subject: Clone + Sync {
         self.model().validate(method, options)
     }
 
-    /// One run of `method` with `options`.
+    /// One run of `method` with `options`, without the peaks of the
+    /// pivot's force and the tensions (`Solve::without_force_peaks`): the
+    /// studies judge the tip, and their work counters are the
+    /// integrator's (a force's search inside a step would pay DOP853's
+    /// lazy dense output). A study that measures a force (issue 49's
+    /// `--measure`) turns them back on.
     fn solve(
         &self,
         method: Method,
         options: &SolveOptions,
     ) -> Result<Trajectory<Self::Model>, InvalidParameter> {
-        solve(self.model(), self.state(), method, options)
+        chain_ode::Solve::new(self.model(), self.state(), method, options)
+            .without_force_peaks()
+            .run()
     }
 }
 

@@ -291,7 +291,8 @@
     return a >= 1e-3 && a < 1e5 ? String(Number(v.toPrecision(4))) : v.toExponential(3);
   }
   const SUMMARY_KEYS = ["status", "method", "model", "links", "steps", "tip_speed_max", "t_tip_speed_max",
-    "t_reached", "t_failed", "tip_end", "energy_balance_error"];
+    "t_reached", "t_failed", "tip_end", "energy_balance_error", "pivot_force_max", "tension_max",
+    "floor_force_max", "forces_resolved"];
   function buildSummary() {
     const table = document.getElementById("summary");
     const head = table.insertRow();

@@ -287,10 +287,6 @@ impl StateView for ContactView {
         [y[o.joint()], y[o.joint() + 1]]
     }
 
-    fn tracks_support_force(&self) -> bool {
-        true
-    }
-
     /// The steps' ends only: between them the speed is the step's.
     fn refines_tip_speed(&self) -> bool {
         false

@@ -8,7 +8,7 @@
 //! `K_0 |d_0|^2 / 2` leaves the chain then: it is added to the work `W`, so
 //! that the balance `E + W = E(0)` holds across the cut.
 
-use super::{Layout, Model, Observed, PeakForce, PeakValue, StateView};
+use super::{ForceScratch, Layout, Model, Observed, PeakForce, PeakValue, StateView};
 use crate::chain::{check, Chain};
 use crate::elastic::{self, ElasticSystem};
 use crate::floor::{self, FloorTerm};
@@ -255,10 +255,6 @@ impl StateView for LinkView {
         elastic::pivot_force_at(&self.chain, t, y)
     }
 
-    fn tracks_support_force(&self) -> bool {
-        true
-    }
-
     fn momentum(&self, _t: f64, y: &[f64]) -> Vec2 {
         elastic::momentum(&self.chain, y)
     }
@@ -275,16 +271,26 @@ impl StateView for LinkView {
 
     fn peak_forces(&self) -> &'static [PeakForce] {
         if self.chain.floor().is_some() {
-            &[PeakForce::Floor]
+            &[PeakForce::Pivot, PeakForce::Tension, PeakForce::Floor]
         } else {
-            &[]
+            &[PeakForce::Pivot, PeakForce::Tension]
         }
     }
 
-    fn peak_force(&self, force: PeakForce, _t: f64, y: &[f64]) -> PeakValue {
+    /// The links' springs: O(1) for the pivot's, one pass for the
+    /// tensions and the floor (no scratch).
+    fn peak_force(&self, force: PeakForce, t: f64, y: &[f64], _: &mut ForceScratch) -> PeakValue {
         match (force, &self.floor) {
             (PeakForce::Floor, Some(term)) => floor::normal_and_landed(&self.chain, term, y),
             (PeakForce::Floor, None) => [0.0, 0.0],
+            (PeakForce::Pivot, _) => {
+                let f = self.support_force(t, y);
+                [f[0].hypot(f[1]), 0.0]
+            }
+            (PeakForce::Tension, _) => {
+                let (tension, k) = elastic::largest_tension(&self.chain, t, y);
+                [tension, k as f64]
+            }
         }
     }
 }

@@ -50,12 +50,13 @@ pub use elastic::{ElasticModel, LinkView};
 pub use kind::{IntoModel, ModelKind};
 pub use report::ReportChain;
 pub(crate) use rigid::rigid_energy;
+pub(crate) use rigid::RigidForces;
 pub use rigid::{bdf_crossover_gamma, RigidModel, RigidView};
 pub use view::StateView;
 
 use crate::chain::Chain;
 use crate::kinematics::Vec2;
-pub use crate::solve::peaks::{Peak, PeakForce, PeakValue};
+pub use crate::solve::peaks::{ForceScratch, Peak, PeakForce, PeakValue};
 use crate::solve::SolveOptions;
 use crate::state::State;
 use fc_methods::InvalidParameter;

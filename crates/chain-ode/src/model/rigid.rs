@@ -3,8 +3,10 @@
 //! [`RigidView`] (the chain's one energy, or the report's), which the report's
 //! model shares.
 
-use super::{Layout, Model, Observed, StateView};
+use super::{ForceScratch, Layout, Model, Observed, PeakForce, PeakValue, StateView};
 use crate::chain::Chain;
+use crate::dae::ChainDae;
+use crate::dynamics::Workspace;
 use crate::elastic;
 use crate::kinematics::{joints, lever_arm, tip, tip_velocity, RodSums, Vec2};
 use crate::load::{Angles, Loads, Units};
@@ -97,6 +99,58 @@ impl RigidView {
         let n = self.chain.links();
         (&y[..n], &y[n..2 * n])
     }
+
+    /// The joints' forces `F_0..F_{n-1}` of `y` at `t` on the rod after
+    /// each (physical units), in `scratch.joint`: the DAE's multipliers
+    /// made consistent with `(phi, w)` by the O(n) recursion
+    /// ([`ChainDae::make_consistent_at`], as [`StateView::joint_forces`] has
+    /// them), kept for the next call on the same state, allocation free
+    /// once `scratch` has grown.
+    fn forces_into(&self, t: f64, y: &[f64], scratch: &mut ForceScratch) {
+        if scratch.holds(t, y) {
+            return;
+        }
+        let n = self.chain.links();
+        let own = scratch.rigid.get_or_insert_with(|| {
+            let held = ChainDae::new(&self.chain);
+            Box::new(RigidForces {
+                free: held.clone().released(true),
+                full: vec![0.0; held.dim()],
+                held,
+                ws: Workspace::new(n),
+            })
+        });
+        let dae = if self.path.is_free_at(t) {
+            &own.free
+        } else {
+            &own.held
+        };
+        own.full[..2 * n].copy_from_slice(&y[..2 * n]);
+        dae.make_consistent_at(t, &mut own.full, &mut own.ws);
+        let ml = self.chain.mass() * self.chain.rod_length();
+        let free = self.path.is_free_at(t);
+        scratch.joint.resize(n, [0.0, 0.0]);
+        let k0 = 3 * n + 1;
+        for (k, f) in scratch.joint.iter_mut().enumerate() {
+            *f = if k == 0 && free {
+                [0.0, 0.0]
+            } else {
+                [ml * own.full[k0 + 2 * k], ml * own.full[k0 + 2 * k + 1]]
+            };
+        }
+        scratch.keep(t, y);
+    }
+}
+
+/// The rigid chain's scratch for its forces at every step
+/// ([`ForceScratch`]): its DAE held and let go, a consistent state and the
+/// recursion's workspace.
+#[derive(Debug)]
+pub(crate) struct RigidForces {
+    held: ChainDae,
+    free: ChainDae,
+    full: Vec<f64>,
+    ws: Workspace<f64>,
 }
 
 /// `[phi, w, W]`; a sample is the state, its time and the joints' positions.
@@ -306,6 +360,41 @@ impl StateView for RigidView {
         }
         sys.set_released(self.path.is_free_at(t));
         sys.rhs_at(t, &y, &mut dy).pivot_force
+    }
+
+    fn peak_forces(&self) -> &'static [PeakForce] {
+        &[PeakForce::Pivot, PeakForce::Tension]
+    }
+
+    /// From the multipliers (one recursion per state, shared by the pivot
+    /// and the tensions: [`RigidModel::forces_into`]).
+    fn peak_force(
+        &self,
+        force: PeakForce,
+        t: f64,
+        y: &[f64],
+        scratch: &mut ForceScratch,
+    ) -> PeakValue {
+        self.forces_into(t, y, scratch);
+        match force {
+            PeakForce::Floor => [0.0, 0.0],
+            PeakForce::Pivot => {
+                let f = scratch.joint[0];
+                [f[0].hypot(f[1]), 0.0]
+            }
+            PeakForce::Tension => {
+                let (phi, _) = self.split(y);
+                let (mut best, mut at) = (f64::NEG_INFINITY, 0);
+                for (k, (f, &p)) in scratch.joint.iter().zip(phi).enumerate() {
+                    let (s, c) = crate::scalar::sin_cos(p);
+                    let tension = -(f[0] * c + f[1] * s);
+                    if tension > best || tension.is_nan() {
+                        (best, at) = (tension, k);
+                    }
+                }
+                [best, at as f64]
+            }
+        }
     }
 
     /// `(sum m_i + M_t) c_rel'`, the centre of mass's velocity relative to

@@ -10,7 +10,7 @@
 //! forces of the last step ([`ContactView`](super::ContactView)), and a
 //! model's own (BEAM's, a model of another crate's).
 
-use super::{Observed, PeakForce, PeakValue};
+use super::{ForceScratch, Observed, PeakForce, PeakValue};
 use crate::kinematics::Vec2;
 
 /// What a state `y` at `t` means: read by the run layer at every accepted
@@ -47,13 +47,6 @@ pub trait StateView {
         [0.0, 0.0]
     }
 
-    /// True when the summary tracks the support force's maximum at every
-    /// step (`Summary::pivot_force_max`): a model whose force is a function
-    /// of the state alone and cheap (the elastic chain's pivot spring).
-    fn tracks_support_force(&self) -> bool {
-        false
-    }
-
     /// True when the summary's tip speed maximum is refined inside the
     /// steps on the continuous extension (the chains'); false keeps the
     /// step ends' values only, so that a benchmark's work counters are its
@@ -88,8 +81,15 @@ pub trait StateView {
 
     /// `force`'s value and reference at `(t, y)` ([`PeakValue`]), for a
     /// force of [`StateView::peak_forces`]: a function of the state alone,
-    /// O(n) and allocation free (it runs at every step).
-    fn peak_force(&self, _force: PeakForce, _t: f64, _y: &[f64]) -> PeakValue {
+    /// O(n) and allocation free once `scratch` has grown at the run's
+    /// first call (it runs at every step).
+    fn peak_force(
+        &self,
+        _force: PeakForce,
+        _t: f64,
+        _y: &[f64],
+        _scratch: &mut ForceScratch,
+    ) -> PeakValue {
         [0.0, 0.0]
     }
 }

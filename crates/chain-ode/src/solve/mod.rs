@@ -117,6 +117,8 @@ pub struct Solve<'a, M: Model> {
     method: Method,
     options: &'a SolveOptions,
     watches: Vec<&'a mut dyn Watch<M>>,
+    /// Track the pivot's force and the tensions ([`Solve::without_force_peaks`]).
+    force_peaks: bool,
 }
 
 impl<'a, M: Model> Solve<'a, M> {
@@ -133,7 +135,25 @@ impl<'a, M: Model> Solve<'a, M> {
             method,
             options,
             watches: Vec::new(),
+            force_peaks: true,
         }
+    }
+
+    /// A run that does not track the peaks of the pivot's force and the
+    /// tensions (`Summary::pivot_force_max` and the
+    /// [`PeakForce::Pivot`](crate::PeakForce::Pivot) and
+    /// [`PeakForce::Tension`](crate::PeakForce::Tension) peaks are then
+    /// absent; the floor's stays): for a caller that reads neither and
+    /// times the integrator (a benchmark). Their tracking costs the rigid
+    /// chain two recursions per step where they are near their peak, one
+    /// elsewhere: on `scenes/span-d3.toml` (DOPRI5 at rtol 1e-10, 1,352
+    /// steps, 8,114 right-hand sides either way) the median wall time
+    /// went from 0.033 s to 0.055 s (1.67x, 9 runs each at load 10-12;
+    /// docs/model.md, "Forces as results"); the elastic chain's are one
+    /// pass over its links, no recursion.
+    pub fn without_force_peaks(mut self) -> Self {
+        self.force_peaks = false;
+        self
     }
 
     /// Attaches `watch`: it sees the start and every accepted step.
@@ -150,6 +170,7 @@ impl<'a, M: Model> Solve<'a, M> {
             method,
             options,
             mut watches,
+            force_peaks,
         } = self;
         model.validate(method, options)?;
         let y0 = model.initial_state(start)?;
@@ -174,7 +195,8 @@ impl<'a, M: Model> Solve<'a, M> {
             tally: Tally::new(
                 &model,
                 tally::run_tolerance(method_run(&model, method, options), options),
-            ),
+            )
+            .with_force_peaks(force_peaks),
             watches: &mut watches,
         };
         let clock = Instant::now();

@@ -206,10 +206,11 @@ pub(super) fn trajectory<M: Model>(
         tip_velocity_end: model.view().tip_velocity(outcome.t_reached, y),
         tip_speed_max: tally.tip_speed.value,
         t_tip_speed_max: tally.tip_speed.t,
-        pivot_force_max: model
-            .view()
-            .tracks_support_force()
-            .then_some((tally.support_force_max, tally.t_support_force_max)),
+        pivot_force_max: tally
+            .peaks()
+            .iter()
+            .find(|p| p.force == crate::model::PeakForce::Pivot)
+            .map(|p| (p.value, p.t)),
         peaks: tally.peaks(),
         forces_resolved: super::forces::resolved(
             model.chain(),
@@ -217,7 +218,7 @@ pub(super) fn trajectory<M: Model>(
             &segments.iter().map(|g| g.method).collect::<Vec<_>>(),
             options,
             tally.h_max,
-        ),
+        ) && super::forces::floor_resolved(&tally.peaks()),
         wall_seconds,
     };
     // A non-finite value in the summary (an energy that overflowed, a NaN

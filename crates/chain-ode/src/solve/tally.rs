@@ -1,10 +1,10 @@
 //! What a run's summary reads from its states, by asking the model: the
 //! energy balance `E + W = E(0)`, the largest rise of `E`, the continuous
-//! maximum of the tip speed and, where the model tracks it, of the
-//! support force. One
-//! [`StateView::observe`](crate::StateView::observe) pass per step.
+//! maximum of the tip speed, and the peaks of the model's forces
+//! ([`StateView::peak_forces`](crate::StateView::peak_forces): the support's, the joints' tensions, the
+//! floor's). One [`StateView::observe`](crate::StateView::observe) pass per step, and the forces' own.
 
-use super::peaks::{Peak, PeakTrack};
+use super::peaks::{ForceScratch, Peak, PeakForce, PeakTrack};
 use super::recorder::{ContinuousMax, Recorder};
 use crate::model::Model;
 use fc_methods::StepView;
@@ -88,11 +88,6 @@ pub(crate) struct Tally {
     pub max_energy_rise: f64,
     /// The tip speed's continuous maximum.
     pub tip_speed: ContinuousMax,
-    /// The support force's largest magnitude at a step's end (models that
-    /// track it).
-    pub support_force_max: f64,
-    /// Where it was.
-    pub t_support_force_max: f64,
     /// The largest accepted step (time): whether a method stepped over the
     /// modes that carry a force ([`super::forces::resolved`]).
     pub h_max: f64,
@@ -100,6 +95,11 @@ pub(crate) struct Tally {
     /// ([`StateView::peak_forces`](crate::StateView::peak_forces)), tracked at every
     /// accepted step and refined inside it.
     peaks: Vec<PeakTrack>,
+    /// The models' scratch for those forces.
+    forces: ForceScratch,
+    /// False: the pivot's force and the tensions are not tracked
+    /// (`Solve::without_force_peaks`).
+    force_peaks: bool,
     /// The energy balance error above which a run is not a solution of the
     /// model: the model's energy scale.
     energy_scale: f64,
@@ -136,10 +136,10 @@ impl Tally {
             energy_balance_error: 0.0,
             max_energy_rise: 0.0,
             tip_speed: ContinuousMax::default(),
-            support_force_max: 0.0,
-            t_support_force_max: 0.0,
             h_max: 0.0,
             peaks: Vec::with_capacity(model.view().peak_forces().len()),
+            forces: ForceScratch::default(),
+            force_peaks: true,
             energy_scale: model.energy_scale(),
             work_variation: 0.0,
             work_last: 0.0,
@@ -152,6 +152,23 @@ impl Tally {
             buf: vec![0.0; layout.dim],
             trig: vec![(0.0, 0.0); layout.links],
         }
+    }
+
+    /// This tally, tracking the pivot's force and the tensions or not.
+    pub fn with_force_peaks(mut self, on: bool) -> Self {
+        self.force_peaks = on;
+        self
+    }
+
+    /// The peaks of `model`'s forces this tally tracks.
+    fn tracked<M: Model>(&self, model: &M) -> impl Iterator<Item = PeakForce> + '_ {
+        let on = self.force_peaks;
+        model
+            .view()
+            .peak_forces()
+            .iter()
+            .copied()
+            .filter(move |&f| on || f == PeakForce::Floor)
     }
 
     /// `W` in `y` (0 for a model without it).
@@ -183,17 +200,6 @@ impl Tally {
         }
     }
 
-    fn note_support_force<M: Model>(&mut self, model: &M, t: f64, y: &[f64]) {
-        if model.view().tracks_support_force() {
-            let f = model.view().support_force(t, y);
-            let f = f[0].hypot(f[1]);
-            if f > self.support_force_max || f.is_nan() {
-                self.support_force_max = f;
-                self.t_support_force_max = t;
-            }
-        }
-    }
-
     /// The start (a continuation goes on with the tally).
     pub fn start<M: Model>(
         &mut self,
@@ -221,12 +227,11 @@ impl Tally {
             0.0
         };
         self.tip_speed.start(t0, speed, slope);
-        self.note_support_force(model, t0, y0);
-        self.peaks = model
-            .view()
-            .peak_forces()
-            .iter()
-            .map(|&f| PeakTrack::start(model, f, t0, y0))
+        let forces: Vec<PeakForce> = self.tracked(model).collect();
+        let scratch = &mut self.forces;
+        self.peaks = forces
+            .into_iter()
+            .map(|f| PeakTrack::start(model, f, t0, y0, scratch))
             .collect();
         rec.note_finite(t0, &[m.energy, self.tip_speed.value]);
     }
@@ -272,9 +277,8 @@ impl Tally {
             let v = model.view().tip_velocity(t, buf);
             v[0].hypot(v[1])
         });
-        self.note_support_force(model, step.t1, step.y1);
         for peak in &mut self.peaks {
-            peak.step(model, step, &mut self.buf);
+            peak.step(model, step, &mut self.buf, &mut self.forces);
         }
         rec.note_finite(
             step.t1,
@@ -298,11 +302,11 @@ impl Tally {
         self.energy_end = self.energy_start;
         let v = model.view().tip_velocity(t, y);
         self.tip_speed.start(t, v[0].hypot(v[1]), 0.0);
-        self.peaks = model
-            .view()
-            .peak_forces()
-            .iter()
-            .map(|&f| PeakTrack::start(model, f, t, y))
+        let forces: Vec<PeakForce> = self.tracked(model).collect();
+        let scratch = &mut self.forces;
+        self.peaks = forces
+            .into_iter()
+            .map(|f| PeakTrack::start(model, f, t, y, scratch))
             .collect();
         rec.note_finite(t, &[self.energy_start, self.tip_speed.value]);
     }

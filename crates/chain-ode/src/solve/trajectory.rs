@@ -29,27 +29,33 @@ pub struct Summary {
     pub tip_speed_max: f64,
     /// When it happened.
     pub t_tip_speed_max: f64,
-    /// Elastic links only: the largest pivot force `|F_1|` (force units)
-    /// at the start and at any accepted step's end, and when: `(force, t)`.
-    /// `None` for rigid links (their pivot force is the DAE's, from the
-    /// samples: `analysis::pivot_forces`).
+    /// The largest pivot force `|F_1|` (force units) and when, `(force,
+    /// t)`: the [`PeakForce::Pivot`](crate::model::PeakForce::Pivot) peak
+    /// of `peaks` (tracked at every accepted step and refined inside it).
+    /// `None` for a model that does not track it (the contact model, the
+    /// BEAM).
     pub pivot_force_max: Option<(f64, f64)>,
-    /// False when the run's forces (`pivot_force_max`, the joints' and the
-    /// pivot's forces of its samples) are not right to its tolerance
-    /// although everything else is: gen-alpha stepped over the axial modes
-    /// that carry them (`solve/forces.rs`). True for every other run.
+    /// False when the run's forces (the peaks of `peaks`, the joints' and
+    /// the pivot's forces of its samples) are not right to its tolerance
+    /// although everything else is (`solve/forces.rs`): gen-alpha stepped
+    /// over the axial modes that carry them. True for every other run.
     pub forces_resolved: bool,
     /// The largest value of each force the model tracks
-    /// ([`StateView::peak_forces`](crate::StateView::peak_forces): the
-    /// floor's normal force), at the start, every accepted step's end and
-    /// inside the steps where it turns: a
-    /// property of the run, whatever its output samples.
+    /// ([`StateView::peak_forces`](crate::StateView::peak_forces): the pivot's force, the largest joint
+    /// tension, the floor's normal force), at the start, every accepted
+    /// step's end and inside the steps where it turns: a property of the
+    /// run, whatever its output samples.
     pub peaks: Vec<crate::model::Peak>,
     /// Wall time of the integration (s).
     pub wall_seconds: f64,
 }
 
 impl Summary {
+    /// The peak of `force`, if the model tracks it.
+    pub fn peak(&self, force: crate::model::PeakForce) -> Option<crate::model::Peak> {
+        self.peaks.iter().find(|p| p.force == force).copied()
+    }
+
     /// True if every field is finite. `solve` never reports a run as `ok`
     /// when this is false: such a run ends `diverged`.
     pub fn all_finite(&self) -> bool {

@@ -26,6 +26,7 @@ mod methods;
 mod modes;
 mod observed_rhs;
 mod one_energy;
+mod peak_forces;
 mod pivot;
 mod profile;
 mod profile_compression;
