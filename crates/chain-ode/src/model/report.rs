@@ -91,21 +91,4 @@ impl Model for ReportChain {
     fn view(&self) -> &dyn StateView {
         self.rigid.view()
     }
-
-    /// The corrected chain's forces at the report's state, as
-    /// [`Model::joint_forces`] has them (the report's equations have no
-    /// multipliers of their own).
-    fn peak_forces(&self) -> &'static [PeakForce] {
-        self.rigid.peak_forces()
-    }
-
-    fn peak_force(
-        &self,
-        force: PeakForce,
-        t: f64,
-        y: &[f64],
-        scratch: &mut ForceScratch,
-    ) -> PeakValue {
-        self.rigid.peak_force(force, t, y, scratch)
-    }
 }
