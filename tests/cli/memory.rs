@@ -187,7 +187,9 @@ fn runs_at_once_are_checked_together() {
     let o = run_with_memory(
         Some("1e8"),
         None,
-        &["converge", &span, "--links", "4,200000", "--method", "bdf", "--tol", "1e-3"],
+        &[
+            "converge", &span, "--links", "4,200000", "--method", "bdf", "--tol", "1e-3",
+        ],
     );
     assert_refused(&o, "bdf");
 }
