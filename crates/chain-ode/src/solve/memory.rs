@@ -232,10 +232,10 @@ mod tests {
     #[test]
     fn the_estimate_grows_with_n_and_with_the_samples() {
         for m in Method::ALL {
-            let small = estimate("rigid", *m, 10, 0);
-            let large = estimate("rigid", *m, 1_000_000, 0);
+            let small = estimate("rigid", m, 10, 0);
+            let large = estimate("rigid", m, 1_000_000, 0);
             assert!(small >= BASE_BYTES && large > small, "{m}");
-            assert_eq!(estimate("rigid", *m, 10, 1000), small + 1000);
+            assert_eq!(estimate("rigid", m, 10, 1000), small + 1000);
         }
         assert!(
             estimate("elastic", Method::Bdf, 1000, 0) > estimate("rigid", Method::Bdf, 1000, 0)
