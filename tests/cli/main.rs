@@ -26,6 +26,7 @@ mod hostile;
 mod hostile_files;
 mod hostile_model;
 mod hostile_studies;
+mod memory;
 mod newton_counters;
 mod pivot;
 mod plot;

@@ -111,9 +111,10 @@ pub use pivot::{Pivot, PivotPath, TimeScales, STEPS_PER_TIME_SCALE};
 pub use profile::{Profile, Rods};
 pub use solve::auto_elastic::{
     axial_stiffness_ratio, floor_damping_ratio, joint_damping_ratio, AUTO_ELASTIC_ZETA,
-    AUTO_GEN_ALPHA_MAX_STIFFNESS, AUTO_GEN_ALPHA_RHO_INF, AUTO_GEN_ALPHA_RTOL,
-    AUTO_GEN_ALPHA_STIFFNESS, AUTO_GEN_ALPHA_TOLERANCE,
+    AUTO_GEN_ALPHA_MAX_STIFFNESS, AUTO_GEN_ALPHA_MIN_ATOL, AUTO_GEN_ALPHA_RHO_INF,
+    AUTO_GEN_ALPHA_RTOL, AUTO_GEN_ALPHA_STIFFNESS, AUTO_GEN_ALPHA_TOLERANCE,
 };
+pub use solve::memory;
 pub use solve::{
     solve, Sample, Solve, SolveOptions, Summary, Trajectory, Watch, ATOL_RANGE,
     BALANCE_PER_TOLERANCE, BDF_DENSE_MAX_ELASTIC_LINKS, BDF_DENSE_MAX_LINKS,

@@ -253,3 +253,27 @@ def test_a_key_and_its_element_in_one_sweep():
     raises_value_error(
         "fc.sweep(span, {'start.p1': [[2.0, 0.0]], 'start.p1.0': [3.0, 4.0]})", ("--vary", "vary")
     )
+
+
+# The run's memory (issue 47 A2) ---------------------------------------------
+
+
+def test_a_chain_that_cannot_fit_in_memory_is_refused_before_it_runs():
+    # bdf at n = 1e6 needs about 8.7 GB; the child's address space is 3 GiB,
+    # which the estimate reads (RLIMIT_AS): refused before any allocation,
+    # naming the key, the method and both numbers.
+    m = raises_value_error(
+        "span.set('chain.links', 1000000)\nfc.simulate(span, method='bdf', t_end=1e-3)",
+        "chain.links",
+    )
+    assert "for bdf on the rigid chain" in m and "GB is available" in m, m
+
+
+def test_the_memory_available_may_be_set():
+    # FC_MEMORY_AVAILABLE replaces the machine's number: 50 rods refused
+    # below the estimate's fixed part, run above it.
+    m = raises_value_error(
+        "import os\nos.environ['FC_MEMORY_AVAILABLE'] = '1e6'\nfc.simulate(span, method='bdf', t_end=0.01)",
+        "chain.links",
+    )
+    assert "1.0 MB is available (FC_MEMORY_AVAILABLE" in m, m

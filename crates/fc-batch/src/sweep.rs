@@ -242,11 +242,26 @@ pub fn check_cancellable(
     vary: &[Vary],
     cancel: Option<&Cancel>,
 ) -> Result<(), Error> {
+    check_runs(scene, vary, cancel, 1)
+}
+
+/// [`check_cancellable`] for `concurrent` runs at once: each point's runs
+/// must fit in memory together ([`fc_scene::scene::Prepared::check_memory`],
+/// without samples, as a sweep's runs keep none).
+fn check_runs(
+    scene: &Scene,
+    vary: &[Vary],
+    cancel: Option<&Cancel>,
+    concurrent: usize,
+) -> Result<(), Error> {
     for values in grid(vary)? {
         if cancel.is_some_and(Cancel::is_cancelled) {
             return Err(Error::Interrupted);
         }
-        scene_for(scene, vary, &values)?.prepare()?;
+        let prepared = scene_for(scene, vary, &values)?.prepare()?;
+        if concurrent > 1 {
+            prepared.check_memory(concurrent, false)?;
+        }
     }
     Ok(())
 }
@@ -280,11 +295,11 @@ pub fn run_cancellable(
     let cancelled = || cancel.is_some_and(Cancel::is_cancelled);
     let jobs = check_jobs("--jobs", jobs)?;
     let size = grid_size(vary)?;
-    check_cancellable(scene, vary, cancel)?;
     let runs: Vec<usize> = (0..size)
         .filter(|&i| shard.is_none_or(|s| s.takes(i)))
         .collect();
     let total = runs.len();
+    check_runs(scene, vary, cancel, jobs.min(total).max(1))?;
     let done = AtomicUsize::new(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.min(total).max(1))

@@ -35,7 +35,7 @@ use diffsol::{
     NonLinearOpJacobian, OdeBuilder, OdeEquations, OdeEquationsRef, OdeSolverMethod,
     OdeSolverState, Op, ParameterisedOp, UnitCallable,
 };
-use faer::sparse::{Pair, SymbolicSparseColMat};
+use faer::sparse::SymbolicSparseColMat;
 
 use super::block_lu::{BlockLayout, BlockLu};
 use super::diffsol_driver::{drive, raise_first_step, slice, slice_mut, Hooks};
@@ -153,7 +153,7 @@ struct DaeEquations<D> {
     y0: Vec<f64>,
     jacobian_pattern: SymbolicSparseColMat<usize>,
     /// CSC position of each entry of [`SemiExplicitDae::jacobian_entries`], in its order.
-    jacobian_slots: Vec<usize>,
+    jacobian_slots: Vec<u32>,
     mass_pattern: SymbolicSparseColMat<usize>,
     rhs_evals: Cell<u64>,
     jacobian_evals: Cell<u64>,
@@ -161,22 +161,72 @@ struct DaeEquations<D> {
     nonfinite: Cell<bool>,
 }
 
-/// A pattern from `(row, column)` pairs, and each pair's CSC position;
-/// `None` if an entry is out of range (a programming error of the DAE).
+/// The `(row, column)` pairs of `dae`'s Jacobian at `(t0, y0)`, in its
+/// emission order, then the diagonal `(i, i)` of the first `diagonal`
+/// unknowns: held as `u32` pairs at their exact count (one counting pass
+/// first, no growth slack; issue 47 A2); `None` if an index does not fit
+/// in a `u32` (a DAE of more than 4e9 unknowns: never within the bounds on
+/// `chain.links`).
+pub(crate) fn entries<D: SemiExplicitDae + ?Sized>(
+    dae: &D,
+    t0: f64,
+    y0: &[f64],
+    diagonal: usize,
+) -> Option<Vec<(u32, u32)>> {
+    let mut count = diagonal;
+    dae.jacobian_entries(t0, y0, &mut |_, _, _| count += 1);
+    let mut entries = Vec::with_capacity(count);
+    let mut fits = true;
+    dae.jacobian_entries(
+        t0,
+        y0,
+        &mut |r, c, _| match (u32::try_from(r), u32::try_from(c)) {
+            (Ok(r), Ok(c)) => entries.push((r, c)),
+            _ => fits = false,
+        },
+    );
+    for i in 0..diagonal {
+        entries.push((u32::try_from(i).ok()?, u32::try_from(i).ok()?));
+    }
+    (fits && entries.len() == count).then_some(entries)
+}
+
+/// A pattern from `(row, column)` pairs (repeats allowed), and each pair's
+/// CSC position; `None` if an entry is out of range (a programming error
+/// of the DAE). The CSC arrays are built at their exact size from the
+/// pairs' sorted, deduplicated keys (`column << 32 | row`), which are
+/// also the positions' index: the pattern is the one faer's
+/// `try_new_from_indices` builds, without its copy of the pairs as
+/// `usize` (issue 47 A2).
 pub(crate) fn pattern(
     dim: usize,
-    entries: &[(usize, usize)],
-) -> Option<(SymbolicSparseColMat<usize>, Vec<usize>)> {
-    let pairs: Vec<Pair<usize, usize>> = entries.iter().map(|&(r, c)| Pair::new(r, c)).collect();
-    let (sym, _) = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs).ok()?;
-    let (col_ptr, row_idx) = (sym.col_ptr(), sym.row_idx());
+    entries: &[(u32, u32)],
+) -> Option<(SymbolicSparseColMat<usize>, Vec<u32>)> {
+    let key = |&(r, c): &(u32, u32)| (u64::from(c) << 32) | u64::from(r);
+    let mut keys: Vec<u64> = entries.iter().map(key).collect();
+    keys.sort_unstable();
+    keys.dedup();
+    let mut col_ptr = vec![0usize; dim + 1];
+    let mut row_idx = Vec::with_capacity(keys.len());
+    for &k in &keys {
+        let (c, r) = (
+            usize::try_from(k >> 32).ok()?,
+            usize::try_from(k & 0xffff_ffff).ok()?,
+        );
+        if r >= dim || c >= dim {
+            return None;
+        }
+        col_ptr[c + 1] += 1;
+        row_idx.push(r);
+    }
+    for c in 0..dim {
+        col_ptr[c + 1] += col_ptr[c];
+    }
     let slots = entries
         .iter()
-        .map(|&(r, c)| {
-            let col = row_idx.get(*col_ptr.get(c)?..*col_ptr.get(c + 1)?)?;
-            Some(col_ptr[c] + col.binary_search(&r).ok()?)
-        })
-        .collect::<Option<Vec<usize>>>()?;
+        .map(|e| u32::try_from(keys.binary_search(&key(e)).ok()?).ok())
+        .collect::<Option<Vec<u32>>>()?;
+    let sym = SymbolicSparseColMat::new_checked(dim, dim, col_ptr, None, row_idx);
     Some((sym, slots))
 }
 
@@ -185,10 +235,10 @@ impl<D: SemiExplicitDae> DaeEquations<D> {
     /// if its Jacobian's pattern is malformed.
     fn new(dae: D, t0: f64, y0: Vec<f64>) -> Option<Self> {
         let dim = dae.dim();
-        let mut entries = Vec::with_capacity(7 * dim);
-        dae.jacobian_entries(t0, &y0, &mut |r, c, _| entries.push((r, c)));
-        let (jacobian_pattern, jacobian_slots) = pattern(dim, &entries)?;
-        let diagonal: Vec<_> = (0..dae.differential_dim()).map(|i| (i, i)).collect();
+        let (jacobian_pattern, jacobian_slots) = pattern(dim, &entries(&dae, t0, &y0, 0)?)?;
+        let diagonal = (0..dae.differential_dim())
+            .map(|i| u32::try_from(i).ok().map(|i| (i, i)))
+            .collect::<Option<Vec<_>>>()?;
         let (mass_pattern, _) = pattern(dim, &diagonal)?;
         let ctx = FaerContext::default();
         Some(Self {
@@ -284,7 +334,7 @@ impl<D: SemiExplicitDae> NonLinearOpJacobian for DaeRhs<'_, D> {
         let values = y.inner_mut()[0].val_mut();
         let mut k = 0;
         self.0.dae.jacobian_entries(t, slice(x), &mut |_, _, j| {
-            values[slots[k]] = j;
+            values[slots[k] as usize] = j;
             k += 1;
         });
         self.0.jacobian_evals.set(self.0.jacobian_evals.get() + 1);

@@ -237,6 +237,20 @@ pub struct Prepared {
 }
 
 impl Prepared {
+    /// Refuses `concurrent` runs of it at once (a study's `--jobs`) that
+    /// would not fit in the memory the machine can give
+    /// ([`SolveOptions::check_memory`]; one run is checked by
+    /// [`Scene::prepare`] already); `samples`: whether each keeps the
+    /// scene's recorded samples.
+    pub fn check_memory(&self, concurrent: usize, samples: bool) -> Result<(), Error> {
+        let mut options = self.options.clone();
+        if !samples {
+            options.output_dt = None;
+        }
+        options.check_memory(&self.chain, self.method, concurrent)?;
+        Ok(())
+    }
+
     /// Runs it.
     pub fn solve(&self) -> Result<Trajectory, Error> {
         Ok(solve(

@@ -352,7 +352,9 @@ pub fn run_levels_until(
         ));
     }
     check_ladder_length(links.len())?;
-    // Every scene is checked before any run starts.
+    // Every scene is checked before any run starts, its memory with as
+    // many levels beside it as run at once.
+    let concurrent = jobs.min(links.len()).max(1);
     for &n in &links {
         let mut s = refined_scene(scene, n)?;
         if let Some(m) = method {
@@ -361,7 +363,7 @@ pub fn run_levels_until(
         if let Some(r) = rtol {
             s = s.with_value("run.rtol", toml::Value::Float(r))?;
         }
-        s.prepare()?;
+        s.prepare()?.check_memory(concurrent, true)?;
     }
     let done = AtomicUsize::new(0);
     let pool = rayon::ThreadPoolBuilder::new()

@@ -350,6 +350,8 @@ fn run_members(
     options.validate()?;
     let jobs = fc_batch::sweep::check_jobs("--jobs", options.jobs)?;
     let prepared = scene.prepare()?;
+    // The members that run at once must fit in memory together.
+    prepared.check_memory(jobs.min(options.members), samples)?;
     // Every member's start is checked before any run: a perturbation that
     // moves a start out of its bounds (into a floor) is the spread's doing,
     // and the error says so, naming the member.

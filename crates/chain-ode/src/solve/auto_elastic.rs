@@ -64,13 +64,51 @@ pub const AUTO_GEN_ALPHA_TOLERANCE: f64 = 1e-3;
 pub const AUTO_GEN_ALPHA_RHO_INF: f64 = 0.0;
 
 /// The stiffness ratio ([`axial_stiffness_ratio`]) up to which `auto`
-/// starts gen-alpha: past it gen-alpha could not progress (bungee, n =
-/// 100, no axial damping, rtol 1e-3: at EA = 1e8, ratio 8.9e5, it reached
-/// t = 0.253 of 5 in 200,000 steps; at EA = 1e12 t = 6.4e-4 in 100,000,
-/// 44 % of them Newton failures, issue 47 H3), where it won at 2.0e5.
-/// Above it the plan stays explicit (DOPRI5 held at its stability limit
-/// finishes: 103 s at EA = 1e12).
-pub const AUTO_GEN_ALPHA_MAX_STIFFNESS: f64 = 4e5;
+/// starts gen-alpha: the stiffest rope on which it was measured to win
+/// (issue 47 H3, remeasured with [`AUTO_GEN_ALPHA_MIN_ATOL`]: at rtol 1e-3
+/// and atol 1e-5, bungee at EA = 1e12, ratio 8.9e7: gen-alpha reached t =
+/// 0.53 in 100,000 step attempts, DOPRI5 t = 0.0017; the folded snap at
+/// EA = 1e12, ratio 2e7, gen-alpha to the end in 51,380 steps, DOPRI5 t =
+/// 0.020 in 100,000; docs/model.md, "auto and gen-alpha"). The old edge,
+/// 4e5, came from runs at the scenes' atol 1e-10, where gen-alpha's
+/// Newton iteration, not its stiffness, stalled it; that case is
+/// [`AUTO_GEN_ALPHA_MIN_ATOL`]'s now. Past 1e8 nothing was measured.
+pub const AUTO_GEN_ALPHA_MAX_STIFFNESS: f64 = 1e8;
+
+/// The smallest absolute tolerance (`atol` times
+/// [`AUTO_GEN_ALPHA_TOLERANCE`], state units) at which `auto` starts
+/// gen-alpha: below it gen-alpha's Newton iteration, converged to that
+/// tolerance on joints whose springs amplify a state's rounding by `EA/l`,
+/// fails at a third of its attempts and the run loses to DOPRI5 (issue 47
+/// H3, remeasured: the folded snap at `n = 20`, `EA = 1e8`, rtol 1e-3, 5%
+/// damping: at `atol` 1e-6 and 1e-7 gen-alpha took 5,677 and 7,410 steps
+/// with 1 and 2 Newton failures in 0.66 and 0.92 s, at 1e-8 26,233 steps
+/// with 5,782 failures in 3.6 s, at the scene's 1e-10 162,103 steps with
+/// 52,154 failures in 12.5 s, where DOPRI5 took 155,950 steps in 1.9-2.5
+/// s; docs/model.md, "auto and gen-alpha").
+pub const AUTO_GEN_ALPHA_MIN_ATOL: f64 = 1e-10;
+
+/// `plan` for a run at `atol`: a plan that starts gen-alpha
+/// ([`plan`]) at an absolute tolerance below [`AUTO_GEN_ALPHA_MIN_ATOL`]
+/// becomes the explicit method's to the end (the plan of a lightly damped
+/// chain outside the gen-alpha band); any other plan is itself.
+pub(crate) fn within_reach(plan: AutoPlan, rtol: f64, atol: f64) -> AutoPlan {
+    let starts_gen_alpha = plan.explicit.is_none() && plan.implicit == Method::GenAlpha;
+    if !starts_gen_alpha || atol * plan.implicit_tolerance >= AUTO_GEN_ALPHA_MIN_ATOL {
+        return plan;
+    }
+    AutoPlan {
+        explicit: Some(if rtol <= AUTO_DOP853_RTOL {
+            Method::Dop853
+        } else {
+            Method::Dopri5
+        }),
+        hand_over_above: f64::INFINITY,
+        implicit: Method::Bdf,
+        implicit_tolerance: 1.0,
+        implicit_rho_inf: None,
+    }
+}
 
 /// The damping ratio of the floor's contact at a rod end resting on it,
 /// `zeta = c g sqrt(m_p / k) / 2` for the Hunt–Crossley law `N = k delta
@@ -101,7 +139,9 @@ pub fn axial_stiffness_ratio(chain: &Chain) -> Option<f64> {
 /// (infinity) below it; except that a lightly
 /// damped chain whose axial modes are past [`AUTO_GEN_ALPHA_STIFFNESS`]
 /// (and not past [`AUTO_GEN_ALPHA_MAX_STIFFNESS`]) runs gen-alpha from the start (at [`AUTO_GEN_ALPHA_TOLERANCE`] times
-/// the tolerance) when `rtol >=` [`AUTO_GEN_ALPHA_RTOL`].
+/// the tolerance) when `rtol >=` [`AUTO_GEN_ALPHA_RTOL`] (and, applied by
+/// the run, [`within_reach`]: its absolute tolerance at least
+/// [`AUTO_GEN_ALPHA_MIN_ATOL`]).
 pub(crate) fn plan(chain: &Chain, rtol: f64) -> AutoPlan {
     let explicit = if rtol <= AUTO_DOP853_RTOL {
         Method::Dop853

@@ -23,6 +23,7 @@
 
 pub mod auto_elastic;
 mod forces;
+pub mod memory;
 mod options;
 pub(crate) mod peaks;
 mod recorder;
@@ -74,7 +75,8 @@ pub trait Watch<M> {
 /// itself.
 fn method_run<M: Model>(model: &M, method: Method, options: &SolveOptions) -> Method {
     if method == Method::Auto {
-        let plan = model.auto_plan(options.rtol);
+        let plan =
+            auto_elastic::within_reach(model.auto_plan(options.rtol), options.rtol, options.atol);
         if plan.explicit.is_none() && plan.implicit.is_nonsmooth() {
             return plan.implicit;
         }

@@ -145,8 +145,34 @@ impl SolveOptions {
     ///   ([`crate::Pivot::time_scales`]).
     ///
     /// `chain` itself is checked by [`Chain::validate`].
+    ///
+    /// Then the run's memory ([`SolveOptions::check_memory`], one run).
     pub fn validate_for(&self, chain: &Chain, method: Method) -> Result<(), InvalidParameter> {
-        ModelKind::of(chain).validate(method, self)
+        ModelKind::of(chain).validate(method, self)?;
+        self.check_memory(chain, method, 1)
+    }
+
+    /// Refuses `concurrent` runs of `chain` with `method` at once whose
+    /// estimated memory (its working memory a rod, measured, and its
+    /// recorded samples) exceeds what the machine can give, naming
+    /// `chain.links` ([`crate::memory`]; issue 47 A2). A study that runs
+    /// `--jobs` runs at once checks them together.
+    pub fn check_memory(
+        &self,
+        chain: &Chain,
+        method: Method,
+        concurrent: usize,
+    ) -> Result<(), InvalidParameter> {
+        let model = ModelKind::of(chain);
+        let layout = model.layout();
+        let samples = self.output_dt.map_or(0, |o| {
+            let count = (self.t_end / o).floor().min(u64::MAX as f64) as u64;
+            count
+                .saturating_add(2)
+                .saturating_mul(8)
+                .saturating_mul(layout.sample_numbers)
+        });
+        super::memory::check(model.name(), method, layout.links, samples, concurrent)
     }
 
     /// The bounds every model shares, for a model laid out as `layout`

@@ -127,7 +127,11 @@ pub(super) fn segment<M: Model>(
     let layout = model.layout();
     let mut problem = Planned {
         inner: model.problem(),
-        plan: model.auto_plan(span.settings.rtol),
+        plan: super::auto_elastic::within_reach(
+            model.auto_plan(span.settings.rtol),
+            span.settings.rtol,
+            span.settings.atol,
+        ),
         configuration: error_configuration(model, layout),
     };
     let mut obs = Observers { model, parts };

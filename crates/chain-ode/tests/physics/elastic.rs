@@ -960,3 +960,67 @@ fn auto_runs_gen_alpha_on_stiff_lightly_damped_links_at_loose_tolerances() {
         vec![Method::Dopri5]
     );
 }
+
+/// Issue 47 H3: `auto` does not start gen-alpha where its Newton
+/// iteration cannot reach the absolute tolerance it would run at
+/// (`atol` times `AUTO_GEN_ALPHA_TOLERANCE` below
+/// `AUTO_GEN_ALPHA_MIN_ATOL`). The folded snap of
+/// `auto_runs_gen_alpha_...` (n = 20, EA = 1e8, inside the band) at rtol
+/// 1e-3 and the scene's atol 1e-10: auto runs DOPRI5, step for step; and
+/// gen-alpha as auto would run it there (rtol 1e-6, atol 1e-13, rho_inf
+/// 0) fails Newton at a fifth of its attempts or more, which is why
+/// (over t = 3.2: 162,103 steps with 52,154 Newton failures, against
+/// DOPRI5's 155,950 steps without any). At atol 1e-5 auto runs gen-alpha,
+/// with few failures.
+#[test]
+fn auto_keeps_gen_alpha_to_tolerances_its_newton_iteration_can_reach() {
+    let (n, ea) = (20, 1e8);
+    let chain = Chain::new(ChainParams {
+        links: n,
+        axial_stiffness: Some(ea),
+        axial_damping: 2.0 * 0.05 * (ea * 0.2 * (6.0 / n as f64)).sqrt(),
+        ..ChainParams::default()
+    })
+    .unwrap();
+    let ratio = chain_ode::axial_stiffness_ratio(&chain).unwrap();
+    assert!(
+        (chain_ode::AUTO_GEN_ALPHA_STIFFNESS..=chain_ode::AUTO_GEN_ALPHA_MAX_STIFFNESS)
+            .contains(&ratio)
+    );
+    let s = Start::Folded {
+        p0: [0.0, 0.0],
+        down: Some(10),
+    }
+    .state(&chain)
+    .unwrap();
+    let methods =
+        |t: &chain_ode::Trajectory| t.segments.iter().map(|g| g.method).collect::<Vec<_>>();
+    let t_end = 0.3;
+    let tight_atol = tolerances(t_end, 1e-3, 1e-10);
+    let auto = solve(&chain, &s, Method::Auto, &tight_atol).unwrap();
+    assert_eq!(methods(&auto), vec![Method::Dopri5]);
+    let dopri5 = solve(&chain, &s, Method::Dopri5, &tight_atol).unwrap();
+    assert_eq!(auto.stats.steps, dopri5.stats.steps);
+    assert_eq!(auto.summary.tip_end, dopri5.summary.tip_end);
+    let f = chain_ode::AUTO_GEN_ALPHA_TOLERANCE;
+    assert!(1e-10 * f < chain_ode::AUTO_GEN_ALPHA_MIN_ATOL);
+    let ga = solve(
+        &chain,
+        &s,
+        Method::GenAlpha,
+        &SolveOptions {
+            rho_inf: chain_ode::AUTO_GEN_ALPHA_RHO_INF,
+            ..tolerances(t_end, 1e-3 * f, 1e-10 * f)
+        },
+    )
+    .unwrap();
+    let attempts = ga.stats.steps + ga.stats.rejected_steps;
+    assert!(
+        ga.stats.newton_failures * 5 > attempts,
+        "{} Newton failures in {attempts} attempts",
+        ga.stats.newton_failures
+    );
+    let loose = solve(&chain, &s, Method::Auto, &tolerances(t_end, 1e-3, 1e-5)).unwrap();
+    assert_eq!(methods(&loose), vec![Method::GenAlpha]);
+    assert!(loose.stats.newton_failures * 20 < loose.stats.steps);
+}

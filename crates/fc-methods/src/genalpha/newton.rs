@@ -23,10 +23,11 @@ use super::policy::ReusePolicy;
 struct NewtonOp {
     dim: usize,
     pattern: SymbolicSparseColMat<usize>,
-    /// The CSC position of each Jacobian entry, in emission order.
-    jac_slots: Vec<usize>,
-    /// The CSC position of each differential row's diagonal.
-    diag_slots: Vec<usize>,
+    /// The CSC position of each Jacobian entry, in emission order, then
+    /// of each differential row's diagonal (from `jacobian_len` on).
+    slots: Vec<u32>,
+    /// The Jacobian's entry count.
+    jacobian_len: usize,
     /// The Jacobian's values, in emission order.
     jac: Vec<f64>,
     /// `E - beta J`, in CSC order.
@@ -44,25 +45,24 @@ impl NewtonOp {
     /// The pattern of `dae` at its start; `None` if it is malformed.
     fn new(dae: &dyn SemiExplicitDae, t0: f64, y0: &[f64]) -> Option<Self> {
         let (dim, nd) = (dae.dim(), dae.differential_dim());
-        let mut entries = Vec::with_capacity(7 * dim);
-        dae.jacobian_entries(t0, y0, &mut |r, c, _| entries.push((r, c)));
-        let m = entries.len();
-        entries.extend((0..nd).map(|i| (i, i)));
         // The Jacobian's entries and the differential diagonal, with their
-        // CSC positions (bdf's pattern builder).
+        // CSC positions (bdf's pattern builder), as u32s at their count.
+        let entries = crate::bdf::entries(dae, t0, y0, nd)?;
+        let m = entries.len() - nd;
         let mut has_entry = vec![false; nd];
         for &(r, _) in &entries[..m] {
-            if let Some(e) = has_entry.get_mut(r) {
+            if let Some(e) = has_entry.get_mut(r as usize) {
                 *e = true;
             }
         }
         let rows = (0..nd).filter(|&i| has_entry[i]).collect();
         let (pattern, slots) = crate::bdf::pattern(dim, &entries)?;
+        drop(entries);
         let nnz = pattern.row_idx().len();
         Some(Self {
             dim,
-            jac_slots: slots[..m].to_vec(),
-            diag_slots: slots[m..].to_vec(),
+            slots,
+            jacobian_len: m,
             pattern,
             jac: vec![0.0; m],
             values: vec![0.0; nnz],
@@ -74,11 +74,12 @@ impl NewtonOp {
     /// `E - beta J` from the kept `J`: O(nnz), allocation-free.
     fn assemble(&mut self, beta: f64) {
         self.values.fill(0.0);
-        for &s in &self.diag_slots {
-            self.values[s] = 1.0;
+        let (jac_slots, diag_slots) = self.slots.split_at(self.jacobian_len);
+        for &s in diag_slots {
+            self.values[s as usize] = 1.0;
         }
-        for (&s, &j) in self.jac_slots.iter().zip(&self.jac) {
-            self.values[s] -= beta * j;
+        for (&s, &j) in jac_slots.iter().zip(&self.jac) {
+            self.values[s as usize] -= beta * j;
         }
     }
 }
