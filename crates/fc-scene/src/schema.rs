@@ -176,7 +176,7 @@ const ROWS: &[Key] = &[
         ty: Type::Integer,
         default: DefaultValue::Required,
         kinds: Kinds::Any,
-        doc: "number of rods `n`, in 1..=1000000; `chain.mass` and `chain.damping` are per rod, so setting it alone changes the chain: `--refine N` (Python `Scene.refine(n)`) cuts the same chain into `N` rods as `converge` does, total mass, length, `r l`, EA, EI and the tip mass kept",
+        doc: "number of rods `n`, in 1..=1000000, and no more than the run's memory allows: its estimate (64 MiB plus the bytes a rod measured for its model and method, `docs/speed.md`, \"Memory at large n\", plus its samples) must fit in `MemAvailable`, or in `FC_MEMORY_AVAILABLE` bytes when that is set, else the run is refused before it starts (`docs/cli.md`, \"Input bounds\"); `chain.mass` and `chain.damping` are per rod, so setting it alone changes the chain: `--refine N` (Python `Scene.refine(n)`) cuts the same chain into `N` rods as `converge` does, total mass, length, `r l`, EA, EI and the tip mass kept",
         example: "6",
         out_of_range: Some("0"),
     },

@@ -18,8 +18,9 @@
 //! `tally.rs` (the summary's running quantities), `forces.rs` (whether
 //! a run's forces are resolved), `peaks.rs` (the forces'
 //! peaks inside steps), `auto_elastic.rs` (`auto`'s plan on elastic
-//! chains), `report_stepper.rs` (the report's own fixed-step stepping) and
-//! `unit_costs.rs` (the measured cost of one evaluation of each kind).
+//! chains), `report_stepper.rs` (the report's own fixed-step stepping),
+//! `unit_costs.rs` (the measured cost of one evaluation of each kind) and
+//! `memory.rs` (a run's memory, estimated and checked before it allocates).
 
 pub mod auto_elastic;
 mod forces;
