@@ -263,7 +263,7 @@ def test_a_chain_that_cannot_fit_in_memory_is_refused_before_it_runs():
     # which the estimate reads (RLIMIT_AS): refused before any allocation,
     # naming the key, the method and both numbers.
     m = raises_value_error(
-        "span.set('chain.links', 1000000)\nfc.simulate(span, method='bdf', t_end=1e-3)",
+        "big = span.set('chain.links', 1000000)\nfc.simulate(big, method='bdf', t_end=1e-3)",
         "chain.links",
     )
     assert "for bdf on the rigid chain" in m and "GB is available" in m, m
