@@ -16,6 +16,8 @@
 //!
 //! `--check` renders in memory and fails if a `paper/<name>.md` differs (a
 //! number or the template changed) or if a file it links to is missing.
+//! Both fail on a typed decimal that `paper/inputs.csv` does not list
+//! ([`crate::typed`]): a result comes from the data, not the keyboard.
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -214,7 +216,14 @@ fn source(template: &str) -> &str {
 pub fn run(root: &Path, check: bool) -> Result<(), String> {
     let dir = root.join("paper");
     let data = root.join("figures").join("data");
+    let inputs_path = dir.join("inputs.csv");
+    let inputs = if inputs_path.exists() {
+        crate::typed::read_inputs(&inputs_path)?
+    } else {
+        vec![]
+    };
     let mut rendered = Vec::new();
+    let mut typed_errors = vec![];
     for name in crate::pdf::DOCUMENTS {
         let template_path = dir.join(format!("{name}.tmpl.md"));
         if !template_path.exists() {
@@ -224,7 +233,18 @@ pub fn run(root: &Path, check: bool) -> Result<(), String> {
             fs::read_to_string(&template_path).map_err(|e| format!("paper/{name}.tmpl.md: {e}"))?;
         let text =
             render(source(&template), &data).map_err(|e| format!("paper/{name}.tmpl.md: {e}"))?;
+        match crate::typed::check(name, &template, &inputs) {
+            Ok(s) => println!(
+                "paper/{name}.tmpl.md: {} typed decimals, each listed in paper/inputs.csv \
+                 ({} of them results still pending data)",
+                s.typed, s.pending
+            ),
+            Err(e) => typed_errors.push(e),
+        }
         rendered.push((name, text));
+    }
+    if !typed_errors.is_empty() {
+        return Err(typed_errors.join("\n"));
     }
     if rendered.is_empty() {
         return Err("paper/: no template (paper.tmpl.md) to fill".into());

@@ -2,7 +2,8 @@
 //! [`fill`] fills `paper/paper.tmpl.md` and `paper/methods.tmpl.md` with
 //! numbers read from the CSV files of `figures/data/` and writes
 //! `paper/paper.md` and `paper/methods.md` (or checks that they
-//! are current); [`pdf`] typesets the filled papers as PDF; [`catalogue`]
+//! are current, and that every typed decimal is an input [`typed`] finds
+//! listed in `paper/inputs.csv`); [`pdf`] typesets the filled papers as PDF; [`catalogue`]
 //! is the figure catalogue as plain data (`figures/README.md`, the checks of
 //! what each figure writes). `cargo xtask paper [--check | --pdf]` and
 //! `cargo xtask figures` call them.
@@ -10,3 +11,4 @@
 pub mod catalogue;
 pub mod fill;
 pub mod pdf;
+pub mod typed;
