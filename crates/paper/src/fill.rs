@@ -10,7 +10,8 @@
 //!   (over the rows whose cell is not empty),
 //!   `maxabs(col)`, `at_max(col,other)` / `at_min(col,other)` (`other` in the row where
 //!   `col` is largest / smallest), `count`, `ratio(a,b)` (`a / b` in the one
-//!   matching row);
+//!   matching row), `over(col,N)` (the one matching row's cell over a whole
+//!   number `N` the text states, such as a scene's weight);
 //! - `FORMAT`: `s3` (3 significant digits), `f2` (2 decimals), `e2`
 //!   (scientific, 2 decimals) or `raw`.
 //!
@@ -145,6 +146,12 @@ fn evaluate(
         ("min", 1) => value(extreme(false)?, args[0])?,
         ("at_max", 2) => value(extreme(true)?, args[1])?,
         ("at_min", 2) => value(extreme(false)?, args[1])?,
+        ("over", 2) => {
+            let n = args[1]
+                .parse::<u64>()
+                .map_err(|_| format!("over(): '{}' is not a whole number", args[1]))?;
+            (num(&value(one()?, args[0])?)? / n as f64).to_string()
+        }
         ("ratio", 2) => {
             let r = one()?;
             (num(&value(r, args[0])?)? / num(&value(r, args[1])?)?).to_string()
@@ -297,11 +304,15 @@ mod tests {
         fs::create_dir_all(&dir).unwrap();
         fs::write(dir.join("a.csv"), "k,x,y\np,1.23456,10\nq,2.5,20\n").unwrap();
         let t = "{{a.csv:k=p:x:s3}} {{a.csv:*:max(x):f1}} {{a.csv:*:at_max(x,k):raw}} \
-                 {{a.csv:*:count:raw}} {{a.csv:k=q:ratio(y,x):f0}} {{a.csv:k=p:y:e1}}";
+                 {{a.csv:*:count:raw}} {{a.csv:k=q:ratio(y,x):f0}} {{a.csv:k=p:y:e1}} \
+                 {{a.csv:k=q:over(y,8):f1}}";
         assert_eq!(
             render(t, &dir).unwrap(),
-            "1.23 2.5 q 2 8 1.0×10<sup>1</sup>"
+            "1.23 2.5 q 2 8 1.0×10<sup>1</sup> 2.5"
         );
+        assert!(render("{{a.csv:k=q:over(y,0.5):f1}}", &dir)
+            .unwrap_err()
+            .contains("whole number"));
         assert!(render("{{a.csv:k=z:x:s3}}", &dir).is_err());
         assert!(render("{{a.csv:*:x:s3}}", &dir)
             .unwrap_err()
