@@ -7,7 +7,7 @@
 //! `cargo xtask figures`: regenerates every figure of the registry
 //! (`registry.rs`, the catalogue of `docs/figures.md`) into `figures/`, its
 //! data into `figures/data/`, the animations, `figures/README.md` and
-//! the papers (`paper/paper.md`, `paper/methods.md`). `cargo xtask paper
+//! the papers (`paper/paper.md`, `paper/methods.md`, `paper/supplement.md`). `cargo xtask paper
 //! [--check]` fills the papers alone.
 //!
 //! Its files:
@@ -52,11 +52,11 @@ use registry::{Figure, Timing, FIGURES};
 enum Command {
     /// Compute every figure's data into figures/data/ (reading the committed
     /// wall times, never rewriting them), draw every figure from its data,
-    /// make the animations, write figures/README.md and the papers (paper/paper.md, paper/methods.md).
+    /// make the animations, write figures/README.md and the papers (paper/paper.md, paper/methods.md, paper/supplement.md).
     Figures(Args),
-    /// Fill the papers' templates (paper/paper.tmpl.md, paper/methods.tmpl.md) from figures/data/.
+    /// Fill the papers' templates (paper/paper.tmpl.md, paper/methods.tmpl.md, paper/supplement.tmpl.md) from figures/data/; fail on a typed decimal paper/inputs.csv does not list.
     Paper {
-        /// Fail if paper/paper.md or paper/methods.md is stale.
+        /// Fail if paper/paper.md, paper/methods.md or paper/supplement.md is stale.
         #[arg(long, conflicts_with = "pdf")]
         check: bool,
         /// Then typeset paper/*.md as paper/*.pdf with pandoc and headless

@@ -1,5 +1,6 @@
 //! `cargo xtask paper [--check]`: fills the templates `paper/<name>.tmpl.md`
-//! (`paper`, the physics; `methods`, the solver study) with numbers read
+//! (`paper`, the physics; `methods`, the solver study; `supplement`, the
+//! physics paper's report-model forensics and extensions) with numbers read
 //! from the CSVs in `figures/data/` and writes `paper/<name>.md`.
 //!
 //! A placeholder is `{{FILE:FILTER:EXPR:FORMAT}}`:

@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The documents typeset, in order: each `paper/<name>.md` that exists.
-pub const DOCUMENTS: [&str; 2] = ["paper", "methods"];
+pub const DOCUMENTS: [&str; 3] = ["paper", "methods", "supplement"];
 
 /// The title Chromium shows for a document: its first `# ` heading.
 fn title(markdown: &str) -> &str {
