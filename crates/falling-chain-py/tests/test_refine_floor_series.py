@@ -77,9 +77,12 @@ def test_refine_refuses_bad_counts_and_angles_starts():
     for bad in [0, 1_000_001]:
         with pytest.raises(ValueError, match=r"^n: must be an integer in 1..=1000000"):
             span.refine(bad)
-    angles = span.set({"start.kind": "angles", "start.angles": [-1.0] * 50})
+    angles = span.set({"start.kind": "angles", "start.angles": [-1.0 - 0.01 * i for i in range(50)]})
     with pytest.raises(ValueError, match=r"^start.kind: "):
         angles.refine(100)
+    # A zigzag (a pattern repeated) continues rod by rod.
+    zigzag = span.set({"start.kind": "angles", "start.angles": [-1.55, -1.59] * 25})
+    assert zigzag.refine(101).to_dict()["start"]["angles"] == [-1.55, -1.59] * 50 + [-1.55]
     line = cli("simulate", scene_path("span-d3"), "--refine", "0").stderr.strip()
     assert line.startswith("error: --refine: ") and "\n" not in line
 

@@ -160,8 +160,8 @@ pub(crate) struct RefineArgs {
     /// every --set: total mass, length, the bending viscosity r l, EA, EI
     /// and the tip mass kept (so chain.mass and chain.damping, which are
     /// per rod, change), as converge refines. chain.links=N alone is not a
-    /// refinement: it keeps the per-rod mass and friction. Not for an
-    /// angles start.
+    /// refinement: it keeps the per-rod mass and friction. An angles start
+    /// refines only if its angles repeat a pattern (a zigzag), continued.
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_rods)]
     refine: Option<usize>,
 }

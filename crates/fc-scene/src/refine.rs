@@ -18,6 +18,10 @@ use crate::scene::Scene;
 /// The most rods a refinement may ask for: the scenes' cap on `chain.links`.
 pub const MAX_LINKS: usize = 1_000_000;
 
+/// The longest pattern of an `angles` start that a refinement continues
+/// (rods): a zigzag's is 2.
+pub const MAX_PERIOD: usize = 64;
+
 /// One line stating the rule, for help texts, figures and data.
 pub const RULE: &str = "total mass M = n m, length L and bending viscosity eta = r l kept \
                         (m = M/n, r = eta n/L), EA, EI and the tip mass carried";
@@ -39,21 +43,42 @@ impl Scene {
     /// This scene cut into `links` rods at fixed continuum: its chain
     /// refined by [`chain_ode::Chain::refined`] (which carries every field)
     /// and written back whole ([`Scene::with_chain`]). A folded start's
-    /// `start.down` (if given) scales with `n` (rounded down); an `angles`
-    /// start has a fixed number of rods and is refused. The `[floor]` keys
+    /// `start.down` (if given) scales with `n` (rounded down). An `angles`
+    /// start whose angles (and rates) repeat a pattern of at most
+    /// [`MAX_PERIOD`] rods at least twice, such as a zigzag, continues that
+    /// pattern rod by rod to `links` rods (each rod keeps its tilt, so the
+    /// pattern's length shrinks with the rods); any other `angles` start has
+    /// a fixed number of rods and is refused. The `[floor]` keys
     /// are the scene's own, kept as written (a contact stiffness given per
     /// contact point stays per point; its default, `1e4 m g / l`, follows
     /// the new rod).
     pub fn refined(&self, links: usize) -> Result<Scene, Error> {
         check_links("chain.links", links)?;
         let chain = self.chain()?;
-        if let Start::Angles { .. } = self.start() {
-            return Err(Error::field(
-                "start.kind",
-                "an \"angles\" start has a fixed number of rods and cannot be refined",
-            ));
-        }
         let mut s = self.with_chain(&chain.refined(links)?)?;
+        if let Start::Angles { angles, rates, .. } = self.start() {
+            let Some(period) = pattern_period(&angles, rates.as_deref()) else {
+                return Err(Error::field(
+                    "start.kind",
+                    format!(
+                        "an \"angles\" start refines only when its angles (and rates) repeat \
+                         a pattern of at most {MAX_PERIOD} rods at least twice; this one has a \
+                         fixed number of rods"
+                    ),
+                ));
+            };
+            let continued = |list: &[f64]| {
+                toml::Value::Array(
+                    (0..links)
+                        .map(|i| toml::Value::Float(list[i % period]))
+                        .collect(),
+                )
+            };
+            s = s.with_value("start.angles", continued(&angles))?;
+            if let Some(rates) = rates {
+                s = s.with_value("start.rates", continued(&rates))?;
+            }
+        }
         if let Start::Folded {
             down: Some(down), ..
         } = self.start()
@@ -63,6 +88,18 @@ impl Scene {
         }
         Ok(s)
     }
+}
+
+/// The shortest period `p` with which `angles` (and `rates`, if given)
+/// repeat exactly, `x[i] = x[i % p]`, if the pattern is there at least
+/// twice (`2 p <= n`) and `p <= MAX_PERIOD`: a start such as a zigzag of
+/// alternating tilts (`scenes/cayley-scale.toml`), which a refinement
+/// continues rod by rod. At most `MAX_PERIOD` passes of O(n).
+fn pattern_period(angles: &[f64], rates: Option<&[f64]>) -> Option<usize> {
+    let n = angles.len();
+    let repeats = |list: &[f64], p: usize| list.iter().enumerate().all(|(i, x)| *x == list[i % p]);
+    (1..=(n / 2).min(MAX_PERIOD))
+        .find(|&p| repeats(angles, p) && rates.is_none_or(|r| repeats(r, p)))
 }
 
 #[cfg(test)]
@@ -134,6 +171,33 @@ mod tests {
             );
             let e = check_links("--refine", bad).unwrap_err().to_string();
             assert!(e.starts_with("--refine: "), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_repeating_angles_start_continues_its_pattern_and_any_other_is_refused() {
+        let zigzag = "[chain]\nlinks = 4\nmass = 0.25\nlength = 1\n[start]\nkind = \"angles\"\n\
+            angles = [-1.55, -1.59, -1.55, -1.59]\nrates = [0.5, 0.5, 0.5, 0.5]\n[run]\nt_end = 1\n";
+        let s = scene(zigzag).refined(7).unwrap();
+        let Start::Angles { angles, rates, .. } = s.start() else {
+            panic!("the start stays an angles start");
+        };
+        assert_eq!(angles, [-1.55, -1.59, -1.55, -1.59, -1.55, -1.59, -1.55]);
+        assert_eq!(rates.as_deref(), Some(&[0.5; 7][..]));
+        let c = s.chain().unwrap();
+        assert!((c.total_mass() - 1.0).abs() < 1e-15);
+        s.state().unwrap();
+        // No repeat (a pattern seen once), or rates that break the angles'
+        // pattern: refused, naming the field.
+        for bad in [
+            zigzag.replace("-1.55, -1.59, -1.55, -1.59", "-1.55, -1.59, -1.55, -1.6"),
+            zigzag.replace("0.5, 0.5, 0.5, 0.5", "0.5, 0.5, 0.5, 0.6"),
+        ] {
+            let e = scene(&bad).refined(8).unwrap_err().to_string();
+            assert!(
+                e.starts_with("start.kind: an \"angles\" start refines only"),
+                "{e}"
+            );
         }
     }
 }

@@ -16,7 +16,8 @@
 //! with `n` (docs/model.md), which is not a refinement.
 //!
 //! A folded start's `start.down` (if given) scales with `n` (rounded down);
-//! an `angles` start cannot be refined.
+//! an `angles` start refines only when its angles repeat a short pattern
+//! (a zigzag), which continues rod by rod (`fc_scene::Scene::refined`).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
