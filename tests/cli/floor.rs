@@ -236,3 +236,43 @@ fn view_refuses_a_floor_runs_csv_and_says_to_view_its_scene() {
     );
     assert!(!page.exists(), "no page is written for a refused run");
 }
+
+/// `needs` on a constraint floor (the U onto a floor, `floor.law =
+/// "constraint"`): its one method is moreau-jean at the scene's step (no
+/// method study: the smooth methods' reference refuses the floor), its
+/// ladder in n and its terms run on the floor, and the floor's friction
+/// is judged like any term (off, the tip's path moves by 0.126 of L at
+/// n = 50, more than --tol 0.1: needed).
+#[test]
+fn needs_on_a_constraint_floor_names_its_one_method_and_judges_its_friction() {
+    let o = run(&[
+        "needs",
+        &scene("span-d3-floor"),
+        "--set",
+        "floor.law=\"constraint\"",
+        "--set",
+        "run.method=\"auto\"",
+        "--tol",
+        "0.1",
+        "--links",
+        "25,50,100",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = json(&o);
+    assert_eq!(v["links"], 50);
+    let one = v["one_method"].as_str().unwrap();
+    assert!(one.starts_with("moreau-jean at run.dt = "), "{one}");
+    let term = |name: &str| {
+        v["terms"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["term"] == name)
+            .unwrap()
+            .clone()
+    };
+    assert_eq!(term("floor friction")["needed"], true);
+    assert!(term("penalty floor")["needed"].is_null());
+    assert!(v["fastest"].is_null());
+}
