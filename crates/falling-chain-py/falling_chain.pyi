@@ -311,8 +311,10 @@ def needs(
     ``error``, ``rhs_equiv``, ``wall_seconds``), ``methods``, ``terms`` (per
     optional term: ``on``, ``needed``, ``tip_path``, ``tip_speed_max``) and
     ``ladder`` (converge's report), ``skipped`` (what ``budget``, which
-    holds in every phase, stopped), ``reference_status`` and
-    ``method_runs`` (per method: ``points``, ``ran``, ``budget``). Releases
+    holds in every phase, stopped), ``reference_status``,
+    ``method_runs`` (per method: ``points``, ``ran``, ``budget``) and
+    ``one_method`` (on a constraint floor its one method, moreau-jean at
+    ``run.dt``, with no method study; else None). Releases
     the GIL; Ctrl-C raises KeyboardInterrupt."""
 
 def ensemble(

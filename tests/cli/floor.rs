@@ -1,6 +1,7 @@
 //! The floor through the CLI (issue 36): a floor scene's summary carries
 //! its floor force, a scene without `[floor]` has none, and bad floor
-//! input is one line naming its key.
+//! input is one line naming its key; on the constraint floor, Cayley's
+//! scale read from `simulate --out` and `needs`.
 
 use crate::common::*;
 
@@ -235,4 +236,117 @@ fn view_refuses_a_floor_runs_csv_and_says_to_view_its_scene() {
         "{line}"
     );
     assert!(!page.exists(), "no page is written for a refused run");
+}
+
+/// `needs` on a constraint floor (the U onto a floor, `floor.law =
+/// "constraint"`): its one method is moreau-jean at the scene's step (no
+/// method study: the smooth methods' reference refuses the floor), its
+/// ladder in n and its terms run on the floor, and the floor's friction
+/// is judged like any term (off, the tip's path moves by 0.126 of L at
+/// n = 50, more than --tol 0.1: needed).
+#[test]
+fn needs_on_a_constraint_floor_names_its_one_method_and_judges_its_friction() {
+    let o = run(&[
+        "needs",
+        &scene("span-d3-floor"),
+        "--set",
+        "floor.law=\"constraint\"",
+        "--set",
+        "run.method=\"auto\"",
+        "--tol",
+        "0.1",
+        "--links",
+        "25,50,100",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = json(&o);
+    assert_eq!(v["links"], 50);
+    let one = v["one_method"].as_str().unwrap();
+    assert!(one.starts_with("moreau-jean at run.dt = "), "{one}");
+    let term = |name: &str| {
+        v["terms"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["term"] == name)
+            .unwrap()
+            .clone()
+    };
+    assert_eq!(term("floor friction")["needed"], true);
+    assert!(term("penalty floor")["needed"].is_null());
+    assert!(v["fastest"].is_null());
+}
+
+/// Cayley's scale at n = 160 as a user runs it from the CLI: the scene at
+/// 160 rods (its total mass kept, its ±0.02 rad zigzag given as
+/// `start.angles`) on the constraint floor, `auto`, sampled at every step,
+/// so that each row's `floor_y` is the step's impulse over the step and
+/// a window's force is their mean. Over the 19 windows of 0.05 in
+/// `t = 0.3 .. 1.2` the force over the ideal `3 mu g x` (`x = g t²/2`,
+/// averaged over the window) reads 1 within 1% (measured 1.0023), with a
+/// scatter below three times the ideal sequence's 0.045 (equal rods each
+/// stopped at its free-fall landing time; measured 0.091); a floor column
+/// off by a step (an impulse not divided by its own step, a column from
+/// another sample) or a contact law that is not plastic moves the mean.
+#[test]
+fn cayleys_scale_at_n_160_reads_three_mu_g_x_from_simulates_floor_column() {
+    let n = 160;
+    let dt = 2.5e-3;
+    let dir = scratch("floor-cayley-160");
+    let csv = dir.join("cayley.csv");
+    let angles: Vec<String> = (0..n)
+        .map(|i| {
+            if i % 2 == 0 {
+                "-1.550796326795"
+            } else {
+                "-1.590796326795"
+            }
+            .to_string()
+        })
+        .collect();
+    let sets = [
+        "floor.law=\"constraint\"".to_string(),
+        "run.method=\"auto\"".to_string(),
+        format!("chain.links={n}"),
+        format!("chain.mass={}", 1.0 / n as f64),
+        format!("start.angles=[{}]", angles.join(",")),
+        format!("run.dt={dt}"),
+        format!("run.output_dt={dt}"),
+        "run.t_end=1.25".to_string(),
+    ];
+    let mut args = vec!["simulate".to_string(), scene("cayley-scale")];
+    for s in &sets {
+        args.extend(["--set".to_string(), s.clone()]);
+    }
+    args.extend(["--out".to_string(), csv.to_str().unwrap().to_string()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (ct, cy) = (col("t"), col("floor_y"));
+    let rows: Vec<(f64, f64)> = lines
+        .map(|l| {
+            let c: Vec<&str> = l.split(',').collect();
+            (c[ct].parse().unwrap(), c[cy].parse().unwrap())
+        })
+        .collect();
+    let d = 0.025;
+    let readings: Vec<f64> = (0..19)
+        .map(|j| {
+            let c = 0.3 + 0.05 * j as f64;
+            let impulse: f64 = (rows.iter())
+                .filter(|(t, _)| *t > c - d + 1e-9 && *t <= c + d + 1e-9)
+                .map(|(_, f)| f * dt)
+                .sum();
+            impulse / (2.0 * d) / (1.5 * (c * c + d * d / 3.0))
+        })
+        .collect();
+    let mean = readings.iter().sum::<f64>() / 19.0;
+    let scatter = (readings.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / 18.0).sqrt();
+    assert!((mean - 1.0).abs() < 0.01, "reading {mean}");
+    assert!(scatter < 3.0 * 0.045, "scatter {scatter}");
 }

@@ -137,3 +137,39 @@ pub fn readings_csv(reads: &[Read]) -> String {
     }
     s
 }
+
+/// The windows' force in units of the weight `M g` at the window centre
+/// `c` (units of `sqrt(L / g)`) of half width `d`, for a reading `r`:
+/// `r` times the ideal's window mean, `3 mu g (g/2)(t² + d²/3)` over
+/// `M g`, that is `1.5 (c² + d²/3)`.
+pub fn ideal_over_weight(c: f64) -> f64 {
+    let d = SCALE_HALF_WINDOW;
+    1.5 * (c * c + d * d / 3.0)
+}
+
+/// One row per run and window: the run's case, the window's centre `t`
+/// (units of `sqrt(L / g)`), its reading (the floor's force averaged over
+/// the window over the ideal's), that force over the weight `M g`, and the
+/// ideal's `3 mu g x` averaged over the window over `M g`.
+pub fn windows_csv(reads: &[Read]) -> String {
+    let mut s =
+        String::from("links,law,method,accuracy,t,reading,force_over_weight,ideal_over_weight\n");
+    for r in reads {
+        for &(c, reading) in &r.reading.windows {
+            let ideal = ideal_over_weight(c);
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{},{}",
+                r.single.links,
+                r.single.law,
+                r.single.method,
+                exp(r.single.accuracy),
+                num(c),
+                num(reading),
+                num(reading * ideal),
+                num(ideal)
+            );
+        }
+    }
+    s
+}

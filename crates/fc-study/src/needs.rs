@@ -341,6 +341,10 @@ pub struct Needs {
     pub reference_status: Option<String>,
     /// What each method's line ran (empty when no method ran).
     pub method_runs: Vec<MethodRuns>,
+    /// On a constraint floor, its one method and step (`moreau-jean at
+    /// run.dt = ...`): no method is chosen and no reference runs (the
+    /// smooth methods do not integrate it); `None` otherwise.
+    pub one_method: Option<String>,
 }
 
 /// What one method's line ran at `links`: its points, how many ran (to
@@ -370,7 +374,7 @@ impl Needs {
     /// "no method reaches" only when methods ran and missed.
     pub fn no_method(&self) -> Option<String> {
         let n = self.links?;
-        if self.fastest.is_some() {
+        if self.fastest.is_some() || self.one_method.is_some() {
             return None;
         }
         let tol = self.tol;
@@ -464,16 +468,26 @@ pub fn check_bounds(scene: &Scene, links: &[usize], methods: &[Method]) -> Resul
     let Some(&n) = sorted.len().checked_sub(2).and_then(|k| sorted.get(k)) else {
         return Ok(());
     };
-    let mut p = converge::refined_scene(scene, n)?.prepare()?;
+    let refined = converge::refined_scene(scene, n)?;
+    let mut p = refined.prepare()?;
     p.options.output_dt = None;
     let t_eval = p.options.t_end;
-    precision::check_bounds(&p, t_eval, Checks::default(), methods)?;
+    // A constraint floor runs no method study (its one method, `run`).
+    if !on_constraint_floor(&refined) {
+        precision::check_bounds(&p, t_eval, Checks::default(), methods)?;
+    }
     for term in terms().iter().filter(|t| t.is_on(scene)) {
         let off = converge::refined_scene(&term.off(scene)?, n)?
             .with_value("run.method", toml::Value::String(LADDER_METHOD.into()))?;
         off.prepare()?;
     }
     Ok(())
+}
+
+/// Whether `scene` stands on a constraint floor (`floor.law =
+/// "constraint"`): its one method is moreau-jean at its step.
+fn on_constraint_floor(scene: &Scene) -> bool {
+    (scene.chain_params().floor.as_ref()).is_some_and(|f| f.law == chain_ode::FloorLaw::Constraint)
 }
 
 /// The options of [`run`].
@@ -550,6 +564,7 @@ pub fn run(
         skipped: skipped_levels,
         reference_status: None,
         method_runs: vec![],
+        one_method: None,
     };
     let Some(n) = links else {
         return Ok(needs);
@@ -560,13 +575,26 @@ pub fn run(
         .build()
         .map_err(|e| Error::field("--jobs", e))?;
 
+    // A constraint floor has one method, moreau-jean at the scene's step:
+    // nothing to choose, and the smooth methods' reference refuses it.
+    let constraint = on_constraint_floor(&refined);
+    if constraint {
+        needs.one_method = Some(format!(
+            "moreau-jean at run.dt = {:e}, the one method of a constraint floor",
+            refined.prepare()?.options.dt
+        ));
+    }
     // The method, at n.
     let mut prepared = refined.prepare()?;
     prepared.options.output_dt = None;
     let t_eval = prepared.options.t_end;
     // The reference and its checks stop at the budget's deadline too.
     prepared.options.cancel = Some(budget.cancel().clone());
-    let (reference, ref_rows) = precision::reference(&prepared, t_eval, Checks::default())?;
+    let (reference, ref_rows) = if constraint {
+        (None, vec![])
+    } else {
+        precision::reference(&prepared, t_eval, Checks::default())?
+    };
     prepared.options.cancel = None;
     needs.reference_status = ref_rows.first().map(|r| r.status.clone());
     if reference.is_none() && ref_rows.iter().any(|r| interrupted(&r.status)) {
@@ -735,6 +763,11 @@ impl std::fmt::Display for Needs {
             }
         };
         match self.reference_status.as_deref() {
+            _ if self.one_method.is_some() => writeln!(
+                f,
+                "  method at n = {n}: {}",
+                self.one_method.as_deref().unwrap_or_default()
+            )?,
             Some("ok") => writeln!(
                 f,
                 "  methods at n = {n}: error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|); \
@@ -785,6 +818,7 @@ impl std::fmt::Display for Needs {
                 b.param,
                 b.rhs_equiv
             )?,
+            _ if self.one_method.is_some() => {}
             _ => writeln!(f, "  {}", self.no_method().unwrap_or_default())?,
         }
         write!(f, "  terms:")?;

@@ -9,6 +9,7 @@
 //! `--timings`; untimed runs run in parallel on [`crate::ctx::Ctx::pool`].
 //!
 //! Its files:
+//! * `cayley_floors.rs`: `cayley-floors`: Cayley's scale at n = 160 as single runs on both floor laws (`scenes/cayley-scale.toml` at 160 rods), read over 19 windows beside the ideal `3 mu g x` ...
 //! * `cayley_scale.rs`: `cayley-scale` and `cayley-top`: Cayley's scale as an ensemble (`scenes/cayley-scale.toml`, a chain hanging straight down onto a floor, let go at the top) ...
 //! * `elastic_layout_order.rs`: `elastic-layout-order`: the elastic chain's axial frequencies and self-weight stretch against the continuum rope's as `n` grows (`fc_paper_figures::layout_order`; `docs/model.md` ...
 //! * `elastic_rigid_limit.rs`: `elastic-rigid-limit`: "when can I use the rigid model".
@@ -32,6 +33,7 @@
 //! * `validation_modes.rs`: `normal-modes`: the lowest five frequencies of the linearised hanging chain of n rods against the continuum's `omega_k = (j_{0,k}/2) sqrt(g/L)` ...
 //! * `whip_taper.rs`: `whip-taper`: the tapered whip (`scenes/tapered-whip.toml`, span d = 3 released) with its mass per length tapered, base to tip.
 
+pub mod cayley_floors;
 pub mod cayley_scale;
 pub mod elastic_layout_order;
 pub mod elastic_rigid_limit;

@@ -2,7 +2,9 @@
 //! (`crate::floor_u`: the chain at a few times over the floor's line, and
 //! the released end's speed with and without the floor) and the floor's
 //! closed forms (`crate::floor_checks`: one rod's impact against the
-//! contact stiffness, a chain on a slope against the friction angle).
+//! contact stiffness, a chain on a slope against the friction angle) and
+//! Cayley's scale on both floor laws (`crate::cayley_single`: the
+//! windows' force against time beside the ideal `3 mu g x`).
 
 use std::path::Path;
 
@@ -167,4 +169,85 @@ pub fn floor_checks(read: Reader, stem: &Path) -> Result<Output, String> {
     );
     figures::line_plot_pair(&left, &right, "The floor against its closed forms", stem)
         .map_err(|e| e.to_string())
+}
+
+/// Cayley's scale at one `n` on both floors (`crate::cayley_single`):
+/// left, the floor's force over the weight averaged over each window
+/// against time, each law's run beside the ideal `3 mu g x`; right, the
+/// same windows as readings (force over the ideal's), with each run's
+/// mean and scatter in the legend.
+pub fn cayley_floors(read: Reader, stem: &Path) -> Result<Output, String> {
+    let w = read("")?;
+    let sum = read("-summary")?;
+    let (law, t, reading, force) = (
+        w.strs("law")?,
+        w.nums("t")?,
+        w.nums("reading")?,
+        w.nums("force_over_weight")?,
+    );
+    let (s_law, s_method, s_acc, s_mean, s_scatter, s_links) = (
+        sum.strs("law")?,
+        sum.strs("method")?,
+        sum.strs("accuracy")?,
+        sum.nums("reading")?,
+        sum.nums("scatter")?,
+        sum.nums("links")?,
+    );
+    let links = s_links.first().copied().unwrap_or(0.0);
+    let mut left = LinePlot::new(
+        "the floor's force averaged over windows of 0.05",
+        "t (units of sqrt(L/g))",
+        "force / (M g)",
+    );
+    let mut right = LinePlot::new(
+        "the reading: force over the ideal's, per window",
+        "t (units of sqrt(L/g))",
+        "force / (3 mu g x)",
+    );
+    let markers = [Marker::Circle, Marker::Square];
+    for (i, ((l, m), a)) in s_law.iter().zip(&s_method).zip(&s_acc).enumerate() {
+        let rows: Vec<usize> = (0..w.len()).filter(|&j| &law[j] == l).collect();
+        let step = if *m == "moreau-jean" { "dt" } else { "rtol" };
+        let name = format!("{l} floor ({m}, {step} {a})");
+        left.series.push(
+            Series::new(
+                name.clone(),
+                rows.iter().map(|&j| (t[j], force[j])).collect(),
+                Style::LinePoints,
+            )
+            .with_color(palette(i))
+            .with_marker(markers[i % markers.len()]),
+        );
+        right.series.push(
+            Series::new(
+                format!("{name}: {:.3} +- {:.3}", s_mean[i], s_scatter[i]),
+                rows.iter().map(|&j| (t[j], reading[j])).collect(),
+                Style::LinePoints,
+            )
+            .with_color(palette(i))
+            .with_marker(markers[i % markers.len()]),
+        );
+    }
+    let (t0, t1) = (0.275, 1.225);
+    let ideal: Vec<(f64, f64)> = (0..=100)
+        .map(|k| {
+            let s = t0 + (t1 - t0) * k as f64 / 100.0;
+            (s, 1.5 * s * s)
+        })
+        .collect();
+    left.series.push(
+        Series::new("ideal 3 mu g x, x = g t^2 / 2", ideal, Style::Dashed).with_color(palette(7)),
+    );
+    right.series.push(
+        Series::new("ideal", vec![(t0, 1.0), (t1, 1.0)], Style::Dashed).with_color(palette(7)),
+    );
+    figures::line_plot_pair(
+        &left,
+        &right,
+        &format!(
+            "Cayley's scale, n = {links}: the constraint floor, the penalty floor and the ideal"
+        ),
+        stem,
+    )
+    .map_err(|e| e.to_string())
 }
