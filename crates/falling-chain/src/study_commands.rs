@@ -150,6 +150,12 @@ pub struct EnsembleArgs {
     /// landed_length) its _mean, _sem, _sd, _min and _max over them.
     #[arg(long = "out-series", value_name = "FILE.csv")]
     out_series: Option<PathBuf>,
+    /// Also the statistics of these measures, M1,M2,...: tip (the
+    /// default: the quantities above), tip_speed_max, pivot_force_max,
+    /// tension_max, floor_force_max, floor_reading, dissipated; the
+    /// pivot's force and the tensions are tracked only when measured.
+    #[arg(long, value_name = "M1,M2,...")]
+    measure: Option<String>,
     /// Stop after this many seconds of wall time, in (0, 2592000] (30
     /// days): members that cannot start within it are not run, runs still
     /// going are stopped, and all are listed.
@@ -394,6 +400,7 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
         .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = stability::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
+        measures: Measures::parse_for("--measure", a.measure.as_deref(), &scene.prepare()?)?,
         vary: args.vary.as_deref().map(Vary::parse).transpose()?,
         budget: budget_of("--budget", a.budget)?,
         shard: a.shard.as_deref().map(Shard::parse).transpose()?,
@@ -471,11 +478,12 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
 }
 
 pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
-    let options = ensemble::EnsembleOptions {
+    let mut options = ensemble::EnsembleOptions {
         members: args.members,
         spread: args.spread,
         seed: args.seed,
         jobs: args.jobs.threads()?,
+        measures: Measures::TIP,
     };
     options.validate()?;
     let budget = budget_of("--budget", args.budget)?;
@@ -486,6 +494,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         ("--out", args.out.as_deref()),
         ("--out-series", args.out_series.as_deref()),
     ])?;
+    options.measures = Measures::parse_for("--measure", args.measure.as_deref(), &scene.prepare()?)?;
     let series_out = series_output(args, &scene, &options)?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);

@@ -240,6 +240,9 @@ pub struct Report {
     /// method kept detecting stiffness ([`fc_scene::summary::stiffness_hint_for`]).
     #[serde(skip)]
     pub stiffness_hint: Option<String>,
+    /// What the levels must agree on (`--measure`'s names; `tip` by
+    /// default).
+    pub measure: String,
 }
 
 /// One row of [`Report`].
@@ -491,6 +494,7 @@ pub fn report(scene: &Scene, levels: &[Level], tol: f64) -> Result<Report, Error
         bending_viscosity: bending_viscosity(&base),
         reference_links: reference.links(),
         adequate_links: adequate,
+        measure: reference.measures.names(),
         stiffness_hint: fc_scene::summary::stiffness_hint_for(levels.iter().map(|l| &l.summary)),
         levels: levels
             .iter()
@@ -560,6 +564,9 @@ impl std::fmt::Display for Report {
                 l.deviation.tip_path,
                 l.wall_seconds
             )?;
+            if let Some(d) = l.deviation.measured {
+                writeln!(f, "          d({}) = {d:.3e}", self.measure)?;
+            }
         }
         writeln!(
             f,
@@ -571,7 +578,12 @@ impl std::fmt::Display for Report {
         match self.adequate_links {
             Some(n) => write!(
                 f,
-                "smallest adequate n = {n} (d(vmax) and d(tip_end) < {} from n = {n} on)",
+                "smallest adequate n = {n} (d(vmax) and d(tip_end){} < {} from n = {n} on)",
+                if self.measure == "tip" {
+                    String::new()
+                } else {
+                    format!(" and d({})", self.measure)
+                },
                 self.tol
             ),
             None if !self.all_ok() => write!(f, "no answer: a run failed (see its status)"),
