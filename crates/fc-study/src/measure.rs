@@ -344,7 +344,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("'speed' is no measure"), "{e}");
-        let floored = chain("[floor]\nheight = -3.2\n");
+        let floored = chain("[floor]\nheight = -3.2\nlaw = \"penalty\"\n");
         assert!(Measures::parse("--measure", Some("floor_force_max,floor_reading"), &floored).is_ok());
     }
 }
