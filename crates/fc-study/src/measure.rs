@@ -197,7 +197,7 @@ impl Measures {
                 .into_iter()
                 .find(|m| m.name() == name)
                 .ok_or_else(|| refuse(format!("'{}' is no measure", echo(name))))?;
-            if false && !m.available(chain) {
+            if !m.available(chain) {
                 return Err(refuse(format!("this scene has no {}", m.name())));
             }
             list.push(m);
