@@ -634,11 +634,25 @@ fn a_bad_measure_is_refused_by_every_study() {
     let sc = scene("span-d3");
     let o_ = out.to_str().unwrap();
     let cases: Vec<Vec<&str>> = vec![
-        vec!["precision", &sc, "--measure", "floor_force_max", "--out", o_],
+        vec![
+            "precision",
+            &sc,
+            "--measure",
+            "floor_force_max",
+            "--out",
+            o_,
+        ],
         vec!["stability", &sc, "--measure", "floor_reading", "--out", o_],
         vec!["needs", &sc, "--tol", "1e-3", "--measure", "speed"],
         vec!["ensemble", &sc, "--measure", "", "--out", o_],
-        vec!["converge", &sc, "--tol", "1e-3", "--measure", "floor_force_max"],
+        vec![
+            "converge",
+            &sc,
+            "--tol",
+            "1e-3",
+            "--measure",
+            "floor_force_max",
+        ],
     ];
     for args in cases {
         let o = run(&args);

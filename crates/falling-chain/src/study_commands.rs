@@ -494,7 +494,8 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         ("--out", args.out.as_deref()),
         ("--out-series", args.out_series.as_deref()),
     ])?;
-    options.measures = Measures::parse_for("--measure", args.measure.as_deref(), &scene.prepare()?)?;
+    options.measures =
+        Measures::parse_for("--measure", args.measure.as_deref(), &scene.prepare()?)?;
     let series_out = series_output(args, &scene, &options)?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);

@@ -195,7 +195,10 @@ impl Deviation {
                 others
                     .iter()
                     .map(|&m| reference.values.error(&level.values, m))
-                    .fold(0.0, |a: f64, e| if e.is_nan() { f64::NAN } else { a.max(e) })
+                    .fold(
+                        0.0,
+                        |a: f64, e| if e.is_nan() { f64::NAN } else { a.max(e) },
+                    )
             }),
         }
     }
@@ -355,7 +358,16 @@ pub fn run(
     jobs: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, Error> {
-    run_measured(scene, links, tol, method, rtol, jobs, progress, Measures::TIP)
+    run_measured(
+        scene,
+        links,
+        tol,
+        method,
+        rtol,
+        jobs,
+        progress,
+        Measures::TIP,
+    )
 }
 
 /// [`run`] measuring `measures` (`--measure`): a level is adequate when its
@@ -373,8 +385,7 @@ pub fn run_measured(
     measures: Measures,
 ) -> Result<Report, Error> {
     check_tol(tol)?;
-    let levels =
-        run_levels_measured(scene, links, method, rtol, jobs, progress, None, measures)?;
+    let levels = run_levels_measured(scene, links, method, rtol, jobs, progress, None, measures)?;
     report(scene, &levels, tol)
 }
 
@@ -404,7 +415,16 @@ pub fn run_levels_until(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: Option<&chain_ode::Cancel>,
 ) -> Result<Vec<Level>, Error> {
-    run_levels_measured(scene, links, method, rtol, jobs, progress, cancel, Measures::TIP)
+    run_levels_measured(
+        scene,
+        links,
+        method,
+        rtol,
+        jobs,
+        progress,
+        cancel,
+        Measures::TIP,
+    )
 }
 
 /// [`run_levels_until`] measuring `measures`.

@@ -16,9 +16,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
+use crate::measure::{Measure, Measures, Values};
 use fc_batch::budget::Budget;
 use fc_csv::format::{exp, num};
-use crate::measure::{Measure, Measures, Values};
 use fc_scene::error::Error;
 use fc_scene::scene::{Prepared, Scene};
 use fc_scene::summary::RunSummary;
@@ -395,8 +395,7 @@ fn run_members(
             })
             .collect::<Result<Vec<_>, Error>>()
     })?;
-    let ok: Vec<&(RunSummary, Values)> =
-        members.iter().flatten().filter(|m| m.0.is_ok()).collect();
+    let ok: Vec<&(RunSummary, Values)> = members.iter().flatten().filter(|m| m.0.is_ok()).collect();
     let mut stats: Vec<Stat> = QUANTITIES
         .iter()
         .filter_map(|&q| {
@@ -408,7 +407,11 @@ fn run_members(
         if m == Measure::Tip || QUANTITIES.contains(&m.name()) {
             continue;
         }
-        let xs: Vec<f64> = ok.iter().map(|v| v.1.get(m)).filter(|x| x.is_finite()).collect();
+        let xs: Vec<f64> = ok
+            .iter()
+            .map(|v| v.1.get(m))
+            .filter(|x| x.is_finite())
+            .collect();
         stats.extend(Stat::of(m.name(), &xs));
     }
     let members = members.into_iter().map(|m| m.map(|m| m.0)).collect();

@@ -334,7 +334,10 @@ mod tests {
         let e = Measures::parse("--measure", Some("floor_force_max"), &c)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("--measure") && e.contains("no floor_force_max"), "{e}");
+        assert!(
+            e.contains("--measure") && e.contains("no floor_force_max"),
+            "{e}"
+        );
         assert!(
             e.contains("tip, tip_speed_max, pivot_force_max, tension_max, dissipated"),
             "{e}"
@@ -345,6 +348,8 @@ mod tests {
             .to_string();
         assert!(e.contains("'speed' is no measure"), "{e}");
         let floored = chain("[floor]\nheight = -3.2\nlaw = \"penalty\"\n");
-        assert!(Measures::parse("--measure", Some("floor_force_max,floor_reading"), &floored).is_ok());
+        assert!(
+            Measures::parse("--measure", Some("floor_force_max,floor_reading"), &floored).is_ok()
+        );
     }
 }

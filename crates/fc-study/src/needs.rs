@@ -464,12 +464,7 @@ pub fn judge_elastic(
         need.wall_seconds = started.elapsed().as_secs_f64();
         return Ok(Some(need));
     };
-    let others = || {
-        measures
-            .list()
-            .into_iter()
-            .filter(|&m| m != Measure::Tip)
-    };
+    let others = || measures.list().into_iter().filter(|&m| m != Measure::Tip);
     need.values = others()
         .map(|m| (m.name().to_string(), reference.values.get(m)))
         .collect();
@@ -1337,7 +1332,9 @@ mod tests {
     /// rigid chain's and DOPRI5 and DOP853 at rtol 1e-6 differ by 1e-4).
     fn folded_rope(ea: f64) -> Scene {
         let eta = 0.0707 * (ea * 0.02 * 0.6_f64).sqrt();
-        folded(&format!("axial_stiffness = {ea:e}\naxial_damping = {eta:e}"))
+        folded(&format!(
+            "axial_stiffness = {ea:e}\naxial_damping = {eta:e}"
+        ))
     }
 
     /// The peak pivot force's tolerance question, judged against physics:
@@ -1418,8 +1415,8 @@ mod tests {
                 rtol: precision::STIFF_REF_RTOL
             }
         );
-        let (reference, rows) = precision::reference_phases(&p, 1.0, Checks::default(), &|_, _| {})
-            .unwrap();
+        let (reference, rows) =
+            precision::reference_phases(&p, 1.0, Checks::default(), &|_, _| {}).unwrap();
         let reference = reference.unwrap();
         assert_eq!(rows[1].method, "check-dop853");
         assert!(precision::agreement(&rows).0 < 1e-6, "{rows:?}");

@@ -334,7 +334,11 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
     let extra: Vec<Measure> = if measures.is_tip() {
         vec![]
     } else {
-        measures.list().into_iter().filter(|&m| m != Measure::Tip).collect()
+        measures
+            .list()
+            .into_iter()
+            .filter(|&m| m != Measure::Tip)
+            .collect()
     };
     for m in &extra {
         csv.push(',');
@@ -788,8 +792,7 @@ pub fn run_study(
         .map_err(|e| Error::field("--jobs", e))?;
     let limited = options.budget.is_some() || outer.is_some();
     let cells = Budget::run(options.budget, outer, |b| {
-        let cells =
-            pool.install(|| {
+        let cells = pool.install(|| {
             study(
                 &rows,
                 methods,

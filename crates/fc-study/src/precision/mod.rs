@@ -258,7 +258,11 @@ pub fn study_of<S: Subject>(
     // tighter points would measure the reference, and on stiff links
     // they are the costliest).
     let level = std::sync::Mutex::new(f64::NAN);
-    let resolved = || *level.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let resolved = || {
+        *level
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    };
     // The floor rule needs the coarser points of RK4's line: a
     // shard runs those it does not own to decide it (`run_lines`).
     let stop = |pt: &Point| rk4_floor(pt) || (stiff && pt.err() < resolved());
@@ -271,15 +275,17 @@ pub fn study_of<S: Subject>(
     let (reference, mut rows) = Budget::run(options.budget, outer, |b| {
         let mut p = p.clone();
         p.options_mut().cancel = Some(b.cancel().clone());
-        let (reference, mut rows) = reference_planned(&p, t_eval, options.checks, ref_plan, &|_, _| {})?;
+        let (reference, mut rows) =
+            reference_planned(&p, t_eval, options.checks, ref_plan, &|_, _| {})?;
         if b.interrupted() {
             return Err(Error::Interrupted);
         }
         if stiff {
             let a = agreement(&rows).0;
             if a.is_finite() {
-                *level.lock().unwrap_or_else(std::sync::PoisonError::into_inner) =
-                    (10.0 * a).max(ERR_FLOOR);
+                *level
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner) = (10.0 * a).max(ERR_FLOOR);
             }
         }
         if let Some(r) = &reference {

@@ -79,7 +79,9 @@ impl ReferencePlan {
     pub fn reference(self) -> (&'static str, Method, f64, f64) {
         match self {
             Self::Explicit => ("reference-dopri5", Method::Dopri5, REF_RTOL, REF_ATOL),
-            Self::StiffExplicit { rtol } => ("reference-dopri5", Method::Dopri5, rtol, rtol / 100.0),
+            Self::StiffExplicit { rtol } => {
+                ("reference-dopri5", Method::Dopri5, rtol, rtol / 100.0)
+            }
             Self::Implicit { rtol } => ("reference-bdf", Method::Bdf, rtol, rtol / 100.0),
         }
     }
@@ -89,7 +91,9 @@ impl ReferencePlan {
     pub fn check(self) -> Option<(&'static str, Method, f64, f64)> {
         match self {
             Self::Explicit => None,
-            Self::StiffExplicit { rtol } => Some(("check-dop853", Method::Dop853, rtol, rtol / 100.0)),
+            Self::StiffExplicit { rtol } => {
+                Some(("check-dop853", Method::Dop853, rtol, rtol / 100.0))
+            }
             Self::Implicit { rtol } => {
                 Some(("check-bdf-tighter", Method::Bdf, rtol / 10.0, rtol / 1000.0))
             }
