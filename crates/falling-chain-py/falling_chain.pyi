@@ -264,6 +264,7 @@ def precision(
     budget: Optional[float] = None,
     shard: Optional[Union[str, Tuple[int, int]]] = None,
     jobs: Optional[int] = None,
+    measure: Union[str, Sequence[str], None] = None,
 ) -> Dict[str, np.ndarray]:
     """The work-precision table of ``scene`` (the columns of ``falling-chain
     precision --out``): the DOPRI5 reference (rtol 1e-13) and its RK4 and BDF
@@ -287,6 +288,7 @@ def stability(
     budget: Optional[float] = None,
     shard: Optional[Union[str, Tuple[int, int]]] = None,
     jobs: Optional[int] = None,
+    measure: Union[str, Sequence[str], None] = None,
 ) -> Dict[str, np.ndarray]:
     """Where each method fails on ``scene`` (the columns of ``falling-chain
     stability --out``): every method (or ``methods``) at every step or
@@ -303,6 +305,7 @@ def needs(
     methods: Optional[Union[str, Sequence[str]]] = None,
     budget: Optional[float] = None,
     jobs: Optional[int] = None,
+    measure: Union[str, Sequence[str], None] = None,
 ) -> Dict[str, Any]:
     """What ``scene`` needs at ``tol`` (``falling-chain needs --json``):
     ``links`` (the smallest n whose tip path, tip end and maximum tip speed
@@ -325,6 +328,7 @@ def ensemble(
     seed: int = 0,
     budget: Optional[float] = None,
     jobs: Optional[int] = None,
+    measure: Union[str, Sequence[str], None] = None,
 ) -> Dict[str, Any]:
     """``scene`` run from ``members`` starts whose rod angles are each moved
     by a number drawn uniformly from ``[-spread, spread]`` rad (``seed``

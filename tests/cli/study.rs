@@ -575,3 +575,95 @@ fn precision_in_three_shards_merges_to_the_unsharded_table_floor_included() {
         whole
     );
 }
+
+/// `--measure tip` is the default, byte for byte: the same table (but the
+/// wall times) and the same lines (but the timed ones) as no `--measure`.
+#[test]
+fn measure_tip_is_the_default() {
+    let dir = scratch("measure-tip");
+    let sc = scene("span-d3");
+    let go = |extra: &[&str], out: &std::path::Path| {
+        let mut args = vec![
+            "precision",
+            sc.as_str(),
+            "--set",
+            "chain.links=6",
+            "--set",
+            "run.t_end=1.0",
+            "--quiet",
+            "--methods",
+            "dopri5,bdf",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let table: Vec<String> = fs::read_to_string(out)
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c.remove(20); // wall_seconds
+                c.join(",")
+            })
+            .collect();
+        let text = String::from_utf8(o.stdout).unwrap();
+        let lines: Vec<String> = text.lines().take(2).map(str::to_string).collect();
+        (table, lines)
+    };
+    let plain = go(&[], &dir.join("a.csv"));
+    let tip = go(&["--measure", "tip"], &dir.join("b.csv"));
+    assert_eq!(plain, tip);
+    // A force measured: its error and reference value are the last columns.
+    let force = go(&["--measure", "pivot_force_max,tip"], &dir.join("c.csv"));
+    assert!(
+        force.0[0].ends_with(",err_tip,err_pivot_force_max,pivot_force_max_ref"),
+        "{}",
+        force.0[0]
+    );
+}
+
+/// A measure the scene cannot have, or no measure at all, is refused by
+/// every study with one line naming `--measure` and this scene's accepted
+/// values, exit 2, and no output file.
+#[test]
+fn a_bad_measure_is_refused_by_every_study() {
+    let dir = scratch("measure-bad");
+    let out = dir.join("x.csv");
+    let sc = scene("span-d3");
+    let o_ = out.to_str().unwrap();
+    let cases: Vec<Vec<&str>> = vec![
+        vec![
+            "precision",
+            &sc,
+            "--measure",
+            "floor_force_max",
+            "--out",
+            o_,
+        ],
+        vec!["stability", &sc, "--measure", "floor_reading", "--out", o_],
+        vec!["needs", &sc, "--tol", "1e-3", "--measure", "speed"],
+        vec!["ensemble", &sc, "--measure", "", "--out", o_],
+        vec![
+            "converge",
+            &sc,
+            "--tol",
+            "1e-3",
+            "--measure",
+            "floor_force_max",
+        ],
+    ];
+    for args in cases {
+        let o = run(&args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {e}");
+        assert_eq!(e.trim().lines().count(), 1, "{args:?}: {e}");
+        assert!(e.contains("--measure"), "{args:?}: {e}");
+        assert!(
+            e.contains("tip, tip_speed_max, pivot_force_max, tension_max, dissipated"),
+            "{args:?}: {e}"
+        );
+        assert!(!out.exists(), "{args:?}");
+    }
+}

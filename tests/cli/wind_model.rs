@@ -486,6 +486,7 @@ fn the_wind_model_gets_a_precision_table() {
         budget: None,
         shard: None,
         jobs: 2,
+        measures: fc_study::measure::Measures::TIP,
     };
     let provenance = Provenance {
         runs: precision::ladder(&options.methods).len(),

@@ -44,6 +44,7 @@ pub fn ensemble_series<'py>(
         spread,
         seed,
         jobs: jobs_of(jobs, members)?,
+        measures: fc_study::measure::Measures::TIP,
     };
     options.validate().map_err(value_error)?;
     let budget = budget

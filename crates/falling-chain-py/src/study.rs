@@ -55,6 +55,33 @@ fn table<'py>(
 }
 
 /// `methods=`: `None`, `"rk4,dop853"` or a sequence of names.
+/// `measure=`: a str `"tip,pivot_force_max"` or a list of names, checked
+/// against `scene` ([`Measures::parse`]: bad names and measures the scene
+/// cannot have raise ValueError naming `measure`).
+fn measures_of(
+    measure: Option<&Bound<'_, PyAny>>,
+    scene: &fc_scene::Scene,
+) -> PyResult<::fc_study::measure::Measures> {
+    let text = match measure {
+        None => None,
+        Some(m) if m.cast::<PyString>().is_ok() => Some(m.str()?.to_string()),
+        Some(m) => {
+            let names: Vec<String> = m
+                .try_iter()
+                .and_then(|it| it.take(64).map(|x| x?.extract::<String>()).collect())
+                .map_err(|_| {
+                    PyTypeError::new_err(format!(
+                        "measure: expected a str \"tip,pivot_force_max\" or a list of names (got {})",
+                        echo(m)
+                    ))
+                })?;
+            Some(names.join(","))
+        }
+    };
+    let p = scene.prepare().map_err(value_error)?;
+    ::fc_study::measure::Measures::parse_for("measure", text.as_deref(), &p).map_err(value_error)
+}
+
 fn methods_of(methods: Option<&Bound<'_, PyAny>>) -> PyResult<Option<String>> {
     let Some(m) = methods else {
         return Ok(None);
@@ -89,10 +116,14 @@ fn budget_of(budget: Option<f64>) -> PyResult<Option<f64>> {
 /// the RK4 check; `budget` (seconds) holds in every phase, the reference
 /// and its checks too, and skips or stops what is past it (`budget: ...`
 /// in the `note`); `shard` ("I/N" or (I, N)) runs only its points (join with
-/// `merge`); `jobs` threads (1 to 256). Releases the GIL; Ctrl-C raises
+/// `merge`); `jobs` threads (1 to 256). `measure` (`--measure`: a str
+/// "tip,pivot_force_max" or a list; default "tip") sets what the errors
+/// measure: then each measure's `err_<name>` and `<name>_ref` are the last
+/// columns, and a stiff scene's reference is DOPRI5 checked by DOP853.
+/// Releases the GIL; Ctrl-C raises
 /// KeyboardInterrupt. Bad input raises ValueError naming the argument.
 #[pyfunction]
-#[pyo3(signature = (scene, *, methods=None, check_dt=None, richardson=false, budget=None, shard=None, jobs=None))]
+#[pyo3(signature = (scene, *, methods=None, check_dt=None, richardson=false, budget=None, shard=None, jobs=None, measure=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn precision<'py>(
     py: Python<'py>,
@@ -103,6 +134,7 @@ pub fn precision<'py>(
     budget: Option<f64>,
     shard: Option<&Bound<'_, PyAny>>,
     jobs: Option<&Bound<'_, PyAny>>,
+    measure: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
     let t_end = scene.options().map_err(value_error)?.t_end;
@@ -122,6 +154,7 @@ pub fn precision<'py>(
         budget: budget_of(budget)?,
         shard: shard_of(shard)?,
         jobs: jobs_of(jobs, usize::MAX)?,
+        measures: measures_of(measure, &scene)?,
     };
     scene.prepare().map_err(value_error)?;
     let s = run_interruptible(py, |cancel| {
@@ -144,7 +177,8 @@ pub fn precision<'py>(
 /// `budget`, `shard` and `jobs` as in `precision`. Releases the GIL;
 /// Ctrl-C raises KeyboardInterrupt. Bad input raises ValueError.
 #[pyfunction]
-#[pyo3(signature = (scene, *, methods=None, vary=None, budget=None, shard=None, jobs=None))]
+#[pyo3(signature = (scene, *, methods=None, vary=None, budget=None, shard=None, jobs=None, measure=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn stability<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
@@ -153,6 +187,7 @@ pub fn stability<'py>(
     budget: Option<f64>,
     shard: Option<&Bound<'_, PyAny>>,
     jobs: Option<&Bound<'_, PyAny>>,
+    measure: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
     let methods = methods_of(methods)?;
@@ -174,6 +209,7 @@ pub fn stability<'py>(
     };
     let options = core_stability::Options {
         methods: study::parse_methods("methods", methods.as_deref()).map_err(value_error)?,
+        measures: measures_of(measure, &scene)?,
         vary,
         budget: budget_of(budget)?,
         shard: shard_of(shard)?,
@@ -202,7 +238,8 @@ pub fn stability<'py>(
 /// the terms) and `jobs` as in `precision`.
 /// Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scene, tol, *, links=None, methods=None, budget=None, jobs=None))]
+#[pyo3(signature = (scene, tol, *, links=None, methods=None, budget=None, jobs=None, measure=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn needs<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
@@ -211,6 +248,7 @@ pub fn needs<'py>(
     methods: Option<&Bound<'_, PyAny>>,
     budget: Option<f64>,
     jobs: Option<&Bound<'_, PyAny>>,
+    measure: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
     core_needs::check_tol("--tol", tol).map_err(value_error)?;
@@ -255,6 +293,7 @@ pub fn needs<'py>(
         links,
         methods,
         jobs: jobs_of(jobs, usize::MAX)?,
+        measures: measures_of(measure, &scene)?,
     };
     let budget = budget_of(budget)?;
     let answer = run_interruptible(py, |cancel| {
@@ -275,7 +314,8 @@ pub fn needs<'py>(
 /// [0, 0.1]; `budget` and `jobs` as in
 /// `precision`. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scene, *, members=None, spread=1e-3, seed=None, budget=None, jobs=None))]
+#[pyo3(signature = (scene, *, members=None, spread=1e-3, seed=None, budget=None, jobs=None, measure=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn ensemble<'py>(
     py: Python<'py>,
     scene: &Bound<'_, PyScene>,
@@ -284,6 +324,7 @@ pub fn ensemble<'py>(
     seed: Option<&Bound<'_, PyAny>>,
     budget: Option<f64>,
     jobs: Option<&Bound<'_, PyAny>>,
+    measure: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.get().inner.clone();
     let (members, seed) = members_and_seed(members, seed)?;
@@ -292,6 +333,7 @@ pub fn ensemble<'py>(
         spread,
         seed,
         jobs: jobs_of(jobs, members)?,
+        measures: measures_of(measure, &scene)?,
     };
     options.validate().map_err(value_error)?;
     let budget = budget_of(budget)?;

@@ -55,6 +55,18 @@ def test_precision_is_the_cli_table(tmp_path):
     assert got["steps"].dtype == np.int64 and got["err_tip"].dtype == np.float64
 
 
+def test_precision_measure_is_the_cli_table(tmp_path):
+    header, rows = cli_table(
+        tmp_path, "precision", "--methods", "dopri5", "--measure", "pivot_force_max,tip"
+    )
+    got = fc.precision(small(), methods="dopri5", measure=["pivot_force_max", "tip"])
+    assert_table(got, header, rows)
+    assert "err_pivot_force_max" in got and "pivot_force_max_ref" in got
+    with pytest.raises(ValueError) as e:
+        fc.precision(small(), measure="floor_force_max")
+    assert "measure" in str(e.value) and "pivot_force_max" in str(e.value)
+
+
 def test_stability_is_the_cli_table(tmp_path):
     header, rows = cli_table(
         tmp_path, "stability", "--methods", "rk4", "--vary", "chain.damping=1,16"

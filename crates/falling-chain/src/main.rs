@@ -230,6 +230,13 @@ struct ConvergeArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
+    /// What the levels must agree on, M1,M2,...: tip (the default: the
+    /// largest tip speed and the tip's end), tip_speed_max,
+    /// pivot_force_max, tension_max, floor_force_max, floor_reading,
+    /// dissipated; the pivot's force and the tensions are tracked only
+    /// when measured.
+    #[arg(long, value_name = "M1,M2,...")]
+    measure: Option<String>,
 }
 
 #[derive(Args)]
@@ -918,7 +925,12 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
     let links = converge::parse_links(&args.links)?;
     let jobs = args.jobs.threads()?;
     let scene = args.scene.load(&[])?;
-    let report = converge::run(
+    let measures = fc_study::measure::Measures::parse_for(
+        "--measure",
+        args.measure.as_deref(),
+        &scene.prepare()?,
+    )?;
+    let report = converge::run_measured(
         &scene,
         &links,
         args.tol,
@@ -926,6 +938,7 @@ fn converge(args: &ConvergeArgs) -> Result<ExitCode, Error> {
         args.rtol,
         jobs,
         &|done, total| eprintln!("converge: {done} of {total} runs done"),
+        measures,
     )?;
     if args.json {
         say!("{}", report.to_json());

@@ -12,6 +12,7 @@ use fc_csv::format::exp;
 use fc_scene::atomic::{begin, check_distinct, check_not_inputs, check_writable};
 use fc_scene::error::echo_path;
 use fc_scene::Error;
+use fc_study::measure::{Measure, Measures};
 use fc_study::{self as study, ensemble, needs, plot, precision, stability};
 
 use crate::stdout::{say, say_raw};
@@ -23,6 +24,12 @@ pub struct StudyArgs {
     /// Only these methods, M1,M2,... (default: every method).
     #[arg(long, value_name = "M1,M2,...")]
     methods: Option<String>,
+    /// What the errors measure, M1,M2,...: tip (the default: the tip's
+    /// end and its largest speed), tip_speed_max, pivot_force_max,
+    /// tension_max, floor_force_max, floor_reading, dissipated; with
+    /// several, the error is the largest over them (each is reported).
+    #[arg(long, value_name = "M1,M2,...")]
+    measure: Option<String>,
     /// Write the table as CSV (the columns of the study's data files, then
     /// wall_seconds, run, runs, scene_hash).
     #[arg(long, value_name = "FILE.csv")]
@@ -96,6 +103,11 @@ pub struct NeedsArgs {
     /// The methods tried at the answer's n (default: all but bdf-dense).
     #[arg(long, value_name = "M1,M2,...")]
     methods: Option<String>,
+    /// What the answer is judged on, M1,M2,...: tip (the default),
+    /// tip_speed_max, pivot_force_max, tension_max, floor_force_max,
+    /// floor_reading, dissipated.
+    #[arg(long, value_name = "M1,M2,...")]
+    measure: Option<String>,
     /// Stop after this many seconds of wall time, in (0, 2592000] (30
     /// days): every phase (the ladder of n, the reference and its checks,
     /// the methods, the terms) runs within it; what it stopped is listed.
@@ -138,6 +150,12 @@ pub struct EnsembleArgs {
     /// landed_length) its _mean, _sem, _sd, _min and _max over them.
     #[arg(long = "out-series", value_name = "FILE.csv")]
     out_series: Option<PathBuf>,
+    /// Also the statistics of these measures, M1,M2,...: tip (the
+    /// default: the quantities above), tip_speed_max, pivot_force_max,
+    /// tension_max, floor_force_max, floor_reading, dissipated; the
+    /// pivot's force and the tensions are tracked only when measured.
+    #[arg(long, value_name = "M1,M2,...")]
+    measure: Option<String>,
     /// Stop after this many seconds of wall time, in (0, 2592000] (30
     /// days): members that cannot start within it are not run, runs still
     /// going are stopped, and all are listed.
@@ -234,8 +252,8 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         budget: budget_of("--budget", a.budget)?,
         shard: a.shard.as_deref().map(Shard::parse).transpose()?,
         jobs: a.jobs.threads()?,
+        measures: Measures::parse_for("--measure", a.measure.as_deref(), &scene.prepare()?)?,
     };
-    scene.prepare()?;
     check_plot(a.plot.as_deref(), a.out.as_deref())?;
     let out = a.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let total = precision::ladder(&options.methods).len();
@@ -247,13 +265,37 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
     let s = precision::study(&scene, &options, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let (a_rk4, a_bdf) = precision::agreement(&s.rows);
-    say!(
-        "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
-        s.name,
-        s.t_eval
-    );
+    if s.measures.is_tip() {
+        say!(
+            "{}: work-precision at t = {}; error = max(|tip - tip_ref|/L, |vmax/vmax_ref - 1|)",
+            s.name,
+            s.t_eval
+        );
+    } else {
+        say!(
+            "{}: work-precision at t = {}; error = the largest relative error of {}",
+            s.name,
+            s.t_eval,
+            s.measures.names()
+        );
+    }
     let reference = &s.rows[0];
-    if reference.ok() {
+    if reference.ok() && s.plan != precision::ReferencePlan::Explicit {
+        say!(
+            "  reference: {}; the two runs agree to {}{}",
+            s.plan.describe(),
+            if a_rk4.is_finite() {
+                format!("{a_rk4:.1e}")
+            } else {
+                "- (the check did not finish)".to_string()
+            },
+            if a_rk4 <= precision::CONFIRMED {
+                String::new()
+            } else {
+                format!(" (not confirmed: above {})", exp(precision::CONFIRMED))
+            }
+        );
+    } else if reference.ok() {
         // A check that did not finish (the budget) agrees to no number.
         let agree = |a: f64| {
             if a.is_finite() {
@@ -273,8 +315,8 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
         );
     } else {
         say!(
-            "  reference: DOPRI5 rtol {} ended {}{}: no error is measured, no point ran",
-            exp(precision::REF_RTOL),
+            "  reference: {} ended {}{}: no error is measured, no point ran",
+            precision::reference_name(s.plan),
             reference.status,
             if reference.note.is_empty() {
                 String::new()
@@ -282,6 +324,18 @@ pub fn precision(args: &PrecisionArgs) -> Result<ExitCode, Error> {
                 format!(" ({})", reference.note)
             }
         );
+    }
+    if !s.measures.is_tip() && reference.ok() {
+        let values: Vec<String> = s
+            .measures
+            .list()
+            .into_iter()
+            .filter(|&m| m != Measure::Tip)
+            .map(|m| format!("{} {}", m.name(), s.reference.values.get(m)))
+            .collect();
+        if !values.is_empty() {
+            say!("  reference values: {}", values.join(", "));
+        }
     }
     let levels: Vec<f64> = (1..=12).map(|k| 10f64.powi(-k)).collect();
     let by_wall = precision::fastest(&s.rows, &levels, |pt| study::median(&pt.walls));
@@ -346,6 +400,7 @@ pub fn stability(args: &StabilityArgs) -> Result<ExitCode, Error> {
         .load(&[("--out", a.out.as_deref()), ("--plot", a.plot.as_deref())])?;
     let options = stability::Options {
         methods: study::parse_methods("--methods", a.methods.as_deref())?,
+        measures: Measures::parse_for("--measure", a.measure.as_deref(), &scene.prepare()?)?,
         vary: args.vary.as_deref().map(Vary::parse).transpose()?,
         budget: budget_of("--budget", a.budget)?,
         shard: a.shard.as_deref().map(Shard::parse).transpose()?,
@@ -404,6 +459,7 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
         links,
         methods,
         jobs,
+        measures: Measures::parse_for("--measure", args.measure.as_deref(), &scene.prepare()?)?,
     };
     let answer = Budget::run(budget, None, |b| {
         needs::run(&scene, &options, b, &|phase, done, total| {
@@ -422,11 +478,12 @@ pub fn needs(args: &NeedsArgs) -> Result<ExitCode, Error> {
 }
 
 pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
-    let options = ensemble::EnsembleOptions {
+    let mut options = ensemble::EnsembleOptions {
         members: args.members,
         spread: args.spread,
         seed: args.seed,
         jobs: args.jobs.threads()?,
+        measures: Measures::TIP,
     };
     options.validate()?;
     let budget = budget_of("--budget", args.budget)?;
@@ -437,6 +494,8 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<ExitCode, Error> {
         ("--out", args.out.as_deref()),
         ("--out-series", args.out_series.as_deref()),
     ])?;
+    options.measures =
+        Measures::parse_for("--measure", args.measure.as_deref(), &scene.prepare()?)?;
     let series_out = series_output(args, &scene, &options)?;
     let out = args.out.as_deref().map(|o| begin("--out", o)).transpose()?;
     let bar = progress_bar(args.quiet, options.members);

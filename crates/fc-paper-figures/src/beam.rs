@@ -124,6 +124,7 @@ pub fn rows(points: &[(Method, f64)], timed: bool) -> Result<Vec<Point>, String>
         tip: [f64::NAN; 2],
         vmax: f64::NAN,
         length: beam.length(),
+        values: fc_study::measure::Values::NONE,
     };
     let one = |&(m, x): &(Method, f64)| {
         if let Some(e) = precision::bound_of(&beam, m, x) {
@@ -195,6 +196,7 @@ mod tests {
             budget: None,
             shard: None,
             jobs: 2,
+            measures: fc_study::measure::Measures::TIP,
         };
         let provenance = Provenance {
             runs: precision::ladder(&options.methods).len(),

@@ -212,6 +212,7 @@ fn cell(n: usize, gamma: f64) -> Result<Cell, String> {
         tip: reference.summary.tip_end,
         vmax: reference.summary.tip_speed_max,
         length: chain.length(),
+        values: fc_study::measure::Values::NONE,
     };
     let explicit = Ladder::run(&chain, &s, Method::Dopri5, &rf)?;
     let bdf = Ladder::run(&chain, &s, Method::Bdf, &rf)?;

@@ -261,6 +261,19 @@ impl Prepared {
         )?)
     }
 
+    /// [`Prepared::solve`], tracking the peaks of the pivot's force and the
+    /// tensions only with `track_forces` (else
+    /// `chain_ode::Solve::without_force_peaks`: a study that does not
+    /// measure them does not pay for them).
+    pub fn solve_measuring(&self, track_forces: bool) -> Result<Trajectory, Error> {
+        let solve = chain_ode::Solve::new(self.model(), &self.state, self.method, &self.options);
+        Ok(if track_forces {
+            solve.run()
+        } else {
+            solve.without_force_peaks().run()
+        }?)
+    }
+
     /// The model the run runs ([`ModelKind::choose`]: the report's with
     /// `model.report = true`, else the chain's rigid or elastic one).
     pub fn model(&self) -> ModelKind {

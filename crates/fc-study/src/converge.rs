@@ -26,6 +26,7 @@ use chain_ode::{Chain, Vec2};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::measure::{Measure, Measures, Values};
 use fc_scene::error::Error;
 use fc_scene::scene::Scene;
 use fc_scene::summary::RunSummary;
@@ -52,6 +53,11 @@ pub struct Level {
     pub summary: RunSummary,
     /// `(t, tip)` at every output sample.
     pub track: Vec<(f64, Vec2)>,
+    /// The values of what the study measures (`--measure`; NaN where not
+    /// measured: `tip` alone measures none of them).
+    pub values: Values,
+    /// What it measured.
+    pub measures: Measures,
 }
 
 impl Level {
@@ -82,6 +88,20 @@ pub fn run_level_until(
     rtol: Option<f64>,
     cancel: Option<&chain_ode::Cancel>,
 ) -> Result<Level, Error> {
+    run_level_measured(scene, links, method, rtol, cancel, Measures::TIP)
+}
+
+/// [`run_level_until`] measuring `measures`: the pivot's force and the
+/// tensions tracked exactly when it measures one of them
+/// ([`Measures::tracks_forces`], the studies' one rule).
+pub fn run_level_measured(
+    scene: &Scene,
+    links: usize,
+    method: Option<&str>,
+    rtol: Option<f64>,
+    cancel: Option<&chain_ode::Cancel>,
+    measures: Measures,
+) -> Result<Level, Error> {
     let mut s = refined_scene(scene, links)?;
     if let Some(m) = method {
         s = s.with_value("run.method", toml::Value::String(m.to_string()))?;
@@ -92,7 +112,11 @@ pub fn run_level_until(
     }
     let mut prepared = s.prepare()?;
     prepared.options.cancel = cancel.cloned();
-    let traj = prepared.solve()?;
+    if let Some(dt) = measures.output_dt(prepared.options.t_end) {
+        // The floor's reading's windows need samples at least this often.
+        prepared.options.output_dt = Some(prepared.options.output_dt.map_or(dt, |o| o.min(dt)));
+    }
+    let traj = prepared.solve_measuring(measures.tracks_forces())?;
     let track = tip_track(&traj)
         .into_iter()
         .map(|(t, p, _)| (t, p))
@@ -101,6 +125,8 @@ pub fn run_level_until(
         chain: prepared.chain,
         summary: RunSummary::from_trajectory(scene.name(), &traj),
         track,
+        values: Values::of(&traj, measures),
+        measures,
     })
 }
 
@@ -117,6 +143,11 @@ pub struct Deviation {
     pub tip_end: f64,
     /// `max_t |tip(t) - tip_ref(t)| / L` over the common sample times.
     pub tip_path: f64,
+    /// With `--measure` other than `tip`: the largest relative deviation
+    /// of its other measures ([`crate::measure`]'s errors); absent for
+    /// `tip` alone.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured: Option<f64>,
 }
 
 /// The speed scale of `chain`: `sqrt(E_s / M)` with `E_s` the chain's energy
@@ -155,7 +186,27 @@ impl Deviation {
             ),
             tip_end: d(level.summary.tip_end, reference.summary.tip_end) / length,
             tip_path: path / length,
+            measured: (!level.measures.is_tip()).then(|| {
+                let others: Vec<Measure> = level
+                    .measures
+                    .list()
+                    .into_iter()
+                    .filter(|&m| m != Measure::Tip)
+                    .collect();
+                others
+                    .iter()
+                    .map(|&m| reference.values.error(&level.values, m))
+                    .fold(
+                        0.0,
+                        |a: f64, e| if e.is_nan() { f64::NAN } else { a.max(e) },
+                    )
+            }),
         }
+    }
+
+    /// Whether the other measures (if any) are within `tol`.
+    pub fn measured_within(&self, tol: f64) -> bool {
+        self.measured.is_none_or(|e| e < tol)
     }
 }
 
@@ -193,6 +244,9 @@ pub struct Report {
     /// method kept detecting stiffness ([`fc_scene::summary::stiffness_hint_for`]).
     #[serde(skip)]
     pub stiffness_hint: Option<String>,
+    /// What the levels must agree on (`--measure`'s names; `tip` by
+    /// default).
+    pub measure: String,
 }
 
 /// One row of [`Report`].
@@ -305,8 +359,34 @@ pub fn run(
     jobs: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, Error> {
+    run_measured(
+        scene,
+        links,
+        tol,
+        method,
+        rtol,
+        jobs,
+        progress,
+        Measures::TIP,
+    )
+}
+
+/// [`run`] measuring `measures` (`--measure`): a level is adequate when its
+/// tip speed and tip end and every other measure agree with the finest to
+/// `tol`.
+#[allow(clippy::too_many_arguments)]
+pub fn run_measured(
+    scene: &Scene,
+    links: &[usize],
+    tol: f64,
+    method: Option<&str>,
+    rtol: Option<f64>,
+    jobs: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    measures: Measures,
+) -> Result<Report, Error> {
     check_tol(tol)?;
-    let levels = run_levels(scene, links, method, rtol, jobs, progress)?;
+    let levels = run_levels_measured(scene, links, method, rtol, jobs, progress, None, measures)?;
     report(scene, &levels, tol)
 }
 
@@ -335,6 +415,30 @@ pub fn run_levels_until(
     jobs: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: Option<&chain_ode::Cancel>,
+) -> Result<Vec<Level>, Error> {
+    run_levels_measured(
+        scene,
+        links,
+        method,
+        rtol,
+        jobs,
+        progress,
+        cancel,
+        Measures::TIP,
+    )
+}
+
+/// [`run_levels_until`] measuring `measures`.
+#[allow(clippy::too_many_arguments)]
+pub fn run_levels_measured(
+    scene: &Scene,
+    links: &[usize],
+    method: Option<&str>,
+    rtol: Option<f64>,
+    jobs: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: Option<&chain_ode::Cancel>,
+    measures: Measures,
 ) -> Result<Vec<Level>, Error> {
     let jobs = fc_batch::sweep::check_jobs("--jobs", jobs)?;
     // The report's model keeps its time unit sqrt(l / g) per rod, which
@@ -378,7 +482,7 @@ pub fn run_levels_until(
             .par_iter()
             .rev()
             .map(|&n| {
-                let level = run_level_until(scene, n, method, rtol, cancel)?;
+                let level = run_level_measured(scene, n, method, rtol, cancel, measures)?;
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
                 Ok(level)
             })
@@ -397,7 +501,9 @@ pub fn report(scene: &Scene, levels: &[Level], tol: f64) -> Result<Report, Error
         .ok_or_else(|| Error::field("--links", "no level ran"))?;
     let base = scene.chain()?;
     let adequate = if levels.iter().all(|l| l.summary.is_ok()) {
-        smallest_adequate(levels, |d| d.tip_speed_max < tol && d.tip_end < tol)
+        smallest_adequate(levels, |d| {
+            d.tip_speed_max < tol && d.tip_end < tol && d.measured_within(tol)
+        })
     } else {
         None
     };
@@ -409,6 +515,7 @@ pub fn report(scene: &Scene, levels: &[Level], tol: f64) -> Result<Report, Error
         bending_viscosity: bending_viscosity(&base),
         reference_links: reference.links(),
         adequate_links: adequate,
+        measure: reference.measures.names(),
         stiffness_hint: fc_scene::summary::stiffness_hint_for(levels.iter().map(|l| &l.summary)),
         levels: levels
             .iter()
@@ -478,6 +585,9 @@ impl std::fmt::Display for Report {
                 l.deviation.tip_path,
                 l.wall_seconds
             )?;
+            if let Some(d) = l.deviation.measured {
+                writeln!(f, "          d({}) = {d:.3e}", self.measure)?;
+            }
         }
         writeln!(
             f,
@@ -489,7 +599,12 @@ impl std::fmt::Display for Report {
         match self.adequate_links {
             Some(n) => write!(
                 f,
-                "smallest adequate n = {n} (d(vmax) and d(tip_end) < {} from n = {n} on)",
+                "smallest adequate n = {n} (d(vmax) and d(tip_end){} < {} from n = {n} on)",
+                if self.measure == "tip" {
+                    String::new()
+                } else {
+                    format!(" and d({})", self.measure)
+                },
                 self.tol
             ),
             None if !self.all_ok() => write!(f, "no answer: a run failed (see its status)"),

@@ -16,6 +16,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
+use crate::measure::{Measure, Measures, Values};
 use fc_batch::budget::Budget;
 use fc_csv::format::{exp, num};
 use fc_scene::error::Error;
@@ -44,6 +45,11 @@ pub struct EnsembleOptions {
     pub seed: u32,
     /// Worker threads.
     pub jobs: usize,
+    /// What it measures beyond [`QUANTITIES`] (`--measure`): the
+    /// statistics of each measure not among them (`pivot_force_max`,
+    /// `tension_max`, `floor_reading`), and the force peaks tracked only
+    /// when measured (the studies' one rule).
+    pub measures: Measures,
 }
 
 impl EnsembleOptions {
@@ -365,7 +371,7 @@ fn run_members(
         .build()
         .map_err(|e| Error::field("--jobs", e))?;
     let done = AtomicUsize::new(0);
-    let members: Vec<Option<RunSummary>> = pool.install(|| {
+    let members: Vec<Option<(RunSummary, Values)>> = pool.install(|| {
         (0..options.members)
             .into_par_iter()
             .map(|j| {
@@ -374,23 +380,41 @@ fn run_members(
                 }
                 let mut p = member(&prepared, options, j, samples);
                 p.options.cancel = Some(budget.cancel().clone());
-                let traj = p.solve()?;
+                if let Some(dt) = options.measures.output_dt(p.options.t_end) {
+                    p.options.output_dt = Some(p.options.output_dt.map_or(dt, |o| o.min(dt)));
+                }
+                let traj = p.solve_measuring(options.measures.tracks_forces())?;
                 if let Some(each) = each {
                     each(j, &traj)?;
                 }
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, options.members);
-                Ok(Some(RunSummary::from_trajectory(scene.name(), &traj)))
+                Ok(Some((
+                    RunSummary::from_trajectory(scene.name(), &traj),
+                    Values::of(&traj, options.measures),
+                )))
             })
-            .collect::<Result<_, Error>>()
+            .collect::<Result<Vec<_>, Error>>()
     })?;
-    let ok: Vec<&RunSummary> = members.iter().flatten().filter(|m| m.is_ok()).collect();
-    let stats = QUANTITIES
+    let ok: Vec<&(RunSummary, Values)> = members.iter().flatten().filter(|m| m.0.is_ok()).collect();
+    let mut stats: Vec<Stat> = QUANTITIES
         .iter()
         .filter_map(|&q| {
-            let xs: Vec<f64> = ok.iter().filter_map(|m| quantity(m, q)).collect();
+            let xs: Vec<f64> = ok.iter().filter_map(|m| quantity(&m.0, q)).collect();
             Stat::of(q, &xs)
         })
         .collect();
+    for m in options.measures.list() {
+        if m == Measure::Tip || QUANTITIES.contains(&m.name()) {
+            continue;
+        }
+        let xs: Vec<f64> = ok
+            .iter()
+            .map(|v| v.1.get(m))
+            .filter(|x| x.is_finite())
+            .collect();
+        stats.extend(Stat::of(m.name(), &xs));
+    }
+    let members = members.into_iter().map(|m| m.map(|m| m.0)).collect();
     Ok(Ensemble {
         name: scene.name().to_string(),
         options: *options,
@@ -470,6 +494,7 @@ mod tests {
             spread: 1e-3,
             seed: 0,
             jobs: 1,
+            measures: crate::measure::Measures::TIP,
         };
         assert!(ok.validate().is_ok());
         for (o, flag) in [

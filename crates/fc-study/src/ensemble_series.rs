@@ -356,6 +356,7 @@ mod tests {
             spread: 1e-3,
             seed: 0,
             jobs: 1,
+            measures: crate::measure::Measures::TIP,
         };
         let (result, series) =
             Budget::run(None, None, |b| run(&scene, &options, b, &|_, _| {})).unwrap();

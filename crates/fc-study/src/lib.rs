@@ -18,6 +18,7 @@
 //! * `converge.rs`: Convergence in the number of rods: one scene run at several `n` with the continuum held fixed, and the smallest `n` that agrees with the finest.
 //! * `ensemble_series.rs`: An ensemble's time series: the mean, standard error, standard deviation and range over the members of every per-sample output.
 //! * `ensemble.rs`: `ensemble`: a scene run from `members` starts whose rod angles are moved by a few `spread` rad, and the statistics of its summary over them (`docs/model.md` ...
+//! * `measure.rs`: What a study measures (`--measure`): the tip, the largest tip speed, the peak forces, the floor's reading, the work dissipated; their values and relative errors.
 //! * `needs.rs`: "Model no more than this scene needs": the smallest number of rods, the fastest method and tolerance at that number ...
 //! * `plot.rs`: The one drawing of the study's tables, used by the CLI's `--plot` and by `cargo xtask figures` alike: the work-precision pair (error against wall time and against work ...
 //! * `precision/`: Work-precision: every method across tolerances (RK4 across steps), the error of two well-conditioned quantities (the tip position at the end ...
@@ -31,6 +32,7 @@
 pub mod converge;
 pub mod ensemble;
 pub mod ensemble_series;
+pub mod measure;
 pub mod needs;
 #[cfg(feature = "plot")]
 pub mod plot;

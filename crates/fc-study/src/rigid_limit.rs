@@ -331,6 +331,7 @@ mod tests {
                 tip_speed_max: worst / 2.0,
                 tip_end: 0.0,
                 tip_path: worst,
+                measured: None,
             }),
             steps: 0,
             rhs_evals: 0,

@@ -4,7 +4,9 @@
 //! `M g L` / stopped with a status. Rows are scenes (one, or one per value
 //! of a varied key); the cells of a row are the methods' accuracies.
 
-use chain_ode::{solve, Method, Status, Trajectory};
+use chain_ode::{Method, Status, Trajectory};
+
+use crate::measure::{Measure, Measures, Values};
 use rayon::prelude::*;
 
 use fc_batch::budget::Budget;
@@ -155,6 +157,10 @@ pub struct Cell {
     pub run: Result<Trajectory, String>,
     /// Its number in the study ([`jobs`] order).
     pub number: usize,
+    /// What it measured, and the values (`--measure`; the table's last
+    /// columns when not `tip` alone).
+    pub measures: Measures,
+    pub values: Values,
 }
 
 /// The cells of the study, numbered in this order: each row, each of
@@ -187,9 +193,29 @@ pub fn run_cell(
     param: f64,
     budget: Option<&Budget>,
 ) -> Result<Trajectory, String> {
+    run_cell_measuring(p, method, param, budget, Measures::TIP)
+}
+
+/// [`run_cell`] measuring `measures`: the pivot's force and the tensions
+/// tracked exactly when it measures one of them (the studies' one rule),
+/// samples kept when it measures the floor's reading.
+pub fn run_cell_measuring(
+    p: &Prepared,
+    method: Method,
+    param: f64,
+    budget: Option<&Budget>,
+    measures: Measures,
+) -> Result<Trajectory, String> {
     let mut o = cell_options(p, method, param);
     o.cancel = budget.map(|b| b.cancel().clone());
-    let t = solve(&p.chain, &p.state, method, &o).map_err(|e| e.to_string())?;
+    o.output_dt = measures.output_dt(o.t_end);
+    let run = chain_ode::Solve::new(&p.chain, &p.state, method, &o);
+    let t = if measures.tracks_forces() {
+        run.run()
+    } else {
+        run.without_force_peaks().run()
+    }
+    .map_err(|e| e.to_string())?;
     if budget.is_some() && t.status == Status::Interrupted {
         return Err(format!(
             "budget: stopped at t = {} by --budget",
@@ -212,6 +238,19 @@ pub fn run_cells(
     budget: Option<&Budget>,
     progress: &(dyn Fn() + Sync),
 ) -> Vec<Cell> {
+    run_cells_measuring(rows, jobs, take, skip, budget, progress, Measures::TIP)
+}
+
+/// [`run_cells`] measuring `measures`.
+pub fn run_cells_measuring(
+    rows: &[Row],
+    jobs: &[(usize, Method, f64)],
+    take: &(dyn Fn(usize) -> bool + Sync),
+    skip: &(dyn Fn(usize, Method, f64) -> Option<String> + Sync),
+    budget: Option<&Budget>,
+    progress: &(dyn Fn() + Sync),
+    measures: Measures,
+) -> Vec<Cell> {
     let chosen: Vec<(usize, (usize, Method, f64))> = jobs
         .iter()
         .copied()
@@ -226,15 +265,21 @@ pub fn run_cells(
             } else if budget.is_some_and(|b| !b.fits(0.0)) {
                 Err("budget: not run within --budget".to_string())
             } else {
-                run_cell(&rows[row].prepared, method, param, budget)
+                run_cell_measuring(&rows[row].prepared, method, param, budget, measures)
             };
             progress();
+            let values = match &run {
+                Ok(t) if !measures.is_tip() => Values::of(t, measures),
+                _ => Values::NONE,
+            };
             Cell {
                 row,
                 method,
                 param,
                 run,
                 number,
+                measures,
+                values,
             }
         })
         .collect()
@@ -283,6 +328,21 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
         csv.push(',');
         csv.push_str(&fc_csv::header(&CLI_COLUMNS));
         csv.push_str(&Provenance::header_suffix());
+    }
+    // `--measure` other than the tip: each measure's value, last.
+    let measures = cells.first().map_or(Measures::TIP, |c| c.measures);
+    let extra: Vec<Measure> = if measures.is_tip() {
+        vec![]
+    } else {
+        measures
+            .list()
+            .into_iter()
+            .filter(|&m| m != Measure::Tip)
+            .collect()
+    };
+    for m in &extra {
+        csv.push(',');
+        csv.push_str(m.name());
     }
     csv.push('\n');
     for c in cells {
@@ -336,6 +396,10 @@ pub fn csv_text(rows: &[Row], cells: &[Cell], provenance: Option<&Provenance>) -
         };
         if let Some(prov) = provenance {
             line.push_str(&format!(",{wall},{}{}", c.number, prov.cells()));
+        }
+        for &m in &extra {
+            line.push(',');
+            line.push_str(&num(c.values.get(m)));
         }
         csv.push_str(&line);
         csv.push('\n');
@@ -534,10 +598,11 @@ pub fn study(
     take: &(dyn Fn(usize) -> bool + Sync),
     budget: Option<&Budget>,
     progress: &(dyn Fn(usize) + Sync),
+    measures: Measures,
 ) -> Result<Vec<Cell>, Error> {
     let jobs = jobs(rows.len(), methods);
     let done = std::sync::atomic::AtomicUsize::new(0);
-    Ok(run_cells(
+    Ok(run_cells_measuring(
         rows,
         &jobs,
         take,
@@ -546,6 +611,7 @@ pub fn study(
         &|| {
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
         },
+        measures,
     ))
 }
 
@@ -563,6 +629,8 @@ pub struct Options {
     pub shard: Option<fc_batch::shard::Shard>,
     /// Threads, 1..=256 (checked: [`fc_batch::sweep::check_jobs`]).
     pub jobs: usize,
+    /// What each cell reports beyond its outcome (`--measure`).
+    pub measures: Measures,
 }
 
 /// A finished stability study.
@@ -724,8 +792,16 @@ pub fn run_study(
         .map_err(|e| Error::field("--jobs", e))?;
     let limited = options.budget.is_some() || outer.is_some();
     let cells = Budget::run(options.budget, outer, |b| {
-        let cells =
-            pool.install(|| study(&rows, methods, &take, limited.then_some(b), &|_| progress()));
+        let cells = pool.install(|| {
+            study(
+                &rows,
+                methods,
+                &take,
+                limited.then_some(b),
+                &|_| progress(),
+                options.measures,
+            )
+        });
         if b.interrupted() {
             return Err(Error::Interrupted);
         }

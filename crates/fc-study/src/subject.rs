@@ -16,6 +16,7 @@ use chain_ode::{InvalidParameter, Method, Model, ModelKind, SolveOptions, State,
 
 use fc_scene::scene::Prepared;
 
+use crate::measure::Measures;
 use crate::precision::Reference;
 
 /// A model, its start and its options, as the precision study sees them.
@@ -44,8 +45,22 @@ pub trait Subject: Clone + Sync {
     /// samples.
     fn options_for(&self, method: Method, param: f64) -> SolveOptions {
         let mut o = self.options().clone().at_accuracy(method, param);
-        o.output_dt = None;
+        o.output_dt = self.measures().output_dt(o.t_end);
         o
+    }
+
+    /// What the study measures ([`Measures`]; `tip` by default).
+    fn measures(&self) -> Measures {
+        Measures::TIP
+    }
+
+    /// `omega_max t_end`: the largest axial frequency of its elastic links
+    /// (`2 sqrt(K / m)`, `K` a joint's axial stiffness, `m` a rod's mass)
+    /// times the run's end time, the number of radians an explicit method
+    /// must follow (`0`: no axial modes). The reference is chosen from it
+    /// ([`crate::precision::ReferencePlan`]).
+    fn axial_radians(&self) -> f64 {
+        0.0
     }
 
     /// The relative errors `(first, second)` of a finished run: by default
@@ -61,20 +76,23 @@ pub trait Subject: Clone + Sync {
         self.model().validate(method, options)
     }
 
-    /// One run of `method` with `options`, without the peaks of the
-    /// pivot's force and the tensions (`Solve::without_force_peaks`): the
-    /// studies judge the tip, and their work counters are the
-    /// integrator's (a force's search inside a step would pay DOP853's
-    /// lazy dense output). A study that measures a force (issue 49's
-    /// `--measure`) turns them back on.
+    /// One run of `method` with `options`, tracking the peaks of the
+    /// pivot's force and the tensions exactly when the study measures one
+    /// of them ([`Measures::tracks_forces`]; otherwise
+    /// `Solve::without_force_peaks`, so that the work counters are the
+    /// integrator's: a force's search inside a step would pay DOP853's lazy
+    /// dense output).
     fn solve(
         &self,
         method: Method,
         options: &SolveOptions,
     ) -> Result<Trajectory<Self::Model>, InvalidParameter> {
-        chain_ode::Solve::new(self.model(), self.state(), method, options)
-            .without_force_peaks()
-            .run()
+        let solve = chain_ode::Solve::new(self.model(), self.state(), method, options);
+        if self.measures().tracks_forces() {
+            solve.run()
+        } else {
+            solve.without_force_peaks().run()
+        }
     }
 }
 
@@ -99,6 +117,72 @@ impl Subject for Prepared {
 
     fn length(&self) -> f64 {
         self.chain.length()
+    }
+
+    fn axial_radians(&self) -> f64 {
+        axial_radians(&self.chain, self.options.t_end)
+    }
+}
+
+/// [`Subject::axial_radians`] of `chain` up to `t_end`.
+pub fn axial_radians(chain: &chain_ode::Chain, t_end: f64) -> f64 {
+    chain
+        .joint_stiffness()
+        .map_or(0.0, |k| 2.0 * (k / chain.mass()).sqrt() * t_end)
+}
+
+/// A subject with what its study measures (`--measure`): the same runs,
+/// the pivot's force and the tensions tracked when it measures them, and
+/// the samples the floor's reading needs.
+#[derive(Clone, Debug)]
+pub struct Measured<S> {
+    pub subject: S,
+    pub measures: Measures,
+}
+
+impl<S: Subject> Subject for Measured<S> {
+    type Model = S::Model;
+
+    fn model(&self) -> S::Model {
+        self.subject.model()
+    }
+
+    fn state(&self) -> &State {
+        self.subject.state()
+    }
+
+    fn options(&self) -> &SolveOptions {
+        self.subject.options()
+    }
+
+    fn options_mut(&mut self) -> &mut SolveOptions {
+        self.subject.options_mut()
+    }
+
+    fn length(&self) -> f64 {
+        self.subject.length()
+    }
+
+    fn options_for(&self, method: Method, param: f64) -> SolveOptions {
+        let mut o = self.subject.options_for(method, param);
+        o.output_dt = self.measures.output_dt(o.t_end);
+        o
+    }
+
+    fn measures(&self) -> Measures {
+        self.measures
+    }
+
+    fn axial_radians(&self) -> f64 {
+        self.subject.axial_radians()
+    }
+
+    fn errors(&self, reference: &Reference, t: &Trajectory<Self::Model>) -> (f64, f64) {
+        self.subject.errors(reference, t)
+    }
+
+    fn validate(&self, method: Method, options: &SolveOptions) -> Result<(), InvalidParameter> {
+        self.subject.validate(method, options)
     }
 }
 

@@ -32,7 +32,8 @@ pub use table::*;
 
 use chain_ode::{Method, Model};
 
-use crate::subject::Subject;
+use crate::measure::Measures;
+use crate::subject::{Measured, Subject};
 use fc_batch::budget::Budget;
 use fc_batch::shard::Provenance;
 use fc_csv::format::{exp, num};
@@ -81,7 +82,8 @@ pub fn check_bounds<S: Subject>(
     checks: Checks,
     methods: &[Method],
 ) -> Result<(), Error> {
-    for (what, method, o) in reference_runs(t_eval, checks) {
+    let plan = ReferencePlan::for_subject(p, STIFF_REF_RTOL);
+    for (what, method, o) in reference_runs_planned(t_eval, checks, plan) {
         p.validate(method, &o).map_err(|e| {
             Error::field(
                 e.field,
@@ -128,6 +130,8 @@ pub struct Options {
     pub shard: Option<fc_batch::shard::Shard>,
     /// Threads, 1..=256 (checked: [`fc_batch::sweep::check_jobs`]).
     pub jobs: usize,
+    /// What the errors measure (`--measure`; `tip` by default).
+    pub measures: Measures,
 }
 
 /// A finished precision study: the table's rows and what went wrong.
@@ -144,6 +148,10 @@ pub struct Study {
     /// One line per reason for exit status 1 (the reference failed or is
     /// not confirmed, every method failed, nothing ran within the budget).
     pub failures: Vec<String>,
+    /// Which reference it ran (from the scene's stiffness).
+    pub plan: ReferencePlan,
+    /// What its errors measure.
+    pub measures: Measures,
 }
 
 impl Study {
@@ -206,20 +214,23 @@ pub fn study(
     let p = scene.prepare()?;
     p.require_corrected("precision")?;
     let methods = &options.methods;
-    let provenance = Provenance::new(
-        scene,
-        "precision",
-        &[
-            methods
-                .iter()
-                .map(|m| m.as_str())
-                .collect::<Vec<_>>()
-                .join(","),
-            exp(options.checks.check_dt),
-            options.checks.richardson.to_string(),
-        ],
-        ladder(methods).len(),
-    );
+    let mut args = vec![
+        methods
+            .iter()
+            .map(|m| m.as_str())
+            .collect::<Vec<_>>()
+            .join(","),
+        exp(options.checks.check_dt),
+        options.checks.richardson.to_string(),
+    ];
+    if !options.measures.is_tip() {
+        args.push(options.measures.names());
+    }
+    let provenance = Provenance::new(scene, "precision", &args, ladder(methods).len());
+    let p = Measured {
+        subject: p,
+        measures: options.measures,
+    };
     study_of(p, scene.name(), provenance, options, outer, progress)
 }
 
@@ -240,9 +251,21 @@ pub fn study_of<S: Subject>(
     check_bounds(&p, t_eval, options.checks, methods)?;
     let shard = options.shard;
     let take = |run: usize| shard.is_none_or(|s| s.takes(run));
+    let ref_plan = ReferencePlan::for_subject(&p, STIFF_REF_RTOL);
+    let stiff = ref_plan != ReferencePlan::Explicit;
+    // A stiff reference resolves errors down to its agreement with its
+    // check: a line stops once a point is within ten times that (its
+    // tighter points would measure the reference, and on stiff links
+    // they are the costliest).
+    let level = std::sync::Mutex::new(f64::NAN);
+    let resolved = || {
+        *level
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    };
     // The floor rule needs the coarser points of RK4's line: a
     // shard runs those it does not own to decide it (`run_lines`).
-    let stop = |pt: &Point| rk4_floor(pt);
+    let stop = |pt: &Point| rk4_floor(pt) || (stiff && pt.err() < resolved());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.max(1))
         .build()
@@ -252,9 +275,18 @@ pub fn study_of<S: Subject>(
     let (reference, mut rows) = Budget::run(options.budget, outer, |b| {
         let mut p = p.clone();
         p.options_mut().cancel = Some(b.cancel().clone());
-        let (reference, mut rows) = reference(&p, t_eval, options.checks)?;
+        let (reference, mut rows) =
+            reference_planned(&p, t_eval, options.checks, ref_plan, &|_, _| {})?;
         if b.interrupted() {
             return Err(Error::Interrupted);
+        }
+        if stiff {
+            let a = agreement(&rows).0;
+            if a.is_finite() {
+                *level
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner) = (10.0 * a).max(ERR_FLOOR);
+            }
         }
         if let Some(r) = &reference {
             let lines = pool.install(|| run_lines(&p, methods, r, &take, b, &stop, progress))?;
@@ -265,6 +297,15 @@ pub fn study_of<S: Subject>(
         }
         Ok((reference, rows))
     })?;
+    if stiff {
+        let level = resolved();
+        for r in rows.iter_mut().filter(|r| r.plan == Plan::Floor) {
+            r.note = format!(
+                "a looser point is already at the stiff reference's level (< {})",
+                exp(level)
+            );
+        }
+    }
     let mut failures = vec![];
     let reference = match reference {
         Some(r) => r,
@@ -290,31 +331,27 @@ pub fn study_of<S: Subject>(
             }
             failures.push(if stopped {
                 format!(
-                    "--budget stopped the reference run (DOPRI5 rtol {}) at t = {} of {}: \
+                    "--budget stopped the reference run ({}) at t = {} of {}: \
                      no point ran, no error can be measured",
-                    exp(REF_RTOL),
+                    reference_name(ref_plan),
                     num(rows[0].t_reached),
                     num(t_eval)
                 )
             } else {
                 format!(
-                    "the reference run (DOPRI5 rtol {}) ended {}: no errors can be measured",
-                    exp(REF_RTOL),
+                    "the reference run ({}) ended {}: no errors can be measured",
+                    reference_name(ref_plan),
                     rows[0].status
                 )
             });
-            Reference {
-                tip: [f64::NAN; 2],
-                vmax: f64::NAN,
-                length: p.length(),
-            }
+            Reference::none(p.length())
         }
     };
     let (a_rk4, a_bdf) = agreement(&rows);
     if failures.is_empty() && ![a_rk4, a_bdf].iter().any(|&a| a <= CONFIRMED) {
         let checks = || {
             rows.iter()
-                .filter(|r| r.run.is_none() && r.method != "reference-dopri5")
+                .filter(|r| r.run.is_none() && !r.method.starts_with("reference-"))
         };
         let budget: Vec<&str> = checks()
             .filter(|r| r.plan == Plan::Budget)
@@ -322,7 +359,8 @@ pub fn study_of<S: Subject>(
             .collect();
         failures.push(if budget.is_empty() {
             format!(
-                "the reference is not confirmed: neither check agrees with it to {}",
+                "the reference is not confirmed: {} agrees with it to {}",
+                if stiff { "its check" } else { "neither check" },
                 exp(CONFIRMED)
             )
         } else {
@@ -345,7 +383,16 @@ pub fn study_of<S: Subject>(
         rows,
         provenance,
         failures,
+        plan: ref_plan,
+        measures: p.measures(),
     })
+}
+
+/// The reference run of `plan`, as the failures name it (`DOPRI5 rtol
+/// 1e-13`).
+pub fn reference_name(plan: ReferencePlan) -> String {
+    let (_, m, rtol, _) = plan.reference();
+    format!("{} rtol {}", m.as_str().to_uppercase(), exp(rtol))
 }
 
 /// What went wrong with the points of `rows` (those with a run number), if

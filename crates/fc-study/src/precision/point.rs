@@ -4,6 +4,7 @@
 use super::*;
 use chain_ode::{Method, Model, SolveOptions, Stats, Trajectory};
 
+use crate::measure::{self, Measures, Values, COUNT};
 use crate::subject::Subject;
 use fc_csv::format::exp;
 
@@ -94,6 +95,15 @@ pub struct Point {
     pub dim: usize,
     pub err_tip: f64,
     pub err_vmax: f64,
+    /// What the study measures (`tip` by default: then [`Point::err`] is
+    /// the larger of `err_tip` and `err_vmax`, as it always was).
+    pub measures: Measures,
+    /// Each measure's relative error (indexed as [`measure::Measure::ALL`],
+    /// NaN where not measured or not run).
+    pub err_each: [f64; COUNT],
+    /// The largest of them (the point's error when it measures more than
+    /// the tip).
+    pub err_measured: f64,
     /// For `auto`: whether it switched to BDF.
     pub switched: bool,
     /// Why it failed or was not run (no wall times).
@@ -114,14 +124,30 @@ impl Point {
         self.stats.rhs_evals + self.stats.jacobian_evals * self.dim as u64
     }
 
-    /// The larger of the two errors (NaN if not run or failed).
+    /// Its error (NaN if not run or failed): the larger of the tip's two
+    /// for `tip` alone, else the largest over its measures.
     pub fn err(&self) -> f64 {
-        self.err_tip.max(self.err_vmax)
+        if self.measures.is_tip() {
+            self.err_tip.max(self.err_vmax)
+        } else {
+            self.err_measured
+        }
+    }
+
+    /// The error of measure `m` (NaN if not measured).
+    pub fn err_of(&self, m: measure::Measure) -> f64 {
+        if self.measures.is_tip() && m == measure::Measure::Tip {
+            return self.err();
+        }
+        self.err_each[m as usize]
     }
 
     /// Whether it completed with finite errors.
     pub fn ok(&self) -> bool {
-        self.status == "ok" && self.err_tip.is_finite() && self.err_vmax.is_finite()
+        self.status == "ok"
+            && self.err_tip.is_finite()
+            && self.err_vmax.is_finite()
+            && self.err().is_finite()
     }
 
     /// A point of `method` at accuracy `param` that was not run.
@@ -137,6 +163,9 @@ impl Point {
             dim: 0,
             err_tip: f64::NAN,
             err_vmax: f64::NAN,
+            measures: Measures::TIP,
+            err_each: [f64::NAN; COUNT],
+            err_measured: f64::NAN,
             switched: false,
             note: plan.note(),
             walls: vec![],
@@ -161,6 +190,13 @@ impl Point {
         } else {
             (f64::NAN, f64::NAN)
         };
+        let measures = subject.measures();
+        let (err_each, err_measured) = if t.status.is_ok() && !measures.is_tip() {
+            let values = Values::of(t, measures);
+            measure::errors(measures, err_tip.max(err_vmax), &reference.values, &values)
+        } else {
+            ([f64::NAN; COUNT], f64::NAN)
+        };
         let note = match t.t_failed {
             Some(tf) => format!("failed at t = {tf:.4}"),
             None => String::new(),
@@ -176,6 +212,9 @@ impl Point {
             dim: 2 * t.model.layout().links + 1,
             err_tip,
             err_vmax,
+            measures,
+            err_each,
+            err_measured,
             switched: t.segments.len() > 1,
             note,
             walls: vec![t.summary.wall_seconds],

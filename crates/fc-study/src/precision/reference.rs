@@ -1,11 +1,17 @@
-//! The reference the errors are measured against (DOPRI5 at [`REF_RTOL`])
-//! and its checks (RK4 at a step, optionally extrapolated; BDF at
-//! [`CHECK_BDF_RTOL`]), their runs under the scene's cancel, how far they
-//! agree, and the check's step bound.
+//! The reference the errors are measured against and its checks, chosen
+//! from the subject's stiffness ([`ReferencePlan`]): on a scene without
+//! stiff axial modes DOPRI5 at [`REF_RTOL`], checked by RK4 at a step
+//! (optionally extrapolated) and BDF at [`CHECK_BDF_RTOL`]; on elastic links
+//! whose axial modes an explicit method can still follow, DOPRI5 at
+//! [`STIFF_REF_RTOL`] checked by DOP853 at the same tolerance (an
+//! independent method); beyond that, BDF at [`IMPLICIT_REF_RTOL`] checked by
+//! BDF ten times tighter. Their runs go under the scene's cancel; how far
+//! they agree; the check's step bound.
 
 use super::*;
 use chain_ode::{Cancel, Method, Model, SolveOptions, Status, Trajectory};
 
+use crate::measure::Values;
 use crate::subject::Subject;
 use fc_csv::format::{exp, num};
 use fc_scene::error::Error;
@@ -16,6 +22,102 @@ pub struct Reference {
     pub tip: [f64; 2],
     pub vmax: f64,
     pub length: f64,
+    /// The values of the study's measures (`--measure`; NaN where not
+    /// measured).
+    pub values: Values,
+}
+
+/// `omega_max t_end` above which the reference is no longer DOPRI5 at
+/// [`REF_RTOL`]: its axial modes hold an explicit method at its stability
+/// limit (about `omega_max t_end / 3` steps at any tolerance), and DOPRI5 at
+/// 1e-13 takes ten times that (the steel rope of issue 49, `omega_max
+/// t_end = 2.9e6`: DOPRI5 at 1e-13 reached t = 0.065 of 3.2 in 500 s).
+pub const STIFF_ABOVE: f64 = 1e4;
+/// `omega_max t_end` above which no explicit reference is tried: about
+/// 10^7 steps, minutes at 50 rods.
+pub const EXPLICIT_UP_TO: f64 = 3e7;
+/// The stiff explicit reference: DOPRI5 at this tolerance, checked by
+/// DOP853 at it. Measured on issue 49's steel rope (`omega_max t_end =
+/// 2.9e6`): at 1e-8 they agree to 2e-8 on the peak pivot force (280,351 and
+/// 399,589 steps); DOP853 at 1e-9 takes 3.6 million steps (400 s), DOPRI5
+/// 488,157 (15 s).
+pub const STIFF_REF_RTOL: f64 = 1e-8;
+/// The implicit reference: BDF at this tolerance, checked by BDF at a
+/// tenth of it.
+pub const IMPLICIT_REF_RTOL: f64 = 1e-10;
+
+/// How a subject's reference is run, chosen from its stiffness
+/// ([`Subject::axial_radians`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ReferencePlan {
+    /// DOPRI5 at [`REF_RTOL`], checked by RK4 and BDF: no stiff axial
+    /// modes (every rigid chain; today's reference, byte for byte).
+    Explicit,
+    /// DOPRI5 at `rtol`, checked by DOP853 at `rtol`.
+    StiffExplicit { rtol: f64 },
+    /// BDF at `rtol`, checked by BDF at `rtol / 10`.
+    Implicit { rtol: f64 },
+}
+
+impl ReferencePlan {
+    /// The plan for `p` up to its end time, at `rtol` where it is stiff
+    /// (precision: [`STIFF_REF_RTOL`]; `needs`: from its `--tol`).
+    pub fn for_subject<S: Subject>(p: &S, rtol: f64) -> Self {
+        let radians = p.axial_radians();
+        if radians <= STIFF_ABOVE {
+            Self::Explicit
+        } else if radians <= EXPLICIT_UP_TO {
+            Self::StiffExplicit { rtol }
+        } else {
+            Self::Implicit {
+                rtol: rtol.min(IMPLICIT_REF_RTOL),
+            }
+        }
+    }
+
+    /// The reference's run: its row's name, method and tolerances.
+    pub fn reference(self) -> (&'static str, Method, f64, f64) {
+        match self {
+            Self::Explicit => ("reference-dopri5", Method::Dopri5, REF_RTOL, REF_ATOL),
+            Self::StiffExplicit { rtol } => {
+                ("reference-dopri5", Method::Dopri5, rtol, rtol / 100.0)
+            }
+            Self::Implicit { rtol } => ("reference-bdf", Method::Bdf, rtol, rtol / 100.0),
+        }
+    }
+
+    /// The independent check of a stiff reference (none for
+    /// [`ReferencePlan::Explicit`], whose checks are RK4's and BDF's).
+    pub fn check(self) -> Option<(&'static str, Method, f64, f64)> {
+        match self {
+            Self::Explicit => None,
+            Self::StiffExplicit { rtol } => {
+                Some(("check-dop853", Method::Dop853, rtol, rtol / 100.0))
+            }
+            Self::Implicit { rtol } => {
+                Some(("check-bdf-tighter", Method::Bdf, rtol / 10.0, rtol / 1000.0))
+            }
+        }
+    }
+
+    /// One line saying which reference and why.
+    pub fn describe(self) -> String {
+        let (_, m, rtol, _) = self.reference();
+        match self {
+            Self::Explicit => format!("{} rtol {}", m.as_str().to_uppercase(), exp(rtol)),
+            Self::StiffExplicit { .. } | Self::Implicit { .. } => {
+                let (_, c, crtol, _) = self.check().unwrap_or(("", m, rtol, 0.0));
+                format!(
+                    "{} rtol {} checked by {} rtol {} (stiff axial modes: omega_max t_end above {})",
+                    m.as_str().to_uppercase(),
+                    exp(rtol),
+                    c.as_str().to_uppercase(),
+                    exp(crtol),
+                    exp(STIFF_ABOVE)
+                )
+            }
+        }
+    }
 }
 
 impl Reference {
@@ -30,6 +132,16 @@ impl Reference {
         let e_tip = (tip[0] - self.tip[0]).hypot(tip[1] - self.tip[1]) / self.length;
         let e_v = (vmax - self.vmax).abs() / self.vmax;
         (e_tip, e_v)
+    }
+
+    /// No reference: every value NaN.
+    pub fn none(length: f64) -> Self {
+        Self {
+            tip: [f64::NAN; 2],
+            vmax: f64::NAN,
+            length,
+            values: Values::NONE,
+        }
     }
 }
 
@@ -84,20 +196,42 @@ pub fn reference_phases<S: Subject>(
     checks: Checks,
     phase: &dyn Fn(&str, f64),
 ) -> Result<(Option<Reference>, Vec<Point>), Error> {
+    reference_planned(
+        p,
+        t_eval,
+        checks,
+        ReferencePlan::for_subject(p, STIFF_REF_RTOL),
+        phase,
+    )
+}
+
+/// [`reference_phases`] with the reference's `plan` given.
+pub fn reference_planned<S: Subject>(
+    p: &S,
+    t_eval: f64,
+    checks: Checks,
+    plan: ReferencePlan,
+    phase: &dyn Fn(&str, f64),
+) -> Result<(Option<Reference>, Vec<Point>), Error> {
+    let (ref_name, ref_method, ref_rtol, ref_atol) = plan.reference();
     let ref_opts = SolveOptions {
         cancel: p.options().cancel.clone(),
+        rtol: ref_rtol,
+        atol: ref_atol,
+        output_dt: p.measures().output_dt(t_eval),
         ..reference_options(t_eval)
     };
     let cancelled = || ref_opts.cancel.as_ref().is_some_and(Cancel::is_cancelled);
     let run = |method: Method, o: &SolveOptions| -> Result<Trajectory<S::Model>, Error> {
         Ok(p.solve(method, o)?)
     };
-    phase("reference-dopri5", REF_RTOL);
-    let r = run(Method::Dopri5, &ref_opts)?;
+    phase(ref_name, ref_rtol);
+    let r = run(ref_method, &ref_opts)?;
     let reference = Reference {
         tip: r.summary.tip_end,
         vmax: r.summary.tip_speed_max,
         length: p.length(),
+        values: Values::of(&r, p.measures()),
     };
     let row = |name: &str, param_name: &'static str, param: f64, t: &Trajectory<S::Model>| {
         let mut pt = Point::from_run(name.into(), param_name, param, t, p, &reference);
@@ -112,7 +246,7 @@ pub fn reference_phases<S: Subject>(
         }
         pt
     };
-    let mut rows = vec![row("reference-dopri5", "rtol", REF_RTOL, &r)];
+    let mut rows = vec![row(ref_name, "rtol", ref_rtol, &r)];
     if !r.status.is_ok() {
         return Ok((None, rows));
     }
@@ -123,6 +257,23 @@ pub fn reference_phases<S: Subject>(
         note: "budget: not run: the budget ended before this check".into(),
         ..Point::not_run(Method::Rk4, param, Plan::Budget, String::new())
     };
+    if let Some((name, method, rtol, atol)) = plan.check() {
+        if cancelled() {
+            rows.push(not_run(name, "rtol", rtol));
+        } else {
+            phase(name, rtol);
+            let c = run(
+                method,
+                &SolveOptions {
+                    rtol,
+                    atol,
+                    ..ref_opts.clone()
+                },
+            )?;
+            rows.push(row(name, "rtol", rtol, &c));
+        }
+        return Ok((Some(reference), rows));
+    }
     let h2 = checks.check_dt / 2.0;
     // RK4 with a small step, and (where that alone is not close enough)
     // Richardson's extrapolation from it and its half: (16 y(h/2) - y(h)) / 15.
@@ -208,7 +359,36 @@ pub fn reference_phases<S: Subject>(
 /// The options of every run of the reference and its `checks` up to
 /// `t_eval`, as `(name, method, options)`.
 pub fn reference_runs(t_eval: f64, checks: Checks) -> Vec<(&'static str, Method, SolveOptions)> {
+    reference_runs_planned(t_eval, checks, ReferencePlan::Explicit)
+}
+
+/// [`reference_runs`] of `plan`.
+pub fn reference_runs_planned(
+    t_eval: f64,
+    checks: Checks,
+    plan: ReferencePlan,
+) -> Vec<(&'static str, Method, SolveOptions)> {
     let o = reference_options(t_eval);
+    if plan != ReferencePlan::Explicit {
+        let (_, m, rtol, atol) = plan.reference();
+        let mut runs = vec![(
+            "the stiff scene's reference",
+            m,
+            SolveOptions {
+                rtol,
+                atol,
+                ..o.clone()
+            },
+        )];
+        if let Some((_, c, rtol, atol)) = plan.check() {
+            runs.push((
+                "the stiff reference's check",
+                c,
+                SolveOptions { rtol, atol, ..o },
+            ));
+        }
+        return runs;
+    }
     let mut runs = vec![
         (
             "the reference (DOPRI5 rtol 1e-13)",
@@ -247,7 +427,8 @@ pub fn reference_runs(t_eval: f64, checks: Checks) -> Vec<(&'static str, Method,
 }
 
 /// How far the checks agree with the reference: the larger error of the
-/// Richardson check (else the RK4 check) and of the BDF check. These bound
+/// Richardson check (else the RK4 check) and of the BDF check; for a stiff
+/// reference ([`ReferencePlan`]), its one check's and NaN. These bound
 /// the smallest error the table can resolve.
 pub fn agreement(rows: &[Point]) -> (f64, f64) {
     let find = |m: &str| {
@@ -255,6 +436,12 @@ pub fn agreement(rows: &[Point]) -> (f64, f64) {
             .find(|r| r.method == m)
             .map_or(f64::NAN, Point::err)
     };
+    if let Some(r) = rows
+        .iter()
+        .find(|r| r.method == "check-dop853" || r.method == "check-bdf-tighter")
+    {
+        return (r.err(), f64::NAN);
+    }
     let rk4 = match rows.iter().find(|r| r.method == "check-rk4-richardson") {
         Some(r) => r.err(),
         None => find("check-rk4"),

@@ -4,6 +4,8 @@
 use super::*;
 use chain_ode::Method;
 
+use crate::measure::{Measure, Measures};
+
 use fc_batch::shard::Provenance;
 use fc_csv::format::{exp, num, text};
 use fc_csv::Column::{self, Float, Int, Text};
@@ -55,6 +57,20 @@ pub fn csv_text(
         csv.push_str(&fc_csv::header(&CLI_COLUMNS));
         csv.push_str(&Provenance::header_suffix());
     }
+    // `--measure` other than the tip: each measure's error and reference
+    // value, last (the tip's table is unchanged without it).
+    let measures = rows.first().map_or(Measures::TIP, |r| r.measures);
+    let extra: Vec<Measure> = if measures.is_tip() {
+        vec![]
+    } else {
+        measures.list()
+    };
+    for m in &extra {
+        csv.push_str(&format!(",err_{}", m.name()));
+        if *m != Measure::Tip {
+            csv.push_str(&format!(",{}_ref", m.name()));
+        }
+    }
     csv.push('\n');
     for pt in rows {
         let s = &pt.stats;
@@ -89,6 +105,14 @@ pub fn csv_text(
             };
             let run = pt.run.map_or_else(String::new, |r| r.to_string());
             csv.push_str(&format!(",{wall},{run}{}", prov.cells()));
+        }
+        for &m in &extra {
+            csv.push(',');
+            csv.push_str(&exp(pt.err_of(m)));
+            if m != Measure::Tip {
+                csv.push(',');
+                csv.push_str(&num(reference.values.get(m)));
+            }
         }
         csv.push('\n');
     }
