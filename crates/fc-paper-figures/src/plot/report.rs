@@ -226,13 +226,21 @@ pub fn vmax_vs_span(
             .with_color(palette(2))
             .with_marker(Marker::Square),
     );
-    let mut full = ok("stretched");
-    full.extend(ok(&format!("stretched-{fine}")));
-    p.series.push(
-        Series::points(format!("stretched, d = L (n = 50, {links})"), full)
-            .with_color(palette(3))
-            .with_marker(Marker::Diamond),
-    );
+    // The chain stretched straight (d = L), one diamond per chain, each
+    // labelled with its chain and in its curve's colour: the two sit
+    // apart at d = L and must not read as one series.
+    for (which, who, colour) in [
+        ("stretched".to_string(), "n = 50".to_string(), palette(0)),
+        (format!("stretched-{fine}"), format!("n = {links}"), palette(1)),
+    ] {
+        let pts = ok(&which);
+        let at = pts.first().map_or(String::new(), |&(_, v)| format!(": {v:.1}"));
+        p.series.push(
+            Series::points(format!("stretched straight, d = L, {who}{at}"), pts)
+                .with_color(colour)
+                .with_marker(Marker::Diamond),
+        );
+    }
     // The narrow-span peak on finer spans (n = links and 2 links): the
     // first as open marks over the second's line.
     let pk = read("-peak")?;
