@@ -10,7 +10,7 @@ use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, RGBColor, Serie
 use super::Reader;
 
 /// The snapshots of `<id>.csv` (`point,t,x,y` and a last status row),
-/// titled `title (<status> at t = <t_reached>)`.
+/// titled `title (<status> at t = <t_reached>)`, the time to 3 decimals.
 pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let t = read("")?;
     let (point, time, x, y) = (t.strs("point")?, t.strs("t")?, t.strs("x")?, t.strs("y")?);
@@ -27,7 +27,9 @@ pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, Strin
                 .ok_or_else(|| format!("{}: a joint before joint 0", t.name))?
                 .1
                 .push([parse(x[k])?, parse(y[k])?]),
-            s => status = format!("{s} at t = {}", time[k]),
+            // The time as a reader needs it (3 decimals), not the 16
+            // digits of the data file.
+            s => status = format!("{s} at t = {:.3}", parse(time[k])?),
         }
     }
     let title = format!("{title} ({status})");
