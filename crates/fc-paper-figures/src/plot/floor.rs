@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use figures::{cool, palette, LinePlot, Marker, Output, Series, Style};
+use figures::{cool, palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 
@@ -115,7 +115,7 @@ pub fn floor_checks(read: Reader, stem: &Path) -> Result<Output, String> {
     let mut right = LinePlot::new(
         "a chain laid on a slope a, friction mu = 0.5",
         "t",
-        "|speed of the centre of mass along the slope|",
+        "centre of mass |v| (along it)",
     );
     right.log_y = true;
     let mut cases: Vec<(f64, f64)> = (0..sl.len()).map(|j| (a[j], mu[j])).collect();
@@ -144,26 +144,40 @@ pub fn floor_checks(read: Reader, stem: &Path) -> Result<Output, String> {
         } else {
             "above it"
         };
+        // How far the run is from its closed form, said in its label.
+        let gap = rows
+            .iter()
+            .filter(|&&j| law[j] != 0.0)
+            .map(|&j| ((v[j].abs() - law[j].abs()) / law[j].abs()).abs())
+            .fold(0.0, f64::max);
         right.series.push(
             Series::new(
-                format!("a = {s} ({side})"),
+                format!("a = {s} ({side}): law to {gap:.0e}"),
                 rows.iter().map(|&j| (t[j], v[j].abs())).collect(),
                 Style::Line,
             )
             .with_color(palette(i)),
         );
+        // The closed form as open marks at about 12 times: a line on the
+        // run's line would hide under it.
+        let every = (rows.len() / 12).max(1);
         right.series.push(
             Series::new(
                 "",
-                rows.iter().map(|&j| (t[j], law[j].abs())).collect(),
-                Style::Dashed,
+                rows.iter()
+                    .step_by(every)
+                    .map(|&j| (t[j], law[j].abs()))
+                    .collect(),
+                Style::Points,
             )
-            .with_color(palette(i)),
+            .with_color(palette(i))
+            .hollow(),
         );
     }
     right.series.push(
-        Series::legend_only("dashed: closed forms (creep, slide)", Style::Dashed)
-            .with_color(palette(7)),
+        Series::legend_only("open marks: the laws (creep, slide)", Style::Points)
+            .with_color(RGBColor(60, 60, 60))
+            .hollow(),
     );
     figures::line_plot_pair(&left, &right, "The floor against its closed forms", stem)
         .map_err(|e| e.to_string())
