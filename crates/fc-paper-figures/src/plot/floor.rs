@@ -18,16 +18,13 @@ pub fn floor_span_d3(read: Reader, stem: &Path) -> Result<Output, String> {
     let mut times: Vec<f64> = t.iter().copied().filter(|&s| s >= 0.0).collect();
     times.dedup();
     let last = times.last().copied().unwrap_or(1.0);
-    for (i, &s) in times.iter().enumerate() {
+    for &s in &times {
         let pts = (0..snaps.len())
             .filter(|&j| t[j] == s)
             .map(|j| (x[j], y[j]))
             .collect();
-        let label = if i == 0 || i + 1 == times.len() {
-            format!("t = {s}")
-        } else {
-            String::new()
-        };
+        // Every snapshot keyed by its time (only the first and last were).
+        let label = format!("t = {s:.2}");
         left.series
             .push(Series::new(label, pts, Style::Line).with_color(cool(s / last)));
     }
