@@ -4,9 +4,9 @@
 //! under it when a column would leave the plot too narrow). The axes never
 //! grow to make room for the boxes, so the data fill their ranges.
 
+use crate::colormap::palette;
 use crate::layout::{self, Layout};
 use crate::legend;
-use crate::colormap::palette;
 use crate::lines::{LinePlot, Marker, Series, Style, LINE_PLOT_SIZE};
 use crate::placement::{self, Boxes, Occupancy, PixelRect};
 use crate::sizes::{text_width, Sizes};
@@ -291,9 +291,8 @@ impl Plan {
         let data = layout::bounds(pieces.iter().flatten()).map(|(a, b, c, d)| ((a, b), (c, d)));
         // As `chart::chart` sets them: a name longer than its side shrinks.
         let label = sizes.label();
-        let share = |name: &str, room: i32| {
-            layout::fitted(label, text_width(name, label), room) / label
-        };
+        let share =
+            |name: &str, room: i32| layout::fitted(label, text_width(name, label), room) / label;
         let axis_names = share(p.x_label, self.plot.0).min(share(p.y_label, self.plot.1));
         let keys = p
             .series

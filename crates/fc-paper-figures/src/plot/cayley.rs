@@ -97,8 +97,12 @@ pub fn cayley(read: Reader, stem: &Path) -> Result<Output, String> {
     }
     left.series.push(
         // Solid black: grey dashed lines are the standard errors.
-        Series::new("ideal (Cayley): 1", vec![(0.2, 1.0), (1.2, 1.0)], Style::Line)
-            .with_color(RGBColor(0, 0, 0)),
+        Series::new(
+            "ideal (Cayley): 1",
+            vec![(0.2, 1.0), (1.2, 1.0)],
+            Style::Line,
+        )
+        .with_color(RGBColor(0, 0, 0)),
     );
     left.y_range = Some((0.0, 2.0));
 

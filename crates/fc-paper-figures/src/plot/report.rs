@@ -239,10 +239,16 @@ pub fn vmax_vs_span(
     // apart at d = L and must not read as one series.
     for (which, who, colour) in [
         ("stretched".to_string(), "n = 50".to_string(), palette(0)),
-        (format!("stretched-{fine}"), format!("n = {links}"), palette(1)),
+        (
+            format!("stretched-{fine}"),
+            format!("n = {links}"),
+            palette(1),
+        ),
     ] {
         let pts = ok(&which);
-        let at = pts.first().map_or(String::new(), |&(_, v)| format!(": {v:.1}"));
+        let at = pts
+            .first()
+            .map_or(String::new(), |&(_, v)| format!(": {v:.1}"));
         p.series.push(
             Series::points(format!("stretched straight, d = L, {who}{at}"), pts)
                 .with_color(colour)

@@ -161,11 +161,7 @@ const CLOSE: f64 = 0.02;
 /// if they share none.
 fn largest_relative_gap(a: &[(f64, f64)], b: &[(f64, f64)]) -> Option<f64> {
     b.iter()
-        .filter_map(|&(d, v)| {
-            a.iter()
-                .find(|p| p.0 == d)
-                .map(|p| ((v - p.1) / p.1).abs())
-        })
+        .filter_map(|&(d, v)| a.iter().find(|p| p.0 == d).map(|p| ((v - p.1) / p.1).abs()))
         .reduce(f64::max)
 }
 
