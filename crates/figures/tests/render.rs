@@ -419,9 +419,12 @@ fn filled(n: usize) -> Vec<Series> {
     (0..n)
         .map(|k| {
             let y = k as f64 / (n - 1) as f64;
-            Series::line(
+            // Dashed past the palette's ten colours: one swatch, one meaning.
+            let style = if k < 10 { Style::Line } else { Style::Dashed };
+            Series::new(
                 format!("level {k}"),
                 (0..=40).map(|i| (i as f64 / 40.0, y)).collect(),
+                style,
             )
         })
         .collect()
