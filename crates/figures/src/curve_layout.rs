@@ -118,6 +118,9 @@ impl Geometry {
         let plot = |l: &Layout| (width - cbar_w - l.left - l.right - l.y_area, ph);
         let tx = |pw: i32| (pw as f64 / (170.0 * sizes.scale)).round().clamp(3.0, 10.0) as usize;
         let mut x = Axis::linear(xr.0, xr.1, tx(plot(&layout).0));
+        if let (Some(at), false) = (&spec.x_ticks, spec.equal_aspect) {
+            x = x.with_labelled_ticks(at);
+        }
         if spec.equal_aspect {
             for _ in 0..2 {
                 let (ex, ey) = layout::equalize(xr, yr, plot(&layout));

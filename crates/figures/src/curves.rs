@@ -75,6 +75,7 @@ pub fn colored_curves(fig: &ColoredCurves, stem: &Path) -> Result<Output, Figure
         equal_aspect: fig.equal_aspect,
         x_range: fig.x_range,
         y_range: fig.y_range,
+        x_ticks: None,
     };
     render_static(spec, stem)
 }
@@ -96,6 +97,10 @@ pub(crate) struct Spec<'a> {
     pub equal_aspect: bool,
     pub x_range: Option<(f64, f64)>,
     pub y_range: Option<(f64, f64)>,
+    /// Labelled x ticks `(x, label)` in place of the numbers (linear axes
+    /// without equal scales): the snapshots side by side, each labelled by
+    /// its time.
+    pub x_ticks: Option<Vec<(f64, String)>>,
 }
 
 pub(crate) fn render_static(mut spec: Spec, stem: &Path) -> Result<Output, FigureError> {

@@ -69,7 +69,10 @@ pub use category::{category_map, category_map_to, CategoryMap, CategoryPanel};
 pub use colormap::{cool, palette, P0_RED, P1_BLUE, PALETTE};
 pub use curves::{colored_curves, ColoredCurves};
 pub use format::format_number;
-pub use line_layout::{line_plot_boxes, LinePlotBoxes, PanelLayout, MIN_FILL};
+pub use line_layout::{
+    line_plot_boxes, same_swatch_two_meanings, LegendKey, LinePlotBoxes, PanelLayout, MIN_FILL,
+    MIN_NAME_SHARE,
+};
 pub use lines::{
     line_plot, line_plot_pair, line_plot_pair_to, LinePlot, Marker, Series, Style, LINE_PLOT_SIZE,
     PAIR_SIZE,

@@ -4,11 +4,12 @@
 //! under it when a column would leave the plot too narrow). The axes never
 //! grow to make room for the boxes, so the data fill their ranges.
 
+use crate::colormap::palette;
 use crate::layout::{self, Layout};
 use crate::legend;
-use crate::lines::{LinePlot, Series, Style, LINE_PLOT_SIZE};
+use crate::lines::{LinePlot, Marker, Series, Style, LINE_PLOT_SIZE};
 use crate::placement::{self, Boxes, Occupancy, PixelRect};
-use crate::sizes::Sizes;
+use crate::sizes::{text_width, Sizes};
 use crate::ticks::Axis;
 use crate::{clip, font, FigureError};
 
@@ -283,11 +284,33 @@ impl Plan {
         }
     }
 
-    /// What this plan draws: its axes, the extent of its data, its boxes.
-    pub fn report(&self, p: &LinePlot) -> PanelLayout {
+    /// What this plan draws (at `sizes`): its axes, the extent of its
+    /// data, its boxes, how large its axis names are set, its legend's keys.
+    pub fn report(&self, p: &LinePlot, sizes: &Sizes) -> PanelLayout {
         let pieces = all_pieces(p, &self.x, &self.y);
         let data = layout::bounds(pieces.iter().flatten()).map(|(a, b, c, d)| ((a, b), (c, d)));
+        // As `chart::chart` sets them: a name longer than its side shrinks.
+        let label = sizes.label();
+        let share =
+            |name: &str, room: i32| layout::fitted(label, text_width(name, label), room) / label;
+        let axis_names = share(p.x_label, self.plot.0).min(share(p.y_label, self.plot.1));
+        let keys = p
+            .series
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| !s.label.is_empty())
+            .map(|(i, s)| (s, s.color.unwrap_or_else(|| palette(i))))
+            .map(|(s, c)| LegendKey {
+                label: s.label.clone(),
+                color: (c.0, c.1, c.2),
+                style: s.style,
+                marker: has_marks(s.style).then_some(s.marker),
+                hollow: has_marks(s.style) && s.hollow,
+            })
+            .collect();
         PanelLayout {
+            axis_names,
+            keys,
             plot: self.plot,
             x: (self.x.lo, self.x.hi),
             y: (self.y.lo, self.y.hi),
@@ -325,6 +348,51 @@ pub struct PanelLayout {
     /// Samples of the drawn data (about 6 px apart along every line, and
     /// every mark) that the boxes cover or come within 6 px of.
     pub hidden: usize,
+    /// The size the smaller axis name is set at, as a share of the label
+    /// size (1: full size; a name longer than its side is shrunk).
+    pub axis_names: f64,
+    /// The legend's entries, in order: what each says and how it is drawn.
+    pub keys: Vec<LegendKey>,
+}
+
+/// One legend entry: its text and its swatch (colour, line style, mark).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LegendKey {
+    pub label: String,
+    /// `(r, g, b)`.
+    pub color: (u8, u8, u8),
+    pub style: Style,
+    /// The mark drawn, if the style draws marks.
+    pub marker: Option<Marker>,
+    pub hollow: bool,
+}
+
+impl LegendKey {
+    /// The swatch alone: two keys with the same swatch look the same.
+    fn swatch(&self) -> ((u8, u8, u8), Style, Option<Marker>, bool) {
+        (self.color, self.style, self.marker, self.hollow)
+    }
+}
+
+/// The least share of the label size an axis name may be shrunk to (the
+/// referee read the names shrunk to 45-55% as about 6 pt).
+pub const MIN_NAME_SHARE: f64 = 0.6;
+
+/// Pairs of entries of one legend `keys` that draw the same swatch for
+/// different texts (a reader cannot tell which is which).
+pub fn same_swatch_two_meanings(keys: &[LegendKey]) -> Vec<String> {
+    let mut out = vec![];
+    for (i, a) in keys.iter().enumerate() {
+        for b in &keys[i + 1..] {
+            if a.swatch() == b.swatch() && a.label != b.label {
+                out.push(format!(
+                    "one legend swatch for two meanings: '{}' and '{}'",
+                    a.label, b.label
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// The least share of an axis's range (decades on a log axis) its data
@@ -372,6 +440,13 @@ impl PanelLayout {
             out.push(format!(
                 "the legend or note covers {} data samples",
                 self.hidden
+            ));
+        }
+        out.extend(same_swatch_two_meanings(&self.keys));
+        if self.axis_names < MIN_NAME_SHARE {
+            out.push(format!(
+                "an axis name set at {:.0}% of the label size (shorten it)",
+                100.0 * self.axis_names
             ));
         }
         out

@@ -150,7 +150,7 @@ const PAIR_SCALE: f64 = 1.2;
 /// drawn ([`Output::panels`]).
 pub fn line_plot(p: &LinePlot, stem: &Path) -> Result<Output, FigureError> {
     let mut out = output::save(&Single(p), stem)?;
-    out.panels = vec![line_layout::single_plan(p).report(p)];
+    out.panels = vec![line_layout::single_plan(p).report(p, &Sizes::STANDARD)];
     Ok(out)
 }
 
@@ -165,7 +165,7 @@ pub fn line_plot_pair(
     out.panels = pair_plans(left, right, title)
         .iter()
         .zip([left, right])
-        .map(|(plan, p)| plan.report(p))
+        .map(|(plan, p)| plan.report(p, &Sizes { scale: PAIR_SCALE }))
         .collect();
     Ok(out)
 }

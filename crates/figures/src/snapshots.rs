@@ -26,6 +26,10 @@ pub struct ChainSnapshots<'a> {
     pub p1_label: &'a str,
     /// Label of the x axis (default "x").
     pub x_label: &'a str,
+    /// Labelled x ticks `(x, label)` in place of the numbers (without
+    /// equal scales): snapshots drawn side by side, each tick under one
+    /// and labelled by its time.
+    pub x_ticks: Option<Vec<(f64, String)>>,
 }
 
 impl<'a> ChainSnapshots<'a> {
@@ -42,6 +46,7 @@ impl<'a> ChainSnapshots<'a> {
             colorbar_label: "t",
             p1_label: "P₁",
             x_label: "x",
+            x_ticks: None,
         }
     }
 
@@ -64,6 +69,7 @@ impl<'a> ChainSnapshots<'a> {
             equal_aspect: self.equal_aspect,
             x_range: self.x_range,
             y_range: self.y_range,
+            x_ticks: self.x_ticks.clone(),
         };
         spec.sort();
         spec

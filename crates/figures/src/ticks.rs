@@ -185,6 +185,26 @@ impl Axis {
         }
     }
 
+    /// An axis like this one with ticks at `at` (data values), each with
+    /// its own label (e.g. the time of the snapshot drawn there); ticks
+    /// outside the axis are left out. Fewer than two inside: unchanged.
+    pub fn with_labelled_ticks(&self, at: &[(f64, String)]) -> Axis {
+        let tol = 1e-9 * self.span().abs();
+        let inside: Vec<(f64, String)> = at
+            .iter()
+            .filter_map(|(v, l)| self.to_plot(*v).map(|p| (p, l.clone())))
+            .filter(|(p, _)| *p >= self.lo - tol && *p <= self.hi + tol)
+            .collect();
+        if inside.len() < 2 {
+            return self.clone();
+        }
+        Axis {
+            ticks: inside.iter().map(|(p, _)| *p).collect(),
+            labels: inside.into_iter().map(|(_, l)| l).collect(),
+            ..self.clone()
+        }
+    }
+
     /// Choose a range for data values in `[min, max]` (data space), padded
     /// by `pad` of the span, or exactly `fixed` if given.
     pub fn auto(
@@ -343,6 +363,23 @@ pub(crate) fn nice_step(raw: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Labelled ticks keep their own labels, in order, and drop those
+    /// outside the axis (fig12's snapshots labelled by their times).
+    #[test]
+    fn labelled_ticks_replace_the_numbers() {
+        let a = Axis::linear(-0.3, 2.1, 5);
+        let at: Vec<(f64, String)> = [(0.0, "0.00"), (0.6, "0.48"), (1.2, "0.96"), (9.0, "9.9")]
+            .iter()
+            .map(|(x, l)| (*x, l.to_string()))
+            .collect();
+        let b = a.with_labelled_ticks(&at);
+        assert_eq!(b.labels, vec!["0.00", "0.48", "0.96"]);
+        assert_eq!(b.ticks, vec![0.0, 0.6, 1.2]);
+        assert_eq!(b.label_at(0.6), "0.48");
+        // One tick inside is not an axis: the numbers stay.
+        assert_eq!(a.with_labelled_ticks(&at[3..]).labels, a.labels);
+    }
 
     #[test]
     fn nice_steps() {

@@ -419,9 +419,12 @@ fn filled(n: usize) -> Vec<Series> {
     (0..n)
         .map(|k| {
             let y = k as f64 / (n - 1) as f64;
-            Series::line(
+            // Dashed past the palette's ten colours: one swatch, one meaning.
+            let style = if k < 10 { Style::Line } else { Style::Dashed };
+            Series::new(
                 format!("level {k}"),
                 (0..=40).map(|i| (i as f64 / 40.0, y)).collect(),
+                style,
             )
         })
         .collect()
@@ -708,5 +711,42 @@ fn empty_data_is_an_error() {
     // A plot without series is an empty frame, not an error.
     let out = line_plot(&LinePlot::new("empty", "x", "y"), &dir.join("empty")).unwrap();
     assert_eq!(Png::read(&out.png).w, LINE_PLOT_SIZE.0);
+    done(&dir);
+}
+
+/// One swatch for two meanings in a legend, and an axis name shrunk below
+/// [`MIN_NAME_SHARE`] to fit its side, are reported (issue 51: cayley-top's
+/// grey dashed "free fall" and "standard errors", its 45% y name); the
+/// same swatch for one meaning, or a distinct swatch, is not.
+#[test]
+fn one_swatch_for_two_meanings_and_a_shrunk_axis_name_are_reported() {
+    let dir = scratch("swatch");
+    let grey = RGBColor(127, 127, 127);
+    let mut p = LinePlot::new("Swatches", "x", "y");
+    p.series = vec![
+        Series::new("free fall: 1", vec![(0.0, 1.0), (1.0, 1.0)], Style::Dashed).with_color(grey),
+        Series::new("data", vec![(0.0, 0.0), (1.0, 2.0)], Style::Line),
+        Series::legend_only("dashed: +- 2 standard errors", Style::Dashed).with_color(grey),
+    ];
+    let out = line_plot(&p, &dir.join("two")).unwrap();
+    let problems = out.problems();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(problems[0].contains("two meanings"), "{problems:?}");
+    // A distinct swatch (solid black) for the reference line: nothing.
+    p.series[0] = p.series[0].clone().with_color(RGBColor(0, 0, 0));
+    p.series[0].style = Style::Line;
+    let out = line_plot(&p, &dir.join("one")).unwrap();
+    assert_eq!(out.problems(), Vec::<String>::new());
+    // A y name far longer than the plot is tall.
+    let long = "a very long axis name that says everything about its axis, twice over, \
+                and once more for good measure";
+    p.y_label = long;
+    let out = line_plot(&p, &dir.join("long")).unwrap();
+    let problems = out.problems();
+    assert!(
+        problems.iter().any(|e| e.contains("axis name set at")),
+        "{problems:?}"
+    );
+    assert!(out.panels[0].axis_names < MIN_NAME_SHARE);
     done(&dir);
 }

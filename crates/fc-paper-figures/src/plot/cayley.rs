@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use figures::{palette, LinePlot, Marker, Output, Series, Style};
+use figures::{palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 
@@ -96,12 +96,13 @@ pub fn cayley(read: Reader, stem: &Path) -> Result<Output, String> {
             .push(Series::new(format!("n = {n}"), pts, Style::Line).with_color(palette(i)));
     }
     left.series.push(
+        // Solid black: grey dashed lines are the standard errors.
         Series::new(
             "ideal (Cayley): 1",
             vec![(0.2, 1.0), (1.2, 1.0)],
-            Style::Dashed,
+            Style::Line,
         )
-        .with_color(palette(7)),
+        .with_color(RGBColor(0, 0, 0)),
     );
     left.y_range = Some((0.0, 2.0));
 
@@ -109,9 +110,9 @@ pub fn cayley(read: Reader, stem: &Path) -> Result<Output, String> {
     let (mm, msem) = (m.nums("reading_mean")?, m.nums("reading_sem")?);
     let (wm, wsem) = (m.nums("reading_wide_mean")?, m.nums("reading_wide_sem")?);
     let mut right = LinePlot::new(
-        "at mid-fall (x = L / 2)",
+        "ensemble mean at mid-fall (x = L / 2)",
         "rods n",
-        "ensemble mean of F / (3 mu g x)",
+        "F / (3 mu g x)",
     );
     let ladder: Vec<usize> = (0..m.len()).filter(|&j| on_ladder(&mkeys[j])).collect();
     let pick = |rows: &[usize], y: &dyn Fn(usize) -> f64| -> Vec<(f64, f64)> {
@@ -184,7 +185,7 @@ pub fn cayley_top(read: Reader, stem: &Path) -> Result<Output, String> {
     let s = read("")?;
     let (links, keys) = case_keys(&s)?;
     let (t, mean, sem) = (s.nums("t")?, s.nums("top_mean")?, s.nums("top_sem")?);
-    let y_label = "fall of the top / free fall's g t^2 / 2";
+    let y_label = "top's fall / (g t^2 / 2)";
     let mut left = LinePlot::new(
         "over n (plastic floor, no friction)",
         "t / sqrt(L / g)",
@@ -239,8 +240,9 @@ pub fn cayley_top(read: Reader, stem: &Path) -> Result<Output, String> {
     }
     for plot in [&mut left, &mut right] {
         plot.series.push(
-            Series::new("free fall: 1", vec![(0.2, 1.0), (1.35, 1.0)], Style::Dashed)
-                .with_color(palette(7)),
+            // Solid black: grey dashed lines are the standard errors.
+            Series::new("free fall: 1", vec![(0.2, 1.0), (1.35, 1.0)], Style::Line)
+                .with_color(RGBColor(0, 0, 0)),
         );
         plot.series.push(
             Series::legend_only("dashed: +- 2 standard errors", Style::Dashed)

@@ -20,8 +20,8 @@ const SCENE_STYLES: [(Style, Marker, bool); 3] = [
 /// `snap-force`: from `-timing` and `-stiff` (`snap::SNAP_HEADER` rows,
 /// the second without wall times), the peak support force over `M g` and
 /// the impulse over `M sqrt(g L)` against `n`, a line per `(scene, label)`
-/// of `scenes` and variant: a colour per variant (the left panel's
-/// legend), a line style and mark per scene (the right panel's).
+/// of `scenes` and variant: a colour per variant, a line style and mark
+/// per scene, both keyed in the one legend of the left panel.
 pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<Output, String> {
     // (scene, variant, n, peak, impulse) of both tables.
     let mut rows: Vec<(String, String, f64, f64, f64)> = vec![];
@@ -91,8 +91,9 @@ pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<
             }
         }
     }
-    // The legends: the variants' colours on the left, the scenes' styles
-    // on the right.
+    // One legend, on the left: the variants' colours, then the scenes'
+    // line styles and marks (both panels draw the same series, so two
+    // half-legends made a reader look in two places).
     for (vi, v) in variants.iter().enumerate() {
         left.series
             .push(Series::legend_only(v.clone(), Style::Line).with_color(palette(vi)));
@@ -105,7 +106,7 @@ pub fn snap_force(read: Reader, stem: &Path, scenes: &[(&str, &str)]) -> Result<
         if hollow {
             entry = entry.hollow();
         }
-        right.series.push(entry);
+        left.series.push(entry);
     }
     let title = "The snap: support force and impulse against n (total mass fixed)";
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())

@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use figures::{cool, palette, LinePlot, Marker, Output, Series, Style};
+use figures::{cool, palette, LinePlot, Marker, Output, RGBColor, Series, Style};
 
 use super::Reader;
 
@@ -20,16 +20,13 @@ pub fn floor_span_d3(read: Reader, stem: &Path) -> Result<Output, String> {
     let mut times: Vec<f64> = t.iter().copied().filter(|&s| s >= 0.0).collect();
     times.dedup();
     let last = times.last().copied().unwrap_or(1.0);
-    for (i, &s) in times.iter().enumerate() {
+    for &s in &times {
         let pts = (0..snaps.len())
             .filter(|&j| t[j] == s)
             .map(|j| (x[j], y[j]))
             .collect();
-        let label = if i == 0 || i + 1 == times.len() {
-            format!("t = {s}")
-        } else {
-            String::new()
-        };
+        // Every snapshot keyed by its time (only the first and last were).
+        let label = format!("t = {s:.2}");
         left.series
             .push(Series::new(label, pts, Style::Line).with_color(cool(s / last)));
     }
@@ -117,7 +114,7 @@ pub fn floor_checks(read: Reader, stem: &Path) -> Result<Output, String> {
     let mut right = LinePlot::new(
         "a chain laid on a slope a, friction mu = 0.5",
         "t",
-        "|speed of the centre of mass along the slope|",
+        "centre of mass |v| (along it)",
     );
     right.log_y = true;
     let mut cases: Vec<(f64, f64)> = (0..sl.len()).map(|j| (a[j], mu[j])).collect();
@@ -146,26 +143,40 @@ pub fn floor_checks(read: Reader, stem: &Path) -> Result<Output, String> {
         } else {
             "above it"
         };
+        // How far the run is from its closed form, said in its label.
+        let gap = rows
+            .iter()
+            .filter(|&&j| law[j] != 0.0)
+            .map(|&j| ((v[j].abs() - law[j].abs()) / law[j].abs()).abs())
+            .fold(0.0, f64::max);
         right.series.push(
             Series::new(
-                format!("a = {s} ({side})"),
+                format!("a = {s} ({side}): law to {gap:.0e}"),
                 rows.iter().map(|&j| (t[j], v[j].abs())).collect(),
                 Style::Line,
             )
             .with_color(palette(i)),
         );
+        // The closed form as open marks at about 12 times: a line on the
+        // run's line would hide under it.
+        let every = (rows.len() / 12).max(1);
         right.series.push(
             Series::new(
                 "",
-                rows.iter().map(|&j| (t[j], law[j].abs())).collect(),
-                Style::Dashed,
+                rows.iter()
+                    .step_by(every)
+                    .map(|&j| (t[j], law[j].abs()))
+                    .collect(),
+                Style::Points,
             )
-            .with_color(palette(i)),
+            .with_color(palette(i))
+            .hollow(),
         );
     }
     right.series.push(
-        Series::legend_only("dashed: closed forms (creep, slide)", Style::Dashed)
-            .with_color(palette(7)),
+        Series::legend_only("open marks: the laws (creep, slide)", Style::Points)
+            .with_color(RGBColor(60, 60, 60))
+            .hollow(),
     );
     figures::line_plot_pair(&left, &right, "The floor against its closed forms", stem)
         .map_err(|e| e.to_string())

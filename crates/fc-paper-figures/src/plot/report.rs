@@ -122,6 +122,13 @@ pub fn snapshots(
         .map(|(_, f)| f)
         .collect::<Vec<_>>();
     let shown = frames.len();
+    // Side by side, each snapshot's tick sits under its P0 and is
+    // labelled by its time: the x numbers of shifted frames mean nothing.
+    let ticks: Vec<(f64, String)> = frames
+        .iter()
+        .enumerate()
+        .map(|(k, (t, _))| (p0[0] + k as f64 * shift, format!("{t:.2}")))
+        .collect();
     let frames = frames
         .into_iter()
         .enumerate()
@@ -130,13 +137,14 @@ pub fn snapshots(
             (t, joints.into_iter().map(|p| [p[0] + dx, p[1]]).collect())
         })
         .collect();
-    let x_label = format!("x, the k-th snapshot shifted right by {shift} k");
+    let x_label = format!("time t of each snapshot (drawn side by side, {shift} apart in x)");
     let mut f = ChainSnapshots::new(title, frames, p0);
     f.p1 = p1;
     if shift > 0.0 {
         f.equal_aspect = false;
         f.x_range = Some((-0.5 * shift, (shown as f64 - 0.5) * shift));
         f.x_label = &x_label;
+        f.x_ticks = Some(ticks);
     }
     if let Some(label) = p1_label {
         f.p1_label = label;
@@ -226,13 +234,27 @@ pub fn vmax_vs_span(
             .with_color(palette(2))
             .with_marker(Marker::Square),
     );
-    let mut full = ok("stretched");
-    full.extend(ok(&format!("stretched-{fine}")));
-    p.series.push(
-        Series::points(format!("stretched, d = L (n = 50, {links})"), full)
-            .with_color(palette(3))
-            .with_marker(Marker::Diamond),
-    );
+    // The chain stretched straight (d = L), one diamond per chain, each
+    // labelled with its chain and in its curve's colour: the two sit
+    // apart at d = L and must not read as one series.
+    for (which, who, colour) in [
+        ("stretched".to_string(), "n = 50".to_string(), palette(0)),
+        (
+            format!("stretched-{fine}"),
+            format!("n = {links}"),
+            palette(1),
+        ),
+    ] {
+        let pts = ok(&which);
+        let at = pts
+            .first()
+            .map_or(String::new(), |&(_, v)| format!(": {v:.1}"));
+        p.series.push(
+            Series::points(format!("stretched straight, d = L, {who}{at}"), pts)
+                .with_color(colour)
+                .with_marker(Marker::Diamond),
+        );
+    }
     // The narrow-span peak on finer spans (n = links and 2 links): the
     // first as open marks over the second's line.
     let pk = read("-peak")?;

@@ -10,7 +10,7 @@ use figures::{palette, ChainSnapshots, LinePlot, Marker, Output, RGBColor, Serie
 use super::Reader;
 
 /// The snapshots of `<id>.csv` (`point,t,x,y` and a last status row),
-/// titled `title (<status> at t = <t_reached>)`.
+/// titled `title (<status> at t = <t_reached>)`, the time to 3 decimals.
 pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let t = read("")?;
     let (point, time, x, y) = (t.strs("point")?, t.strs("t")?, t.strs("x")?, t.strs("y")?);
@@ -27,7 +27,9 @@ pub fn snapshots(read: Reader, stem: &Path, title: &str) -> Result<Output, Strin
                 .ok_or_else(|| format!("{}: a joint before joint 0", t.name))?
                 .1
                 .push([parse(x[k])?, parse(y[k])?]),
-            s => status = format!("{s} at t = {}", time[k]),
+            // The time as a reader needs it (3 decimals), not the 16
+            // digits of the data file.
+            s => status = format!("{s} at t = {:.3}", parse(time[k])?),
         }
     }
     let title = format!("{title} ({status})");
@@ -61,7 +63,7 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     let mut right = LinePlot::new(
         "in our units: each erratum undone",
         "span d",
-        "maximum tip speed / sqrt(g l)",
+        "max tip speed (g = 1, L = 6)",
     );
     for p in [&mut left, &mut right] {
         p.x_tick_step = Some(1.0);
@@ -101,6 +103,10 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
         Marker::Triangle,
     ];
     let mut failed = vec![];
+    // The first case (as coded) by span, so that a case that stays close
+    // to it says how close and is drawn in open marks over it, not hidden
+    // under it.
+    let mut first: Vec<(f64, f64)> = vec![];
     for (k, c) in distinct(&case).into_iter().enumerate() {
         let rows: Vec<usize> = (0..e.len()).filter(|&j| case[j] == c).collect();
         let pts: Vec<(f64, f64)> = rows
@@ -118,11 +124,22 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
         } else {
             Style::DashedPoints
         };
-        right.series.push(
-            Series::new(c, pts, style)
-                .with_color(palette(3 + k))
-                .with_marker(marks[k % marks.len()]),
-        );
+        let apart = largest_relative_gap(&first, &pts);
+        let close = k > 0 && apart.is_some_and(|a| a < CLOSE);
+        let label = match apart {
+            Some(a) if close => format!("{c}: within {:.1}% of {}", 100.0 * a, case[0]),
+            _ => c.to_string(),
+        };
+        let mut series = Series::new(label, pts.clone(), style)
+            .with_color(palette(3 + k))
+            .with_marker(marks[k % marks.len()]);
+        if close {
+            series = series.hollow();
+        }
+        right.series.push(series);
+        if k == 0 {
+            first = pts;
+        }
     }
     right.series.push(
         Series::new(
@@ -134,6 +151,18 @@ pub fn vmax(read: Reader, stem: &Path, title: &str) -> Result<Output, String> {
     );
     right.annotations = failed;
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
+
+/// A case this close to the first (largest relative gap at a common
+/// span) is drawn in open marks and says how close it is.
+const CLOSE: f64 = 0.02;
+
+/// The largest `|b - a| / |a|` over the spans `a` and `b` share; `None`
+/// if they share none.
+fn largest_relative_gap(a: &[(f64, f64)], b: &[(f64, f64)]) -> Option<f64> {
+    b.iter()
+        .filter_map(|&(d, v)| a.iter().find(|p| p.0 == d).map(|p| ((v - p.1) / p.1).abs()))
+        .reduce(f64::max)
 }
 
 /// The report's Fig. 8 or 11 in its model, from `<id>.csv`
