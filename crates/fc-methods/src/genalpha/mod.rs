@@ -214,8 +214,9 @@ fn run<S: OdeSystem>(
     // `R = (d* - d_n) + beta k1 v_n - beta f(t*, u)` on the differential
     // rows, `-beta g(t*, u)` on the algebraic ones.
     let k1 = (1.0 - k.a_m) - k.a_m * (1.0 - k.gamma) / k.gamma;
-    // Newton's tolerance in the error norm (RADAU5's).
-    let tol = (10.0 * f64::EPSILON / set.rtol).max(set.rtol.sqrt().min(0.03));
+    // Newton's tolerance in the error norm: a fraction of RADAU5's
+    // (`GenAlphaPolicy::newton_tol`).
+    let tol = (10.0 * f64::EPSILON / set.rtol).max(set.rtol.sqrt().min(0.03) * policy.newton_tol);
 
     // The derivatives at the start: the method's `v_0` and the dense
     // output's `f_0`.
@@ -411,7 +412,7 @@ fn run<S: OdeSystem>(
             }
         }
         xs[nd..].fill(0.0);
-        let filtered = newton.solve(&mut x);
+        let filtered = !policy.filter || newton.solve(&mut x);
         let t1 = if landing { t_end } else { t + h_step };
         let e = slice(&x);
         let err = if filtered {
