@@ -159,6 +159,14 @@ pub(crate) fn integrate(
         .flatten()
         .filter(|&i| i < nd)
         .collect();
+    // Newton's tolerance: tight where the step resolves every mode (the
+    // error measured on every unknown), RADAU5's where it damps modes it
+    // does not resolve (`GenAlphaPolicy::newton_tol`).
+    let newton_tol = if configuration.is_empty() {
+        policy::current().newton_tol
+    } else {
+        1.0
+    };
     if configuration.is_empty() || policy::current().measure_all {
         configuration = (0..nd).collect();
     }
@@ -170,6 +178,7 @@ pub(crate) fn integrate(
     let control = ErrorControl {
         configuration: &configuration,
         measured: measured.as_deref(),
+        newton_tol,
     };
     let mut out = Counted::run(problem, |sys| {
         run(sys, dae.as_ref(), full, &control, s, obs)
@@ -184,6 +193,8 @@ pub(crate) fn integrate(
 struct ErrorControl<'a> {
     configuration: &'a [usize],
     measured: Option<&'a dyn Measured>,
+    /// Newton's stopping tolerance as a fraction of RADAU5's.
+    newton_tol: f64,
 }
 
 /// The step loop: `sys` (counted) gives the derivatives the observer and
@@ -215,8 +226,8 @@ fn run<S: OdeSystem>(
     // rows, `-beta g(t*, u)` on the algebraic ones.
     let k1 = (1.0 - k.a_m) - k.a_m * (1.0 - k.gamma) / k.gamma;
     // Newton's tolerance in the error norm: a fraction of RADAU5's
-    // (`GenAlphaPolicy::newton_tol`).
-    let tol = (10.0 * f64::EPSILON / set.rtol).max(set.rtol.sqrt().min(0.03) * policy.newton_tol);
+    // (`ErrorControl::newton_tol`).
+    let tol = (10.0 * f64::EPSILON / set.rtol).max(set.rtol.sqrt().min(0.03) * measure.newton_tol);
 
     // The derivatives at the start: the method's `v_0` and the dense
     // output's `f_0`.
