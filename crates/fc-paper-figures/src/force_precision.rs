@@ -133,7 +133,7 @@ pub fn tables(
     let (p0, t0, _) = peaks(&refs[0])?;
     let (p1, t1, _) = peaks(&refs[1])?;
     let gap = (p1 / p0 - 1.0).abs().max((t1 / t0 - 1.0).abs());
-    if !(gap <= AGREEMENT) {
+    if gap.is_nan() || gap > AGREEMENT {
         return Err(format!(
             "the reference and its confirmation differ by {gap:e} in their peaks (at most {AGREEMENT:e})"
         ));
