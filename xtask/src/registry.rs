@@ -435,6 +435,19 @@ pub static FIGURES: &[Figure] = &[
         make: &study::elastic_snap_precision::BY_DAMPING,
     },
     Figure {
+        id: "force-precision",
+        report: None,
+        what: "work-precision of the snap's forces beside the tip (issue 49's steel rope, \
+               span d = 3 at EA = 1e8 with 5% damping, cut to n = 10 rods, t = 3.2): the \
+               relative errors of the largest pivot force, the largest joint tension and the \
+               tip at the end against rtol 1e-3 .. 1e-8 for DOPRI5, DOP853, BDF, gen-alpha and \
+               auto, against DOP853 at rtol 1e-10 confirmed by DOPRI5 at 1e-9; the runs that \
+               say forces_resolved = false ringed",
+        data: &["force-precision.csv", "force-precision-reference.csv"],
+        timing: Timing::None,
+        make: &study::force_precision::ForcePrecision,
+    },
+    Figure {
         id: "span-friction",
         report: None,
         what: "sensitivity of the maximum tip speed to the joint friction r for the span \

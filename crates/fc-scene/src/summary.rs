@@ -151,7 +151,7 @@ pub struct RunSummary {
     /// tolerance although its motion is (docs/cli.md; docs/model.md,
     /// "Forces as results"): on elastic links gen-alpha at `rho_inf > 0`
     /// or bdf stepped over the axial modes that carry them, or dopri5 or
-    /// dop853 ran at rtol above 1e-4; or the chain landed on the penalty
+    /// dop853 ran at rtol 1e-4 or looser; or the chain landed on the penalty
     /// floor. Not in the CSV row; absent in older JSON reads as true.
     #[serde(default = "resolved_default")]
     pub forces_resolved: bool,
@@ -513,7 +513,7 @@ impl fmt::Display for RunSummary {
         if !self.forces_resolved {
             write!(
                 f,
-                "\n  forces            NOT resolved to the tolerance (the motion is): the method stepped over the elastic links' axial modes, or ran explicit at rtol above 1e-4, or the chain landed on the penalty floor (docs/model.md, \"Forces as results\"); dopri5 or dop853 at rtol 1e-5 or tighter resolve a rope's"
+                "\n  forces            NOT resolved to the tolerance (the motion is): the method stepped over the elastic links' axial modes, or ran explicit at rtol 1e-4 or looser, or the chain landed on the penalty floor (docs/model.md, \"Forces as results\"); dopri5 or dop853 at rtol 1e-5 or tighter resolve a rope's"
             )?;
         }
         Ok(())

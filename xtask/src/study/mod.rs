@@ -17,6 +17,7 @@
 //! * `elastic_snap_force.rs`: `snap-force`: the snap's peak support force and impulse against `n` (`fc_paper_figures::snap_sweep`), for span d = 3, span d = 1 and the folded chain ...
 //! * `elastic_snap_precision.rs`: `snap-precision` and `snap-damping`: the folded elastic snap's work-precision across `EA` and across the damping (`fc_paper_figures::snap_precision`).
 //! * `elastic_snap_tension.rs`: `snap-tension`: the tension along the chain around the snap, the wave running up from the tip (`fc_study::snap`).
+//! * `force_precision.rs`: `force-precision`: the work-precision of the snap's forces beside the tip's, on issue 49's steel rope cut short (`fc_paper_figures::force_precision`).
 //! * `floor_checks.rs`: `floor-checks`: the floor against two closed forms (the tests' `floor::` in chain-ode's physics suite check the same) ...
 //! * `floor_span_d3.rs`: `floor-span-d3`: the report's U of span d = 3 (n = 50) released over a floor (`scenes/span-d3-floor.toml`), drawn at a few times with the floor ...
 //! * `precision_beam.rs`: `beam-precision`: work-precision of BEAM, the IVP test set's stiff beam (`chain_ode::beam`), every method against the published reference at t = 5.
@@ -43,6 +44,7 @@ pub mod elastic_snap_precision;
 pub mod elastic_snap_tension;
 pub mod floor_checks;
 pub mod floor_span_d3;
+pub mod force_precision;
 pub mod precision_beam;
 pub mod precision_cost;
 pub mod precision_map;

@@ -159,6 +159,14 @@ pub(crate) fn integrate(
         .flatten()
         .filter(|&i| i < nd)
         .collect();
+    // Newton's tolerance: tight where the step resolves every mode (the
+    // error measured on every unknown), RADAU5's where it damps modes it
+    // does not resolve (`GenAlphaPolicy::newton_tol`).
+    let newton_tol = if configuration.is_empty() {
+        policy::current().newton_tol
+    } else {
+        1.0
+    };
     if configuration.is_empty() || policy::current().measure_all {
         configuration = (0..nd).collect();
     }
@@ -170,6 +178,7 @@ pub(crate) fn integrate(
     let control = ErrorControl {
         configuration: &configuration,
         measured: measured.as_deref(),
+        newton_tol,
     };
     let mut out = Counted::run(problem, |sys| {
         run(sys, dae.as_ref(), full, &control, s, obs)
@@ -184,6 +193,8 @@ pub(crate) fn integrate(
 struct ErrorControl<'a> {
     configuration: &'a [usize],
     measured: Option<&'a dyn Measured>,
+    /// Newton's stopping tolerance as a fraction of RADAU5's.
+    newton_tol: f64,
 }
 
 /// The step loop: `sys` (counted) gives the derivatives the observer and
@@ -214,8 +225,9 @@ fn run<S: OdeSystem>(
     // `R = (d* - d_n) + beta k1 v_n - beta f(t*, u)` on the differential
     // rows, `-beta g(t*, u)` on the algebraic ones.
     let k1 = (1.0 - k.a_m) - k.a_m * (1.0 - k.gamma) / k.gamma;
-    // Newton's tolerance in the error norm (RADAU5's).
-    let tol = (10.0 * f64::EPSILON / set.rtol).max(set.rtol.sqrt().min(0.03));
+    // Newton's tolerance in the error norm: a fraction of RADAU5's
+    // (`ErrorControl::newton_tol`).
+    let tol = (10.0 * f64::EPSILON / set.rtol).max(set.rtol.sqrt().min(0.03) * measure.newton_tol);
 
     // The derivatives at the start: the method's `v_0` and the dense
     // output's `f_0`.
@@ -411,7 +423,7 @@ fn run<S: OdeSystem>(
             }
         }
         xs[nd..].fill(0.0);
-        let filtered = newton.solve(&mut x);
+        let filtered = !policy.filter || newton.solve(&mut x);
         let t1 = if landing { t_end } else { t + h_step };
         let e = slice(&x);
         let err = if filtered {

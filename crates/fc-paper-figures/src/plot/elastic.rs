@@ -1,7 +1,8 @@
 //! The drawings of the elastic chain's study: the snap's support force and
 //! impulse against `n` (`fc_study::snap`), its tension wave
-//! (`crate::snap_tension`), and when the rigid model will do
-//! (`fc_study::rigid_limit`).
+//! (`crate::snap_tension`), when the rigid model will do
+//! (`fc_study::rigid_limit`), and the work-precision of its forces
+//! (`crate::force_precision`).
 
 use std::path::Path;
 
@@ -507,4 +508,106 @@ pub fn snap_work(read: Reader, stem: &Path, axis: SnapAxis) -> Result<Output, St
         SnapAxis::Damping => "The folded elastic snap (n = 20, EA = 1e7, t = 3.2)",
     };
     figures::line_plot_pair(&left, &right, title, stem).map_err(|e| e.to_string())
+}
+
+/// The least tip error `force_precision` draws (the reference and its
+/// confirmation put the tip 1e-14 L apart).
+const TIP_FLOOR: f64 = 1e-12;
+
+/// `force-precision`: from `crate::force_precision`'s rows and reference,
+/// against rtol, the relative errors of each method's largest pivot force
+/// (solid) and largest joint tension (dashed) (left) and of its tip at the
+/// end over `L` (right), a colour per method; the runs that say
+/// `forces_resolved = false` ringed in black on the left. An error below
+/// the reference's agreement is drawn at it (the reference cannot tell
+/// it from zero).
+pub fn force_precision(read: Reader, stem: &Path) -> Result<Output, String> {
+    let t = read("")?;
+    let (method, rtol) = (t.strs("method")?, t.nums("rtol")?);
+    let (pivot, tension, tip) = (
+        t.nums("pivot_error")?,
+        t.nums("tension_error")?,
+        t.nums("tip_error")?,
+    );
+    let resolved = t.strs("forces_resolved")?;
+    let r = read("-reference")?;
+    let peaks = (r.nums("pivot_force_max")?, r.nums("tension_max")?);
+    let floor = crate::force_precision::AGREEMENT;
+    let agree = (peaks.0[1] / peaks.0[0] - 1.0)
+        .abs()
+        .max((peaks.1[1] / peaks.1[0] - 1.0).abs());
+    let at_least = |e: f64, floor: f64| {
+        if e.is_finite() {
+            e.max(floor)
+        } else {
+            f64::NAN
+        }
+    };
+    let shown = |e: f64| at_least(e, floor);
+    let mut left = LinePlot::new(
+        "largest pivot force (solid) and tension (dashed)",
+        "rtol",
+        "relative error",
+    );
+    let mut right = LinePlot::new(
+        "tip at the end (below 1e-12 drawn at it)",
+        "rtol",
+        "|tip - tip_ref| / L",
+    );
+    for p in [&mut left, &mut right] {
+        p.log_x = true;
+        p.log_y = true;
+    }
+    let mut ringed = vec![];
+    for (k, m) in distinct(&method).into_iter().enumerate() {
+        let rows: Vec<usize> = (0..t.len()).filter(|&j| method[j] == m).collect();
+        let line = |e: &[f64], floor: f64| {
+            rows.iter()
+                .map(|&j| (rtol[j], at_least(e[j], floor)))
+                .collect()
+        };
+        left.series.push(
+            Series::new(m, line(&pivot, floor), Style::LinePoints)
+                .with_color(palette(k))
+                .with_marker(Marker::Circle),
+        );
+        left.series.push(
+            Series::new("", line(&tension, floor), Style::DashedPoints)
+                .with_color(palette(k))
+                .with_marker(Marker::Square),
+        );
+        right.series.push(
+            Series::new(m, line(&tip, TIP_FLOOR), Style::LinePoints)
+                .with_color(palette(k))
+                .with_marker(Marker::Circle),
+        );
+        for &j in &rows {
+            if resolved[j] == "false" {
+                ringed.push((rtol[j], shown(pivot[j])));
+                ringed.push((rtol[j], shown(tension[j])));
+            }
+        }
+    }
+    left.series.push(
+        Series::new("forces_resolved = false", ringed, Style::Points)
+            .with_color(RGBColor(0, 0, 0))
+            .with_marker(Marker::Diamond)
+            .hollow(),
+    );
+    let a = rtol.iter().copied().fold(f64::INFINITY, f64::min);
+    let z = rtol.iter().copied().fold(0.0, f64::max);
+    left.series.push(
+        Series::new("10 rtol", vec![(a, 10.0 * a), (z, 10.0 * z)], Style::Dashed)
+            .with_color(RGBColor(120, 120, 120)),
+    );
+    left.annotations = vec![
+        format!("reference: peak pivot force {:.7}", peaks.0[0]),
+        format!("DOP853 1e-8 against DOPRI5 1e-9: {agree:.0e}"),
+        format!("errors below {floor:.0e} (rounding) drawn at it"),
+    ];
+    let title = format!(
+        "The steel rope's snap cut to n = {} (EA = 1e8, 5% damping, t = 3.2)",
+        crate::force_precision::LINKS
+    );
+    figures::line_plot_pair(&left, &right, &title, stem).map_err(|e| e.to_string())
 }
