@@ -793,7 +793,7 @@ t_end = 1
             }
         );
         let angles = Scene::from_toml_str(
-            "[chain]\nlinks = 2\n[start]\nkind = \"angles\"\nangles = [0, 0]\n[run]\nt_end = 1\n",
+            "[chain]\nlinks = 2\n[start]\nkind = \"angles\"\nangles = [0, 0.1]\n[run]\nt_end = 1\n",
         )
         .unwrap();
         let e = refined_scene(&angles, 4).unwrap_err().to_string();
