@@ -118,7 +118,7 @@ fn budget_of(budget: Option<f64>) -> PyResult<Option<f64>> {
 /// in the `note`); `shard` ("I/N" or (I, N)) runs only its points (join with
 /// `merge`); `jobs` threads (1 to 256). `measure` (`--measure`: a str
 /// "tip,pivot_force_max" or a list; default "tip") sets what the errors
-/// measure: then each measure's `err_<name>` and `<name>_ref` are the last
+/// measure: then each measure's but the tip's `err_<name>` and `<name>_ref` are the last
 /// columns, and a stiff scene's reference is DOPRI5 checked by DOP853.
 /// Releases the GIL; Ctrl-C raises
 /// KeyboardInterrupt. Bad input raises ValueError naming the argument.

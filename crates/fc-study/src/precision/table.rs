@@ -58,18 +58,17 @@ pub fn csv_text(
         csv.push_str(&Provenance::header_suffix());
     }
     // `--measure` other than the tip: each measure's error and reference
-    // value, last (the tip's table is unchanged without it).
+    // value, last (the tip's table is unchanged without it). The tip's own
+    // error is the larger of `err_tip` and `err_vmax`, already columns: a
+    // second `err_tip` would make two columns of one name.
     let measures = rows.first().map_or(Measures::TIP, |r| r.measures);
-    let extra: Vec<Measure> = if measures.is_tip() {
-        vec![]
-    } else {
-        measures.list()
-    };
+    let extra: Vec<Measure> = measures
+        .list()
+        .into_iter()
+        .filter(|&m| m != Measure::Tip)
+        .collect();
     for m in &extra {
-        csv.push_str(&format!(",err_{}", m.name()));
-        if *m != Measure::Tip {
-            csv.push_str(&format!(",{}_ref", m.name()));
-        }
+        csv.push_str(&format!(",err_{},{}_ref", m.name(), m.name()));
     }
     csv.push('\n');
     for pt in rows {
@@ -109,10 +108,8 @@ pub fn csv_text(
         for &m in &extra {
             csv.push(',');
             csv.push_str(&exp(pt.err_of(m)));
-            if m != Measure::Tip {
-                csv.push(',');
-                csv.push_str(&num(reference.values.get(m)));
-            }
+            csv.push(',');
+            csv.push_str(&num(reference.values.get(m)));
         }
         csv.push('\n');
     }
