@@ -615,12 +615,18 @@ fn measure_tip_is_the_default() {
     let plain = go(&[], &dir.join("a.csv"));
     let tip = go(&["--measure", "tip"], &dir.join("b.csv"));
     assert_eq!(plain, tip);
-    // A force measured: its error and reference value are the last columns.
+    // A force measured: its error and reference value are the last columns;
+    // the tip's errors stay `err_tip` and `err_vmax`, each one column.
     let force = go(&["--measure", "pivot_force_max,tip"], &dir.join("c.csv"));
+    let header = &force.0[0];
     assert!(
-        force.0[0].ends_with(",err_tip,err_pivot_force_max,pivot_force_max_ref"),
-        "{}",
-        force.0[0]
+        header.ends_with(",scene_hash,err_pivot_force_max,pivot_force_max_ref"),
+        "{header}"
+    );
+    assert_eq!(
+        header.split(',').filter(|c| *c == "err_tip").count(),
+        1,
+        "{header}"
     );
 }
 
