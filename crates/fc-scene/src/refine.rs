@@ -57,6 +57,9 @@ impl Scene {
         let chain = self.chain()?;
         let mut s = self.with_chain(&chain.refined(links)?)?;
         if let Start::Angles { angles, rates, .. } = self.start() {
+            // The start as written must hold first (its lists as long as
+            // its rods): a refinement does not mend a wrong one.
+            self.state()?;
             let Some(period) = pattern_period(&angles, rates.as_deref()) else {
                 return Err(Error::field(
                     "start.kind",
@@ -187,6 +190,10 @@ mod tests {
         let c = s.chain().unwrap();
         assert!((c.total_mass() - 1.0).abs() < 1e-15);
         s.state().unwrap();
+        // A start whose angles do not match its rods stays refused.
+        let short = zigzag.replace("-1.55, -1.59, -1.55, -1.59", "-1.55, -1.59");
+        let e = scene(&short).refined(8).unwrap_err().to_string();
+        assert!(e.starts_with("start.angles: "), "{e}");
         // No repeat (a pattern seen once), or rates that break the angles'
         // pattern: refused, naming the field.
         for bad in [
